@@ -1,0 +1,14 @@
+// editor_client: bakes scenes on a lightmass_server, inspects trees, edits
+// lights and renders with Vulkan. Every subcommand lives in commands/.
+#include <CLI/CLI.hpp>
+
+#include "editor_client/commands/commands.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"editor_client: Lightcuts bake client and Vulkan renderer"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "editor_client 0.1.0");
+    lc::client::add_inspect_command(app);
+    CLI11_PARSE(app, argc, argv);
+    return 0;
+}

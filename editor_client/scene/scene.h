@@ -1,0 +1,61 @@
+#pragma once
+// The client's scene: what it loads from glTF, renders, edits and bakes.
+// Geometry is flattened to world space at load time.
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "protocol/guid.h"
+#include "protocol/scene_light.h"
+
+namespace lc::client {
+
+struct Texture {
+    int width = 0;
+    int height = 0;
+    std::vector<uint8_t> rgba8;  // base colour and emissive textures are sRGB-encoded
+};
+
+struct Material {
+    glm::vec4 base_color_factor{1.0f};
+    int base_color_texture = -1;  // index into Scene::textures
+    float metallic = 1.0f;        // glTF defaults
+    float roughness = 1.0f;
+    glm::vec3 emissive_factor{0.0f};
+    int emissive_texture = -1;
+};
+
+struct Mesh {
+    std::vector<glm::vec3> positions;  // world space
+    std::vector<glm::vec3> normals;    // world space, unit; generated when the file has none
+    std::vector<glm::vec2> uvs;        // empty when the primitive has no TEXCOORD_0
+    std::vector<uint32_t> indices;     // triangle list
+    int material = -1;                 // -1: the glTF default material
+};
+
+struct Camera {
+    std::string name;
+    glm::vec3 eye{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yfov = 0.8f;  // radians
+};
+
+struct Scene {
+    std::filesystem::path source;
+    Guid guid;  // stable for a given content (see scene_guid.h)
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<SceneLight> lights;
+    std::vector<Camera> cameras;
+    glm::vec3 bounds_min{0.0f};  // of geometry and lights
+    glm::vec3 bounds_max{0.0f};
+};
+
+}  // namespace lc::client

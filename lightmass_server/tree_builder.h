@@ -1,0 +1,55 @@
+#pragma once
+// The one entry point every light-tree builder shares.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "protocol/light_tree.h"
+#include "protocol/messages.h"
+#include "protocol/result.h"
+#include "protocol/scene_light.h"
+
+namespace lc::bake {
+
+// Above this many nodes in one level, PairingMode::kAuto pairs approximately
+// (and says so); kExact still proves optimality, only slower.
+inline constexpr uint32_t kDefaultExactPairingLimit = 8192;
+
+struct BuildOptions {
+    BuilderKind builder = BuilderKind::kOptimalPair;
+    RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
+    PairingMode pairing = PairingMode::kAuto;
+    uint32_t exact_pairing_limit = kDefaultExactPairingLimit;
+    uint64_t seed = 0;
+};
+
+// Stage name and percent in [0, 100]; return false to cancel the build.
+using ProgressFn = std::function<bool(std::string_view stage, double percent)>;
+
+struct BuildReport {
+    double build_ms = 0.0;
+    // optimal-pair: sum over levels of the chosen pairs' distances, and a lower
+    // bound of the optimum (equal to the cost when every level was exact).
+    double pairing_cost = 0.0;
+    double pairing_lower_bound = 0.0;
+    bool exact = true;
+    uint32_t levels = 0;
+    uint32_t depth = 0;
+    std::vector<std::string> warnings;
+};
+
+struct BuildResult {
+    LightTree tree;
+    BuildReport report;
+};
+
+// Lights must already be validated (protocol/channel_records.h); every light
+// given becomes a leaf. Deterministic for equal lights, options and seed.
+// A cancelled build returns an error whose message starts with "cancelled".
+Result<BuildResult> build_light_tree(std::span<const SceneLight> lights, const BuildOptions& options,
+                                     const ProgressFn& progress);
+
+}  // namespace lc::bake

@@ -1,0 +1,82 @@
+#pragma once
+// Channel payloads: an int32 little-endian count, then fixed-size records.
+//   scene channel : count, then one SceneLightRecord per light
+//   result channel: count, then per tree node FLightData, FPointLightData,
+//                   LightcutsNodeRecord (the thesis's layout plus our record)
+// Writers produce bounded chunks; readers are push parsers that validate every
+// record as it arrives, so a 10^6-light channel never needs to be held twice.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "light_tree.h"
+#include "result.h"
+#include "scene_light.h"
+
+namespace lc {
+
+// Size limits (documented in docs/PROTOCOL.md).
+inline constexpr uint32_t kMaxSceneLights = 1u << 24;  // 16,777,216
+inline constexpr uint32_t kMaxTreeNodes = 2u * kMaxSceneLights - 1u;
+inline constexpr size_t kDefaultChunkBytes = 1u << 20;  // bytes of channel data per WriteChannel
+
+size_t scene_record_bytes();
+size_t result_record_bytes();  // FLightData + FPointLightData + LightcutsNodeRecord
+
+// Whole-channel encoders (used for dumps and small scenes).
+std::vector<uint8_t> encode_scene_channel(std::span<const SceneLight> lights);
+std::vector<uint8_t> encode_result_channel(const LightTree& tree);
+
+// Incremental result encoder: the count prefix, then records [first, first+count).
+std::vector<uint8_t> encode_result_prefix(uint32_t node_count);
+void append_result_records(const LightTree& tree, size_t first, size_t count,
+                           std::vector<uint8_t>& out);
+
+// Validates one light: finite values, non-negative colour and intensity,
+// known type, unit direction for oriented lights, 0 <= inner < outer <= pi/2,
+// range >= 0. The message names the light (index and GUID) and the field.
+Status validate_scene_light(const SceneLight& light, size_t index);
+
+class SceneChannelReader {
+public:
+    // Pushes channel bytes; fails on a bad count (negative or above the limit)
+    // or a bad record, naming it.
+    Status consume(std::span<const uint8_t> bytes);
+    // Succeeds only when exactly `count` records arrived and nothing more.
+    Result<std::vector<SceneLight>> finish();
+    uint64_t bytes_seen() const { return bytes_seen_; }
+
+private:
+    std::vector<uint8_t> pending_;
+    int64_t expected_ = -1;
+    uint64_t bytes_seen_ = 0;
+    std::vector<SceneLight> lights_;
+    bool failed_ = false;
+};
+
+class ResultChannelReader {
+public:
+    Status consume(std::span<const uint8_t> bytes);
+    // Checks the count, then the structure: child indices in range and greater
+    // than the parent's (breadth-first order), every node but the root with one
+    // parent, representatives are leaves inside the node's subtree, values finite.
+    Result<LightTree> finish();
+    size_t nodes_received() const { return nodes_.size(); }
+    int64_t nodes_expected() const { return expected_; }
+
+private:
+    std::vector<uint8_t> pending_;
+    int64_t expected_ = -1;
+    std::vector<LightTreeNode> nodes_;
+    bool failed_ = false;
+};
+
+// Convenience: whole-buffer decoders built on the readers.
+Result<std::vector<SceneLight>> decode_scene_channel(std::span<const uint8_t> bytes);
+Result<LightTree> decode_result_channel(std::span<const uint8_t> bytes);
+
+// Structural validation shared by the reader and by tests.
+Status validate_tree(const LightTree& tree);
+
+}  // namespace lc

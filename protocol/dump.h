@@ -1,0 +1,32 @@
+#pragma once
+// Channel dumps: every byte a channel carried, in a file with a header so a
+// stale or foreign dump fails loudly.
+//   magic "LCDUMP01" (8 bytes), dump version (uint32), schema hash (uint64),
+//   channel name length (uint32) + name bytes, payload length (uint64), payload.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "result.h"
+
+namespace lc {
+
+inline constexpr uint32_t kDumpVersion = 1;
+
+struct ChannelDump {
+    std::string channel_name;
+    std::vector<uint8_t> payload;
+};
+
+// Writes atomically (temporary file + rename).
+Status write_dump(const std::filesystem::path& path, const ChannelDump& dump);
+// Refuses wrong magic, another dump version, another schema hash (naming both
+// hashes), truncated files and trailing bytes.
+Result<ChannelDump> read_dump(const std::filesystem::path& path);
+
+// "<dir>/<channel name>.dump": the file name --record uses for a channel.
+std::filesystem::path dump_path_for(const std::filesystem::path& dir, const std::string& channel_name);
+
+}  // namespace lc

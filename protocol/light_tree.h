@@ -1,0 +1,55 @@
+#pragma once
+// The light tree as it travels on the result channel and as the client holds
+// it after import. Float precision, conservatively rounded from the server's
+// double-precision build (see lightmass_server/tree_export.h).
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "guid.h"
+#include "scene_light.h"
+
+namespace lc {
+
+inline constexpr int32_t kNoChild = -1;
+// FPointLightData.Radius for lights without a range: the light reaches everywhere.
+inline constexpr float kUnboundedRadius = -1.0f;
+
+struct LightTreeNode {
+    Guid guid;  // a leaf carries its scene light's GUID; a cluster a derived one
+    LightType type = LightType::kPoint;
+    int32_t left = kNoChild;   // explicit child indices (never heap layout)
+    int32_t right = kNoChild;
+    int32_t representative = 0;  // index of the leaf node that represents this node
+
+    // The representative light's own parameters, used to evaluate the cluster.
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    float range = 0.0f;  // 0: unbounded
+    float spot_cos_inner = 1.0f;
+    float spot_cos_outer = 0.0f;
+
+    // Cluster attributes (SPEC §4).
+    glm::vec3 intensity{0.0f};  // RGB cluster intensity: sum of leaves' color * intensity
+    float brightness = 0.0f;    // scalar sum of leaves' intensity (Unreal's Brightness)
+    float radius = kUnboundedRadius;  // influence radius around `position` (thesis rule)
+    float falloff_exponent = 2.0f;    // inverse-square falloff
+    glm::vec3 bbox_min{0.0f};  // bounds of the leaves' positions (directions for directional)
+    glm::vec3 bbox_max{0.0f};
+    glm::vec3 cone_axis{0.0f, 0.0f, -1.0f};  // orientation cone of spot lights
+    float cone_cos = 1.0f;                    // cos of its half-angle; -1 means all directions
+
+    bool is_leaf() const { return left == kNoChild && right == kNoChild; }
+};
+
+struct LightTree {
+    // nodes[0] is the root when the tree is not empty. Nodes are in breadth-first
+    // order from the root, so every child index is greater than its parent's.
+    std::vector<LightTreeNode> nodes;
+    uint32_t leaf_count = 0;
+
+    bool empty() const { return nodes.empty(); }
+};
+
+}  // namespace lc

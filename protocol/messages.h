@@ -1,0 +1,102 @@
+#pragma once
+// Our own view of the wire messages. Only protocol/codec.cpp sees the
+// FlatBuffers-generated code; everything else uses these types.
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "guid.h"
+
+namespace lc {
+
+// The version of the message set in lightcuts.fbs. Bump on any incompatible change.
+inline constexpr Guid kProtocolVersion{0x4C435031u, 0x50726F74u, 0x6F636F6Cu, 0x00010000u};
+
+enum class BuilderKind : uint8_t { kOptimalPair = 0, kAgglomerative = 1, kLbvh = 2 };
+enum class RepresentativeRule : uint8_t { kIntensity = 0, kThesisFirst = 1 };
+enum class PairingMode : uint8_t { kExact = 0, kApproximate = 1, kAuto = 2 };
+
+const char* builder_name(BuilderKind kind);
+const char* representative_rule_name(RepresentativeRule rule);
+const char* pairing_mode_name(PairingMode mode);
+
+enum class ErrorCode : uint32_t {
+    kUnknown = 0,
+    kVersionMismatch = 1,
+    kAuthentication = 2,
+    kMalformedFrame = 3,
+    kInvalidScene = 4,
+    kUnknownChannel = 5,
+    kBakeFailed = 6,
+    kCancelled = 7,
+    kTooLarge = 8,
+    kBusy = 9,
+};
+
+struct HelloMsg {
+    Guid protocol_version;
+    std::string peer_name;
+    std::string token;
+};
+struct HelloAckMsg {
+    Guid protocol_version;
+    std::string peer_name;
+};
+struct OpenChannelMsg {
+    uint32_t channel_id = 0;
+    std::string name;
+    uint64_t total_bytes = 0;
+};
+struct WriteChannelMsg {
+    uint32_t channel_id = 0;
+    uint64_t offset = 0;
+    std::vector<uint8_t> data;
+};
+struct CloseChannelMsg {
+    uint32_t channel_id = 0;
+};
+struct BakeRequestMsg {
+    uint32_t bake_id = 0;
+    std::string scene_channel;
+    BuilderKind builder = BuilderKind::kOptimalPair;
+    uint64_t seed = 0;
+    RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
+    PairingMode pairing = PairingMode::kAuto;
+    uint32_t exact_pairing_limit = 0;
+};
+struct ProgressMsg {
+    uint32_t bake_id = 0;
+    std::string stage;
+    float percent = 0.0f;
+};
+struct WarningMsg {
+    uint32_t bake_id = 0;
+    std::string text;
+};
+struct ErrorMsg {
+    uint32_t bake_id = 0;
+    ErrorCode code = ErrorCode::kUnknown;
+    std::string text;
+};
+struct CancelMsg {
+    uint32_t bake_id = 0;
+};
+struct BakeDoneMsg {
+    uint32_t bake_id = 0;
+    std::string result_channel;
+    uint32_t node_count = 0;
+    uint32_t leaf_count = 0;
+    double build_ms = 0.0;
+    double pairing_cost = 0.0;
+    double pairing_lower_bound = 0.0;
+    bool exact = true;
+};
+
+using Message = std::variant<HelloMsg, HelloAckMsg, OpenChannelMsg, WriteChannelMsg,
+                             CloseChannelMsg, BakeRequestMsg, ProgressMsg, WarningMsg, ErrorMsg,
+                             CancelMsg, BakeDoneMsg>;
+
+const char* message_name(const Message& message);
+
+}  // namespace lc

@@ -1,0 +1,38 @@
+#pragma once
+// The light as the scene describes it (glTF KHR_lights_punctual semantics).
+// Shared by the client (which reads it from glTF) and the server (which
+// receives it on the scene channel).
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <numbers>
+
+#include "guid.h"
+
+namespace lc {
+
+enum class LightType : uint8_t { kPoint = 0, kSpot = 1, kDirectional = 2 };
+inline constexpr int kLightTypeCount = 3;
+
+const char* light_type_name(LightType type);
+
+struct SceneLight {
+    Guid guid;
+    LightType type = LightType::kPoint;
+    glm::vec3 position{0.0f};
+    // Direction the light shines along (spot, directional); unit length.
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
+    // Linear RGB, each component >= 0.
+    glm::vec3 color{1.0f};
+    // Candela for point and spot lights, lux for directional lights.
+    float intensity = 1.0f;
+    // Distance at which the light is windowed to zero; 0 means unbounded.
+    float range = 0.0f;
+    // Spot cone angles in radians, 0 <= inner < outer <= pi/2.
+    float inner_cone_angle = 0.0f;
+    float outer_cone_angle = std::numbers::pi_v<float> / 4.0f;
+    // Classic lights stay out of the tree and are shaded per light.
+    bool classic = false;
+};
+
+}  // namespace lc
