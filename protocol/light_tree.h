@@ -39,6 +39,9 @@ struct LightTreeNode {
     glm::vec3 bbox_max{0.0f};
     glm::vec3 cone_axis{0.0f, 0.0f, -1.0f};  // orientation cone of spot lights
     float cone_cos = 1.0f;                    // cos of its half-angle; -1 means all directions
+    // Joins trees of different light types (the paper keeps one tree per type):
+    // never used as a cluster, always refined.
+    bool mixed_types = false;
 
     bool is_leaf() const { return left == kNoChild && right == kNoChild; }
 };

@@ -1,0 +1,51 @@
+#pragma once
+// Bakes a scene on a lightmass_server (remote, or spawned locally): sends the
+// scene channel, follows progress, receives the result channel and decodes it.
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "protocol/guid.h"
+#include "protocol/light_tree.h"
+#include "protocol/messages.h"
+#include "protocol/result.h"
+#include "protocol/scene_light.h"
+
+namespace lc::client {
+
+struct BakeClientOptions {
+    std::string server;            // "HOST:PORT"; ignored when spawn_server
+    bool spawn_server = false;     // start build/bin/lightmass_server on loopback for this bake
+    std::filesystem::path token_file;
+    std::filesystem::path record_dir;  // when set, every channel's bytes are dumped there
+    BuilderKind builder = BuilderKind::kOptimalPair;
+    RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
+    PairingMode pairing = PairingMode::kAuto;
+    uint32_t exact_pairing_limit = 0;  // 0: server default
+    uint64_t seed = 0;
+    double timeout_seconds = 600.0;    // whole bake, transfer included
+    std::function<void(const ProgressMsg&)> on_progress;
+    std::function<void(const std::string&)> on_warning;
+    const std::atomic<bool>* cancel = nullptr;  // set to true to cancel the bake
+};
+
+struct BakeOutcome {
+    LightTree tree;
+    BakeDoneMsg done;
+    std::string result_channel_name;
+    std::vector<uint8_t> result_channel;  // the raw channel bytes (for -o dumps)
+    std::vector<std::string> warnings;
+    double total_ms = 0.0;
+    double upload_ms = 0.0;
+    double download_ms = 0.0;
+};
+
+// Lights marked classic are not sent: they stay with the client.
+Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& scene_guid,
+                                const BakeClientOptions& options);
+
+}  // namespace lc::client

@@ -1,0 +1,55 @@
+#pragma once
+// The CPU evaluator: the same estimators as the shaders, in double precision.
+// Ground truth for tests and the exact reference for error measurements.
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+
+#include "protocol/light_tree.h"
+#include "protocol/scene_light.h"
+
+namespace lc::client {
+
+struct SurfacePoint {
+    glm::dvec3 position{0.0};
+    glm::dvec3 normal{0.0, 0.0, 1.0};  // unit
+    glm::dvec3 albedo{1.0};           // linear diffuse albedo
+};
+
+enum class CutCriterion : uint8_t { kRadius = 0, kBound = 1 };
+
+// Default maximum cut size for the bound criterion.
+inline constexpr uint32_t kDefaultMaxCut = 1000;
+
+struct CutSettings {
+    CutCriterion criterion = CutCriterion::kRadius;
+    double error_ratio = 0.02;
+    uint32_t max_cut = kDefaultMaxCut;
+};
+
+struct CutResult {
+    glm::dvec3 radiance{0.0};
+    uint32_t cut_size = 0;     // tree nodes in the cut (classic lights not counted)
+    uint32_t cut_hash = 0;     // see cut_hash_term(); equal cuts have equal hashes
+    bool max_cut_hit = false;  // the bound criterion stopped at max_cut
+};
+
+// Order-independent identity of a cut: the sum (mod 2^32) of cut_hash_term(i)
+// over its node indices i. The shaders compute the same.
+uint32_t cut_hash_term(uint32_t node_index);
+
+// Outgoing radiance at p from one light (shading_model.h), exact.
+glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p);
+// A tree node evaluated as a cluster: the representative's position, direction,
+// range and spot cone, with the cluster's RGB intensity.
+glm::dvec3 shade_node(const LightTreeNode& node, const SurfacePoint& p);
+// The exact sum over every light given.
+glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoint& p);
+// The exact sum over the tree's leaves (what the tree represents).
+glm::dvec3 shade_tree_leaves(const LightTree& tree, const SurfacePoint& p);
+// Lightcuts over the tree, plus the classic lights shaded one by one.
+CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
+                          const SurfacePoint& p, const CutSettings& settings);
+
+}  // namespace lc::client
