@@ -1,1 +1,118 @@
-int main() { return 0; }
+// lightmass_server: the Lightcuts bake server. Listens on loopback unless told
+// otherwise (then a token is required), prints "listening on HOST:PORT" first.
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <csignal>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "protocol/asio.h"
+#include "lightmass_server/auth_token.h"
+#include "lightmass_server/server.h"
+
+namespace {
+
+bool split_host_port(const std::string& text, std::string& host, uint16_t& port) {
+    size_t colon = text.rfind(':');
+    if (colon == std::string::npos || colon == 0) return false;
+    host = text.substr(0, colon);
+    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
+    try {
+        size_t used = 0;
+        int value = std::stoi(text.substr(colon + 1), &used);
+        if (used != text.size() - colon - 1 || value < 0 || value > 65535) return false;
+        port = static_cast<uint16_t>(value);
+    } catch (const std::exception&) {
+        return false;
+    }
+    return true;
+}
+
+bool write_port_file(const std::filesystem::path& path, uint16_t port) {
+    auto tmp = path;
+    tmp += ".tmp";
+    {
+        std::ofstream out(tmp);
+        if (!(out << port << "\n")) return false;
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    return !ec;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
+    std::string listen = "127.0.0.1:0";
+    std::string port_file;
+    std::string token_file;
+    std::string record_dir;
+    unsigned threads = 1;
+    int read_timeout_ms = 30000;
+    int idle_timeout_ms = 600000;
+    bool quiet = false;
+    app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
+        ->capture_default_str();
+    app.add_option("--port-file", port_file, "Write the port number to this file once listening");
+    app.add_option("--threads", threads, "Bake worker threads")->capture_default_str()->check(CLI::Range(1u, 256u));
+    app.add_option("--record", record_dir, "Write every channel received and sent as a dump file here");
+    app.add_option("--token-file", token_file,
+                   "Clients must present this token (required to listen off loopback)");
+    app.add_option("--read-timeout-ms", read_timeout_ms, "Drop a peer stalled mid-frame after this long")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--idle-timeout-ms", idle_timeout_ms, "Drop a peer silent this long with nothing running")
+        ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_flag("--quiet", quiet, "Log warnings and errors only");
+    CLI11_PARSE(app, argc, argv);
+
+    spdlog::set_default_logger(spdlog::stderr_color_mt("lightmass"));
+    spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::info);
+
+    lc::bake::ServerOptions options;
+    if (!split_host_port(listen, options.host, options.port)) {
+        std::cerr << "error: --listen expects HOST:PORT, got '" << listen << "'\n";
+        return 2;
+    }
+    options.bake_threads = threads;
+    options.record_dir = record_dir;
+    options.read_timeout = std::chrono::milliseconds(read_timeout_ms);
+    options.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
+    if (!token_file.empty()) {
+        auto token = lc::bake::read_token_file(token_file);
+        if (!token) {
+            std::cerr << "error: " << token.error() << "\n";
+            return 2;
+        }
+        options.token = token.value();
+    }
+
+    lc::bake::Server server(options);
+    // Handle signals before announcing the address: a launcher may stop us at once.
+    lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM);
+    signals.async_wait([&](const boost::system::error_code& ec, int signal) {
+        if (ec) return;
+        spdlog::info("signal {} received: shutting down", signal);
+        server.stop();
+    });
+    auto endpoint = server.listen();
+    if (!endpoint) {
+        std::cerr << "error: " << endpoint.error() << "\n";
+        return 1;
+    }
+    std::string address = endpoint->address().to_string();
+    if (endpoint->address().is_v6()) address = "[" + address + "]";
+    std::printf("listening on %s:%u\n", address.c_str(), static_cast<unsigned>(endpoint->port()));
+    std::fflush(stdout);
+    if (!port_file.empty() && !write_port_file(port_file, endpoint->port())) {
+        std::cerr << "error: cannot write port file '" << port_file << "'\n";
+        return 1;
+    }
+
+    server.run();
+    spdlog::info("stopped");
+    return 0;
+}

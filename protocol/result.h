@@ -14,6 +14,9 @@ struct Error {
 template <typename T>
 class [[nodiscard]] Result {
 public:
+    // Default: an error, so a Result is never mistaken for a value by accident
+    // (asio's co_spawn needs the type to be default-constructible).
+    Result() : state_(Error{"no result"}) {}
     Result(T value) : state_(std::move(value)) {}
     Result(Error error) : state_(std::move(error)) {}
 

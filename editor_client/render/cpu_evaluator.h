@@ -48,6 +48,11 @@ glm::dvec3 shade_node(const LightTreeNode& node, const SurfacePoint& p);
 glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoint& p);
 // The exact sum over the tree's leaves (what the tree represents).
 glm::dvec3 shade_tree_leaves(const LightTree& tree, const SurfacePoint& p);
+// Upper bound, per channel, on the exact contribution at p of every light under
+// `node` and on its cluster estimate (so on the cluster's error): material
+// bound x geometric bound (visibility = 1) x cluster RGB intensity. Used by the
+// bound criterion; +inf for mixed_types junctions, which are always refined.
+glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint& p);
 // Lightcuts over the tree, plus the classic lights shaded one by one.
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);

@@ -1,0 +1,38 @@
+#pragma once
+// A lightmass_server started by the client for --spawn-server: found next to
+// the editor_client binary (or at $LC_SERVER_BIN), bound to loopback on a free
+// port read from its first output line, and stopped with SIGTERM when done.
+#include <sys/types.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "protocol/result.h"
+
+namespace lc::client {
+
+class ServerProcess {
+public:
+    static Result<std::unique_ptr<ServerProcess>> spawn(unsigned threads = 1);
+    // Starts `binary` with `args` (tests use it for tokens, timeouts, recording).
+    static Result<std::unique_ptr<ServerProcess>> spawn_with(const std::string& binary,
+                                                              const std::vector<std::string>& args);
+    // Sends SIGTERM and waits; returns the exit status (or -1 when killed).
+    int terminate();
+    ~ServerProcess();
+    ServerProcess(const ServerProcess&) = delete;
+    ServerProcess& operator=(const ServerProcess&) = delete;
+
+    const std::string& address() const { return address_; }  // "127.0.0.1:PORT"
+
+private:
+    ServerProcess(pid_t pid, std::string address) : pid_(pid), address_(std::move(address)) {}
+    pid_t pid_;
+    std::string address_;
+};
+
+// The lightmass_server binary next to this executable, or $LC_SERVER_BIN.
+std::string locate_server_binary();
+
+}  // namespace lc::client

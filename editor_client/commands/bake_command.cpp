@@ -1,0 +1,105 @@
+// editor_client bake SCENE.gltf (--server HOST:PORT | --spawn-server) [...] [-o TREE.lcut] [--json]
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "editor_client/bake/bake_client.h"
+#include "editor_client/bake/tree_store.h"
+#include "editor_client/commands/bake_options.h"
+#include "editor_client/commands/commands.h"
+#include "editor_client/report/progress_display.h"
+#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/scene_guid.h"
+#include "protocol/dump.h"
+
+namespace lc::client {
+
+void add_bake_command(CLI::App& app) {
+    struct Options {
+        std::string scene;
+        BakeFlags bake;
+        std::string output;
+        bool json = false;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* cmd = app.add_subcommand("bake", "Bake a scene's light tree on a lightmass_server");
+    cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")->required();
+    options->bake.add_to(*cmd, /*server_required=*/true);
+    cmd->add_option("-o,--output", options->output, "Write the received result channel as a dump (.lcut)");
+    cmd->add_flag("--json", options->json, "Print the summary as JSON");
+    cmd->callback([options] {
+        std::vector<std::string> warnings;
+        Result<Scene> scene = load_scene(options->scene, warnings);
+        if (!scene) {
+            std::cerr << "error: " << scene.error() << "\n";
+            throw CLI::RuntimeError(1);
+        }
+        for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
+
+        BakeClientOptions bake = options->bake.to_options();
+        ProgressDisplay progress(stderr);
+        bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
+        bake.on_warning = [&](const std::string& w) {
+            progress.finish();
+            std::cerr << "server warning: " << w << "\n";
+        };
+        Result<BakeOutcome> outcome = bake_lights(scene->lights, scene->guid, bake);
+        progress.finish();
+        if (!outcome) {
+            std::cerr << "error: bake failed: " << outcome.error() << "\n";
+            throw CLI::RuntimeError(1);
+        }
+        const BakeDoneMsg done = outcome->done;
+        size_t classic = 0;
+        for (const SceneLight& l : scene->lights) classic += l.classic ? 1 : 0;
+        double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
+        std::string channel = outcome->result_channel_name;
+        if (!options->output.empty()) {
+            Status written = write_dump(options->output, ChannelDump{channel, outcome->result_channel});
+            if (!written) {
+                std::cerr << "error: " << written.error() << "\n";
+                throw CLI::RuntimeError(1);
+            }
+        }
+        TreeStore store;
+        if (Status imported = store.import(std::move(outcome)); !imported) {
+            std::cerr << "error: " << imported.error() << "\n";
+            throw CLI::RuntimeError(1);
+        }
+        if (options->json) {
+            nlohmann::json j;
+            j["scene"] = options->scene;
+            j["scene_guid"] = scene->guid.to_hex();
+            j["lights"] = scene->lights.size();
+            j["classic_lights"] = classic;
+            j["builder"] = options->bake.builder;
+            j["seed"] = options->bake.seed;
+            j["nodes"] = done.node_count;
+            j["leaves"] = done.leaf_count;
+            j["build_ms"] = done.build_ms;
+            j["exact"] = done.exact;
+            j["pairing_cost"] = done.pairing_cost;
+            j["pairing_lower_bound"] = done.pairing_lower_bound;
+            j["upload_ms"] = upload_ms;
+            j["download_ms"] = download_ms;
+            j["total_ms"] = total_ms;
+            j["result_channel"] = channel;
+            j["output"] = options->output;
+            std::cout << j.dump(2) << "\n";
+        } else {
+            std::printf("baked %zu lights (%zu classic kept local) into %u nodes with %s in %.1f ms\n",
+                        scene->lights.size(), classic, done.node_count, options->bake.builder.c_str(), done.build_ms);
+            if (options->bake.builder == "optimal-pair")
+                std::printf("pairing: %s, total distance %.6g, lower bound %.6g\n",
+                            done.exact ? "exact (proven optimal)" : "approximate", done.pairing_cost,
+                            done.pairing_lower_bound);
+            std::printf("transfer: upload %.1f ms, download %.1f ms, total %.1f ms\n", upload_ms, download_ms, total_ms);
+            std::printf("result channel %s\n", channel.c_str());
+            if (!options->output.empty()) std::printf("wrote %s\n", options->output.c_str());
+        }
+    });
+}
+
+}  // namespace lc::client

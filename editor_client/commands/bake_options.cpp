@@ -1,0 +1,52 @@
+#include "editor_client/commands/bake_options.h"
+
+#include <map>
+
+namespace lc::client {
+
+void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
+    auto* server_opt = cmd.add_option("--server", server, "Bake on the server at HOST:PORT");
+    auto* spawn_opt = cmd.add_flag("--spawn-server", spawn_server, "Start a local lightmass_server for this bake");
+    server_opt->excludes(spawn_opt);
+    if (server_required) {
+        auto* group = cmd.add_option_group("server", "where to bake");
+        group->add_option(server_opt);
+        group->add_option(spawn_opt);
+        group->require_option(1);
+    }
+    cmd.add_option("--token-file", token_file, "Token for a server that requires one");
+    cmd.add_option("--builder", builder, "Tree builder")
+        ->check(CLI::IsMember({"optimal-pair", "agglomerative", "lbvh"}))
+        ->capture_default_str();
+    cmd.add_option("--pairing", pairing, "optimal-pair pairing: exact, approximate, or auto (exact up to --exact-limit)")
+        ->check(CLI::IsMember({"auto", "exact", "approximate"}))
+        ->capture_default_str();
+    cmd.add_option("--representative", representative,
+                   "Cluster representative: intensity (the paper) or thesis-first (the thesis's Figure 9.1)")
+        ->check(CLI::IsMember({"intensity", "thesis-first"}))
+        ->capture_default_str();
+    cmd.add_option("--exact-limit", exact_limit, "Level size above which auto pairing is approximate (0: server default)");
+    cmd.add_option("--seed", seed, "Seed for representative choice")->capture_default_str();
+    cmd.add_option("--record", record_dir, "Write every channel sent and received as a dump file here");
+}
+
+BakeClientOptions BakeFlags::to_options() const {
+    static const std::map<std::string, BuilderKind> builders = {
+        {"optimal-pair", BuilderKind::kOptimalPair}, {"agglomerative", BuilderKind::kAgglomerative}, {"lbvh", BuilderKind::kLbvh}};
+    static const std::map<std::string, PairingMode> pairings = {
+        {"auto", PairingMode::kAuto}, {"exact", PairingMode::kExact}, {"approximate", PairingMode::kApproximate}};
+    BakeClientOptions options;
+    options.server = server;
+    options.spawn_server = spawn_server;
+    options.token_file = token_file;
+    options.record_dir = record_dir;
+    options.builder = builders.at(builder);
+    options.pairing = pairings.at(pairing);
+    options.representative_rule =
+        representative == "thesis-first" ? RepresentativeRule::kThesisFirst : RepresentativeRule::kIntensity;
+    options.exact_pairing_limit = exact_limit;
+    options.seed = seed;
+    return options;
+}
+
+}  // namespace lc::client

@@ -1,0 +1,29 @@
+#pragma once
+// The bake flags shared by every command that can bake (bake, render, view).
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "editor_client/bake/bake_client.h"
+
+namespace lc::client {
+
+struct BakeFlags {
+    std::string server;
+    bool spawn_server = false;
+    std::string token_file;
+    std::string builder = "optimal-pair";
+    std::string pairing = "auto";
+    std::string representative = "intensity";
+    uint32_t exact_limit = 0;
+    uint64_t seed = 0;
+    std::string record_dir;
+
+    // Adds --server, --spawn-server, --token-file, --builder, --pairing,
+    // --representative, --exact-limit, --seed and --record to a subcommand.
+    void add_to(CLI::App& cmd, bool server_required);
+    bool has_server() const { return spawn_server || !server.empty(); }
+    BakeClientOptions to_options() const;
+};
+
+}  // namespace lc::client

@@ -1,0 +1,68 @@
+#pragma once
+// The scene's geometry and materials on the GPU: one vertex and one index
+// buffer for every mesh, sRGB textures, and one descriptor set per material
+// (base colour and emissive textures; a white texel stands in for none).
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "editor_client/render/gpu_layout.h"
+#include "editor_client/scene/scene.h"
+#include "editor_client/vk/buffer.h"
+#include "editor_client/vk/context.h"
+#include "editor_client/vk/descriptor_set.h"
+#include "editor_client/vk/image.h"
+#include "editor_client/vk/sampler.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+// Vertex layout of the G-buffer pass (binding 0, interleaved).
+struct GpuVertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};
+    glm::vec2 uv{0.0f};
+};
+static_assert(sizeof(GpuVertex) == 32);
+
+struct GpuDraw {
+    uint32_t first_index = 0;
+    uint32_t index_count = 0;
+    int32_t vertex_offset = 0;
+    uint32_t material = 0;  // index into GpuScene::materials (the last one is glTF's default)
+};
+
+struct GpuMaterial {
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    glm::vec4 base_color_factor{1.0f};
+    glm::vec3 emissive_factor{0.0f};
+    float metallic = 1.0f;
+    float roughness = 1.0f;
+    uint32_t flags = 0;  // kDrawBaseColorTexture | kDrawEmissiveTexture
+};
+
+class GpuScene {
+public:
+    // Checks the meshes (index ranges, attribute counts, finite positions) and
+    // uploads them; an error names the mesh and the problem.
+    static Result<GpuScene> upload(const vk::Context& context, const Scene& scene);
+
+    VkBuffer vertex_buffer() const { return vertices_.handle(); }
+    VkBuffer index_buffer() const { return indices_.handle(); }
+    const std::vector<GpuDraw>& draws() const { return draws_; }
+    const std::vector<GpuMaterial>& materials() const { return materials_; }
+    const vk::DescriptorSetLayout& material_layout() const { return material_layout_; }
+
+private:
+    vk::Buffer vertices_;
+    vk::Buffer indices_;
+    std::vector<GpuDraw> draws_;
+    std::vector<vk::Image> textures_;  // scene textures, then the white texel
+    vk::Sampler sampler_;
+    vk::DescriptorSetLayout material_layout_;
+    vk::DescriptorPool material_pool_;
+    std::vector<GpuMaterial> materials_;
+};
+
+}  // namespace lc::client

@@ -1,0 +1,34 @@
+#pragma once
+// What the render and view commands resolve before rendering: the light tree
+// (from a dump, a bake on a server, or none) and the camera.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "editor_client/bake/bake_client.h"
+#include "editor_client/render/render_settings.h"
+#include "editor_client/scene/scene.h"
+#include "protocol/light_tree.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+struct TreeSource {
+    std::filesystem::path dump;             // --tree TREE.lcut
+    std::optional<BakeClientOptions> bake;  // --server / --spawn-server
+
+    bool empty() const { return dump.empty() && !bake; }
+    std::string describe() const;
+};
+
+// Null when the source is empty. A dump must hold a Lightcuts result channel;
+// a bake sends the scene's non-classic lights.
+Result<std::shared_ptr<const LightTree>> obtain_tree(const Scene& scene, const TreeSource& source);
+
+// --camera text wins, then --camera-index, then the file's first camera, then
+// a camera framing the scene bounds.
+Result<RenderCamera> choose_camera(const Scene& scene, const std::string& camera_text,
+                                   std::optional<int> camera_index, float aspect);
+
+}  // namespace lc::client

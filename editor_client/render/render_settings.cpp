@@ -1,0 +1,157 @@
+#include "editor_client/render/render_settings.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace lc::client {
+namespace {
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+    std::vector<std::string_view> parts;
+    size_t start = 0;
+    while (true) {
+        size_t end = text.find(separator, start);
+        parts.push_back(text.substr(start, end == std::string_view::npos ? end : end - start));
+        if (end == std::string_view::npos) break;
+        start = end + 1;
+    }
+    return parts;
+}
+
+std::optional<float> parse_float(std::string_view text) {
+    // std::from_chars for float is in GCC 11+; strtof needs a terminated copy.
+    std::string copy(text);
+    if (copy.empty()) return std::nullopt;
+    char* end = nullptr;
+    float value = std::strtof(copy.c_str(), &end);
+    if (end != copy.c_str() + copy.size() || !std::isfinite(value)) return std::nullopt;
+    return value;
+}
+
+}  // namespace
+
+const char* render_mode_name(RenderMode mode) {
+    switch (mode) {
+        case RenderMode::kReference:
+            return "reference";
+        case RenderMode::kLightcuts:
+            return "lightcuts";
+        case RenderMode::kCuts:
+            return "cuts";
+        case RenderMode::kCutSize:
+            return "cutsize";
+    }
+    return "unknown";
+}
+
+std::optional<RenderMode> parse_render_mode(std::string_view text) {
+    for (int i = 0; i < kRenderModeCount; ++i) {
+        auto mode = static_cast<RenderMode>(i);
+        if (text == render_mode_name(mode)) return mode;
+    }
+    return std::nullopt;
+}
+
+const char* criterion_name(CutCriterion criterion) {
+    switch (criterion) {
+        case CutCriterion::kRadius:
+            return "radius";
+        case CutCriterion::kBound:
+            return "bound";
+    }
+    return "unknown";
+}
+
+std::optional<CutCriterion> parse_criterion(std::string_view text) {
+    if (text == "radius") return CutCriterion::kRadius;
+    if (text == "bound") return CutCriterion::kBound;
+    return std::nullopt;
+}
+
+Result<RenderCamera> parse_camera(std::string_view text) {
+    std::vector<std::string_view> parts = split(text, ',');
+    if (parts.size() != 7)
+        return make_error(
+            "--camera expects 7 comma-separated numbers ex,ey,ez,tx,ty,tz,fovy, got " +
+            std::to_string(parts.size()));
+    float v[7];
+    for (size_t i = 0; i < 7; ++i) {
+        std::optional<float> value = parse_float(parts[i]);
+        if (!value)
+            return make_error("--camera value " + std::to_string(i + 1) + " ('" +
+                              std::string(parts[i]) + "') is not a finite number");
+        v[i] = *value;
+    }
+    RenderCamera camera;
+    camera.eye = {v[0], v[1], v[2]};
+    camera.target = {v[3], v[4], v[5]};
+    if (!(v[6] > 0.0f && v[6] < 180.0f))
+        return make_error("--camera fovy must be in (0, 180) degrees, got " + std::to_string(v[6]));
+    camera.yfov = v[6] * std::numbers::pi_v<float> / 180.0f;
+    if (glm::length(camera.target - camera.eye) <= 0.0f)
+        return make_error("--camera eye and target are the same point");
+    return camera;
+}
+
+Result<std::pair<uint32_t, uint32_t>> parse_size(std::string_view text) {
+    size_t x = text.find_first_of("xX");
+    if (x == std::string_view::npos)
+        return make_error("--size expects WxH, got '" + std::string(text) + "'");
+    uint32_t w = 0, h = 0;
+    std::string_view ws = text.substr(0, x), hs = text.substr(x + 1);
+    auto [pw, ew] = std::from_chars(ws.data(), ws.data() + ws.size(), w);
+    auto [ph, eh] = std::from_chars(hs.data(), hs.data() + hs.size(), h);
+    if (ew != std::errc() || eh != std::errc() || pw != ws.data() + ws.size() ||
+        ph != hs.data() + hs.size())
+        return make_error("--size expects WxH with whole numbers, got '" + std::string(text) + "'");
+    if (w == 0 || h == 0 || w > 16384 || h > 16384)
+        return make_error("--size " + std::string(text) + " is outside 1x1 .. 16384x16384");
+    return std::pair{w, h};
+}
+
+RenderCamera frame_scene_bounds(const Scene& scene, float aspect) {
+    // Frame the geometry when there is some (lights may sit far outside it),
+    // else the scene bounds.
+    glm::vec3 lo = scene.bounds_min, hi = scene.bounds_max;
+    bool any_vertex = false;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            lo = any_vertex ? glm::min(lo, p) : p;
+            hi = any_vertex ? glm::max(hi, p) : p;
+            any_vertex = true;
+        }
+    }
+    RenderCamera camera;
+    glm::vec3 center = 0.5f * (lo + hi);
+    float radius = 0.5f * glm::length(hi - lo);
+    if (!(radius > 1e-6f) || !std::isfinite(radius)) radius = 1.0f;
+    camera.yfov = 0.8f;
+    // Fit the bounding sphere in the narrower of the two fields of view.
+    float half_fov = 0.5f * camera.yfov;
+    if (aspect < 1.0f) half_fov = std::atan(std::tan(half_fov) * aspect);
+    float distance = radius / std::sin(half_fov);
+    // From +Z (where glTF models face) and a little above.
+    glm::vec3 view_dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));
+    camera.target = center;
+    camera.eye = center + view_dir * distance;
+    return camera;
+}
+
+RenderCamera camera_from_scene(const Camera& camera) {
+    RenderCamera out;
+    out.eye = camera.eye;
+    out.target = camera.target;
+    out.up = camera.up;
+    out.yfov = camera.yfov;
+    return out;
+}
+
+}  // namespace lc::client

@@ -1,0 +1,62 @@
+#pragma once
+// What one frame shows and how: mode, cut criterion, size, camera, exposure.
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "editor_client/render/cpu_evaluator.h"
+#include "editor_client/scene/scene.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+enum class RenderMode : uint8_t {
+    kReference = 0,  // every tree leaf (or scene light) plus the classic lights, exact
+    kLightcuts = 1,  // one cut per pixel, each cut node evaluated as a cluster
+    kCuts = 2,       // each distinct cut a stable colour
+    kCutSize = 3,    // heatmap of cut nodes per pixel with a colour scale bar
+};
+inline constexpr int kRenderModeCount = 4;
+
+const char* render_mode_name(RenderMode mode);
+std::optional<RenderMode> parse_render_mode(std::string_view text);
+// Modes that select a cut from the tree (and so need one).
+inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kReference; }
+
+const char* criterion_name(CutCriterion criterion);
+std::optional<CutCriterion> parse_criterion(std::string_view text);
+
+// Right-handed, +Y up, looking from eye to target (glTF conventions).
+struct RenderCamera {
+    glm::vec3 eye{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yfov = 0.8f;  // radians
+};
+
+// Rows at the bottom of a cutsize image given to the colour scale bar.
+inline constexpr uint32_t kScaleBarRows = 16;
+
+struct RenderSettings {
+    RenderMode mode = RenderMode::kReference;
+    CutCriterion criterion = CutCriterion::kRadius;
+    uint32_t width = 512;
+    uint32_t height = 512;
+    RenderCamera camera;
+    float exposure = 1.0f;  // linear scale applied before the tone curve
+};
+
+// "ex,ey,ez,tx,ty,tz,fovy_degrees".
+Result<RenderCamera> parse_camera(std::string_view text);
+// "WxH", each in [1, 16384].
+Result<std::pair<uint32_t, uint32_t>> parse_size(std::string_view text);
+
+// For scenes without a camera: one that sees the whole geometry (or, without
+// geometry, the scene bounds) from +Z, slightly above.
+RenderCamera frame_scene_bounds(const Scene& scene, float aspect);
+RenderCamera camera_from_scene(const Camera& camera);
+
+}  // namespace lc::client

@@ -1,0 +1,48 @@
+#pragma once
+// What one render cost and produced, written as JSON by `render --stats`.
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "editor_client/render/scene_effects.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+struct RenderStats {
+    std::string scene;
+    std::string mode;
+    std::string criterion;
+    std::string device;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint64_t lights = 0;  // evaluated by reference mode: tree leaves (or scene lights) + classic
+    uint64_t tree_lights = 0;  // leaves of the tree (0 without a tree)
+    uint64_t classic_lights = 0;
+    uint64_t nodes = 0;  // tree nodes
+    uint32_t tree_depth = 0;
+    // GPU time from the first to the last timestamp, and per pass.
+    double render_ms = 0.0;
+    double gbuffer_ms = 0.0;
+    double lighting_ms = 0.0;
+    double output_ms = 0.0;
+    double wall_ms = 0.0;  // CPU wall clock of the frame: record, submit, wait
+    // Cut size over pixels with geometry (reference mode: every leaf is the cut).
+    double avg_cut = 0.0;
+    uint32_t max_cut = 0;
+    uint64_t geometry_pixels = 0;
+    uint64_t nonfinite_pixels = 0;
+    uint64_t light_evaluations = 0;  // light or cluster evaluations in the lighting pass
+    std::vector<EffectDecision> effects_simulated;
+    std::vector<EffectDecision> effects_skipped;
+    uint32_t validation_messages = 0;
+    bool validation_enabled = false;
+};
+
+nlohmann::json stats_json(const RenderStats& stats);
+Status write_stats_json(const std::filesystem::path& path, const RenderStats& stats);
+
+}  // namespace lc::client

@@ -1,0 +1,625 @@
+#include "editor_client/render/renderer.h"
+
+#include <spdlog/spdlog.h>
+#include <glm/ext/matrix_clip_space.hpp>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "cut_view_comp.spv.h"
+#include "editor_client/vk/barriers.h"
+#include "editor_client/vk/vk_result.h"
+#include "gbuffer_frag.spv.h"
+#include "gbuffer_vert.spv.h"
+#include "lightcuts_comp.spv.h"
+#include "protocol/channel_records.h"
+#include "reference_comp.spv.h"
+#include "tone_map_comp.spv.h"
+
+namespace lc::client {
+namespace {
+
+// Specialization constant ids (shaders/effects.glsl, lightcuts.comp, cut_view.comp, gbuffer.frag).
+enum SpecId : uint32_t {
+    kSpecWorkgroupX = 0,
+    kSpecWorkgroupY = 1,
+    kSpecPointLights = 2,
+    kSpecSpotLights = 3,
+    kSpecDirectionalLights = 4,
+    kSpecRangeWindow = 5,
+    kSpecClassicLights = 6,
+    kSpecEmissive = 7,
+    kSpecCriterion = 8,  // reserved for the bound criterion
+    kSpecCutView = 9,
+    kSpecTextures = 10,
+};
+
+// Bindings of the compute passes' set (shaders/frame_bindings.glsl).
+enum FrameBinding : uint32_t {
+    kBindPosition = 0,
+    kBindNormal = 1,
+    kBindAlbedo = 2,
+    kBindEmissive = 3,
+    kBindHdr = 4,
+    kBindCut = 5,
+    kBindDisplay = 6,
+    kBindLeafLights = 7,
+    kBindTreeNodes = 8,
+    kBindClassicLights = 9,
+    kBindCounters = 10,
+    kFrameBindingCount = 11,
+};
+
+// Timestamp slots: start, then the end of each pass.
+enum Timestamp : uint32_t {
+    kTsStart = 0,
+    kTsGBuffer = 1,
+    kTsLighting = 2,
+    kTsOutput = 3,
+    kTsCount = 4
+};
+
+template <size_t N>
+std::span<const uint32_t> spirv(const uint32_t (&words)[N]) {
+    return std::span<const uint32_t>(words, N);
+}
+
+constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+constexpr VkAccessFlags2 kStorageWrite = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+constexpr VkAccessFlags2 kStorageReadWrite =
+    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+template <typename T>
+std::vector<T> reinterpret_texels(const std::vector<std::byte>& bytes) {
+    std::vector<T> out(bytes.size() / sizeof(T));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
+    return out;
+}
+
+}  // namespace
+
+glm::mat4 view_projection(const RenderCamera& camera, float aspect, const glm::vec3& bounds_min,
+                          const glm::vec3& bounds_max) {
+    glm::vec3 forward = camera.target - camera.eye;
+    glm::vec3 up = camera.up;
+    // A view straight along `up` has no roll reference: borrow another axis.
+    if (glm::length(glm::cross(glm::normalize(forward), glm::normalize(up))) < 1e-4f)
+        up = std::abs(forward.y) > std::abs(forward.z) ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    glm::mat4 view = glm::lookAtRH(camera.eye, camera.target, up);
+
+    glm::vec3 center = 0.5f * (bounds_min + bounds_max);
+    float radius = 0.5f * glm::length(bounds_max - bounds_min);
+    float distance = glm::length(center - camera.eye);
+    float far_plane = std::max(distance + radius, 1e-3f) * 1.01f;
+    float near_plane = std::max(distance - radius, far_plane * 1e-5f);
+    glm::mat4 projection = glm::perspectiveRH_ZO(camera.yfov, aspect, near_plane, far_plane);
+    projection[1][1] *= -1.0f;  // Vulkan's clip space has y pointing down
+    return projection * view;
+}
+
+Renderer::Renderer(const vk::Context& context, const Scene& scene, const RendererOptions& options)
+    : context_(context), scene_(scene), options_(options) {}
+
+Renderer::~Renderer() {
+    // Nothing may be destroyed while the GPU still uses it.
+    if (context_.device().handle() != VK_NULL_HANDLE) vkDeviceWaitIdle(context_.device().handle());
+}
+
+Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, const Scene& scene,
+                                                   const LightTree* tree,
+                                                   const RendererOptions& options) {
+    if (options.workgroup_size == 0 || options.workgroup_size > 32)
+        return make_error("workgroup size " + std::to_string(options.workgroup_size) +
+                          " is outside 1..32");
+    std::unique_ptr<Renderer> renderer(new Renderer(context, scene, options));
+    Result<GpuScene> gpu_scene = GpuScene::upload(context, scene);
+    if (!gpu_scene) return make_error(gpu_scene.error());
+    renderer->gpu_scene_ = std::move(gpu_scene).value();
+    LC_RETURN_IF_ERROR(renderer->create_frame_resources());
+    LC_RETURN_IF_ERROR(renderer->set_tree(tree));
+    return renderer;
+}
+
+Status Renderer::create_frame_resources() {
+    VkDevice device = context_.device().handle();
+    std::array<VkDescriptorSetLayoutBinding, kFrameBindingCount> bindings{};
+    for (uint32_t b = 0; b < kFrameBindingCount; ++b) {
+        bindings[b].binding = b;
+        bindings[b].descriptorType = b < kBindLeafLights ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                                         : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        bindings[b].descriptorCount = 1;
+        bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    }
+    Result<vk::DescriptorSetLayout> layout = vk::DescriptorSetLayout::create(device, bindings);
+    if (!layout) return make_error(layout.error());
+    frame_layout_ = std::move(layout).value();
+    std::array<VkDescriptorPoolSize, 2> sizes{
+        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kBindLeafLights},
+        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                             kFrameBindingCount - kBindLeafLights}};
+    Result<vk::DescriptorPool> pool = vk::DescriptorPool::create(device, 1, sizes);
+    if (!pool) return make_error(pool.error());
+    frame_pool_ = std::move(pool).value();
+    Result<VkDescriptorSet> set = frame_pool_.allocate(frame_layout_);
+    if (!set) return make_error(set.error());
+    frame_set_ = *set;
+
+    VkDescriptorSetLayout frame_layout = frame_layout_.handle();
+    VkPushConstantRange frame_constants{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuFrameConstants)};
+    Result<vk::PipelineLayout> compute_layout = vk::PipelineLayout::create(
+        device, std::span(&frame_layout, 1), std::span(&frame_constants, 1));
+    if (!compute_layout) return make_error(compute_layout.error());
+    compute_layout_ = std::move(compute_layout).value();
+
+    VkDescriptorSetLayout material_layout = gpu_scene_.material_layout().handle();
+    VkPushConstantRange draw_constants{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                       sizeof(GpuDrawConstants)};
+    Result<vk::PipelineLayout> gbuffer_layout = vk::PipelineLayout::create(
+        device, std::span(&material_layout, 1), std::span(&draw_constants, 1));
+    if (!gbuffer_layout) return make_error(gbuffer_layout.error());
+    gbuffer_layout_ = std::move(gbuffer_layout).value();
+
+    Result<vk::Buffer> counters =
+        vk::Buffer::create(context_.device(), sizeof(GpuFrameCounters),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUsage::kHostReadback);
+    if (!counters) return make_error(counters.error());
+    counters_ = std::move(counters).value();
+
+    Result<vk::TimestampQueryPool> timestamps =
+        vk::TimestampQueryPool::create(context_.device(), kTsCount);
+    if (!timestamps) return make_error(timestamps.error());
+    timestamps_ = std::move(timestamps).value();
+    return Ok{};
+}
+
+Status Renderer::upload_lights(const LightTree* tree) {
+    std::vector<GpuLight> leaves;
+    std::vector<GpuLight> classic;
+    std::vector<GpuTreeNode> nodes;
+    for (size_t i = 0; i < scene_.lights.size(); ++i) {
+        const SceneLight& light = scene_.lights[i];
+        LC_RETURN_IF_ERROR(validate_scene_light(light, i));
+        if (light.classic) {
+            classic.push_back(make_gpu_light(light));
+        } else if (tree == nullptr) {
+            leaves.push_back(make_gpu_light(light));
+        }
+    }
+    tree_depth_ = 0;
+    if (tree != nullptr) {
+        Result<GpuTree> gpu_tree = make_gpu_tree(*tree);
+        if (!gpu_tree) return make_error("light tree: " + gpu_tree.error());
+        leaves = std::move(gpu_tree->leaves);
+        nodes = std::move(gpu_tree->nodes);
+        tree_depth_ = gpu_tree->depth;
+    }
+    if (leaves.size() > UINT32_MAX || nodes.size() > size_t(INT32_MAX) ||
+        classic.size() > UINT32_MAX)
+        return make_error("too many lights for 32-bit counts");
+
+    const vk::Device& device = context_.device();
+    const vk::CommandPool& pool = context_.command_pool();
+    auto upload = [&](vk::Buffer& out, std::span<const std::byte> bytes) -> Status {
+        Result<vk::Buffer> buffer =
+            vk::Buffer::create_with_data(device, pool, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        if (!buffer) return make_error(buffer.error());
+        out = std::move(buffer).value();
+        return Ok{};
+    };
+    LC_RETURN_IF_ERROR(upload(leaf_lights_, std::as_bytes(std::span(leaves))));
+    LC_RETURN_IF_ERROR(upload(classic_lights_, std::as_bytes(std::span(classic))));
+    LC_RETURN_IF_ERROR(upload(tree_nodes_, std::as_bytes(std::span(nodes))));
+    leaf_count_ = uint32_t(leaves.size());
+    classic_count_ = uint32_t(classic.size());
+    node_count_ = uint32_t(nodes.size());
+    frame_set_dirty_ = true;
+    return Ok{};
+}
+
+Status Renderer::set_tree(const LightTree* tree) {
+    LC_RETURN_IF_ERROR(context_.device().wait_idle());
+    LC_RETURN_IF_ERROR(upload_lights(tree));
+    has_tree_ = tree != nullptr;
+    effects_ = analyse_scene_effects(scene_, tree);
+    for (const EffectDecision& d : effects_.decisions)
+        spdlog::debug("effect {}: {} ({})", d.name, d.simulated ? "simulated" : "skipped",
+                      d.reason);
+    // Specialization constants changed: rebuild pipelines on next use.
+    gbuffer_pipeline_.reset();
+    reference_pipeline_.reset();
+    lightcuts_pipeline_.reset();
+    tone_map_pipeline_.reset();
+    cuts_view_pipeline_.reset();
+    cut_size_view_pipeline_.reset();
+    return Ok{};
+}
+
+Status Renderer::validate(const RenderSettings& settings) const {
+    if (settings.width == 0 || settings.height == 0 || settings.width > 16384 ||
+        settings.height > 16384)
+        return make_error("image size " + std::to_string(settings.width) + "x" +
+                          std::to_string(settings.height) + " is outside 1x1 .. 16384x16384");
+    if (mode_needs_tree(settings.mode) && !has_tree_)
+        return make_error(std::string("mode '") + render_mode_name(settings.mode) +
+                          "' needs a light tree (--tree, --server or --spawn-server)");
+    if (settings.criterion != CutCriterion::kRadius)
+        return make_error(std::string("cut criterion '") + criterion_name(settings.criterion) +
+                          "' is not implemented in the renderer yet (use radius)");
+    const RenderCamera& c = settings.camera;
+    if (!finite(c.eye) || !finite(c.target) || !finite(c.up) || !std::isfinite(c.yfov) ||
+        !(c.yfov > 0.0f && c.yfov < 3.14f))
+        return make_error("the camera has non-finite values or a field of view outside (0, 180)");
+    if (glm::length(c.target - c.eye) <= 0.0f)
+        return make_error("the camera's eye and target coincide");
+    if (!std::isfinite(settings.exposure) || settings.exposure < 0.0f)
+        return make_error("exposure must be a finite number >= 0");
+    return Ok{};
+}
+
+Status Renderer::ensure_targets(uint32_t width, uint32_t height) {
+    if (targets_.width == width && targets_.height == height) return Ok{};
+    LC_RETURN_IF_ERROR(context_.device().wait_idle());
+    Result<RenderTargets> targets = RenderTargets::create(context_.device(), width, height);
+    if (!targets) return make_error(targets.error());
+    targets_ = std::move(targets).value();
+    frame_set_dirty_ = true;
+    return Ok{};
+}
+
+void Renderer::update_frame_descriptors() {
+    if (!frame_set_dirty_) return;
+    vk::DescriptorWriter(frame_set_)
+        .storage_image(kBindPosition, targets_.position.view())
+        .storage_image(kBindNormal, targets_.normal.view())
+        .storage_image(kBindAlbedo, targets_.albedo.view())
+        .storage_image(kBindEmissive, targets_.emissive.view())
+        .storage_image(kBindHdr, targets_.hdr.view())
+        .storage_image(kBindCut, targets_.cut.view())
+        .storage_image(kBindDisplay, targets_.display.view())
+        .storage_buffer(kBindLeafLights, leaf_lights_.handle())
+        .storage_buffer(kBindTreeNodes, tree_nodes_.handle())
+        .storage_buffer(kBindClassicLights, classic_lights_.handle())
+        .storage_buffer(kBindCounters, counters_.handle())
+        .update(context_.device().handle());
+    frame_set_dirty_ = false;
+}
+
+Result<VkPipeline> Renderer::gbuffer_pipeline() {
+    if (!gbuffer_pipeline_) {
+        vk::Specialization fragment;
+        fragment.set_bool(kSpecTextures, effects_.textures);
+        vk::GraphicsPipelineDesc desc;
+        desc.layout = gbuffer_layout_.handle();
+        desc.vertex_spirv = spirv(gbuffer_vert_spv);
+        desc.fragment_spirv = spirv(gbuffer_frag_spv);
+        desc.fragment_specialization = &fragment;
+        desc.vertex_bindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
+        desc.vertex_attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
+                                  {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
+                                  {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)}};
+        desc.color_formats = {kGBufferFormat, kGBufferFormat, kGBufferFormat, kGBufferFormat};
+        desc.depth_format = kDepthFormat;
+        desc.cull_mode = VK_CULL_MODE_NONE;  // surfaces are lit on the side the camera sees
+        Result<vk::GraphicsPipeline> pipeline =
+            vk::GraphicsPipeline::create(context_.device().handle(), desc);
+        if (!pipeline) return make_error("G-buffer pipeline: " + pipeline.error());
+        gbuffer_pipeline_ = std::move(pipeline).value();
+    }
+    return gbuffer_pipeline_->handle();
+}
+
+Result<VkPipeline> Renderer::lighting_pipeline(RenderMode mode) {
+    std::optional<vk::ComputePipeline>& slot =
+        mode == RenderMode::kReference ? reference_pipeline_ : lightcuts_pipeline_;
+    if (!slot) {
+        vk::Specialization spec;
+        spec.set_uint(kSpecWorkgroupX, options_.workgroup_size)
+            .set_uint(kSpecWorkgroupY, options_.workgroup_size)
+            .set_bool(kSpecPointLights, effects_.point_lights)
+            .set_bool(kSpecSpotLights, effects_.spot_lights)
+            .set_bool(kSpecDirectionalLights, effects_.directional_lights)
+            .set_bool(kSpecRangeWindow, effects_.range_window)
+            .set_bool(kSpecClassicLights, effects_.classic_lights)
+            .set_bool(kSpecEmissive, effects_.emissive);
+        auto code =
+            mode == RenderMode::kReference ? spirv(reference_comp_spv) : spirv(lightcuts_comp_spv);
+        Result<vk::ComputePipeline> pipeline = vk::ComputePipeline::create(
+            context_.device().handle(), compute_layout_.handle(), code, spec);
+        if (!pipeline) return make_error("lighting pipeline: " + pipeline.error());
+        slot = std::move(pipeline).value();
+    }
+    return slot->handle();
+}
+
+Result<VkPipeline> Renderer::output_pipeline(RenderMode mode) {
+    std::optional<vk::ComputePipeline>& slot = mode == RenderMode::kCuts ? cuts_view_pipeline_
+                                               : mode == RenderMode::kCutSize
+                                                   ? cut_size_view_pipeline_
+                                                   : tone_map_pipeline_;
+    if (!slot) {
+        vk::Specialization spec;
+        spec.set_uint(kSpecWorkgroupX, options_.workgroup_size)
+            .set_uint(kSpecWorkgroupY, options_.workgroup_size);
+        std::span<const uint32_t> code = spirv(tone_map_comp_spv);
+        if (mode == RenderMode::kCuts || mode == RenderMode::kCutSize) {
+            spec.set_uint(kSpecCutView, mode == RenderMode::kCuts ? 0u : 1u);
+            code = spirv(cut_view_comp_spv);
+        }
+        Result<vk::ComputePipeline> pipeline = vk::ComputePipeline::create(
+            context_.device().handle(), compute_layout_.handle(), code, spec);
+        if (!pipeline) return make_error("output pipeline: " + pipeline.error());
+        slot = std::move(pipeline).value();
+    }
+    return slot->handle();
+}
+
+void Renderer::record_gbuffer_pass(VkCommandBuffer cmd, VkPipeline pipeline,
+                                   const RenderSettings& settings) {
+    const std::array<const vk::Image*, 4> colors{&targets_.position, &targets_.normal,
+                                                 &targets_.albedo, &targets_.emissive};
+    for (const vk::Image* image : colors) {
+        vk::transition_image(cmd, {image->handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+                                   VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, kCompute,
+                                   VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                                   VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                   VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT});
+    }
+    vk::transition_image(
+        cmd, {targets_.depth.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+              VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+              VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT,
+              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT,
+              VK_IMAGE_ASPECT_DEPTH_BIT});
+
+    std::array<VkRenderingAttachmentInfo, 4> color_attachments{};
+    for (size_t i = 0; i < colors.size(); ++i) {
+        VkRenderingAttachmentInfo& a = color_attachments[i];
+        a = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        a.imageView = colors[i]->view();
+        a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;  // w = 0 marks background
+        a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        a.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    }
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = targets_.depth.view();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    rendering.renderArea = {{0, 0}, {targets_.width, targets_.height}};
+    rendering.layerCount = 1;
+    rendering.colorAttachmentCount = uint32_t(color_attachments.size());
+    rendering.pColorAttachments = color_attachments.data();
+    rendering.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &rendering);
+
+    VkViewport viewport{0.0f, 0.0f, float(targets_.width), float(targets_.height), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, {targets_.width, targets_.height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+    if (!gpu_scene_.draws().empty()) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        VkBuffer vertex_buffer = gpu_scene_.vertex_buffer();
+        VkDeviceSize offset = 0;
+        vkCmdBindVertexBuffers(cmd, 0, 1, &vertex_buffer, &offset);
+        vkCmdBindIndexBuffer(cmd, gpu_scene_.index_buffer(), 0, VK_INDEX_TYPE_UINT32);
+        GpuDrawConstants constants;
+        constants.view_proj =
+            view_projection(settings.camera, float(targets_.width) / float(targets_.height),
+                            scene_.bounds_min, scene_.bounds_max);
+        constants.eye_roughness = glm::vec4(settings.camera.eye, 0.0f);
+        for (const GpuDraw& draw : gpu_scene_.draws()) {
+            const GpuMaterial& material = gpu_scene_.materials()[draw.material];
+            constants.base_color_factor = material.base_color_factor;
+            constants.emissive_metallic = glm::vec4(material.emissive_factor, material.metallic);
+            constants.eye_roughness.w = material.roughness;
+            constants.flags = material.flags;
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, gbuffer_layout_.handle(),
+                                    0, 1, &material.set, 0, nullptr);
+            vkCmdPushConstants(cmd, gbuffer_layout_.handle(),
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(constants), &constants);
+            vkCmdDrawIndexed(cmd, draw.index_count, 1, draw.first_index, draw.vertex_offset, 0);
+        }
+    }
+    vkCmdEndRendering(cmd);
+
+    for (const vk::Image* image : colors) {
+        vk::transition_image(
+            cmd, {image->handle(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                  VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                  VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, kCompute,
+                  VK_ACCESS_2_SHADER_STORAGE_READ_BIT});
+    }
+}
+
+Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    Result<VkPipeline> gbuffer = gbuffer_pipeline();
+    if (!gbuffer) return make_error(gbuffer.error());
+    Result<VkPipeline> lighting = lighting_pipeline(settings.mode);
+    if (!lighting) return make_error(lighting.error());
+    Result<VkPipeline> output = output_pipeline(settings.mode);
+    if (!output) return make_error(output.error());
+    update_frame_descriptors();
+
+    timestamps_.reset(cmd);
+    timestamps_.write(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, kTsStart);
+    vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+    vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                       kCompute, kStorageReadWrite);
+
+    record_gbuffer_pass(cmd, *gbuffer, settings);
+    timestamps_.write(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, kTsGBuffer);
+
+    // Lighting: every pixel of hdr and cut is written, so old contents are dropped.
+    for (const vk::Image* image : {&targets_.hdr, &targets_.cut}) {
+        vk::transition_image(
+            cmd, {image->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL, kCompute,
+                  kStorageReadWrite, kCompute, kStorageWrite});
+    }
+    GpuFrameConstants constants;
+    constants.width = targets_.width;
+    constants.height = targets_.height;
+    constants.leaf_count = leaf_count_;
+    constants.classic_count = classic_count_;
+    constants.node_count = node_count_;
+    constants.exposure = settings.exposure;
+    constants.scale_bar_rows =
+        settings.mode == RenderMode::kCutSize ? std::min(kScaleBarRows, targets_.height / 4) : 0u;
+    const uint32_t groups_x =
+        (targets_.width + options_.workgroup_size - 1) / options_.workgroup_size;
+    const uint32_t groups_y =
+        (targets_.height + options_.workgroup_size - 1) / options_.workgroup_size;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute_layout_.handle(), 0, 1,
+                            &frame_set_, 0, nullptr);
+    vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof(constants), &constants);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, *lighting);
+    vkCmdDispatch(cmd, groups_x, groups_y, 1);
+    timestamps_.write(cmd, kCompute, kTsLighting);
+
+    // Output: tone mapping or cut visualisation into the display image.
+    vk::memory_barrier(cmd, kCompute, kStorageWrite, kCompute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+    vk::transition_image(cmd, {targets_.display.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+                               VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                               VK_ACCESS_2_MEMORY_READ_BIT, kCompute, kStorageWrite});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, *output);
+    vkCmdDispatch(cmd, groups_x, groups_y, 1);
+    timestamps_.write(cmd, kCompute, kTsOutput);
+
+    // Results become readable by copies (read-backs, blits) and by the host (counters).
+    vk::memory_barrier(cmd, kCompute, kStorageWrite,
+                       VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT | VK_ACCESS_2_HOST_READ_BIT);
+    return Ok{};
+}
+
+Result<RenderStats> Renderer::render(const RenderSettings& settings) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    // Build targets and pipelines before the clock starts: wall_ms is the frame.
+    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    if (auto p = gbuffer_pipeline(); !p) return make_error(p.error());
+    if (auto p = lighting_pipeline(settings.mode); !p) return make_error(p.error());
+    if (auto p = output_pipeline(settings.mode); !p) return make_error(p.error());
+
+    auto start = std::chrono::steady_clock::now();
+    Status recorded = Ok{};
+    LC_RETURN_IF_ERROR(context_.command_pool().run_one_time(
+        context_.device(), [&](VkCommandBuffer cmd) { recorded = record(cmd, settings); }));
+    LC_RETURN_IF_ERROR(recorded);
+    double wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+    RenderStats stats;
+    stats.mode = render_mode_name(settings.mode);
+    stats.criterion = mode_needs_tree(settings.mode) ? criterion_name(settings.criterion) : "none";
+    stats.device = context_.physical().name();
+    stats.width = settings.width;
+    stats.height = settings.height;
+    stats.lights = uint64_t(leaf_count_) + classic_count_;
+    stats.tree_lights = has_tree_ ? leaf_count_ : 0;
+    stats.classic_lights = classic_count_;
+    stats.nodes = node_count_;
+    stats.tree_depth = tree_depth_;
+    stats.wall_ms = wall_ms;
+
+    Result<PassTimings> timings = read_timings();
+    if (!timings) return make_error(timings.error());
+    stats.render_ms = timings->total_ms;
+    stats.gbuffer_ms = timings->gbuffer_ms;
+    stats.lighting_ms = timings->lighting_ms;
+    stats.output_ms = timings->output_ms;
+
+    Result<GpuFrameCounters> counters = read_counters();
+    if (!counters) return make_error(counters.error());
+    stats.max_cut = counters->max_cut;
+    stats.geometry_pixels = counters->geometry_pixels;
+    stats.nonfinite_pixels = counters->nonfinite_pixels;
+
+    Result<std::vector<uint32_t>> cuts = read_cuts();
+    if (!cuts) return make_error(cuts.error());
+    uint64_t cut_sum = 0;
+    for (size_t i = 0; i < cuts->size(); i += 2) cut_sum += (*cuts)[i];  // 0 on background
+    stats.avg_cut =
+        stats.geometry_pixels > 0 ? double(cut_sum) / double(stats.geometry_pixels) : 0.0;
+    stats.light_evaluations = cut_sum + stats.geometry_pixels * classic_count_;
+
+    stats.effects_simulated = effects_.simulated();
+    stats.effects_skipped = effects_.skipped();
+    stats.validation_messages = context_.validation_message_count();
+    stats.validation_enabled = context_.validation_enabled();
+    return stats;
+}
+
+Result<PassTimings> Renderer::read_timings() const {
+    Result<std::vector<double>> ms = timestamps_.read_ms();
+    if (!ms) return make_error(ms.error());
+    PassTimings t;
+    t.gbuffer_ms = (*ms)[kTsGBuffer] - (*ms)[kTsStart];
+    t.lighting_ms = (*ms)[kTsLighting] - (*ms)[kTsGBuffer];
+    t.output_ms = (*ms)[kTsOutput] - (*ms)[kTsLighting];
+    t.total_ms = (*ms)[kTsOutput] - (*ms)[kTsStart];
+    return t;
+}
+
+Result<GpuFrameCounters> Renderer::read_counters() const {
+    GpuFrameCounters counters;
+    std::memcpy(&counters, counters_.mapped(), sizeof(counters));
+    return counters;
+}
+
+Result<std::vector<std::byte>> Renderer::read_image(const vk::Image& image) const {
+    if (!image) return make_error("nothing has been rendered yet");
+    return vk::read_back_image(context_.device(), context_.command_pool(), image,
+                               VK_IMAGE_LAYOUT_GENERAL);
+}
+
+Result<std::vector<float>> Renderer::read_hdr() const {
+    Result<std::vector<std::byte>> bytes = read_image(targets_.hdr);
+    if (!bytes) return make_error(bytes.error());
+    return reinterpret_texels<float>(*bytes);
+}
+
+Result<std::vector<uint8_t>> Renderer::read_display() const {
+    Result<std::vector<std::byte>> bytes = read_image(targets_.display);
+    if (!bytes) return make_error(bytes.error());
+    return reinterpret_texels<uint8_t>(*bytes);
+}
+
+Result<std::vector<uint32_t>> Renderer::read_cuts() const {
+    Result<std::vector<std::byte>> bytes = read_image(targets_.cut);
+    if (!bytes) return make_error(bytes.error());
+    return reinterpret_texels<uint32_t>(*bytes);
+}
+
+Result<GBufferReadback> Renderer::read_gbuffer() const {
+    GBufferReadback g;
+    g.width = targets_.width;
+    g.height = targets_.height;
+    std::array<std::pair<const vk::Image*, std::vector<float>*>, 4> planes{
+        std::pair{&targets_.position, &g.position}, std::pair{&targets_.normal, &g.normal},
+        std::pair{&targets_.albedo, &g.albedo}, std::pair{&targets_.emissive, &g.emissive}};
+    for (auto& [image, out] : planes) {
+        Result<std::vector<std::byte>> bytes = read_image(*image);
+        if (!bytes) return make_error(bytes.error());
+        *out = reinterpret_texels<float>(*bytes);
+    }
+    return g;
+}
+
+}  // namespace lc::client

@@ -1,0 +1,152 @@
+#pragma once
+// The Vulkan renderer: G-buffer raster pass, lighting compute pass (reference
+// or lightcuts), then tone mapping or cut visualisation, with GPU timestamps
+// around each pass. Headless (render() + read_*) or recorded into a window's
+// frame (record()).
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "editor_client/render/gpu_layout.h"
+#include "editor_client/render/gpu_scene.h"
+#include "editor_client/render/render_settings.h"
+#include "editor_client/render/render_stats.h"
+#include "editor_client/render/render_targets.h"
+#include "editor_client/render/scene_effects.h"
+#include "editor_client/scene/scene.h"
+#include "editor_client/vk/buffer.h"
+#include "editor_client/vk/compute_pipeline.h"
+#include "editor_client/vk/context.h"
+#include "editor_client/vk/descriptor_set.h"
+#include "editor_client/vk/graphics_pipeline.h"
+#include "editor_client/vk/pipeline_layout.h"
+#include "editor_client/vk/timestamp_query_pool.h"
+#include "protocol/light_tree.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+struct RendererOptions {
+    uint32_t workgroup_size = 8;  // compute workgroups are size x size
+};
+
+// The G-buffer as read back, 4 floats per pixel, rows top to bottom.
+struct GBufferReadback {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<float> position;  // w = 1 on geometry
+    std::vector<float> normal;
+    std::vector<float> albedo;
+    std::vector<float> emissive;
+};
+
+// GPU time of each pass of the last frame, in milliseconds.
+struct PassTimings {
+    double gbuffer_ms = 0.0;
+    double lighting_ms = 0.0;
+    double output_ms = 0.0;
+    double total_ms = 0.0;
+};
+
+class Renderer {
+public:
+    // The scene is uploaded once and must outlive the renderer (set_tree reads
+    // its lights again); `tree` (may be null) is copied to the GPU.
+    static Result<std::unique_ptr<Renderer>> create(const vk::Context& context, const Scene& scene,
+                                                    const LightTree* tree,
+                                                    const RendererOptions& options = {});
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    // Replaces the tree (null: none) and re-analyses the effects. Waits for the GPU.
+    Status set_tree(const LightTree* tree);
+    bool has_tree() const { return has_tree_; }
+    const SceneEffects& effects() const { return effects_; }
+
+    // Checks settings against what the renderer holds (a tree for cut modes,
+    // a known criterion, a finite camera).
+    Status validate(const RenderSettings& settings) const;
+
+    // Records every pass of one frame into `cmd`. All storage images end in
+    // VK_IMAGE_LAYOUT_GENERAL; display_image() holds the 8-bit result.
+    Status record(VkCommandBuffer cmd, const RenderSettings& settings);
+
+    // Headless: records, submits, waits, and gathers statistics.
+    Result<RenderStats> render(const RenderSettings& settings);
+
+    // Results of the last completed frame.
+    Result<PassTimings> read_timings() const;
+    Result<GpuFrameCounters> read_counters() const;
+    Result<std::vector<float>> read_hdr() const;        // RGBA float per pixel
+    Result<std::vector<uint8_t>> read_display() const;  // RGBA8 per pixel
+    Result<std::vector<uint32_t>> read_cuts() const;    // (size, hash) per pixel
+    Result<GBufferReadback> read_gbuffer() const;
+
+    const vk::Image& display_image() const { return targets_.display; }
+    uint32_t width() const { return targets_.width; }
+    uint32_t height() const { return targets_.height; }
+    // Counts for stats: leaves evaluated by reference mode, classic lights, tree nodes.
+    uint32_t leaf_count() const { return leaf_count_; }
+    uint32_t classic_count() const { return classic_count_; }
+    uint32_t node_count() const { return node_count_; }
+    uint32_t tree_depth() const { return tree_depth_; }
+
+private:
+    Renderer(const vk::Context& context, const Scene& scene, const RendererOptions& options);
+
+    Status create_frame_resources();
+    Status upload_lights(const LightTree* tree);
+    Status ensure_targets(uint32_t width, uint32_t height);
+    void update_frame_descriptors();
+    Result<VkPipeline> gbuffer_pipeline();
+    Result<VkPipeline> lighting_pipeline(RenderMode mode);
+    Result<VkPipeline> output_pipeline(RenderMode mode);
+    void record_gbuffer_pass(VkCommandBuffer cmd, VkPipeline pipeline,
+                             const RenderSettings& settings);
+    Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
+
+    const vk::Context& context_;
+    const Scene& scene_;
+    RendererOptions options_;
+    SceneEffects effects_;
+    bool has_tree_ = false;
+    uint32_t leaf_count_ = 0;
+    uint32_t classic_count_ = 0;
+    uint32_t node_count_ = 0;
+    uint32_t tree_depth_ = 0;
+
+    GpuScene gpu_scene_;
+    RenderTargets targets_;
+    vk::Buffer leaf_lights_;
+    vk::Buffer tree_nodes_;
+    vk::Buffer classic_lights_;
+    vk::Buffer counters_;
+    vk::TimestampQueryPool timestamps_;
+
+    vk::DescriptorSetLayout frame_layout_;
+    vk::DescriptorPool frame_pool_;
+    VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
+    bool frame_set_dirty_ = true;
+    vk::PipelineLayout compute_layout_;
+    vk::PipelineLayout gbuffer_layout_;
+
+    // Built on first use for the current effects; cleared when they change.
+    std::optional<vk::GraphicsPipeline> gbuffer_pipeline_;
+    std::optional<vk::ComputePipeline> reference_pipeline_;
+    std::optional<vk::ComputePipeline> lightcuts_pipeline_;
+    std::optional<vk::ComputePipeline> tone_map_pipeline_;
+    std::optional<vk::ComputePipeline> cuts_view_pipeline_;
+    std::optional<vk::ComputePipeline> cut_size_view_pipeline_;
+};
+
+// Projection * view for a camera (Vulkan clip space: y down, depth 0..1), with
+// near and far planes that enclose the scene bounds.
+glm::mat4 view_projection(const RenderCamera& camera, float aspect, const glm::vec3& bounds_min,
+                          const glm::vec3& bounds_max);
+
+}  // namespace lc::client

@@ -1,0 +1,123 @@
+#include "editor_client/render/scene_effects.h"
+
+#include <glm/common.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+
+namespace lc::client {
+namespace {
+
+struct LightCensus {
+    size_t count[kLightTypeCount] = {0, 0, 0};
+    size_t with_range = 0;
+    size_t classic = 0;
+
+    void add(LightType type, float range) {
+        ++count[static_cast<int>(type)];
+        if (type != LightType::kDirectional && range > 0.0f) ++with_range;
+    }
+    size_t of(LightType type) const { return count[static_cast<int>(type)]; }
+};
+
+std::string plural(size_t n, const char* noun) {
+    return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+}  // namespace
+
+std::vector<EffectDecision> SceneEffects::simulated() const {
+    std::vector<EffectDecision> out;
+    std::copy_if(decisions.begin(), decisions.end(), std::back_inserter(out),
+                 [](const EffectDecision& d) { return d.simulated; });
+    return out;
+}
+
+std::vector<EffectDecision> SceneEffects::skipped() const {
+    std::vector<EffectDecision> out;
+    std::copy_if(decisions.begin(), decisions.end(), std::back_inserter(out),
+                 [](const EffectDecision& d) { return !d.simulated; });
+    return out;
+}
+
+SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree) {
+    LightCensus census;
+    if (tree != nullptr) {
+        // Clusters are evaluated through their representative, which shares
+        // its leaf's type and range; mixed-type junctions are never evaluated.
+        for (const LightTreeNode& node : tree->nodes)
+            if (!node.mixed_types) census.add(node.type, node.range);
+    }
+    for (const SceneLight& light : scene.lights) {
+        if (light.classic) {
+            ++census.classic;
+            census.add(light.type, light.range);
+        } else if (tree == nullptr) {
+            census.add(light.type, light.range);
+        }
+    }
+    const char* source = tree != nullptr ? "the tree and the classic lights" : "the scene";
+
+    bool textured = false;
+    bool emissive = false;
+    for (const Mesh& mesh : scene.meshes) {
+        if (mesh.indices.empty()) continue;
+        if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+        const Material& m = scene.materials[mesh.material];
+        auto valid_texture = [&](int index) {
+            return index >= 0 && size_t(index) < scene.textures.size() && !mesh.uvs.empty();
+        };
+        if (valid_texture(m.base_color_texture)) textured = true;
+        bool emits = glm::any(glm::greaterThan(m.emissive_factor, glm::vec3(0.0f)));
+        if (emits) emissive = true;
+        if (emits && valid_texture(m.emissive_texture)) textured = true;
+    }
+
+    SceneEffects effects;
+    auto decide = [&](const std::string& name, bool on, const std::string& why_on,
+                      const std::string& why_off) {
+        effects.decisions.push_back({name, on, on ? why_on : why_off});
+        return on;
+    };
+    size_t points = census.of(LightType::kPoint), spots = census.of(LightType::kSpot),
+           directionals = census.of(LightType::kDirectional);
+    effects.point_lights = decide("point lights (inverse-square falloff)", points > 0,
+                                  std::string(source) + " has " + plural(points, "point light"),
+                                  std::string(source) + " has no point lights");
+    effects.spot_lights = decide("spot cone attenuation", spots > 0,
+                                 std::string(source) + " has " + plural(spots, "spot light"),
+                                 std::string(source) + " has no spot lights");
+    effects.directional_lights =
+        decide("directional lights", directionals > 0,
+               std::string(source) + " has " + plural(directionals, "directional light"),
+               std::string(source) + " has no directional lights");
+    effects.range_window = decide("range windowing (KHR_lights_punctual)", census.with_range > 0,
+                                  plural(census.with_range, "light") + " with a range",
+                                  "no point or spot light has a range");
+    effects.classic_lights =
+        decide("classic lights (shaded one by one)", census.classic > 0,
+               plural(census.classic, "light") + " marked classic", "no light is marked classic");
+    effects.textures =
+        decide("base colour and emissive textures", textured, "a drawn material samples a texture",
+               "no drawn material has a texture (with texture coordinates)");
+    effects.emissive =
+        decide("emissive surfaces", emissive, "a drawn material has a non-zero emissive factor",
+               "no drawn material emits light");
+    // Effects the renderer does not simulate yet, stated so nobody assumes them.
+    decide("shadows (light visibility)", false, "",
+           "not implemented yet: every light is treated as visible (V = 1)");
+    decide("specular reflection", false, "",
+           "not implemented yet: the shading model is Lambert on the base colour");
+    decide("indirect lighting (virtual point lights)", false, "",
+           "not implemented yet: direct lighting only");
+    return effects;
+}
+
+nlohmann::json effects_json(const std::vector<EffectDecision>& decisions) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const EffectDecision& d : decisions)
+        out.push_back({{"name", d.name}, {"reason", d.reason}});
+    return out;
+}
+
+}  // namespace lc::client

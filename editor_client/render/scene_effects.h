@@ -1,0 +1,45 @@
+#pragma once
+// Effects on demand (SPEC §6): the scene is analysed once and every effect the
+// shaders can simulate is switched on only when something in the scene calls
+// for it (specialization constants), each decision with its reason.
+#include <nlohmann/json_fwd.hpp>
+
+#include <string>
+#include <vector>
+
+#include "editor_client/scene/scene.h"
+#include "protocol/light_tree.h"
+
+namespace lc::client {
+
+struct EffectDecision {
+    std::string name;
+    bool simulated = false;
+    std::string reason;
+};
+
+struct SceneEffects {
+    // Specialization constants (shaders/effects.glsl).
+    bool point_lights = false;
+    bool spot_lights = false;
+    bool directional_lights = false;
+    bool range_window = false;
+    bool textures = false;
+    bool classic_lights = false;
+    bool emissive = false;
+
+    std::vector<EffectDecision> decisions;
+
+    std::vector<EffectDecision> simulated() const;
+    std::vector<EffectDecision> skipped() const;
+};
+
+// `tree` (may be null) holds the tree lights when one was imported; otherwise
+// the scene's non-classic lights are what reference mode evaluates. Classic
+// lights always come from the scene.
+SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree);
+
+// [{name, reason}, ...]
+nlohmann::json effects_json(const std::vector<EffectDecision>& decisions);
+
+}  // namespace lc::client

@@ -1,0 +1,1134 @@
+// glTF 2.0 -> Scene. tinygltf parses the JSON and the buffers; everything it
+// does not check (index ranges, accessor extents, finiteness, the node graph)
+// is checked here before any byte is read, so a broken file gives an error and
+// never a crash.
+#include "editor_client/scene/gltf_loader.h"
+
+#include <tiny_gltf.h>  // Debian's shared library: no TINYGLTF_IMPLEMENTATION here
+
+#include <spdlog/spdlog.h>
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "editor_client/scene/scene_guid.h"
+
+namespace lc::client {
+namespace {
+
+namespace tg = tinygltf;
+
+constexpr const char* kLightsExtension = "KHR_lights_punctual";
+constexpr const char* kEmissiveStrengthExtension = "KHR_materials_emissive_strength";
+
+std::string trim(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+    size_t start = 0;
+    while (start < s.size() && (s[start] == '\n' || s[start] == ' ')) ++start;
+    return s.substr(start);
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+        line = trim(line);
+        if (!line.empty()) lines.push_back(line);
+    }
+    return lines;
+}
+
+bool finite(double v) {
+    return std::isfinite(v);
+}
+
+// Shortest readable form of a number for messages ("0.8", "-2", "1e+39").
+std::string num(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+// tinygltf quotes whole data URIs in its messages; keep them readable.
+std::string shorten_data_uris(std::string message) {
+    size_t at = 0;
+    while ((at = message.find("data:", at)) != std::string::npos) {
+        size_t end = message.find_first_of(" \n\"'", at);
+        if (end == std::string::npos) end = message.size();
+        if (end - at > 48) {
+            message.replace(at + 40, end - at - 40, "...(" + std::to_string(end - at) + " chars)");
+        }
+        at += 40;
+    }
+    return message;
+}
+
+bool all_finite(const std::vector<double>& values) {
+    return std::all_of(values.begin(), values.end(), [](double v) { return finite(v); });
+}
+
+bool all_finite(const glm::dmat4& m) {
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            if (!finite(m[c][r])) return false;
+    return true;
+}
+
+const char* type_name(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR:
+            return "SCALAR";
+        case TINYGLTF_TYPE_VEC2:
+            return "VEC2";
+        case TINYGLTF_TYPE_VEC3:
+            return "VEC3";
+        case TINYGLTF_TYPE_VEC4:
+            return "VEC4";
+        case TINYGLTF_TYPE_MAT2:
+            return "MAT2";
+        case TINYGLTF_TYPE_MAT3:
+            return "MAT3";
+        case TINYGLTF_TYPE_MAT4:
+            return "MAT4";
+    }
+    return "unknown type";
+}
+
+int component_count(int type) {
+    switch (type) {
+        case TINYGLTF_TYPE_SCALAR:
+            return 1;
+        case TINYGLTF_TYPE_VEC2:
+            return 2;
+        case TINYGLTF_TYPE_VEC3:
+            return 3;
+        case TINYGLTF_TYPE_VEC4:
+            return 4;
+        case TINYGLTF_TYPE_MAT2:
+            return 4;
+        case TINYGLTF_TYPE_MAT3:
+            return 9;
+        case TINYGLTF_TYPE_MAT4:
+            return 16;
+    }
+    return 0;
+}
+
+const char* component_type_name(int component_type) {
+    switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+            return "BYTE";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return "UNSIGNED_BYTE";
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+            return "SHORT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return "UNSIGNED_SHORT";
+        case TINYGLTF_COMPONENT_TYPE_INT:
+            return "INT";
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            return "UNSIGNED_INT";
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return "FLOAT";
+    }
+    return "unknown component type";
+}
+
+int component_size(int component_type) {
+    switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            return 1;
+        case TINYGLTF_COMPONENT_TYPE_SHORT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+            return 2;
+        case TINYGLTF_COMPONENT_TYPE_INT:
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        case TINYGLTF_COMPONENT_TYPE_FLOAT:
+            return 4;
+    }
+    return 0;
+}
+
+// [offset, offset + length) fits inside `size` bytes, without overflow.
+bool range_fits(size_t offset, size_t length, size_t size) {
+    return offset <= size && length <= size - offset;
+}
+
+// tinygltf decodes images through this callback. It reads an image's
+// bufferView bytes without checking them against the buffer, so we check
+// first; an undecodable image becomes a warning (the texture is dropped), not
+// a failed load.
+struct ImageLoadContext {
+    const tg::Model* model = nullptr;
+};
+
+bool load_image_checked(tg::Image* image, const int image_index, std::string* err,
+                        std::string* warn, int req_width, int req_height,
+                        const unsigned char* bytes, int size, void* user) {
+    const auto* ctx = static_cast<const ImageLoadContext*>(user);
+    if (image->bufferView >= 0) {
+        const tg::BufferView& view = ctx->model->bufferViews[size_t(image->bufferView)];
+        const tg::Buffer& buffer = ctx->model->buffers[size_t(view.buffer)];
+        if (!range_fits(view.byteOffset, view.byteLength, buffer.data.size())) {
+            if (err) {
+                *err += "image " + std::to_string(image_index) + ": bufferView " +
+                        std::to_string(image->bufferView) + " (offset " +
+                        std::to_string(view.byteOffset) + ", length " +
+                        std::to_string(view.byteLength) + ") lies outside buffer " +
+                        std::to_string(view.buffer) + " (" + std::to_string(buffer.data.size()) +
+                        " bytes)\n";
+            }
+            return false;
+        }
+    }
+    if (bytes == nullptr || size <= 0) {
+        if (warn) *warn += "image " + std::to_string(image_index) + " has no data\n";
+        return true;
+    }
+    std::string decode_error;
+    if (!tg::LoadImageData(image, image_index, &decode_error, warn, req_width, req_height, bytes,
+                           size, nullptr)) {
+        if (warn) {
+            *warn += "image " + std::to_string(image_index) +
+                     " could not be decoded; its textures are ignored: " + trim(decode_error) +
+                     "\n";
+        }
+        image->image.clear();
+    }
+    return true;
+}
+
+// A validated window onto an accessor's bytes.
+struct AccessorData {
+    const uint8_t* base = nullptr;
+    size_t stride = 0;
+    size_t count = 0;
+    int component_type = 0;
+    int type = 0;
+    bool normalized = false;
+};
+
+struct Traversal {
+    int node = 0;
+    glm::dmat4 parent_world{1.0};
+    uint64_t path_hash = 0;
+};
+
+class Loader {
+public:
+    Loader(const std::filesystem::path& path, std::vector<std::string>& warnings)
+        : path_(path), warnings_(warnings) {}
+
+    Result<Scene> load();
+
+private:
+    Error fail(const std::string& message) const { return Error{path_.string() + ": " + message}; }
+    void warn(const std::string& message) { warnings_.push_back(path_.string() + ": " + message); }
+
+    Status parse_file();
+    Status validate_node_graph();
+    Result<std::vector<int>> scene_roots();
+    Status convert_materials();
+    Result<int> texture_for(const tg::TextureInfo& info, const std::string& what);
+    Status traverse(const std::vector<int>& roots);
+    Result<glm::dmat4> local_transform(int node_index) const;
+    Status add_mesh(int node_index, int mesh_index, const glm::dmat4& world);
+    Status add_primitive(int mesh_index, int primitive_index, const glm::dmat4& world);
+    Status add_light(int node_index, const tg::Value& extension, const glm::dmat4& world,
+                     uint64_t path_hash);
+    void add_camera(int node_index, int camera_index, const glm::dmat4& world);
+    Status check_unique_light_guids() const;
+    void finish_cameras();
+
+    // `expected` names the accepted types for the message; `accepts` checks them
+    // before any range check, so a wrong type is reported as such.
+    Result<AccessorData> view_accessor(int index, const std::string& what, const char* expected,
+                                       bool (*accepts)(const tg::Accessor&)) const;
+    Result<std::vector<glm::vec3>> read_vec3(int index, const std::string& what) const;
+    Result<std::vector<glm::vec2>> read_uv(int index, const std::string& what) const;
+    Result<std::vector<uint32_t>> read_indices(int index, const std::string& what,
+                                               size_t vertex_count) const;
+
+    std::filesystem::path path_;
+    std::vector<std::string>& warnings_;
+    tg::Model model_;
+    Scene scene_;
+    std::map<int, int> image_to_texture_;     // glTF image -> Scene::textures
+    std::vector<glm::dvec3> camera_forward_;  // per Scene::cameras entry, for finish_cameras()
+};
+
+Status Loader::parse_file() {
+    std::error_code ec;
+    if (!std::filesystem::exists(path_, ec)) return fail("file does not exist");
+    if (!std::filesystem::is_regular_file(path_, ec)) return fail("not a regular file");
+    if (std::filesystem::file_size(path_, ec) == 0) return fail("the file is empty");
+
+    char magic[4] = {0, 0, 0, 0};
+    {
+        std::ifstream in(path_, std::ios::binary);
+        if (!in) return fail("cannot open the file for reading");
+        in.read(magic, 4);
+    }
+    const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+
+    tg::TinyGLTF gltf;
+    ImageLoadContext image_context{&model_};
+    gltf.SetImageLoader(&load_image_checked, &image_context);
+    std::string err;
+    std::string warn_text;
+    bool ok = false;
+    try {
+        ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warn_text, path_.string())
+                    : gltf.LoadASCIIFromFile(&model_, &err, &warn_text, path_.string());
+    } catch (const std::exception& e) {
+        // tinygltf throws on some malformed inputs (e.g. .at() on an empty chunk).
+        return fail(std::string("malformed glTF: ") + e.what());
+    }
+    for (const std::string& line : split_lines(warn_text)) warn(line);
+    if (!ok) {
+        std::string message = shorten_data_uris(trim(err));
+        if (message.empty()) message = "tinygltf rejected the file without a message";
+        if (message.find("Failed to decode 'uri'") != std::string::npos) {
+            message += " (corrupt base64, or not as long as the buffer's byteLength)";
+        }
+        return fail(std::string(binary ? "invalid glTF binary: " : "invalid glTF: ") + message);
+    }
+    return Ok{};
+}
+
+// glTF requires the node hierarchy to be disjoint strict trees. We check it on
+// every node (not only those a scene reaches) without recursion: at most one
+// parent each, then no node may be its own ancestor.
+Status Loader::validate_node_graph() {
+    const int n = static_cast<int>(model_.nodes.size());
+    std::vector<int> parent(size_t(n), -1);
+    for (int i = 0; i < n; ++i) {
+        for (int child : model_.nodes[size_t(i)].children) {
+            if (child < 0 || child >= n) {
+                return fail("node " + std::to_string(i) + " lists child " + std::to_string(child) +
+                            ", which does not exist (the file has " + std::to_string(n) +
+                            " nodes)");
+            }
+            if (child == i) {
+                return fail("recursive node graph: node " + std::to_string(i) +
+                            " is its own child");
+            }
+            if (parent[size_t(child)] != -1) {
+                return fail("node " + std::to_string(child) + " has two parents (nodes " +
+                            std::to_string(parent[size_t(child)]) + " and " + std::to_string(i) +
+                            "); glTF node hierarchies must be trees");
+            }
+            parent[size_t(child)] = i;
+        }
+    }
+    // 0: not yet seen, 1: on the current upward walk, 2: known to reach a root.
+    std::vector<uint8_t> state(size_t(n), 0);
+    std::vector<int> walk;
+    for (int start = 0; start < n; ++start) {
+        walk.clear();
+        int j = start;
+        while (j != -1 && state[size_t(j)] == 0) {
+            state[size_t(j)] = 1;
+            walk.push_back(j);
+            j = parent[size_t(j)];
+        }
+        if (j != -1 && state[size_t(j)] == 1) {
+            return fail("recursive node graph: node " + std::to_string(j) + " is its own ancestor");
+        }
+        for (int k : walk) state[size_t(k)] = 2;
+    }
+    return Ok{};
+}
+
+Result<std::vector<int>> Loader::scene_roots() {
+    const int scene_count = static_cast<int>(model_.scenes.size());
+    const int node_count = static_cast<int>(model_.nodes.size());
+    if (model_.defaultScene >= scene_count) {
+        return fail("'scene' is " + std::to_string(model_.defaultScene) + " but the file has " +
+                    std::to_string(scene_count) + " scenes");
+    }
+    if (scene_count == 0) {
+        // No scene: draw every root node (the spec leaves this to the application).
+        std::vector<bool> is_child(size_t(node_count), false);
+        for (const tg::Node& node : model_.nodes)
+            for (int child : node.children) is_child[size_t(child)] = true;
+        std::vector<int> roots;
+        for (int i = 0; i < node_count; ++i)
+            if (!is_child[size_t(i)]) roots.push_back(i);
+        if (node_count > 0) warn("the file has no scene; using every root node");
+        return roots;
+    }
+    const int chosen = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+    const std::vector<int>& roots = model_.scenes[size_t(chosen)].nodes;
+    for (int root : roots) {
+        if (root < 0 || root >= node_count) {
+            return fail("scene " + std::to_string(chosen) + " lists node " + std::to_string(root) +
+                        ", which does not exist (the file has " + std::to_string(node_count) +
+                        " nodes)");
+        }
+    }
+    return roots;
+}
+
+Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& what) {
+    if (info.index < 0) return -1;
+    if (info.index >= static_cast<int>(model_.textures.size())) {
+        return fail(what + " uses texture " + std::to_string(info.index) +
+                    ", which does not exist");
+    }
+    const tg::Texture& texture = model_.textures[size_t(info.index)];
+    if (texture.source < 0) {
+        warn(what + ": texture " + std::to_string(info.index) + " has no image; ignored");
+        return -1;
+    }
+    if (texture.source >= static_cast<int>(model_.images.size())) {
+        return fail("texture " + std::to_string(info.index) + " uses image " +
+                    std::to_string(texture.source) + ", which does not exist");
+    }
+    if (info.texCoord != 0) {
+        warn(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+             "; only TEXCOORD_0 is loaded, so it is sampled with TEXCOORD_0");
+    }
+    auto found = image_to_texture_.find(texture.source);
+    if (found != image_to_texture_.end()) return found->second;
+
+    const tg::Image& image = model_.images[size_t(texture.source)];
+    const int bytes_per_channel = image.bits == 16 ? 2 : (image.bits == 8 ? 1 : 0);
+    const size_t expected = size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) *
+                            size_t(std::max(image.component, 0)) * size_t(bytes_per_channel);
+    if (image.image.empty() || image.width <= 0 || image.height <= 0 || image.component < 1 ||
+        image.component > 4 || bytes_per_channel == 0 || image.image.size() != expected) {
+        warn(what + ": image " + std::to_string(texture.source) +
+             " has no usable pixels; the texture is ignored");
+        image_to_texture_[texture.source] = -1;
+        return -1;
+    }
+    Texture out;
+    out.width = image.width;
+    out.height = image.height;
+    out.rgba8.resize(size_t(image.width) * size_t(image.height) * 4);
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    for (size_t p = 0; p < pixels; ++p) {
+        uint8_t rgba[4] = {0, 0, 0, 255};
+        for (int c = 0; c < image.component; ++c) {
+            // 16-bit channels keep their high byte (little-endian storage).
+            const size_t at = (p * size_t(image.component) + size_t(c)) * size_t(bytes_per_channel);
+            rgba[c] = bytes_per_channel == 2 ? image.image[at + 1] : image.image[at];
+        }
+        if (image.component == 1 || image.component == 2) {
+            // Grey (+ alpha): replicate the grey channel.
+            const uint8_t alpha = image.component == 2 ? rgba[1] : 255;
+            rgba[1] = rgba[0];
+            rgba[2] = rgba[0];
+            rgba[3] = alpha;
+        }
+        std::memcpy(&out.rgba8[p * 4], rgba, 4);
+    }
+    const int index = static_cast<int>(scene_.textures.size());
+    scene_.textures.push_back(std::move(out));
+    image_to_texture_[texture.source] = index;
+    return index;
+}
+
+Status Loader::convert_materials() {
+    for (size_t i = 0; i < model_.materials.size(); ++i) {
+        const tg::Material& in = model_.materials[i];
+        const std::string what = "material " + std::to_string(i);
+        Material out;
+        const std::vector<double>& base = in.pbrMetallicRoughness.baseColorFactor;
+        if (base.size() != 4 || !all_finite(base)) {
+            return fail(what + ": baseColorFactor must be 4 finite numbers");
+        }
+        out.base_color_factor =
+            glm::vec4(float(base[0]), float(base[1]), float(base[2]), float(base[3]));
+        const double metallic = in.pbrMetallicRoughness.metallicFactor;
+        const double roughness = in.pbrMetallicRoughness.roughnessFactor;
+        if (!finite(metallic) || !finite(roughness)) {
+            return fail(what + ": metallicFactor and roughnessFactor must be finite");
+        }
+        out.metallic = float(std::clamp(metallic, 0.0, 1.0));
+        out.roughness = float(std::clamp(roughness, 0.0, 1.0));
+        if (in.emissiveFactor.size() != 3 || !all_finite(in.emissiveFactor)) {
+            return fail(what + ": emissiveFactor must be 3 finite numbers");
+        }
+        double strength = 1.0;
+        auto ext = in.extensions.find(kEmissiveStrengthExtension);
+        if (ext != in.extensions.end() && ext->second.IsObject() &&
+            ext->second.Get("emissiveStrength").IsNumber()) {
+            strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
+            if (!finite(strength) || strength < 0.0) {
+                return fail(what + ": emissiveStrength must be finite and >= 0");
+            }
+        }
+        out.emissive_factor = glm::vec3(float(in.emissiveFactor[0] * strength),
+                                        float(in.emissiveFactor[1] * strength),
+                                        float(in.emissiveFactor[2] * strength));
+        for (int c = 0; c < 4; ++c) {
+            if (out.base_color_factor[c] < 0.0f) return fail(what + ": negative baseColorFactor");
+        }
+        for (int c = 0; c < 3; ++c) {
+            if (out.emissive_factor[c] < 0.0f) return fail(what + ": negative emissiveFactor");
+        }
+        Result<int> base_texture =
+            texture_for(in.pbrMetallicRoughness.baseColorTexture, what + " baseColorTexture");
+        if (!base_texture) return Error{base_texture.error()};
+        out.base_color_texture = *base_texture;
+        Result<int> emissive_texture = texture_for(in.emissiveTexture, what + " emissiveTexture");
+        if (!emissive_texture) return Error{emissive_texture.error()};
+        out.emissive_texture = *emissive_texture;
+        scene_.materials.push_back(out);
+    }
+    return Ok{};
+}
+
+Result<glm::dmat4> Loader::local_transform(int node_index) const {
+    const tg::Node& node = model_.nodes[size_t(node_index)];
+    const std::string what = "node " + std::to_string(node_index);
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) {
+            return fail(what + ": 'matrix' has " + std::to_string(node.matrix.size()) +
+                        " numbers, expected 16");
+        }
+        if (!all_finite(node.matrix)) return fail(what + ": 'matrix' has a non-finite value");
+        return glm::make_mat4(node.matrix.data());  // both column-major
+    }
+    glm::dmat4 m(1.0);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3) return fail(what + ": 'translation' needs 3 numbers");
+        if (!all_finite(node.translation)) {
+            return fail(what + ": 'translation' has a non-finite value");
+        }
+        m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4) return fail(what + ": 'rotation' needs 4 numbers");
+        if (!all_finite(node.rotation)) return fail(what + ": 'rotation' has a non-finite value");
+        // glTF stores x, y, z, w; glm's constructor takes w first.
+        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        const double len = glm::length(q);
+        if (!(len > 1e-12)) return fail(what + ": 'rotation' is a zero quaternion");
+        m = m * glm::mat4_cast(q / len);
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3) return fail(what + ": 'scale' needs 3 numbers");
+        if (!all_finite(node.scale)) return fail(what + ": 'scale' has a non-finite value");
+        glm::dmat4 s(1.0);
+        s[0][0] = node.scale[0];
+        s[1][1] = node.scale[1];
+        s[2][2] = node.scale[2];
+        m = m * s;
+    }
+    return m;
+}
+
+Result<AccessorData> Loader::view_accessor(int index, const std::string& what, const char* expected,
+                                           bool (*accepts)(const tg::Accessor&)) const {
+    if (index < 0 || index >= static_cast<int>(model_.accessors.size())) {
+        return fail(what + " uses accessor " + std::to_string(index) +
+                    ", which does not exist (the file has " +
+                    std::to_string(model_.accessors.size()) + " accessors)");
+    }
+    const tg::Accessor& acc = model_.accessors[size_t(index)];
+    const std::string name = "accessor " + std::to_string(index) + " (" + what + ")";
+    if (!accepts(acc)) {
+        return fail(name + " is " + type_name(acc.type) + " " +
+                    component_type_name(acc.componentType) + (acc.normalized ? " normalized" : "") +
+                    ", expected " + expected);
+    }
+    if (acc.sparse.isSparse) return fail(name + " is sparse; sparse accessors are not supported");
+    if (acc.bufferView < 0 || acc.bufferView >= static_cast<int>(model_.bufferViews.size())) {
+        return fail(name + " has bufferView " + std::to_string(acc.bufferView) +
+                    ", which does not exist");
+    }
+    const tg::BufferView& view = model_.bufferViews[size_t(acc.bufferView)];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) {
+        return fail("bufferView " + std::to_string(acc.bufferView) + " has buffer " +
+                    std::to_string(view.buffer) + ", which does not exist");
+    }
+    const tg::Buffer& buffer = model_.buffers[size_t(view.buffer)];
+    if (!range_fits(view.byteOffset, view.byteLength, buffer.data.size())) {
+        return fail("bufferView " + std::to_string(acc.bufferView) + " (offset " +
+                    std::to_string(view.byteOffset) + ", length " +
+                    std::to_string(view.byteLength) + ") lies outside buffer " +
+                    std::to_string(view.buffer) + ", which has " +
+                    std::to_string(buffer.data.size()) + " bytes");
+    }
+    const int csize = component_size(acc.componentType);
+    const int ccount = component_count(acc.type);
+    if (csize == 0 || ccount == 0) {
+        return fail(name + " has an unknown type or component type");
+    }
+    const size_t element = size_t(csize) * size_t(ccount);
+    const size_t stride = view.byteStride != 0 ? view.byteStride : element;
+    if (stride < element) {
+        return fail(name + ": byteStride " + std::to_string(stride) +
+                    " is smaller than one element (" + std::to_string(element) + " bytes)");
+    }
+    if (acc.count > 0) {
+        // The last element must end inside the buffer view.
+        const size_t limit = view.byteLength;
+        bool fits = acc.byteOffset <= limit && element <= limit - acc.byteOffset;
+        if (fits) fits = (acc.count - 1) <= (limit - acc.byteOffset - element) / stride;
+        if (!fits) {
+            return fail(name + ": " + std::to_string(acc.count) + " elements at offset " +
+                        std::to_string(acc.byteOffset) + " with stride " + std::to_string(stride) +
+                        " do not fit in bufferView " + std::to_string(acc.bufferView) + " (" +
+                        std::to_string(view.byteLength) + " bytes)");
+        }
+    }
+    AccessorData data;
+    data.base = buffer.data.data() + view.byteOffset + acc.byteOffset;
+    data.stride = stride;
+    data.count = acc.count;
+    data.component_type = acc.componentType;
+    data.type = acc.type;
+    data.normalized = acc.normalized;
+    return data;
+}
+
+bool is_vec3_float(const tg::Accessor& a) {
+    return a.type == TINYGLTF_TYPE_VEC3 && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+}
+
+bool is_uv(const tg::Accessor& a) {
+    const int ct = a.componentType;
+    return a.type == TINYGLTF_TYPE_VEC2 &&
+           (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+            (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+}
+
+bool is_index(const tg::Accessor& a) {
+    const int ct = a.componentType;
+    return a.type == TINYGLTF_TYPE_SCALAR && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+}
+
+Result<std::vector<glm::vec3>> Loader::read_vec3(int index, const std::string& what) const {
+    Result<AccessorData> data = view_accessor(index, what, "VEC3 FLOAT", &is_vec3_float);
+    if (!data) return Error{data.error()};
+    std::vector<glm::vec3> out(data->count);
+    for (size_t i = 0; i < data->count; ++i) {
+        float v[3];
+        std::memcpy(v, data->base + i * data->stride, sizeof v);
+        if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) {
+            return fail("accessor " + std::to_string(index) + " (" + what +
+                        ") has a non-finite value at element " + std::to_string(i));
+        }
+        out[i] = glm::vec3(v[0], v[1], v[2]);
+    }
+    return out;
+}
+
+Result<std::vector<glm::vec2>> Loader::read_uv(int index, const std::string& what) const {
+    Result<AccessorData> data =
+        view_accessor(index, what, "VEC2 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT", &is_uv);
+    if (!data) return Error{data.error()};
+    const int ct = data->component_type;
+    const bool float_uv = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    std::vector<glm::vec2> out(data->count);
+    for (size_t i = 0; i < data->count; ++i) {
+        const uint8_t* p = data->base + i * data->stride;
+        float uv[2];
+        if (float_uv) {
+            std::memcpy(uv, p, sizeof uv);
+            if (!std::isfinite(uv[0]) || !std::isfinite(uv[1])) {
+                return fail("accessor " + std::to_string(index) + " (" + what +
+                            ") has a non-finite value at element " + std::to_string(i));
+            }
+        } else if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+            uv[0] = float(p[0]) / 255.0f;
+            uv[1] = float(p[1]) / 255.0f;
+        } else {
+            uint16_t s[2];
+            std::memcpy(s, p, sizeof s);
+            uv[0] = float(s[0]) / 65535.0f;
+            uv[1] = float(s[1]) / 65535.0f;
+        }
+        out[i] = glm::vec2(uv[0], uv[1]);
+    }
+    return out;
+}
+
+Result<std::vector<uint32_t>> Loader::read_indices(int index, const std::string& what,
+                                                   size_t vertex_count) const {
+    Result<AccessorData> data =
+        view_accessor(index, what, "SCALAR UNSIGNED_BYTE/UNSIGNED_SHORT/UNSIGNED_INT", &is_index);
+    if (!data) return Error{data.error()};
+    const int ct = data->component_type;
+    std::vector<uint32_t> out(data->count);
+    for (size_t i = 0; i < data->count; ++i) {
+        const uint8_t* p = data->base + i * data->stride;
+        uint32_t v = 0;
+        if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+            v = p[0];
+        } else if (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+            uint16_t s;
+            std::memcpy(&s, p, sizeof s);
+            v = s;
+        } else {
+            std::memcpy(&v, p, sizeof v);
+        }
+        if (v >= vertex_count) {
+            return fail("accessor " + std::to_string(index) + " (" + what + "): index " +
+                        std::to_string(v) + " at element " + std::to_string(i) +
+                        " is out of range of the " + std::to_string(vertex_count) + " vertices");
+        }
+        out[i] = v;
+    }
+    return out;
+}
+
+// Area-weighted vertex normals: each triangle adds its unnormalised cross
+// product (twice its area) to its three vertices.
+std::vector<glm::vec3> generate_normals(const std::vector<glm::vec3>& positions,
+                                        const std::vector<uint32_t>& indices) {
+    std::vector<glm::dvec3> sum(positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const glm::dvec3 a(positions[indices[t]]);
+        const glm::dvec3 b(positions[indices[t + 1]]);
+        const glm::dvec3 c(positions[indices[t + 2]]);
+        const glm::dvec3 n = glm::cross(b - a, c - a);
+        for (int k = 0; k < 3; ++k) sum[indices[t + size_t(k)]] += n;
+    }
+    std::vector<glm::vec3> normals(positions.size());
+    for (size_t i = 0; i < sum.size(); ++i) {
+        const double len = glm::length(sum[i]);
+        // A vertex of degenerate triangles only has no normal; any unit vector will do.
+        normals[i] =
+            len > 0.0 && std::isfinite(len) ? glm::vec3(sum[i] / len) : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return normals;
+}
+
+Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dmat4& world) {
+    const tg::Primitive& prim =
+        model_.meshes[size_t(mesh_index)].primitives[size_t(primitive_index)];
+    const std::string what =
+        "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(primitive_index);
+    const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        warn(what + " has mode " + std::to_string(mode) +
+             " (points or lines); only triangles are drawn, so it is skipped");
+        return Ok{};
+    }
+    auto position_it = prim.attributes.find("POSITION");
+    if (position_it == prim.attributes.end()) {
+        warn(what + " has no POSITION attribute; skipped");
+        return Ok{};
+    }
+    if (prim.material < -1 || prim.material >= static_cast<int>(model_.materials.size())) {
+        return fail(what + " uses material " + std::to_string(prim.material) +
+                    ", which does not exist");
+    }
+    Result<std::vector<glm::vec3>> positions = read_vec3(position_it->second, what + " POSITION");
+    if (!positions) return Error{positions.error()};
+    const size_t vertex_count = positions->size();
+
+    std::vector<uint32_t> indices;
+    if (prim.indices >= 0) {
+        Result<std::vector<uint32_t>> read =
+            read_indices(prim.indices, what + " indices", vertex_count);
+        if (!read) return Error{read.error()};
+        indices = std::move(*read);
+    } else {
+        if (vertex_count > std::numeric_limits<uint32_t>::max()) {
+            return fail(what + " has too many vertices");
+        }
+        indices.resize(vertex_count);
+        for (size_t i = 0; i < vertex_count; ++i) indices[i] = uint32_t(i);
+    }
+    // Strips and fans become triangle lists with the winding glTF prescribes.
+    if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        std::vector<uint32_t> list;
+        for (size_t i = 2; i < indices.size(); ++i) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+                list.insert(list.end(), {indices[0], indices[i - 1], indices[i]});
+            } else if (i % 2 == 0) {
+                list.insert(list.end(), {indices[i - 2], indices[i - 1], indices[i]});
+            } else {
+                list.insert(list.end(), {indices[i - 1], indices[i - 2], indices[i]});
+            }
+        }
+        indices = std::move(list);
+    } else if (indices.size() % 3 != 0) {
+        return fail(what + " has " + std::to_string(indices.size()) +
+                    " indices, which is not a multiple of 3");
+    }
+
+    Mesh mesh;
+    mesh.material = prim.material;
+    mesh.positions.resize(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) {
+        const glm::dvec4 p = world * glm::dvec4(glm::dvec3((*positions)[i]), 1.0);
+        const glm::vec3 pf(p);
+        if (!std::isfinite(pf.x) || !std::isfinite(pf.y) || !std::isfinite(pf.z)) {
+            return fail(what + ": vertex " + std::to_string(i) +
+                        " is not finite after the node transform");
+        }
+        mesh.positions[i] = pf;
+    }
+    // A mirroring transform flips the winding; swap two corners to keep
+    // front faces front-facing.
+    const glm::dmat3 linear(world);
+    const double det = glm::determinant(linear);
+    if (det < 0.0) {
+        for (size_t t = 0; t + 2 < indices.size(); t += 3)
+            std::swap(indices[t + 1], indices[t + 2]);
+    }
+    mesh.indices = std::move(indices);
+
+    auto normal_it = prim.attributes.find("NORMAL");
+    const bool invertible = std::abs(det) > 1e-300 && std::isfinite(det);
+    if (normal_it != prim.attributes.end() && invertible) {
+        Result<std::vector<glm::vec3>> normals = read_vec3(normal_it->second, what + " NORMAL");
+        if (!normals) return Error{normals.error()};
+        if (normals->size() != vertex_count) {
+            return fail(what + ": NORMAL has " + std::to_string(normals->size()) +
+                        " elements but POSITION has " + std::to_string(vertex_count));
+        }
+        const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
+        std::vector<glm::vec3> generated;  // only computed if some normal is degenerate
+        mesh.normals.resize(vertex_count);
+        for (size_t i = 0; i < vertex_count; ++i) {
+            const glm::dvec3 n = normal_matrix * glm::dvec3((*normals)[i]);
+            const double len = glm::length(n);
+            if (len > 1e-20 && std::isfinite(len)) {
+                mesh.normals[i] = glm::vec3(n / len);
+            } else {
+                if (generated.empty()) generated = generate_normals(mesh.positions, mesh.indices);
+                mesh.normals[i] = generated[i];
+            }
+        }
+    } else {
+        mesh.normals = generate_normals(mesh.positions, mesh.indices);
+    }
+
+    auto uv_it = prim.attributes.find("TEXCOORD_0");
+    if (uv_it != prim.attributes.end()) {
+        Result<std::vector<glm::vec2>> uvs = read_uv(uv_it->second, what + " TEXCOORD_0");
+        if (!uvs) return Error{uvs.error()};
+        if (uvs->size() != vertex_count) {
+            return fail(what + ": TEXCOORD_0 has " + std::to_string(uvs->size()) +
+                        " elements but POSITION has " + std::to_string(vertex_count));
+        }
+        mesh.uvs = std::move(*uvs);
+    }
+    if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
+    return Ok{};
+}
+
+Status Loader::add_mesh(int node_index, int mesh_index, const glm::dmat4& world) {
+    if (mesh_index >= static_cast<int>(model_.meshes.size())) {
+        return fail("node " + std::to_string(node_index) + " uses mesh " +
+                    std::to_string(mesh_index) + ", which does not exist");
+    }
+    const tg::Mesh& mesh = model_.meshes[size_t(mesh_index)];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        Status status = add_primitive(mesh_index, static_cast<int>(p), world);
+        if (!status) return status;
+    }
+    return Ok{};
+}
+
+// Reads `extras.<key>` as a bool; other types are ignored with a warning.
+bool extras_flag(const tg::Value& extras, const char* key, const std::string& what,
+                 std::vector<std::string>& warnings, const std::string& file) {
+    if (!extras.IsObject() || !extras.Has(key)) return false;
+    const tg::Value& v = extras.Get(key);
+    if (v.IsBool()) return v.Get<bool>();
+    warnings.push_back(file + ": " + what + ": extras." + key + " is not a boolean; ignored");
+    return false;
+}
+
+Status Loader::add_light(int node_index, const tg::Value& extension, const glm::dmat4& world,
+                         uint64_t path_hash) {
+    const std::string node_what = "node " + std::to_string(node_index);
+    if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber()) {
+        return fail(node_what + ": KHR_lights_punctual extension has no 'light' index");
+    }
+    const double light_number = extension.Get("light").GetNumberAsDouble();
+    if (!(light_number >= 0.0) || light_number >= double(model_.lights.size()) ||
+        light_number != std::floor(light_number)) {
+        const bool integral =
+            light_number == std::floor(light_number) && std::abs(light_number) < 1e15;
+        return fail(node_what + " uses light " +
+                    (integral ? std::to_string(int64_t(light_number)) : num(light_number)) +
+                    ", which does not exist (the file has " + std::to_string(model_.lights.size()) +
+                    " lights)");
+    }
+    const int light_index = static_cast<int>(light_number);
+    const tg::Light& in = model_.lights[size_t(light_index)];
+    const std::string what =
+        "light " + std::to_string(light_index) + (in.name.empty() ? "" : " '" + in.name + "'");
+
+    SceneLight light;
+    if (in.type == "point") {
+        light.type = LightType::kPoint;
+    } else if (in.type == "spot") {
+        light.type = LightType::kSpot;
+    } else if (in.type == "directional") {
+        light.type = LightType::kDirectional;
+    } else {
+        return fail(what + " has unknown type '" + in.type +
+                    "' (expected point, spot or directional)");
+    }
+    if (!in.color.empty()) {
+        if (in.color.size() != 3) return fail(what + ": 'color' needs 3 numbers");
+        for (double c : in.color) {
+            if (!finite(c) || c < 0.0) {
+                return fail(what + ": 'color' components must be finite and >= 0");
+            }
+        }
+        light.color = glm::vec3(float(in.color[0]), float(in.color[1]), float(in.color[2]));
+    }
+    if (!finite(in.intensity)) return fail(what + ": intensity is not finite");
+    if (in.intensity < 0.0) {
+        return fail(what + ": negative intensity " + num(in.intensity));
+    }
+    if (in.intensity > double(std::numeric_limits<float>::max())) {
+        return fail(what + ": intensity " + num(in.intensity) + " overflows a float");
+    }
+    light.intensity = float(in.intensity);
+    if (!finite(in.range) || in.range < 0.0) {
+        return fail(what + ": range must be finite and > 0 (absent means unbounded)");
+    }
+    light.range = float(in.range);
+    if (light.type == LightType::kSpot) {
+        const double inner = in.spot.innerConeAngle;
+        const double outer = in.spot.outerConeAngle;
+        if (!finite(inner) || !finite(outer) || inner < 0.0 || outer > std::numbers::pi / 2.0 ||
+            !(inner < outer)) {
+            return fail(what + ": invalid spot angles (inner " + num(inner) + ", outer " +
+                        num(outer) + "); need 0 <= inner < outer <= pi/2");
+        }
+        light.inner_cone_angle = float(inner);
+        light.outer_cone_angle = float(outer);
+        // Float rounding must not break inner < outer.
+        if (!(light.inner_cone_angle < light.outer_cone_angle)) {
+            return fail(what + ": spot angles too close to tell apart in float precision");
+        }
+    }
+
+    const glm::dvec4 position = world * glm::dvec4(0.0, 0.0, 0.0, 1.0);
+    light.position = glm::vec3(position);
+    if (!std::isfinite(light.position.x) || !std::isfinite(light.position.y) ||
+        !std::isfinite(light.position.z)) {
+        return fail(node_what + ": the position of " + what + " is not finite");
+    }
+    const glm::dvec3 direction = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+    const double length = glm::length(direction);
+    if (length > 1e-12 && std::isfinite(length)) {
+        light.direction = glm::vec3(direction / length);
+    } else if (light.type != LightType::kPoint) {
+        return fail(node_what + ": the transform of " + what +
+                    " collapses its direction (zero scale)");
+    }
+
+    const tg::Node& node = model_.nodes[size_t(node_index)];
+    light.classic =
+        extras_flag(in.extras, kClassicExtrasKey, what, warnings_, path_.string()) ||
+        extras_flag(node.extras, kClassicExtrasKey, node_what, warnings_, path_.string());
+
+    if (node.extras.IsObject() && node.extras.Has(kGuidExtrasKey)) {
+        const tg::Value& v = node.extras.Get(kGuidExtrasKey);
+        std::optional<Guid> guid = v.IsString() ? Guid::parse(v.Get<std::string>()) : std::nullopt;
+        if (!guid) return fail(node_what + ": extras." + kGuidExtrasKey + " is not a GUID");
+        light.guid = *guid;
+    } else {
+        // Stable for a given file: the light's index and name and where it hangs.
+        std::vector<uint8_t> bytes;
+        const std::string tag =
+            "KHR_lights_punctual/" + std::to_string(light_index) + "/" + in.name;
+        bytes.assign(tag.begin(), tag.end());
+        for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(path_hash >> (8 * i)));
+        light.guid = Guid::from_bytes(bytes);
+    }
+    scene_.lights.push_back(light);
+    return Ok{};
+}
+
+void Loader::add_camera(int node_index, int camera_index, const glm::dmat4& world) {
+    const tg::Camera& in = model_.cameras[size_t(camera_index)];
+    const std::string what = "camera " + std::to_string(camera_index);
+    if (in.type != "perspective") {
+        warn(what + " is " + in.type + "; only perspective cameras are loaded");
+        return;
+    }
+    const double yfov = in.perspective.yfov;
+    if (!finite(yfov) || yfov <= 0.0 || yfov >= std::numbers::pi) {
+        warn(what + ": yfov " + num(yfov) + " is outside (0, pi); camera skipped");
+        return;
+    }
+    const glm::dvec3 eye(world * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+    const glm::dvec3 forward = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+    const glm::dvec3 up = glm::dmat3(world) * glm::dvec3(0.0, 1.0, 0.0);
+    const double flen = glm::length(forward);
+    const double ulen = glm::length(up);
+    if (!(flen > 1e-12) || !(ulen > 1e-12) || !std::isfinite(flen + ulen) ||
+        !std::isfinite(eye.x + eye.y + eye.z)) {
+        warn(what + " on node " + std::to_string(node_index) +
+             " has a degenerate transform; camera skipped");
+        return;
+    }
+    Camera camera;
+    camera.name = !in.name.empty() ? in.name : model_.nodes[size_t(node_index)].name;
+    camera.eye = glm::vec3(eye);
+    camera.up = glm::vec3(up / ulen);
+    camera.yfov = float(yfov);
+    scene_.cameras.push_back(camera);
+    camera_forward_.push_back(forward / flen);
+}
+
+// A camera's target only fixes its direction; we put it at the distance of
+// the scene's centre so that orbiting around it feels natural.
+void Loader::finish_cameras() {
+    const glm::dvec3 center = (glm::dvec3(scene_.bounds_min) + glm::dvec3(scene_.bounds_max)) * 0.5;
+    for (size_t i = 0; i < scene_.cameras.size(); ++i) {
+        Camera& camera = scene_.cameras[i];
+        double distance = glm::length(center - glm::dvec3(camera.eye));
+        if (!std::isfinite(distance) || distance < 1e-3) distance = 1.0;
+        camera.target = glm::vec3(glm::dvec3(camera.eye) + camera_forward_[i] * distance);
+    }
+}
+
+Status Loader::traverse(const std::vector<int>& roots) {
+    std::vector<bool> visited(model_.nodes.size(), false);
+    std::vector<Traversal> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+        stack.push_back({*it, glm::dmat4(1.0), 0xcbf29ce484222325ull});
+    }
+    while (!stack.empty()) {
+        const Traversal item = stack.back();
+        stack.pop_back();
+        if (visited[size_t(item.node)]) {
+            return fail("node " + std::to_string(item.node) +
+                        " is reached twice from the scene (listed as a root and as a descendant, "
+                        "or listed twice)");
+        }
+        visited[size_t(item.node)] = true;
+        const tg::Node& node = model_.nodes[size_t(item.node)];
+
+        Result<glm::dmat4> local = local_transform(item.node);
+        if (!local) return Error{local.error()};
+        const glm::dmat4 world = item.parent_world * *local;
+        if (!all_finite(world)) {
+            return fail("node " + std::to_string(item.node) +
+                        ": its world transform is not finite");
+        }
+        // FNV-1a step over the node index: the path from the root.
+        uint64_t path_hash = item.path_hash;
+        for (int i = 0; i < 4; ++i) {
+            path_hash ^= uint8_t(uint32_t(item.node) >> (8 * i));
+            path_hash *= 0x100000001b3ull;
+        }
+
+        if (node.mesh >= 0) {
+            Status status = add_mesh(item.node, node.mesh, world);
+            if (!status) return status;
+        }
+        if (node.camera >= 0) {
+            if (node.camera >= static_cast<int>(model_.cameras.size())) {
+                return fail("node " + std::to_string(item.node) + " uses camera " +
+                            std::to_string(node.camera) + ", which does not exist");
+            }
+            add_camera(item.node, node.camera, world);
+        }
+        auto light_ext = node.extensions.find(kLightsExtension);
+        if (light_ext != node.extensions.end()) {
+            Status status = add_light(item.node, light_ext->second, world, path_hash);
+            if (!status) return status;
+        }
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+            stack.push_back({*it, world, path_hash});
+        }
+    }
+    return Ok{};
+}
+
+Status Loader::check_unique_light_guids() const {
+    std::map<Guid, size_t> seen;
+    for (size_t i = 0; i < scene_.lights.size(); ++i) {
+        auto [it, inserted] = seen.emplace(scene_.lights[i].guid, i);
+        if (!inserted) {
+            return fail("lights " + std::to_string(it->second) + " and " + std::to_string(i) +
+                        " share GUID " + scene_.lights[i].guid.to_hex());
+        }
+    }
+    return Ok{};
+}
+
+Result<Scene> Loader::load() {
+    Status status = parse_file();
+    if (!status) return Error{status.error()};
+    status = validate_node_graph();
+    if (!status) return Error{status.error()};
+    Result<std::vector<int>> roots = scene_roots();
+    if (!roots) return Error{roots.error()};
+    status = convert_materials();
+    if (!status) return Error{status.error()};
+    status = traverse(*roots);
+    if (!status) return Error{status.error()};
+    status = check_unique_light_guids();
+    if (!status) return Error{status.error()};
+    scene_.source = path_;
+    update_scene_bounds(scene_);
+    finish_cameras();
+    scene_.guid = compute_scene_guid(scene_);
+    return std::move(scene_);
+}
+
+}  // namespace
+
+void update_scene_bounds(Scene& scene) {
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(std::numeric_limits<float>::lowest());
+    bool any = false;
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+            any = true;
+        }
+    }
+    for (const SceneLight& light : scene.lights) {
+        if (light.type == LightType::kDirectional) continue;
+        lo = glm::min(lo, light.position);
+        hi = glm::max(hi, light.position);
+        any = true;
+    }
+    scene.bounds_min = any ? lo : glm::vec3(0.0f);
+    scene.bounds_max = any ? hi : glm::vec3(0.0f);
+}
+
+Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+    Loader loader(path, warnings);
+    return loader.load();
+}
+
+Result<Scene> load_scene(const std::filesystem::path& path) {
+    std::vector<std::string> warnings;
+    Result<Scene> scene = load_scene(path, warnings);
+    for (const std::string& w : warnings) spdlog::warn("{}", w);
+    return scene;
+}
+
+}  // namespace lc::client

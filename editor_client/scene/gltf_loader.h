@@ -1,0 +1,39 @@
+#pragma once
+// Loads a glTF 2.0 scene (.gltf or .glb) with KHR_lights_punctual into a
+// world-space Scene. Broken files give an lc::Error naming the problem.
+//
+// Conventions:
+// - One Scene::Mesh per triangle primitive instance, flattened to world space;
+//   normals go through the inverse transpose and are generated (area-weighted)
+//   when the file has none. Triangle strips and fans become lists; points and
+//   lines are skipped with a warning.
+// - The scene drawn is `scene` when present, else scenes[0], else every root node.
+// - Lights: position and -Z direction of the node's world transform. A light's
+//   GUID is `extras.lightcuts_guid` on its node when present (the writer puts it
+//   there so GUIDs survive edits), else derived from the light's index and name
+//   and the node path. `extras: {"lightcuts_classic": true}` on the light or the
+//   node marks a classic light.
+// - Cameras (perspective only): eye at the node, looking down its -Z, up its +Y.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "editor_client/scene/scene.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+// Extras keys we read and write.
+inline constexpr const char* kClassicExtrasKey = "lightcuts_classic";
+inline constexpr const char* kGuidExtrasKey = "lightcuts_guid";
+
+// Warnings (skipped primitives, unsupported features) go to the log.
+Result<Scene> load_scene(const std::filesystem::path& path);
+// Same, collecting the warnings instead of logging them.
+Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings);
+
+// Recomputes Scene::bounds_min/max from the meshes and the positioned lights
+// (directional lights have no position). An empty scene gets zero bounds.
+void update_scene_bounds(Scene& scene);
+
+}  // namespace lc::client

@@ -1,0 +1,78 @@
+#pragma once
+// Procedural scenes and light layouts, deterministic for a given seed.
+//
+// Axes: glTF's, right-handed with +Y up; floors lie in the XZ plane at y = 0.
+// The thesis's figures use +Z up with the lights at z = 150; we map a thesis
+// point (x, y, z) to glTF (x, z, -y), a rotation, so distances, radii and the
+// trees built from them are the thesis's.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "editor_client/scene/scene.h"
+#include "protocol/result.h"
+#include "protocol/scene_light.h"
+
+namespace lc::client {
+
+enum class LightLayout : uint8_t { kRandom = 0, kGrid = 1 };
+enum class LightTypeChoice : uint8_t { kPoint = 0, kSpot = 1, kDirectional = 2, kMixed = 3 };
+
+Result<LightLayout> parse_light_layout(std::string_view text);
+Result<LightTypeChoice> parse_light_type_choice(std::string_view text);
+
+// Intensities used when none is given: candela for point and spot lights,
+// lux for directional lights (a 10 cd bulb 2 m away gives 2.5 lux).
+inline constexpr float kDefaultPointIntensity = 10.0f;
+inline constexpr float kDefaultDirectionalIntensity = 1.0f;
+// Spot cones of generated spot lights (radians).
+inline constexpr float kGeneratedSpotInner = 0.25f;
+inline constexpr float kGeneratedSpotOuter = 0.7853982f;  // pi/4
+
+struct LightLayoutOptions {
+    uint32_t count = 16;
+    LightLayout layout = LightLayout::kRandom;
+    uint64_t seed = 0;
+    LightTypeChoice type = LightTypeChoice::kPoint;  // mixed: point, spot, directional in turn
+    glm::vec3 box_min{-1.0f};
+    glm::vec3 box_max{1.0f};
+    std::optional<float> intensity;  // absent: the per-type defaults above
+    float range = 0.0f;              // 0: unbounded
+    bool classic = false;
+    // Mixed into the generated GUIDs (add-lights passes the scene's GUID), so
+    // adding to a scene twice with one seed still gives distinct GUIDs.
+    Guid guid_salt;
+};
+
+// Random: uniform in the box, spots aimed down within 30 degrees, directional
+// lights down within 60 degrees. Grid: cell centres of the most cubic grid of
+// at least `count` cells that fits the box, filled in x, then z, then y order;
+// spots and directional lights aim straight down (-Y).
+Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& options);
+
+// The empty room: floor, ceiling and four walls as inward-facing quads,
+// diffuse grey, a camera looking in from the front wall.
+inline constexpr glm::vec3 kRoomMin{-5.0f, 0.0f, -5.0f};
+inline constexpr glm::vec3 kRoomMax{5.0f, 3.0f, 5.0f};
+// Where add-lights puts lights in the room by default: inside it, 0.3 from
+// every surface.
+inline constexpr glm::vec3 kRoomLightBoxMin{-4.7f, 0.3f, -4.7f};
+inline constexpr glm::vec3 kRoomLightBoxMax{4.7f, 2.7f, 4.7f};
+Scene make_room_scene();
+
+// Thesis Figure 9.1: five point lights of radius (range) 250 at height 150
+// above a floor, with the thesis's positions, brightness, colours and GUIDs.
+Scene make_thesis_fig91_scene();
+// Thesis Test 1: red and green lights close together, blue farther away,
+// range 250, so the radius criterion shows three cuts on the floor.
+Scene make_thesis_test1_scene();
+// Thesis Test 2: five lights in two close pairs and one single light.
+Scene make_thesis_test2_scene();
+
+// "room", "thesis-fig91", "thesis-test1", "thesis-test2".
+std::vector<std::string> named_scene_names();
+Result<Scene> make_named_scene(std::string_view name);
+
+}  // namespace lc::client

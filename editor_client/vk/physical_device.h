@@ -1,0 +1,31 @@
+#pragma once
+// Picks the GPU to render on: a real GPU when there is one (discrete first),
+// otherwise a software rasteriser such as Mesa's lavapipe.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+
+#include "protocol/result.h"
+
+namespace lc::vk {
+
+struct PhysicalDevice {
+    VkPhysicalDevice handle = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties properties{};
+    VkPhysicalDeviceMemoryProperties memory{};
+    // One family does graphics, compute and transfer (and presents, when a surface was given).
+    uint32_t queue_family = 0;
+    uint32_t timestamp_valid_bits = 0;
+
+    std::string name() const { return properties.deviceName; }
+    bool is_software() const { return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
+};
+
+// Requires Vulkan 1.3 with dynamic rendering and synchronization2; with a
+// surface, also presentation support and VK_KHR_swapchain. The environment
+// variable LC_VK_DEVICE (a substring of the device name) overrides the choice.
+Result<PhysicalDevice> select_physical_device(VkInstance instance,
+                                              VkSurfaceKHR surface = VK_NULL_HANDLE);
+
+}  // namespace lc::vk

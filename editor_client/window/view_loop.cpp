@@ -1,0 +1,203 @@
+#include "editor_client/window/view_loop.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "editor_client/render/image_io.h"
+#include "editor_client/vk/barriers.h"
+#include "editor_client/vk/swapchain.h"
+#include "editor_client/vk/sync.h"
+#include "editor_client/vk/vk_result.h"
+#include "editor_client/window/orbit_camera.h"
+
+namespace lc::client {
+namespace {
+
+// Per-swapchain objects: the swapchain and one "rendered" semaphore per image
+// (a present may still wait on the previous one of another image).
+struct Presentation {
+    vk::Swapchain swapchain;
+    std::vector<vk::Semaphore> rendered;
+};
+
+Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent,
+                                       Presentation* old) {
+    Presentation p;
+    Result<vk::Swapchain> swapchain = vk::Swapchain::create(
+        context.device(), context.surface(), extent, old != nullptr ? &old->swapchain : nullptr);
+    if (!swapchain) return make_error(swapchain.error());
+    p.swapchain = std::move(swapchain).value();
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(context.physical().handle, p.swapchain.format(), &props);
+    if ((props.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) == 0)
+        return make_error("the swapchain format cannot be a blit destination");
+    for (size_t i = 0; i < p.swapchain.images().size(); ++i) {
+        Result<vk::Semaphore> s = vk::Semaphore::create(context.device().handle());
+        if (!s) return make_error(s.error());
+        p.rendered.push_back(std::move(s).value());
+    }
+    return p;
+}
+
+// Scales the renderer's display image onto the swapchain image.
+void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent) {
+    vk::transition_image(
+        cmd, {display.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+              VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
+    // The acquire semaphore is waited at the blit stage, so the layout change
+    // chains after it.
+    vk::transition_image(cmd, {target, VK_IMAGE_LAYOUT_UNDEFINED,
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                               0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
+    VkImageBlit region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.srcOffsets[1] = {int32_t(display.desc().width), int32_t(display.desc().height), 1};
+    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
+    vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
+    vk::transition_image(cmd, {target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0});
+    // Back to GENERAL, where the renderer and its read-backs expect it.
+    vk::transition_image(
+        cmd, {display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+              VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0});
+}
+
+RenderMode mode_for_key(int key) { return static_cast<RenderMode>(key - 1); }
+
+}  // namespace
+
+Result<ViewSummary> run_view_loop(Window& window, const vk::Context& context, Renderer& renderer,
+                                  const ViewOptions& options) {
+    const vk::Device& device = context.device();
+    const bool presenting = window.has_surface();
+    if (presenting && context.surface() == VK_NULL_HANDLE)
+        return make_error("the Vulkan context was created without the window's surface");
+
+    Result<VkCommandBuffer> cmd = context.command_pool().allocate();
+    if (!cmd) return make_error(cmd.error());
+    Result<vk::Fence> frame_done = vk::Fence::create(device.handle());
+    if (!frame_done) return make_error(frame_done.error());
+    Result<vk::Semaphore> image_ready = vk::Semaphore::create(device.handle());
+    if (!image_ready) return make_error(image_ready.error());
+
+    std::optional<Presentation> presentation;
+    bool recreate = presenting;
+
+    RenderSettings settings = options.settings;
+    OrbitCamera orbit(settings.camera);
+    ViewSummary summary;
+    auto started = std::chrono::steady_clock::now();
+    while (options.frames == 0 || summary.frames < options.frames) {
+        WindowInput input = window.poll();
+        if (input.close_requested) break;
+        orbit.orbit(input.orbit_drag);
+        orbit.pan(input.pan_drag);
+        orbit.dolly(input.scroll);
+        settings.camera = orbit.camera();
+        if (input.mode_key) {
+            RenderMode wanted = mode_for_key(*input.mode_key);
+            if (mode_needs_tree(wanted) && !renderer.has_tree()) {
+                spdlog::warn(
+                    "mode '{}' needs a light tree: start view with --tree, --server or "
+                    "--spawn-server",
+                    render_mode_name(wanted));
+            } else {
+                settings.mode = wanted;
+            }
+        }
+
+        uint32_t image_index = 0;
+        if (presenting) {
+            VkExtent2D extent = window.framebuffer_size();
+            if (extent.width == 0 || extent.height == 0) {  // minimised: nothing to show
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                continue;
+            }
+            if (presentation && (presentation->swapchain.extent().width != extent.width ||
+                                 presentation->swapchain.extent().height != extent.height))
+                recreate = true;
+            if (recreate) {
+                LC_RETURN_IF_ERROR(device.wait_idle());
+                Result<Presentation> next =
+                    make_presentation(context, extent, presentation ? &*presentation : nullptr);
+                if (!next) return make_error(next.error());
+                presentation = std::move(next).value();
+                recreate = false;
+            }
+            Result<vk::AcquireStatus> acquired =
+                presentation->swapchain.acquire(image_ready->handle(), image_index);
+            if (!acquired) return make_error(acquired.error());
+            if (*acquired == vk::AcquireStatus::kOutOfDate) {
+                recreate = true;
+                continue;
+            }
+        }
+
+        LC_VK_CHECK(vkResetCommandBuffer(*cmd, 0));
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        LC_VK_CHECK(vkBeginCommandBuffer(*cmd, &begin));
+        Status recorded = renderer.record(*cmd, settings);
+        if (recorded && presenting)
+            record_blit(*cmd, renderer.display_image(),
+                        presentation->swapchain.images()[image_index],
+                        presentation->swapchain.extent());
+        LC_VK_CHECK(vkEndCommandBuffer(*cmd));
+        if (!recorded) {
+            // The acquired image must still be consumed; the simplest is to stop here.
+            LC_RETURN_IF_ERROR(device.wait_idle());
+            return make_error(recorded.error());
+        }
+
+        VkSemaphore wait = image_ready->handle();
+        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        VkSemaphore signal =
+            presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.waitSemaphoreCount = presenting ? 1 : 0;
+        submit.pWaitSemaphores = &wait;
+        submit.pWaitDstStageMask = &wait_stage;
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &*cmd;
+        submit.signalSemaphoreCount = presenting ? 1 : 0;
+        submit.pSignalSemaphores = &signal;
+        LC_VK_CHECK(vkQueueSubmit(device.queue(), 1, &submit, frame_done->handle()));
+        if (presenting) {
+            Result<vk::AcquireStatus> presented =
+                presentation->swapchain.present(device.queue(), signal, image_index);
+            if (!presented) return make_error(presented.error());
+            if (*presented == vk::AcquireStatus::kOutOfDate) recreate = true;
+        }
+        LC_RETURN_IF_ERROR(frame_done->wait_and_reset());
+
+        ++summary.frames;
+        Result<PassTimings> timings = renderer.read_timings();
+        if (timings) summary.last_render_ms = timings->total_ms;
+        double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        window.set_title("lightcuts view: " + std::string(render_mode_name(settings.mode)) + ", " +
+                         std::to_string(int(summary.last_render_ms)) + " ms GPU, " +
+                         std::to_string(int(summary.frames / std::max(seconds, 1e-3))) + " fps");
+    }
+    LC_RETURN_IF_ERROR(device.wait_idle());
+    summary.last_settings = settings;
+
+    if (!options.screenshot.empty()) {
+        if (summary.frames == 0) return make_error("no frame was rendered, so no screenshot");
+        Result<std::vector<uint8_t>> pixels = renderer.read_display();
+        if (!pixels) return make_error(pixels.error());
+        LC_RETURN_IF_ERROR(
+            write_png(options.screenshot, renderer.width(), renderer.height(), *pixels));
+    }
+    return summary;
+}
+
+}  // namespace lc::client

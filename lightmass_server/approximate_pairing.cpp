@@ -1,0 +1,151 @@
+#include "lightmass_server/approximate_pairing.h"
+
+#include <algorithm>
+#include <tuple>
+
+#include "lightmass_server/point_kd_tree.h"
+
+namespace lc::bake {
+namespace {
+
+constexpr uint32_t kCandidateNeighbors = 8;
+constexpr uint32_t kRetryNeighbors = 4;
+constexpr int kMaxTwoOptPasses = 16;
+constexpr uint32_t kUnmatched = kNoCarriedNode;
+
+struct CandidateEdge {
+    double distance;
+    uint32_t u;
+    uint32_t v;
+    bool operator<(const CandidateEdge& o) const {
+        return std::tie(distance, u, v) < std::tie(o.distance, o.u, o.v);
+    }
+    bool operator==(const CandidateEdge& o) const { return u == o.u && v == o.v; }
+};
+
+// Undirected candidate edges (u < v) from k-NN lists, mapped through `ids`,
+// sorted by (distance, u, v) and without duplicates.
+std::vector<CandidateEdge> candidate_edges(const KnnResult& knn, std::span<const uint32_t> ids) {
+    std::vector<CandidateEdge> edges;
+    edges.reserve(ids.size() * knn.k_used);
+    for (uint32_t i = 0; i < ids.size(); ++i) {
+        for (const Neighbor& nb : knn.of(i)) {
+            const uint32_t a = ids[i];
+            const uint32_t b = ids[nb.index];
+            edges.push_back(CandidateEdge{nb.distance, std::min(a, b), std::max(a, b)});
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    return edges;
+}
+
+void greedy_match(std::span<const CandidateEdge> edges, std::vector<uint32_t>& mate) {
+    for (const CandidateEdge& e : edges) {
+        if (mate[e.u] == kUnmatched && mate[e.v] == kUnmatched) {
+            mate[e.u] = e.v;
+            mate[e.v] = e.u;
+        }
+    }
+}
+
+// Exchanges (u, mu), (v, mv) for (u, v), (mu, mv) while that is cheaper. The
+// dummy node n (mate of the carried node) costs nothing to pair with.
+void two_opt(std::span<const glm::dvec3> points, std::span<const CandidateEdge> edges,
+             std::vector<uint32_t>& mate) {
+    const uint32_t dummy = uint32_t(points.size());
+    const auto cost = [&](uint32_t a, uint32_t b) {
+        return a == dummy || b == dummy ? 0.0 : glm::distance(points[a], points[b]);
+    };
+    for (int pass = 0; pass < kMaxTwoOptPasses; ++pass) {
+        bool improved = false;
+        for (const CandidateEdge& e : edges) {
+            const uint32_t u = e.u;
+            const uint32_t v = e.v;
+            const uint32_t mu = mate[u];
+            const uint32_t mv = mate[v];
+            if (mu == v) continue;
+            const double current = cost(u, mu) + cost(v, mv);
+            const double exchanged = e.distance + cost(mu, mv);
+            // The relative margin keeps rounding from cycling between equal pairings.
+            if (exchanged < current * (1.0 - 1e-12)) {
+                mate[u] = v;
+                mate[v] = u;
+                mate[mu] = mv;
+                mate[mv] = mu;
+                improved = true;
+            }
+        }
+        if (!improved) break;
+    }
+}
+
+double lower_bound_from(const KnnResult& knn, uint32_t n) {
+    double sum = 0.0;
+    double largest = 0.0;
+    for (uint32_t u = 0; u < n; ++u) {
+        const double nn = knn.of(u)[0].distance;
+        sum += nn;
+        largest = std::max(largest, nn);
+    }
+    // An odd level carries one node that pays nothing: drop the largest term.
+    if (n % 2 == 1) sum -= largest;
+    return std::max(0.0, 0.5 * sum);
+}
+
+}  // namespace
+
+double nearest_neighbor_lower_bound(std::span<const glm::dvec3> points) {
+    if (points.size() < 2) return 0.0;
+    return lower_bound_from(k_nearest_neighbors(points, 1), uint32_t(points.size()));
+}
+
+LevelPairing approximate_pairing(std::span<const glm::dvec3> points) {
+    const uint32_t n = uint32_t(points.size());
+    if (n < 2) {
+        LevelPairing trivial;
+        trivial.carried = n == 1 ? 0 : kNoCarriedNode;
+        trivial.exact = true;
+        return trivial;
+    }
+
+    std::vector<uint32_t> all_ids(n);
+    for (uint32_t i = 0; i < n; ++i) all_ids[i] = i;
+    const KnnResult knn = k_nearest_neighbors(points, kCandidateNeighbors);
+    const std::vector<CandidateEdge> edges = candidate_edges(knn, all_ids);
+
+    // mate has one extra slot: the dummy node n, partner of the carried node.
+    std::vector<uint32_t> mate(size_t(n) + 1, kUnmatched);
+    greedy_match(edges, mate);
+
+    // Points whose candidates were all taken: pair them among themselves. Every
+    // round matches at least the closest remaining pair, so this terminates.
+    std::vector<uint32_t> free_ids;
+    std::vector<glm::dvec3> free_points;
+    while (true) {
+        free_ids.clear();
+        free_points.clear();
+        for (uint32_t u = 0; u < n; ++u) {
+            if (mate[u] == kUnmatched) {
+                free_ids.push_back(u);
+                free_points.push_back(points[u]);
+            }
+        }
+        if (free_ids.size() < 2) break;
+        const KnnResult free_knn = k_nearest_neighbors(free_points, kRetryNeighbors);
+        greedy_match(candidate_edges(free_knn, free_ids), mate);
+    }
+    if (free_ids.size() == 1) {
+        mate[free_ids[0]] = n;
+        mate[n] = free_ids[0];
+    }
+
+    two_opt(points, edges, mate);
+
+    LevelPairing pairing = pairing_from_mates(points, std::span<const uint32_t>(mate).first(n));
+    pairing.lower_bound = std::min(pairing.cost, lower_bound_from(knn, n));
+    pairing.exact = false;
+    return pairing;
+}
+
+}  // namespace lc::bake

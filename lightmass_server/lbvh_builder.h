@@ -1,0 +1,21 @@
+#pragma once
+// A linear BVH build (Morton codes, as GPU ray tracers build their trees):
+// sort the lights along a Z-order curve, then split each range where the
+// codes' highest differing bit changes. O(n log n) with a tiny constant; it
+// ignores intensity and orientation, so its clusters are looser than the
+// agglomerative ones. The benchmark shows the trade (docs/bench/).
+#include <cstdint>
+#include <span>
+
+#include "lightmass_server/build_tree.h"
+#include "lightmass_server/tree_builder.h"
+#include "protocol/result.h"
+
+namespace lc::bake {
+
+// Builds the tree over `leaves` (arena indices of one light type, in input
+// order); returns the root's arena index (kNoBuildChild when empty).
+Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> leaves,
+                                const BuildOptions& options, const BuildProgressFn& progress);
+
+}  // namespace lc::bake

@@ -1,0 +1,105 @@
+#include "lightmass_server/optimal_pair_builder.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "lightmass_server/approximate_pairing.h"
+#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/sparse_exact_pairing.h"
+
+namespace lc::bake {
+namespace {
+
+std::string format_double(double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+}
+
+bool pair_exactly(const BuildOptions& options, size_t level_size) {
+    switch (options.pairing) {
+        case PairingMode::kExact: return true;
+        case PairingMode::kApproximate: return false;
+        case PairingMode::kAuto: break;
+    }
+    return level_size <= options.exact_pairing_limit;
+}
+
+}  // namespace
+
+Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint32_t> leaves,
+                                        const BuildOptions& options,
+                                        const BuildProgressFn& progress, BuildReport& report) {
+    if (leaves.empty()) return kNoBuildChild;
+    const LightType type = arena.nodes[leaves[0]].type;
+
+    std::vector<uint32_t> level(leaves.begin(), leaves.end());
+    std::vector<uint32_t> next;
+    std::vector<glm::dvec3> points;
+    // Work is proportional to the nodes paired: n + n/2 + ... < 2n.
+    const double total_work = 2.0 * double(leaves.size());
+    double done_work = 0.0;
+    uint32_t level_number = 0;
+
+    while (level.size() > 1) {
+        points.resize(level.size());
+        for (size_t i = 0; i < level.size(); ++i) {
+            points[i] = representative_point(arena, arena.nodes[level[i]]);
+        }
+
+        LevelPairing pairing;
+        if (pair_exactly(options, level.size())) {
+            Result<LevelPairing> exact = exact_pairing(points);
+            if (!exact) return make_error(exact.error());
+            pairing = std::move(*exact);
+            if (!pairing.exact) {
+                report.warnings.push_back(
+                    std::string("optimal-pair: the exact pairing of level ") +
+                    std::to_string(level_number) + " (" + std::to_string(level.size()) + " " +
+                    light_type_name(type) + " nodes) could not be proven optimal; cost " +
+                    format_double(pairing.cost) + ", lower bound " +
+                    format_double(pairing.lower_bound));
+            }
+        } else {
+            pairing = approximate_pairing(points);
+            if (options.pairing == PairingMode::kAuto) {
+                report.warnings.push_back(
+                    std::string("optimal-pair: level ") + std::to_string(level_number) + " has " +
+                    std::to_string(level.size()) + " " + light_type_name(type) +
+                    " nodes, above the exact pairing limit " +
+                    std::to_string(options.exact_pairing_limit) + ": paired approximately (cost " +
+                    format_double(pairing.cost) + ", lower bound " +
+                    format_double(pairing.lower_bound) + ")");
+            }
+        }
+        report.pairing_cost += pairing.cost;
+        report.pairing_lower_bound += pairing.lower_bound;
+        report.exact = report.exact && pairing.exact;
+
+        next.clear();
+        for (const auto& [a, b] : pairing.pairs) {
+            const BuildNode cluster = merge_clusters(arena, level[a], level[b],
+                                                     options.representative_rule, options.seed);
+            next.push_back(uint32_t(arena.nodes.size()));
+            arena.nodes.push_back(cluster);
+        }
+        if (pairing.carried != kNoCarriedNode) next.push_back(level[pairing.carried]);
+        std::sort(next.begin(), next.end(), [&](uint32_t a, uint32_t b) {
+            return arena.nodes[a].min_light_index < arena.nodes[b].min_light_index;
+        });
+
+        done_work += double(level.size());
+        ++level_number;
+        if (progress && !progress(std::min(1.0, done_work / total_work))) {
+            return make_error("cancelled during optimal-pair level " +
+                              std::to_string(level_number - 1));
+        }
+        level.swap(next);
+    }
+    report.levels = std::max(report.levels, level_number);
+    return int32_t(level[0]);
+}
+
+}  // namespace lc::bake

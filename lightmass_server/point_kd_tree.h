@@ -1,0 +1,39 @@
+#pragma once
+// Spatial queries over a fixed 3D point set, answered with a static kd-tree
+// (iterative build and traversal). Results are pure functions of the input,
+// whatever the thread count: ties in distance go to the smaller point index.
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace lc::bake {
+
+struct Neighbor {
+    uint32_t index = 0;
+    double distance = 0.0;
+};
+
+// neighbors[i * k + j]: the j-th nearest other point of point i (nearest
+// first). k is clamped to points.size() - 1; `k_used` tells the clamped value.
+struct KnnResult {
+    uint32_t k_used = 0;
+    std::vector<Neighbor> neighbors;
+
+    std::span<const Neighbor> of(uint32_t i) const {
+        return std::span<const Neighbor>(neighbors).subspan(size_t(i) * k_used, k_used);
+    }
+};
+
+// The k nearest other points of every point (Euclidean).
+KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k);
+
+// Every pair u < v with |p_u - p_v| + offset[u] + offset[v] < -tolerance,
+// sorted. The kd-tree keeps each subtree's smallest offset, so a subtree whose
+// nearest possible point already fails the test is skipped.
+std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
+    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance);
+
+}  // namespace lc::bake

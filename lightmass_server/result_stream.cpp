@@ -1,0 +1,52 @@
+#include "lightmass_server/result_stream.h"
+
+#include <algorithm>
+
+#include "protocol/channel_records.h"
+#include "protocol/codec.h"
+
+namespace lc::bake {
+
+ResultStream::ResultStream(std::shared_ptr<const LightTree> tree, uint32_t channel_id,
+                           BakeDoneMsg done, size_t chunk_bytes)
+    : tree_(std::move(tree)),
+      channel_id_(channel_id),
+      done_(std::move(done)),
+      records_per_chunk_(std::max<size_t>(1, chunk_bytes / result_record_bytes())) {}
+
+std::optional<std::vector<uint8_t>> ResultStream::next_frame() {
+    const size_t node_count = tree_->nodes.size();
+    switch (stage_) {
+        case Stage::kOpen: {
+            stage_ = Stage::kData;
+            OpenChannelMsg open;
+            open.channel_id = channel_id_;
+            open.name = done_.result_channel;
+            open.total_bytes = 4 + static_cast<uint64_t>(node_count) * result_record_bytes();
+            return encode_frame(open);
+        }
+        case Stage::kData: {
+            WriteChannelMsg write;
+            write.channel_id = channel_id_;
+            write.offset = offset_;
+            if (offset_ == 0) write.data = encode_result_prefix(static_cast<uint32_t>(node_count));
+            size_t count = std::min(records_per_chunk_, node_count - next_node_);
+            append_result_records(*tree_, next_node_, count, write.data);
+            next_node_ += count;
+            offset_ += write.data.size();
+            if (next_node_ == node_count) stage_ = Stage::kClose;
+            return encode_frame(write);
+        }
+        case Stage::kClose:
+            stage_ = Stage::kDone;
+            return encode_frame(CloseChannelMsg{channel_id_});
+        case Stage::kDone:
+            stage_ = Stage::kFinished;
+            return encode_frame(done_);
+        case Stage::kFinished:
+            break;
+    }
+    return std::nullopt;
+}
+
+}  // namespace lc::bake

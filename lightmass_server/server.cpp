@@ -1,0 +1,72 @@
+#include "lightmass_server/server.h"
+
+#include <spdlog/spdlog.h>
+
+namespace lc::bake {
+
+Server::Server(ServerOptions options)
+    : options_(std::move(options)),
+      workers_(std::max(1u, options_.bake_threads)),
+      acceptor_(io_),
+      recorder_(options_.record_dir) {}
+
+Server::~Server() {
+    stop();
+    workers_.join();
+}
+
+Result<tcp::endpoint> Server::listen() {
+    if (!is_loopback_host(options_.host) && !options_.token)
+        return make_error("refusing to listen on non-loopback address '" + options_.host +
+                          "' without authentication: pass --token-file FILE");
+    boost::system::error_code ec;
+    tcp::resolver resolver(io_);
+    auto endpoints = resolver.resolve(options_.host, std::to_string(options_.port), ec);
+    if (ec || endpoints.empty())
+        return make_error("cannot resolve listen address '" + options_.host + "': " + ec.message());
+    tcp::endpoint endpoint = endpoints.begin()->endpoint();
+    acceptor_.open(endpoint.protocol(), ec);
+    if (!ec) acceptor_.set_option(tcp::acceptor::reuse_address(true), ec);
+    if (!ec) acceptor_.bind(endpoint, ec);
+    if (!ec) acceptor_.listen(asio::socket_base::max_listen_connections, ec);
+    if (ec)
+        return make_error("cannot listen on " + options_.host + ":" + std::to_string(options_.port) + ": " +
+                          ec.message());
+    return acceptor_.local_endpoint();
+}
+
+void Server::run() {
+    asio::co_spawn(io_, accept_loop(), asio::detached);
+    io_.run();
+}
+
+void Server::stop() {
+    asio::post(io_, [this] {
+        boost::system::error_code ignored;
+        acceptor_.close(ignored);
+        for (auto& weak : connections_)
+            if (auto connection = weak.lock()) connection->close("server shutting down");
+        connections_.clear();
+        io_.stop();
+    });
+}
+
+awaitable<void> Server::accept_loop() {
+    while (acceptor_.is_open()) {
+        boost::system::error_code ec;
+        tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(asio::use_awaitable, ec));
+        if (ec) {
+            if (!acceptor_.is_open()) co_return;
+            spdlog::warn("accept failed: {}", ec.message());
+            continue;
+        }
+        socket.set_option(tcp::no_delay(true), ec);
+        std::erase_if(connections_, [](const std::weak_ptr<Connection>& w) { return w.expired(); });
+        auto connection = std::make_shared<Connection>(std::move(socket), options_, workers_, recorder_,
+                                                       next_connection_id_++);
+        connections_.push_back(connection);
+        connection->start();
+    }
+}
+
+}  // namespace lc::bake

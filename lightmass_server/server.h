@@ -1,0 +1,41 @@
+#pragma once
+// The bake server: accepts TCP connections on one I/O thread, runs bakes on a
+// worker pool, stops cleanly on stop() (which SIGINT/SIGTERM call in main).
+#include <memory>
+#include <vector>
+
+#include "protocol/asio.h"
+#include "lightmass_server/connection.h"
+#include "lightmass_server/server_options.h"
+#include "protocol/channel_recorder.h"
+#include "protocol/result.h"
+
+namespace lc::bake {
+
+class Server {
+public:
+    explicit Server(ServerOptions options);
+    ~Server();
+
+    // Binds and listens. Refuses a non-loopback address without a token.
+    Result<tcp::endpoint> listen();
+    // Serves until stop(); call from one thread.
+    void run();
+    // Thread-safe: closes the acceptor and every connection, cancels bakes.
+    void stop();
+
+    asio::io_context& io() { return io_; }
+
+private:
+    awaitable<void> accept_loop();
+
+    ServerOptions options_;
+    asio::io_context io_;
+    asio::thread_pool workers_;
+    tcp::acceptor acceptor_;
+    ChannelRecorder recorder_;
+    std::vector<std::weak_ptr<Connection>> connections_;
+    uint64_t next_connection_id_ = 1;
+};
+
+}  // namespace lc::bake

@@ -1,0 +1,154 @@
+#include "lightmass_server/tree_builder.h"
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "lightmass_server/agglomerative_builder.h"
+#include "lightmass_server/build_tree.h"
+#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/lbvh_builder.h"
+#include "lightmass_server/optimal_pair_builder.h"
+#include "lightmass_server/tree_export.h"
+
+namespace lc::bake {
+namespace {
+
+constexpr uint32_t kMaxBuildLights = 1u << 24;  // arena indices stay in int32
+
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+Status validate_options(const BuildOptions& options) {
+    switch (options.builder) {
+        case BuilderKind::kOptimalPair: break;
+        case BuilderKind::kAgglomerative: break;
+        case BuilderKind::kLbvh: break;
+        default: return make_error("unknown builder kind " + std::to_string(int(options.builder)));
+    }
+    switch (options.representative_rule) {
+        case RepresentativeRule::kIntensity: break;
+        case RepresentativeRule::kThesisFirst: break;
+        default:
+            return make_error("unknown representative rule " +
+                              std::to_string(int(options.representative_rule)));
+    }
+    switch (options.pairing) {
+        case PairingMode::kExact: break;
+        case PairingMode::kApproximate: break;
+        case PairingMode::kAuto: break;
+        default: return make_error("unknown pairing mode " + std::to_string(int(options.pairing)));
+    }
+    return Ok{};
+}
+
+// The builders trust these; anything else would turn into NaN inside a sum.
+Status validate_lights(std::span<const SceneLight> lights) {
+    if (lights.size() > kMaxBuildLights) {
+        return make_error("too many lights for one tree: " + std::to_string(lights.size()) +
+                          " (limit " + std::to_string(kMaxBuildLights) + ")");
+    }
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const SceneLight& light = lights[i];
+        const std::string name = "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")";
+        if (int(light.type) >= kLightTypeCount) {
+            return make_error(name + " has an unknown type " + std::to_string(int(light.type)));
+        }
+        if (!finite3(light.position) || !finite3(light.direction) || !finite3(light.color)) {
+            return make_error(name + " has a non-finite position, direction or color");
+        }
+        if (!std::isfinite(light.intensity) || light.intensity < 0.0f) {
+            return make_error(name + " has an invalid intensity (must be finite and >= 0)");
+        }
+        if (light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f) {
+            return make_error(name + " has a negative color component");
+        }
+        if (!std::isfinite(light.range) || light.range < 0.0f) {
+            return make_error(name + " has an invalid range (must be finite and >= 0)");
+        }
+        if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
+            return make_error(name + " has non-finite spot cone angles");
+        }
+    }
+    return Ok{};
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+}  // namespace
+
+Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
+                                     const BuildOptions& options, const ProgressFn& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    if (Status status = validate_options(options); !status) return make_error(status.error());
+    if (Status status = validate_lights(lights); !status) return make_error(status.error());
+
+    BuildOptions effective = options;
+    // A bake request leaves the limit at 0 when the client did not choose one.
+    if (effective.exact_pairing_limit == 0)
+        effective.exact_pairing_limit = kDefaultExactPairingLimit;
+
+    BuildArena arena;
+    arena.lights = lights;
+    arena.nodes.reserve(2 * lights.size() + kLightTypeCount);
+    std::array<std::vector<uint32_t>, kLightTypeCount> leaves_by_type;
+    for (uint32_t i = 0; i < lights.size(); ++i) {
+        arena.nodes.push_back(make_leaf(lights[i], i));
+        leaves_by_type[size_t(lights[i].type)].push_back(i);
+    }
+
+    BuildResult result;
+    BuildReport& report = result.report;
+    std::vector<uint32_t> roots;
+    size_t lights_done = 0;
+    for (int t = 0; t < kLightTypeCount; ++t) {
+        const std::vector<uint32_t>& leaves = leaves_by_type[size_t(t)];
+        if (leaves.empty()) continue;
+        const std::string stage = std::string(builder_name(effective.builder)) + " (" +
+                                  light_type_name(LightType(t)) + " lights)";
+        const double weight = double(leaves.size()) / double(lights.size());
+        const double offset = double(lights_done) / double(lights.size());
+        const BuildProgressFn type_progress = [&](double fraction) {
+            return !progress || progress(stage, 100.0 * (offset + weight * fraction));
+        };
+
+        Result<int32_t> root = make_error("unknown builder");
+        switch (effective.builder) {
+            case BuilderKind::kOptimalPair:
+                root = build_optimal_pair_tree(arena, leaves, effective, type_progress, report);
+                break;
+            case BuilderKind::kAgglomerative:
+                root = build_agglomerative_tree(arena, leaves, effective, type_progress, report);
+                break;
+            case BuilderKind::kLbvh:
+                root = build_lbvh_tree(arena, leaves, effective, type_progress);
+                break;
+        }
+        if (!root) return make_error(root.error());
+        roots.push_back(uint32_t(*root));
+        lights_done += leaves.size();
+    }
+
+    // One tree per light type, joined under junction nodes (the paper's
+    // "conceptually a single larger tree").
+    int32_t root = roots.empty() ? kNoBuildChild : int32_t(roots[0]);
+    for (size_t i = 1; i < roots.size(); ++i) {
+        const BuildNode junction = make_junction(arena, uint32_t(root), roots[i]);
+        root = int32_t(arena.nodes.size());
+        arena.nodes.push_back(junction);
+    }
+
+    ExportedTree exported = export_light_tree(arena, root);
+    result.tree = std::move(exported.tree);
+    report.depth = exported.depth;
+    report.build_ms = elapsed_ms(start);
+    if (progress && !progress("done", 100.0)) return make_error("cancelled after the build");
+    return result;
+}
+
+}  // namespace lc::bake

@@ -1,0 +1,643 @@
+// Scene and result channel payloads: an int32 LE count, then fixed-layout
+// FlatBuffers structs. Readers are push parsers that validate each record the
+// moment its last byte arrives.
+#include "channel_records.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <glm/geometric.hpp>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "lightcuts_generated.h"
+
+namespace lc {
+namespace {
+
+// The wire layouts; a change here is a protocol change (bump the version GUIDs).
+static_assert(sizeof(fb::SceneLightRecord) == 72);
+static_assert(sizeof(fb::FLightData) == 92);
+static_assert(sizeof(fb::FPointLightData) == 8);
+static_assert(sizeof(fb::LightcutsNodeRecord) == 80);
+
+constexpr size_t kCountBytes = sizeof(int32_t);
+constexpr size_t kSceneRecordBytes = sizeof(fb::SceneLightRecord);
+constexpr size_t kResultRecordBytes =
+    sizeof(fb::FLightData) + sizeof(fb::FPointLightData) + sizeof(fb::LightcutsNodeRecord);
+// A lying count must not make us reserve memory for records that never come.
+constexpr size_t kMaxUpFrontRecords = 1u << 16;
+
+constexpr uint8_t kSceneFlagClassic = 1u << 0;
+constexpr uint32_t kLightFlagCluster = 1u << 0;
+constexpr uint32_t kLightFlagTypeShift = 8;
+constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
+constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
+
+// Unreal defaults for the FLightData fields Lightcuts does not use.
+constexpr float kLightSourceRadius = 0.0f;
+constexpr float kLightSourceLength = 0.0f;
+constexpr float kIndirectLightingScale = 1.0f;
+constexpr float kIndirectLightingSaturation = 1.0f;
+constexpr float kShadowExponent = 2.0f;
+
+constexpr float kUnitLengthTolerance = 1e-3f;
+// Float rounding of pi/2 and cos(pi/2) must not refuse a legal 90-degree cone.
+constexpr float kHalfPi = std::numbers::pi_v<float> / 2.0f;
+constexpr float kAngleTolerance = 1e-6f;
+constexpr float kCosineTolerance = 1e-6f;
+
+std::string light_label(size_t index, const Guid& guid) {
+    return "light " + std::to_string(index) + " (GUID " + guid.to_hex() + ")";
+}
+
+std::string node_label(size_t index) { return "node " + std::to_string(index); }
+
+std::string number(double v) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return text;
+}
+
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool non_negative3(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
+bool unit_length(const glm::vec3& v) {
+    return std::abs(glm::length(v) - 1.0f) <= kUnitLengthTolerance;
+}
+std::string hex(uint32_t v) {
+    char text[16];
+    std::snprintf(text, sizeof(text), "0x%X", v);
+    return text;
+}
+std::string vec_text(const glm::vec3& v) {
+    return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+}
+
+void put_u32(std::vector<uint8_t>& out, uint32_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
+}
+int32_t get_i32(const uint8_t* p) {
+    const uint32_t u = static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
+                       (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
+    return static_cast<int32_t>(u);
+}
+
+// FlatBuffers structs are their own little-endian wire layout.
+template <typename Struct>
+void append_struct(std::vector<uint8_t>& out, const Struct& s) {
+    const auto* bytes = reinterpret_cast<const uint8_t*>(&s);
+    out.insert(out.end(), bytes, bytes + sizeof(Struct));
+}
+template <typename Struct>
+Struct read_struct(const uint8_t* p) {
+    Struct s;
+    std::memcpy(static_cast<void*>(&s), p, sizeof(Struct));
+    return s;
+}
+
+fb::Guid to_fb(const Guid& g) { return fb::Guid(g.a, g.b, g.c, g.d); }
+Guid from_fb(const fb::Guid& g) { return Guid{g.a(), g.b(), g.c(), g.d()}; }
+fb::Vec3 to_fb(const glm::vec3& v) { return fb::Vec3(v.x, v.y, v.z); }
+glm::vec3 from_fb(const fb::Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+// ---- scene records -----------------------------------------------------------
+
+fb::SceneLightRecord to_record(const SceneLight& light) {
+    return fb::SceneLightRecord(
+        to_fb(light.guid), to_fb(light.position), to_fb(light.direction), to_fb(light.color),
+        light.intensity, light.range, light.inner_cone_angle, light.outer_cone_angle,
+        static_cast<uint8_t>(light.type), light.classic ? kSceneFlagClassic : uint8_t{0}, 0);
+}
+
+Result<SceneLight> from_record(const fb::SceneLightRecord& record, size_t index) {
+    SceneLight light;
+    light.guid = from_fb(record.guid());
+    if (record.light_type() >= kLightTypeCount) {
+        return make_error(light_label(index, light.guid) + ": light_type " +
+                          std::to_string(record.light_type()) + " is unknown");
+    }
+    if ((record.flags() & ~kSceneFlagClassic) != 0 || record.reserved() != 0) {
+        return make_error(light_label(index, light.guid) + ": flags " + hex(record.flags()) +
+                          " / reserved " + std::to_string(record.reserved()) +
+                          " carry unknown bits");
+    }
+    light.type = static_cast<LightType>(record.light_type());
+    light.position = from_fb(record.position());
+    light.direction = from_fb(record.direction());
+    light.color = from_fb(record.color());
+    light.intensity = record.intensity();
+    light.range = record.range();
+    light.inner_cone_angle = record.inner_cone_angle();
+    light.outer_cone_angle = record.outer_cone_angle();
+    light.classic = (record.flags() & kSceneFlagClassic) != 0;
+    Status valid = validate_scene_light(light, index);
+    if (!valid) return make_error(valid.error());
+    return light;
+}
+
+// ---- result records ----------------------------------------------------------
+
+struct ResultRecord {
+    fb::FLightData light;
+    fb::FPointLightData point;
+    fb::LightcutsNodeRecord node;
+};
+
+ResultRecord to_record(const LightTreeNode& n) {
+    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
+                           (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
+    const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
+    // FLightData.Color is the normalised colour; the exact RGB travels in the node record.
+    const glm::vec3 color = n.brightness > 0.0f ? n.intensity / n.brightness : glm::vec3(0.0f);
+    const fb::FLightData light(
+        to_fb(n.guid), flags, fb::Vec4(n.position.x, n.position.y, n.position.z, w),
+        fb::Vec4(n.direction.x, n.direction.y, n.direction.z, 0.0f),
+        fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, kLightSourceRadius,
+        kLightSourceLength, kIndirectLightingScale, kIndirectLightingSaturation, kShadowExponent);
+    const fb::FPointLightData point(n.radius, n.falloff_exponent);
+    const fb::LightcutsNodeRecord node(
+        n.left, n.right, n.representative, to_fb(n.intensity), to_fb(n.bbox_min), to_fb(n.bbox_max),
+        to_fb(n.cone_axis), n.cone_cos, n.range, n.spot_cos_inner, n.spot_cos_outer,
+        static_cast<uint8_t>(n.type), n.mixed_types ? kNodeFlagMixedTypes : uint8_t{0}, 0);
+    return {light, point, node};
+}
+
+// Checks one node's own values; structure across nodes is validate_tree's job.
+Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
+    const std::string who = node_label(index);
+    auto fail = [&who](const std::string& what) -> Status { return make_error(who + ": " + what); };
+    if (static_cast<int>(n.type) >= kLightTypeCount) {
+        return fail("light_type " + std::to_string(static_cast<int>(n.type)) + " is unknown");
+    }
+    const auto count = static_cast<int64_t>(node_count);
+    const bool left_none = n.left == kNoChild;
+    const bool right_none = n.right == kNoChild;
+    if (left_none != right_none) {
+        return fail("has only one child (left " + std::to_string(n.left) + ", right " +
+                    std::to_string(n.right) + ")");
+    }
+    for (int32_t child : {n.left, n.right}) {
+        if (child == kNoChild) continue;
+        if (child <= static_cast<int64_t>(index) || child >= count) {
+            return fail("child index " + std::to_string(child) + " is outside (" +
+                        std::to_string(index) + ", " + std::to_string(node_count) + ")");
+        }
+    }
+    if (n.left != kNoChild && n.left == n.right) {
+        return fail("both children are node " + std::to_string(n.left));
+    }
+    if (n.representative < 0 || n.representative >= count) {
+        return fail("representative " + std::to_string(n.representative) + " is outside [0, " +
+                    std::to_string(node_count) + ")");
+    }
+    if (!finite3(n.position)) return fail("position " + vec_text(n.position) + " is not finite");
+    if (!finite3(n.direction)) return fail("direction " + vec_text(n.direction) + " is not finite");
+    if (!finite3(n.intensity)) return fail("intensity " + vec_text(n.intensity) + " is not finite");
+    if (!non_negative3(n.intensity)) {
+        return fail("intensity " + vec_text(n.intensity) + " is negative");
+    }
+    if (!std::isfinite(n.brightness) || n.brightness < 0.0f) {
+        return fail("brightness " + number(n.brightness) + " is not a finite value >= 0");
+    }
+    if (!std::isfinite(n.radius)) return fail("radius " + number(n.radius) + " is not finite");
+    if (!std::isfinite(n.falloff_exponent) || n.falloff_exponent < 0.0f) {
+        return fail("falloff_exponent " + number(n.falloff_exponent) +
+                    " is not a finite value >= 0");
+    }
+    if (!std::isfinite(n.range) || n.range < 0.0f) {
+        return fail("range " + number(n.range) + " is not a finite value >= 0");
+    }
+    if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) {
+        return fail("bounding box is not finite");
+    }
+    if (n.bbox_min.x > n.bbox_max.x || n.bbox_min.y > n.bbox_max.y || n.bbox_min.z > n.bbox_max.z) {
+        return fail("bounding box min " + vec_text(n.bbox_min) + " exceeds max " +
+                    vec_text(n.bbox_max));
+    }
+    if (!finite3(n.cone_axis)) return fail("cone_axis " + vec_text(n.cone_axis) + " is not finite");
+    if (!std::isfinite(n.cone_cos) || n.cone_cos < -1.0f || n.cone_cos > 1.0f) {
+        return fail("cone_cos " + number(n.cone_cos) + " is outside [-1, 1]");
+    }
+    if (!std::isfinite(n.spot_cos_inner) || !std::isfinite(n.spot_cos_outer)) {
+        return fail("spot cosines are not finite");
+    }
+    const bool oriented = n.type == LightType::kSpot || n.type == LightType::kDirectional;
+    if (oriented && !n.mixed_types && !unit_length(n.direction)) {
+        return fail("direction " + vec_text(n.direction) + " of a " + light_type_name(n.type) +
+                    " light is not unit length");
+    }
+    if (n.type == LightType::kSpot && !n.mixed_types) {
+        const bool ordered = n.spot_cos_outer >= -kCosineTolerance &&
+                             n.spot_cos_outer <= n.spot_cos_inner && n.spot_cos_inner <= 1.0f;
+        if (!ordered) {
+            return fail("spot cosines inner " + number(n.spot_cos_inner) + ", outer " +
+                        number(n.spot_cos_outer) + " are not 0 <= outer <= inner <= 1");
+        }
+    }
+    return Ok{};
+}
+
+Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t node_count) {
+    LightTreeNode n;
+    const std::string who = node_label(index);
+    const uint32_t flags = r.light.light_flags();
+    const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kLightFlagTypeShift;
+    if (r.node.light_type() >= kLightTypeCount) {
+        return make_error(who + ": light_type " + std::to_string(r.node.light_type()) +
+                          " is unknown");
+    }
+    if (type_in_flags != r.node.light_type()) {
+        return make_error(who + ": FLightData.light_flags type " + std::to_string(type_in_flags) +
+                          " disagrees with the node record's light_type " +
+                          std::to_string(r.node.light_type()));
+    }
+    if ((flags & ~(kLightFlagCluster | kLightFlagTypeMask)) != 0) {
+        return make_error(who + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
+    }
+    if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
+        return make_error(who + ": node record flags carry unknown bits");
+    }
+    n.guid = from_fb(r.light.guid());
+    n.type = static_cast<LightType>(r.node.light_type());
+    n.left = r.node.left();
+    n.right = r.node.right();
+    n.representative = r.node.representative();
+    const fb::Vec4& p = r.light.position();
+    const fb::Vec4& d = r.light.direction();
+    n.position = {p.x(), p.y(), p.z()};
+    n.direction = {d.x(), d.y(), d.z()};
+    n.range = r.node.range();
+    n.spot_cos_inner = r.node.spot_cos_inner();
+    n.spot_cos_outer = r.node.spot_cos_outer();
+    n.intensity = from_fb(r.node.intensity());
+    n.brightness = r.light.brightness();
+    n.radius = r.point.radius();
+    n.falloff_exponent = r.point.falloff_exponent();
+    n.bbox_min = from_fb(r.node.bbox_min());
+    n.bbox_max = from_fb(r.node.bbox_max());
+    n.cone_axis = from_fb(r.node.cone_axis());
+    n.cone_cos = r.node.cone_cos();
+    n.mixed_types = (r.node.flags() & kNodeFlagMixedTypes) != 0;
+
+    const bool cluster_flag = (flags & kLightFlagCluster) != 0;
+    if (cluster_flag == n.is_leaf()) {
+        return make_error(who + ": FLightData.light_flags says " +
+                          (cluster_flag ? "cluster" : "leaf") + " but the node has " +
+                          (n.is_leaf() ? "no children" : "children"));
+    }
+    const float expected_w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
+    if (p.w() != expected_w) {
+        return make_error(who + ": FLightData.position.w " + number(p.w()) + " should be " +
+                          number(expected_w) + " for a " + light_type_name(n.type) + " light");
+    }
+    const fb::Vec4& c = r.light.color();
+    if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !std::isfinite(c.z()) ||
+        !std::isfinite(c.w()) || !std::isfinite(d.w())) {
+        return make_error(who + ": FLightData colour or direction.w is not finite");
+    }
+    Status valid = validate_node(n, index, node_count);
+    if (!valid) return make_error(valid.error());
+    return n;
+}
+
+// Shared push-parser plumbing: feeds whole records from `pending` and `bytes`
+// to `on_record`, keeping only a partial record between calls.
+template <typename OnCount, typename OnRecord>
+Status push_records(std::vector<uint8_t>& pending, int64_t& expected, size_t received,
+                    size_t record_bytes, std::span<const uint8_t> bytes, OnCount&& on_count,
+                    OnRecord&& on_record) {
+    size_t pos = 0;
+    // Completes the partial count or record held in `pending`; false when the
+    // input ran out first.
+    auto fill_pending = [&](size_t want) {
+        const size_t take = std::min(want - pending.size(), bytes.size() - pos);
+        pending.insert(pending.end(), bytes.data() + pos, bytes.data() + pos + take);
+        pos += take;
+        return pending.size() == want;
+    };
+
+    if (expected < 0) {
+        if (!fill_pending(kCountBytes)) return Ok{};
+        const int32_t count = get_i32(pending.data());
+        pending.clear();
+        Status counted = on_count(count);
+        if (!counted) return counted;
+        expected = count;
+    }
+    while (true) {
+        if (received == static_cast<size_t>(expected)) {
+            const size_t extra = pending.size() + (bytes.size() - pos);
+            if (extra == 0) return Ok{};
+            return make_error("channel carries " + std::to_string(extra) + " bytes after its " +
+                              std::to_string(expected) + " records");
+        }
+        const uint8_t* record = nullptr;
+        if (!pending.empty() || bytes.size() - pos < record_bytes) {
+            if (!fill_pending(record_bytes)) return Ok{};
+            record = pending.data();
+        } else {
+            record = bytes.data() + pos;
+            pos += record_bytes;
+        }
+        Status accepted = on_record(record, received);
+        pending.clear();
+        if (!accepted) return accepted;
+        ++received;
+    }
+}
+
+Status check_count(int32_t count, uint32_t limit, const char* what) {
+    if (count < 0) {
+        return make_error(std::string(what) + " channel count " + std::to_string(count) +
+                          " is negative");
+    }
+    if (static_cast<uint32_t>(count) > limit) {
+        return make_error(std::string(what) + " channel count " + std::to_string(count) +
+                          " exceeds the limit of " + std::to_string(limit));
+    }
+    return Ok{};
+}
+
+std::string short_channel(const char* what, int64_t expected, size_t received,
+                          size_t pending_bytes) {
+    if (expected < 0) {
+        return std::string(what) + " channel ended after " + std::to_string(pending_bytes) +
+               " of the 4 bytes of its record count";
+    }
+    std::string text = std::string(what) + " channel ended after " + std::to_string(received) +
+                       " of " + std::to_string(expected) + " records";
+    if (pending_bytes > 0) {
+        text += " (plus " + std::to_string(pending_bytes) + " bytes of a partial record)";
+    }
+    return text;
+}
+
+void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
+    if (count > limit) throw std::length_error("channel record count exceeds its limit");
+    put_u32(out, static_cast<uint32_t>(count));
+}
+
+}  // namespace
+
+size_t scene_record_bytes() { return kSceneRecordBytes; }
+size_t result_record_bytes() { return kResultRecordBytes; }
+
+std::vector<uint8_t> encode_scene_channel(std::span<const SceneLight> lights) {
+    std::vector<uint8_t> out;
+    out.reserve(kCountBytes + lights.size() * kSceneRecordBytes);
+    put_count(out, lights.size(), kMaxSceneLights);
+    for (const SceneLight& light : lights) append_struct(out, to_record(light));
+    return out;
+}
+
+std::vector<uint8_t> encode_result_prefix(uint32_t node_count) {
+    std::vector<uint8_t> out;
+    put_count(out, node_count, kMaxTreeNodes);
+    return out;
+}
+
+void append_result_records(const LightTree& tree, size_t first, size_t count,
+                           std::vector<uint8_t>& out) {
+    if (first > tree.nodes.size() || count > tree.nodes.size() - first) {
+        throw std::out_of_range("append_result_records: node range outside the tree");
+    }
+    out.reserve(out.size() + count * kResultRecordBytes);
+    for (size_t i = first; i < first + count; ++i) {
+        const ResultRecord r = to_record(tree.nodes[i]);
+        append_struct(out, r.light);
+        append_struct(out, r.point);
+        append_struct(out, r.node);
+    }
+}
+
+std::vector<uint8_t> encode_result_channel(const LightTree& tree) {
+    std::vector<uint8_t> out;
+    out.reserve(kCountBytes + tree.nodes.size() * kResultRecordBytes);
+    put_count(out, tree.nodes.size(), kMaxTreeNodes);
+    append_result_records(tree, 0, tree.nodes.size(), out);
+    return out;
+}
+
+Status validate_scene_light(const SceneLight& light, size_t index) {
+    auto fail = [&](const std::string& what) -> Status {
+        return make_error(light_label(index, light.guid) + ": " + what);
+    };
+    const int type = static_cast<int>(light.type);
+    if (type < 0 || type >= kLightTypeCount) {
+        return fail("light_type " + std::to_string(type) + " is unknown");
+    }
+    if (!finite3(light.position)) {
+        return fail("position " + vec_text(light.position) + " is not finite");
+    }
+    if (!finite3(light.direction)) {
+        return fail("direction " + vec_text(light.direction) + " is not finite");
+    }
+    if (!finite3(light.color)) return fail("color " + vec_text(light.color) + " is not finite");
+    if (!non_negative3(light.color)) return fail("color " + vec_text(light.color) + " is negative");
+    if (!std::isfinite(light.intensity)) {
+        return fail("intensity " + number(light.intensity) + " is not finite");
+    }
+    if (light.intensity < 0.0f)
+        return fail("intensity " + number(light.intensity) + " is negative");
+    if (!std::isfinite(light.range)) return fail("range " + number(light.range) + " is not finite");
+    if (light.range < 0.0f) return fail("range " + number(light.range) + " is negative");
+    if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
+        return fail("cone angles (" + number(light.inner_cone_angle) + ", " +
+                    number(light.outer_cone_angle) + ") are not finite");
+    }
+    const bool oriented = light.type == LightType::kSpot || light.type == LightType::kDirectional;
+    if (oriented && !unit_length(light.direction)) {
+        return fail("direction " + vec_text(light.direction) + " is not unit length (length " +
+                    number(glm::length(light.direction)) + ")");
+    }
+    if (light.type == LightType::kSpot) {
+        const float inner = light.inner_cone_angle;
+        const float outer = light.outer_cone_angle;
+        if (!(inner >= 0.0f && inner < outer && outer <= kHalfPi + kAngleTolerance)) {
+            return fail("cone angles inner " + number(inner) + ", outer " + number(outer) +
+                        " break 0 <= inner < outer <= pi/2");
+        }
+    }
+    return Ok{};
+}
+
+Status SceneChannelReader::consume(std::span<const uint8_t> bytes) {
+    if (failed_) return make_error("scene channel was already refused");
+    bytes_seen_ += bytes.size();
+    Status status = push_records(
+        pending_, expected_, lights_.size(), kSceneRecordBytes, bytes,
+        [this](int32_t count) {
+            Status ok = check_count(count, kMaxSceneLights, "scene");
+            if (ok)
+                lights_.reserve(std::min<size_t>(static_cast<size_t>(count), kMaxUpFrontRecords));
+            return ok;
+        },
+        [this](const uint8_t* p, size_t index) -> Status {
+            Result<SceneLight> light = from_record(read_struct<fb::SceneLightRecord>(p), index);
+            if (!light) return make_error(light.error());
+            lights_.push_back(light.value());
+            return Ok{};
+        });
+    if (!status) {
+        failed_ = true;
+        pending_.clear();
+        pending_.shrink_to_fit();
+    }
+    return status;
+}
+
+Result<std::vector<SceneLight>> SceneChannelReader::finish() {
+    if (failed_) return make_error("scene channel was already refused");
+    if (expected_ < 0 || lights_.size() != static_cast<size_t>(expected_) || !pending_.empty()) {
+        failed_ = true;
+        return make_error(short_channel("scene", expected_, lights_.size(), pending_.size()));
+    }
+    failed_ = true;  // the lights move out; the reader is spent
+    return std::move(lights_);
+}
+
+Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
+    if (failed_) return make_error("result channel was already refused");
+    Status status = push_records(
+        pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
+        [this](int32_t count) {
+            Status ok = check_count(count, kMaxTreeNodes, "result");
+            if (ok)
+                nodes_.reserve(std::min<size_t>(static_cast<size_t>(count), kMaxUpFrontRecords));
+            return ok;
+        },
+        [this](const uint8_t* p, size_t index) -> Status {
+            ResultRecord r;
+            r.light = read_struct<fb::FLightData>(p);
+            r.point = read_struct<fb::FPointLightData>(p + sizeof(fb::FLightData));
+            r.node = read_struct<fb::LightcutsNodeRecord>(p + sizeof(fb::FLightData) +
+                                                          sizeof(fb::FPointLightData));
+            Result<LightTreeNode> node = from_record(r, index, static_cast<size_t>(expected_));
+            if (!node) return make_error(node.error());
+            nodes_.push_back(node.value());
+            return Ok{};
+        });
+    if (!status) {
+        failed_ = true;
+        pending_.clear();
+        pending_.shrink_to_fit();
+    }
+    return status;
+}
+
+Result<LightTree> ResultChannelReader::finish() {
+    if (failed_) return make_error("result channel was already refused");
+    failed_ = true;  // either refused now or spent: the nodes move out
+    if (expected_ < 0 || nodes_.size() != static_cast<size_t>(expected_) || !pending_.empty()) {
+        return make_error(short_channel("result", expected_, nodes_.size(), pending_.size()));
+    }
+    LightTree tree;
+    tree.nodes = std::move(nodes_);
+    for (const LightTreeNode& n : tree.nodes) tree.leaf_count += n.is_leaf() ? 1u : 0u;
+    Status valid = validate_tree(tree);
+    if (!valid) return make_error(valid.error());
+    return tree;
+}
+
+Result<std::vector<SceneLight>> decode_scene_channel(std::span<const uint8_t> bytes) {
+    SceneChannelReader reader;
+    Status consumed = reader.consume(bytes);
+    if (!consumed) return make_error(consumed.error());
+    return reader.finish();
+}
+
+Result<LightTree> decode_result_channel(std::span<const uint8_t> bytes) {
+    ResultChannelReader reader;
+    Status consumed = reader.consume(bytes);
+    if (!consumed) return make_error(consumed.error());
+    return reader.finish();
+}
+
+Status validate_tree(const LightTree& tree) {
+    const size_t n = tree.nodes.size();
+    if (n > kMaxTreeNodes) {
+        return make_error("tree has " + std::to_string(n) + " nodes, above the limit of " +
+                          std::to_string(kMaxTreeNodes));
+    }
+    // Per-node values, child ranges (children after their parent) and parent counts.
+    std::vector<uint8_t> parents(n, 0);
+    size_t leaves = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const LightTreeNode& node = tree.nodes[i];
+        Status valid = validate_node(node, i, n);
+        if (!valid) return valid;
+        if (node.is_leaf()) {
+            ++leaves;
+            if (node.representative != static_cast<int32_t>(i)) {
+                return make_error(node_label(i) + ": a leaf must represent itself, not node " +
+                                  std::to_string(node.representative));
+            }
+            continue;
+        }
+        for (int32_t child : {node.left, node.right}) {
+            if (++parents[static_cast<size_t>(child)] > 1) {
+                return make_error(node_label(static_cast<size_t>(child)) +
+                                  " has more than one parent");
+            }
+        }
+    }
+    // Children always follow their parent, so a node without a parent other
+    // than the root would start a second tree.
+    for (size_t i = 1; i < n; ++i) {
+        if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
+    }
+    if (leaves != tree.leaf_count) {
+        return make_error("tree says it has " + std::to_string(tree.leaf_count) +
+                          " leaves, its nodes hold " + std::to_string(leaves));
+    }
+    if (n == 0) return Ok{};
+
+    // Pre-order numbering with an explicit stack (chains can be 10^6 deep):
+    // node j lies in i's subtree exactly when enter[i] <= enter[j] < leave[i].
+    std::vector<uint32_t> enter(n, 0), leave(n, 0);
+    std::vector<uint32_t> stack;
+    stack.reserve(64);
+    stack.push_back(0);
+    uint32_t clock = 0;
+    while (!stack.empty()) {
+        const uint32_t i = stack.back();
+        stack.pop_back();
+        enter[i] = clock++;
+        const LightTreeNode& node = tree.nodes[i];
+        if (!node.is_leaf()) {
+            stack.push_back(static_cast<uint32_t>(node.right));
+            stack.push_back(static_cast<uint32_t>(node.left));
+        }
+    }
+    // Subtree sizes bottom-up (children have larger indices than their parent);
+    // in pre-order a subtree occupies [enter, enter + size).
+    std::vector<uint32_t> subtree(n, 1);
+    for (size_t k = n; k-- > 0;) {
+        const LightTreeNode& node = tree.nodes[k];
+        if (!node.is_leaf()) {
+            subtree[k] = 1 + subtree[static_cast<size_t>(node.left)] +
+                         subtree[static_cast<size_t>(node.right)];
+        }
+    }
+    for (size_t i = 0; i < n; ++i) leave[i] = enter[i] + subtree[i];
+
+    for (size_t i = 0; i < n; ++i) {
+        const LightTreeNode& node = tree.nodes[i];
+        const auto rep = static_cast<size_t>(node.representative);
+        if (!tree.nodes[rep].is_leaf()) {
+            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
+                              " is not a leaf");
+        }
+        if (enter[rep] < enter[i] || enter[rep] >= leave[i]) {
+            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
+                              " is outside its subtree");
+        }
+    }
+    return Ok{};
+}
+
+}  // namespace lc

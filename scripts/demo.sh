@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The README's main job: install, build, start a local bake server, make a
+# scene, bake it, render every mode, write images and stats into out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/build.sh default
+
+bin=build/bin
+out=out
+mkdir -p "$out"
+
+# A bake server on loopback, as a separate process; its port lands in a file.
+rm -f "$out/server.port"
+"$bin/lightmass_server" --listen 127.0.0.1:0 --port-file "$out/server.port" --threads 2 \
+    > "$out/server.log" 2>&1 &
+server_pid=$!
+trap 'kill "$server_pid" 2>/dev/null || true; wait "$server_pid" 2>/dev/null || true' EXIT
+for _ in $(seq 1 100); do [ -s "$out/server.port" ] && break; sleep 0.1; done
+[ -s "$out/server.port" ] || { echo "demo: the server did not start (see $out/server.log)"; exit 1; }
+server="127.0.0.1:$(cat "$out/server.port")"
+echo "demo: bake server at $server"
+
+# A room with 1,024 lights (made by the project itself: needs nothing outside the repo).
+"$bin/editor_client" add-lights --count 1024 --layout random --type mixed --seed 7 -o "$out/room.gltf"
+
+"$bin/editor_client" bake "$out/room.gltf" --server "$server" --builder optimal-pair -o "$out/room.lcut" \
+    --json > "$out/bake.json"
+cat "$out/bake.json"
+
+for mode in reference lightcuts cuts cutsize; do
+  "$bin/editor_client" render "$out/room.gltf" --tree "$out/room.lcut" --mode "$mode" --size 512x512 \
+      -o "$out/room_$mode.png" --float "$out/room_$mode.pfm" --stats "$out/room_$mode.json"
+done
+echo "demo: images and stats in $out/"
+ls -1 "$out"

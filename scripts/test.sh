@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# The README's test command: installs what is missing, builds, runs every test.
+#   scripts/test.sh          default build (RelWithDebInfo), full suite
+#   scripts/test.sh --asan   AddressSanitizer + UBSan build, full suite
+set -euo pipefail
+cd "$(dirname "$0")/.."
+preset=default
+if [ "${1:-}" = "--asan" ]; then preset=asan; fi
+
+bash scripts/install-deps.sh
+bash scripts/build.sh "$preset"
+# Vulkan validation layers are enabled for every test (tests/CMakeLists.txt).
+ctest --preset "$preset" -j 2 --timeout 600

@@ -1,0 +1,38 @@
+// The compute passes' descriptor set and push constants. Bindings match
+// FrameBinding in editor_client/render/renderer.cpp; the push constants mirror
+// GpuFrameConstants in gpu_layout.h.
+#ifndef LC_FRAME_BINDINGS_GLSL
+#define LC_FRAME_BINDINGS_GLSL
+
+#include "gpu_layout.glsl"
+
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D gbuffer_position;  // w: 1 on geometry
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D gbuffer_normal;    // w: roughness
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_albedo;    // w: metallic
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_emissive;
+layout(set = 0, binding = 4, rgba32f) uniform image2D hdr_image;  // linear radiance
+layout(set = 0, binding = 5, rg32ui) uniform uimage2D cut_image;  // x: cut size, y: cut hash
+layout(set = 0, binding = 6, rgba8) uniform writeonly image2D display_image;  // sRGB-encoded
+
+layout(std430, set = 0, binding = 7) readonly buffer LeafLights { GpuLight leaf_lights[]; };
+layout(std430, set = 0, binding = 8) readonly buffer TreeNodes { GpuTreeNode tree_nodes[]; };
+layout(std430, set = 0, binding = 9) readonly buffer ClassicLights { GpuLight classic_lights[]; };
+layout(std430, set = 0, binding = 10) buffer FrameCounters {
+    uint max_cut;
+    uint nonfinite_pixels;
+    uint geometry_pixels;
+    uint pad;
+} counters;
+
+layout(push_constant) uniform FrameConstants {
+    uint width;
+    uint height;
+    uint leaf_count;
+    uint classic_count;
+    uint node_count;
+    float exposure;
+    uint scale_bar_rows;
+    uint pad;
+} frame;
+
+#endif

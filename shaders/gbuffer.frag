@@ -1,0 +1,42 @@
+#version 460
+// G-buffer pass: world position (w = 1 marks geometry), shading normal facing
+// the camera (surfaces are lit on the side we see), base colour x texture
+// (the sRGB texture format decodes on sampling), metallic/roughness, emissive.
+#extension GL_GOOGLE_include_directive : require
+
+#include "draw_constants.glsl"
+
+layout(constant_id = 10) const bool kTextures = true;
+
+layout(set = 0, binding = 0) uniform sampler2D base_color_texture;
+layout(set = 0, binding = 1) uniform sampler2D emissive_texture;
+
+layout(location = 0) in vec3 in_position;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+
+layout(location = 0) out vec4 out_position;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_albedo;
+layout(location = 3) out vec4 out_emissive;
+
+void main() {
+    // Derivatives are taken in uniform control flow, before any branch.
+    vec3 geometric = cross(dFdx(in_position), dFdy(in_position));
+    vec3 n = dot(in_normal, in_normal) > 1e-24 ? in_normal : geometric;
+    float len = length(n);
+    n = len > 0.0 ? n / len : vec3(0.0, 1.0, 0.0);
+    if (dot(n, draw.eye_roughness.xyz - in_position) < 0.0) n = -n;
+
+    vec4 base = draw.base_color_factor;
+    vec3 emissive = draw.emissive_metallic.rgb;
+    if (kTextures) {
+        if ((draw.flags & kDrawBaseColorTexture) != 0u) base *= texture(base_color_texture, in_uv);
+        if ((draw.flags & kDrawEmissiveTexture) != 0u)
+            emissive *= texture(emissive_texture, in_uv).rgb;
+    }
+    out_position = vec4(in_position, 1.0);
+    out_normal = vec4(n, draw.eye_roughness.w);
+    out_albedo = vec4(base.rgb, draw.emissive_metallic.a);
+    out_emissive = vec4(emissive, 1.0);
+}

@@ -1,0 +1,43 @@
+// std430 mirrors of editor_client/render/gpu_layout.h, field for field.
+// tests/gpu_layout_test.cpp checks the C++ side; keep both in step.
+#ifndef LC_GPU_LAYOUT_GLSL
+#define LC_GPU_LAYOUT_GLSL
+
+const uint kLightPoint = 0u;
+const uint kLightSpot = 1u;
+const uint kLightDirectional = 2u;
+
+const int kEndOfWalk = -1;
+const uint kNodeMixedTypes = 1u;
+
+struct GpuLight {
+    vec3 position;
+    float range;
+    vec3 direction;
+    uint type;
+    vec3 intensity;
+    float spot_cos_outer;
+    float spot_cos_inner;
+    float spot_scale;
+    uint pad0;
+    uint pad1;
+};
+
+struct GpuTreeNode {
+    GpuLight light;
+    int first_child;
+    int escape;
+    float radius;
+    uint flags;
+};
+
+struct GpuNodeBounds {
+    vec3 bbox_min;
+    float cone_cos;
+    vec3 bbox_max;
+    float pad0;
+    vec3 cone_axis;
+    float pad1;
+};
+
+#endif
