@@ -1,0 +1,159 @@
+// Result-channel streaming over loopback against a raw socket copy of the same
+// bytes, in one run. Usage: stream_throughput_bench RECORDS [RECORDS...]
+// Prints CSV: records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,ratio,peak_rss_mb
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <thread>
+
+#include <glm/common.hpp>
+
+#include "lightmass_server/result_stream.h"
+#include "protocol/asio.h"
+#include "protocol/channel_name.h"
+#include "protocol/channel_records.h"
+#include "protocol/codec.h"
+#include "protocol/frame_decoder.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A complete binary tree in breadth-first order: children of i at 2i+1, 2i+2.
+lc::LightTree make_tree(size_t node_count) {
+    if (node_count % 2 == 0) ++node_count;
+    lc::LightTree tree;
+    tree.nodes.resize(node_count);
+    for (size_t i = node_count; i-- > 0;) {
+        lc::LightTreeNode& n = tree.nodes[i];
+        n.guid = lc::Guid{static_cast<uint32_t>(i), 1, 2, 3};
+        size_t l = 2 * i + 1, r = 2 * i + 2;
+        float x = static_cast<float>(i % 1000), y = static_cast<float>(i / 1000);
+        if (r < node_count) {
+            n.left = static_cast<int32_t>(l);
+            n.right = static_cast<int32_t>(r);
+            n.representative = tree.nodes[l].representative;
+            const auto& a = tree.nodes[l];
+            const auto& b = tree.nodes[r];
+            n.position = a.position;
+            n.intensity = a.intensity + b.intensity;
+            n.brightness = a.brightness + b.brightness;
+            n.bbox_min = glm::min(a.bbox_min, b.bbox_min);
+            n.bbox_max = glm::max(a.bbox_max, b.bbox_max);
+        } else {
+            n.representative = static_cast<int32_t>(i);
+            n.position = {x, y, 1.0f};
+            n.intensity = glm::vec3(1.0f);
+            n.brightness = 1.0f;
+            n.bbox_min = n.bbox_max = n.position;
+            ++tree.leaf_count;
+        }
+        n.cone_cos = -1.0f;
+    }
+    return tree;
+}
+
+double peak_rss_mb() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+// Streams `tree` through ResultStream to a client that decodes and validates it.
+double protocol_ms(const std::shared_ptr<const lc::LightTree>& tree) {
+    lc::asio::io_context io;
+    lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
+    uint16_t port = acceptor.local_endpoint().port();
+    std::thread server([&] {
+        lc::tcp::socket socket = acceptor.accept();
+        lc::BakeDoneMsg done;
+        done.result_channel = lc::lightcuts_result_channel_name();
+        done.node_count = static_cast<uint32_t>(tree->nodes.size());
+        lc::bake::ResultStream stream(tree, 1u << 31, done, lc::kDefaultChunkBytes);
+        while (auto frame = stream.next_frame()) lc::asio::write(socket, lc::asio::buffer(*frame));
+    });
+    auto start = Clock::now();
+    lc::tcp::socket socket(io);
+    socket.connect(lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), port));
+    lc::FrameDecoder decoder;
+    lc::ResultChannelReader reader;
+    std::vector<uint8_t> buffer(256 * 1024);
+    std::vector<std::vector<uint8_t>> frames;
+    bool finished = false;
+    while (!finished) {
+        boost::system::error_code ec;
+        size_t n = socket.read_some(lc::asio::buffer(buffer), ec);
+        if (ec) break;
+        frames.clear();
+        decoder.consume({buffer.data(), n}, frames);
+        for (auto& f : frames) {
+            auto message = lc::decode_message(f);
+            if (!message) std::abort();
+            if (auto* w = std::get_if<lc::WriteChannelMsg>(&message.value())) {
+                if (!reader.consume(w->data)) std::abort();
+            } else if (std::holds_alternative<lc::BakeDoneMsg>(message.value())) {
+                finished = true;
+            }
+        }
+    }
+    auto received = reader.finish();
+    double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    server.join();
+    if (!received || received->nodes.size() != tree->nodes.size()) {
+        std::fprintf(stderr, "stream failed\n");
+        std::exit(1);
+    }
+    return ms;
+}
+
+// The same number of bytes, written and read raw in 1 MiB buffers.
+double raw_ms(uint64_t bytes) {
+    lc::asio::io_context io;
+    lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
+    uint16_t port = acceptor.local_endpoint().port();
+    std::thread server([&] {
+        lc::tcp::socket socket = acceptor.accept();
+        std::vector<uint8_t> chunk(1u << 20, 0x5A);
+        for (uint64_t sent = 0; sent < bytes;) {
+            size_t n = static_cast<size_t>(std::min<uint64_t>(chunk.size(), bytes - sent));
+            lc::asio::write(socket, lc::asio::buffer(chunk.data(), n));
+            sent += n;
+        }
+    });
+    auto start = Clock::now();
+    lc::tcp::socket socket(io);
+    socket.connect(lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), port));
+    std::vector<uint8_t> buffer(256 * 1024);
+    uint64_t got = 0;
+    while (got < bytes) {
+        boost::system::error_code ec;
+        got += socket.read_some(lc::asio::buffer(buffer), ec);
+        if (ec) break;
+    }
+    double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    server.join();
+    return ms;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::printf("records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,client_rss_bytes_per_record\n");
+    for (int i = 1; i < argc; ++i) {
+        size_t records = std::strtoull(argv[i], nullptr, 10);
+        auto tree = std::make_shared<const lc::LightTree>(make_tree(records));
+        uint64_t bytes = 4 + tree->nodes.size() * lc::result_record_bytes();
+        double rss_before = peak_rss_mb();
+        double p = protocol_ms(tree);
+        double r = raw_ms(bytes);
+        double mb = static_cast<double>(bytes) / (1024.0 * 1024.0);
+        double rss = peak_rss_mb();
+        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f\n", tree->nodes.size(),
+                    static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p, rss,
+                    (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()));
+        std::fflush(stdout);
+    }
+    return 0;
+}
