@@ -3,10 +3,11 @@
 // merging the pair that makes the smallest cluster under the cluster metric
 // (lightmass_server/cluster_metric.h). Made fast by locally-ordered clustering
 // (Walter et al. 2008): two clusters that are each other's best partner can be
-// merged at once, in any order, and give the greedy result because the metric
-// never decreases when a cluster grows. Each round finds best partners for the
-// clusters that need one (in parallel, branch and bound on a cluster BVH) and
-// merges every mutual pair.
+// merged at once, in any order, and give the greedy result (up to ties) because
+// the metric never decreases when a cluster grows. Each round finds best
+// partners for the clusters that need one (in parallel, branch and bound on a
+// cluster BVH) and merges every mutual pair. With orientation cones the union
+// cone is not exactly monotone, so spot trees may differ slightly from greedy.
 #include <cstdint>
 #include <span>
 

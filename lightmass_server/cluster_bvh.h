@@ -1,10 +1,10 @@
 #pragma once
 // A bounding-volume hierarchy over the live clusters of an agglomerative
 // build, answering "which live cluster merges with a into the smallest
-// cluster" (ties: the first found, nearest in the hierarchy) by branch and bound on
-// cluster_metric_lower_bound. Merges update it in place (the merged cluster
-// takes one child's slot, the other slot dies, bounds only grow); the builder
-// rebuilds it from scratch as clusters grow, to keep the bounds tight.
+// cluster" (ties: the first found, nearest in the hierarchy) by branch and
+// bound on cluster_metric_lower_bound. Merges update it in place (the merged
+// cluster takes one child's slot, the other slot dies, bounds only grow); the
+// builder refits it regularly and rebuilds it once most slots are dead.
 #include <cstdint>
 #include <limits>
 #include <span>

@@ -1,9 +1,10 @@
 #pragma once
 // A linear BVH build (Morton codes, as GPU ray tracers build their trees):
 // sort the lights along a Z-order curve, then split each range where the
-// codes' highest differing bit changes. O(n log n) with a tiny constant; it
-// ignores intensity and orientation, so its clusters are looser than the
-// agglomerative ones. The benchmark shows the trade (docs/bench/).
+// codes' highest differing bit changes. O(n log n) with a tiny constant, about
+// 5x faster than the agglomerative build at 10^6 lights. It ignores intensity
+// and orientation: with uneven intensities its summed cluster metric is above
+// the agglomerative one, with uniform ones it can be below (docs/bench/).
 #include <cstdint>
 #include <span>
 

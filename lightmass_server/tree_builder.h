@@ -15,8 +15,9 @@
 namespace lc::bake {
 
 // Above this many nodes in one level, PairingMode::kAuto pairs approximately
-// (and says so); kExact still proves optimality, only slower.
-inline constexpr uint32_t kDefaultExactPairingLimit = 8192;
+// (and says so); kExact still proves optimality, only slower (65,536 lights
+// took 6.6 s exact here, 1.1 s approximate; docs/BENCHMARKS.md).
+inline constexpr uint32_t kDefaultExactPairingLimit = 32768;
 
 struct BuildOptions {
     BuilderKind builder = BuilderKind::kOptimalPair;

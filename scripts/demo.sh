@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
-bash scripts/build.sh default
+bash scripts/build.sh default lightmass_server editor_client
 
 bin=build/bin
 out=out
@@ -21,8 +21,12 @@ for _ in $(seq 1 100); do [ -s "$out/server.port" ] && break; sleep 0.1; done
 server="127.0.0.1:$(cat "$out/server.port")"
 echo "demo: bake server at $server"
 
-# A room with 1,024 lights (made by the project itself: needs nothing outside the repo).
-"$bin/editor_client" add-lights --count 1024 --layout random --type mixed --seed 7 -o "$out/room.gltf"
+# A room (10 x 3 x 10 m) with 768 point and 256 spot lights of limited range, made by
+# the project itself so the job needs nothing outside the repository.
+"$bin/editor_client" add-lights --count 768 --layout random --type point --intensity 0.4 --range 2.5 \
+    --seed 7 -o "$out/room_points.gltf"
+"$bin/editor_client" add-lights "$out/room_points.gltf" --count 256 --layout random --type spot \
+    --intensity 1.5 --range 3.5 --seed 8 -o "$out/room.gltf"
 
 "$bin/editor_client" bake "$out/room.gltf" --server "$server" --builder optimal-pair -o "$out/room.lcut" \
     --json > "$out/bake.json"

@@ -40,8 +40,9 @@ vec3 cut_colour(uint cut_hash) {
 
 // Dark blue -> blue -> green -> yellow -> red for t in [0, 1].
 vec3 heat_colour(float t) {
-    const vec3 stops[5] = vec3[5](vec3(0.05, 0.03, 0.35), vec3(0.0, 0.45, 1.0),
-                                  vec3(0.1, 0.85, 0.35), vec3(1.0, 0.9, 0.0), vec3(0.95, 0.1, 0.05));
+    const vec3 stops[5] =
+        vec3[5](vec3(0.05, 0.03, 0.35), vec3(0.0, 0.45, 1.0), vec3(0.1, 0.85, 0.35),
+                vec3(1.0, 0.9, 0.0), vec3(0.95, 0.1, 0.05));
     float x = clamp(t, 0.0, 1.0) * 4.0;
     int i = min(int(x), 3);
     return mix(stops[i], stops[i + 1], x - float(i));

@@ -6,7 +6,7 @@
 
 #include "gpu_layout.glsl"
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D gbuffer_position;  // w: 1 on geometry
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D gbuffer_position;  // w: 1 = geometry
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D gbuffer_normal;    // w: roughness
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_albedo;    // w: metallic
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_emissive;

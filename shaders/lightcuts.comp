@@ -3,12 +3,13 @@
 // node as a cluster (its representative's position, direction, range and spot
 // cone with the cluster's RGB intensity); classic lights are added one by one.
 //
-// Cut selection is a function of the criterion (specialization constant):
-//   radius (the thesis): a stackless pre-order walk. A node is refined while
-//     the point lies strictly inside its influence radius (radius < 0:
+// Cut selection depends on the criterion:
+//   radius (the thesis): a stackless pre-order walk (first child / escape
+//     indices from gpu_layout.h) that a subgroup shares. A node is refined
+//     while the point lies strictly inside its influence radius (radius < 0:
 //     unbounded, always inside) and it has children; mixed-type junctions are
 //     always refined. Every step moves forward in pre-order, so a chain of
-//     depth N costs N steps and never overflows anything.
+//     depth N costs at most N steps and there is no stack to overflow.
 //   bound (the paper, not implemented yet; the host refuses it): will keep a
 //     bounded max-heap of (node, estimate, bound) entries, at most max-cut of
 //     them, in private memory, refining the largest bound until every bound is
@@ -16,6 +17,7 @@
 //     add_to_cut, reads GpuNodeBounds from a new binding, and main() picks it
 //     with a specialization constant (id 8 is reserved for the criterion).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_vote : require
 
 #include "cut_hash.glsl"
 #include "lighting_pass.glsl"
@@ -45,17 +47,28 @@ bool refine_by_radius(int i, vec3 x) {
     return dot(d, d) < radius * radius;
 }
 
+// The subgroup walks the union of its pixels' cuts in pre-order, every lane at
+// the same node, so node reads are uniform and nothing diverges but the
+// evaluation itself. The subgroup descends when any active lane refines; a
+// lane that takes a node as a cluster sits out the node's subtree, waiting for
+// the walk to reach the node's escape (the walk only moves forward in
+// pre-order and never jumps past an escape of a node it is inside). Each lane
+// still gets exactly its own cut.
 Cut select_cut_radius(SurfacePoint p) {
     Cut cut = Cut(vec3(0.0), 0u, 0u);
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;
+    bool waiting = false;
+    int resume = kEndOfWalk;
     // node_count steps always suffice; the limit only guards a corrupt upload.
     for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; ++step) {
-        if (refine_by_radius(i, p.position)) {
-            i = tree_nodes[i].first_child;
-        } else {
+        if (waiting && i == resume) waiting = false;
+        bool refine = !waiting && refine_by_radius(i, p.position);
+        if (!waiting && !refine) {
             add_to_cut(cut, uint(i), tree_nodes[i].light, p);
-            i = tree_nodes[i].escape;
+            waiting = true;
+            resume = tree_nodes[i].escape;
         }
+        i = subgroupAny(refine) ? tree_nodes[i].first_child : tree_nodes[i].escape;
     }
     return cut;
 }

@@ -11,10 +11,13 @@
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/scene_generator.h"
 #include "editor_client/scene/scene_guid.h"
 #include "test_paths.h"
 
@@ -519,6 +522,56 @@ TEST(GltfLoaderBrokenBaseline, ADeepChainOfNodesLoadsWithoutRecursion) {
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->lights.size(), 1u);
     expect_vec_near(scene->lights[0].position, {50000, 0, 0});
+    std::filesystem::remove_all(dir);
+}
+
+// Random corruptions of valid files (digits changed, bytes flipped, files cut
+// short) must give a scene or an error message, never a crash. Run under
+// LC_SANITIZE=ON this also checks that no byte outside a buffer is read.
+TEST(GltfLoaderFuzz, RandomCorruptionsNeverCrash) {
+    const auto dir = lc::test::make_temp_dir("gltf-fuzz");
+    std::ifstream in(lc::test::data_dir() / "broken_gltf" / "valid_triangle.gltf");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Scene room = make_room_scene();
+    SceneLight spot;
+    spot.guid = Guid{1, 2, 3, 4};
+    spot.type = LightType::kSpot;
+    room.lights.push_back(spot);
+    ASSERT_TRUE(write_scene_gltf(room, dir / "room.glb").ok());
+    std::ifstream glb_in(dir / "room.glb", std::ios::binary);
+    const std::string glb((std::istreambuf_iterator<char>(glb_in)), std::istreambuf_iterator<char>());
+
+    std::mt19937_64 rng(12345);
+    int loaded = 0, rejected = 0;
+    for (int round = 0; round < 600; ++round) {
+        const bool binary = round % 3 == 2;
+        std::string bytes = binary ? glb : text;
+        const int edits = 1 + int(rng() % 3);
+        for (int e = 0; e < edits; ++e) {
+            const size_t at = size_t(rng() % bytes.size());
+            switch (rng() % 4) {
+                case 0:  // a digit: indices, counts, offsets and lengths change
+                    bytes[at] = char('0' + rng() % 10);
+                    break;
+                case 1: bytes[at] = char(rng() % 256); break;
+                case 2: bytes.resize(at + 1); break;
+                case 3: bytes.insert(at, binary ? std::string(1, char(rng() % 256)) : "9"); break;
+            }
+        }
+        const auto path = dir / (binary ? "fuzz.glb" : "fuzz.gltf");
+        std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+        std::vector<std::string> warnings;
+        Result<Scene> scene = load_scene(path, warnings);
+        if (scene.ok()) {
+            ++loaded;
+            for (const Mesh& m : scene->meshes)
+                for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
+        } else {
+            ++rejected;
+            EXPECT_FALSE(scene.error().empty());
+        }
+    }
+    EXPECT_GT(rejected, 100);  // the corruptions were real
     std::filesystem::remove_all(dir);
 }
 

@@ -3,9 +3,10 @@
 // sizes and hashes, tone mapping, cut visualisation, non-finite handling, and
 // zero validation messages.
 //
-// Tolerance: |gpu - cpu| <= 1e-3 |cpu| + 1e-6 max|cpu| per channel. The GPU
-// sums tens of float terms whose own error is ~1e-6 relative; 1e-3 leaves room
-// for sqrt/division rounding but still fails on any formula difference.
+// Tolerance: |gpu - cpu| <= 1e-4 |cpu| + 1e-6 max|cpu| per channel. The GPU
+// sums up to a few thousand float terms whose own error is ~1e-7 relative (we
+// measure ~1e-5 at worst); 1e-4 leaves room for that and still fails on any
+// formula difference (a 0.1% change of the range window fails it).
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <span>
@@ -160,7 +162,7 @@ protected:
             for (int ch = 0; ch < 3; ++ch) {
                 double want = cpu[i][ch];
                 double err = std::abs(double(gpu[ch]) - want);
-                EXPECT_LE(err, 1e-3 * std::abs(want) + 1e-6 * max_cpu)
+                EXPECT_LE(err, 1e-4 * std::abs(want) + 1e-6 * max_cpu)
                     << "pixel " << i % kSize << "," << i / kSize << " channel " << ch << ": gpu "
                     << gpu[ch] << " cpu " << want;
                 if (std::abs(want) > 1e-6 * max_cpu)
@@ -168,6 +170,9 @@ protected:
             }
             ++c.compared;
         }
+        std::printf("  %zu geometry pixels, %zu compared, %zu near a radius boundary, max relative "
+                    "error %.3g\n",
+                    c.geometry_pixels, c.compared, c.boundary_exempt, c.max_relative);
         return c;
     }
 
@@ -189,7 +194,7 @@ TEST_F(GpuVsCpu, ReferenceWithoutTreeMatchesSceneLights) {
     EXPECT_GT(c.geometry_pixels, kSize * kSize / 2);
     EXPECT_EQ(c.compared, c.geometry_pixels);
     RecordProperty("max_relative_error", std::to_string(c.max_relative));
-    EXPECT_LT(c.max_relative, 1e-3);
+    EXPECT_LT(c.max_relative, 1e-4);
 }
 
 TEST_F(GpuVsCpu, ReferenceAndLightcutsWithHandMadeTree) {
@@ -214,7 +219,7 @@ TEST_F(GpuVsCpu, ReferenceAndLightcutsWithHandMadeTree) {
         **renderer, settings_,
         [&](const SurfacePoint& p) { return shade_lightcuts(tree, classic, p, radius); }, &tree);
     EXPECT_GT(cuts.compared, cuts.geometry_pixels * 99 / 100);
-    EXPECT_LT(cuts.max_relative, 1e-3);
+    EXPECT_LT(cuts.max_relative, 1e-4);
 }
 
 TEST_F(GpuVsCpu, LightcutsWithBuilderTreeAndRanges) {

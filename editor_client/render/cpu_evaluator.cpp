@@ -277,9 +277,10 @@ CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSetti
         for (int c = 0; c < child_count; ++c) {
             // The child that shares the representative reuses its evaluation.
             const bool shares = tree.nodes[size_t(children[c])].representative == representative;
-            heap.push_back(make_entry(tree, children[c], p, shares ? &parent.unit : nullptr));
+            CutEntry child = make_entry(tree, children[c], p, shares ? &parent.unit : nullptr);
+            total += child.estimate;
+            heap.push_back(child);
             std::push_heap(heap.begin(), heap.end(), heap_less);
-            total += heap.back().estimate;
         }
     }
     // The running total drifts with 1e12 intensity ratios; sum afresh.

@@ -1,9 +1,36 @@
 #include "editor_client/render/render_targets.h"
 
+#include <string>
+
+#include "editor_client/vk/vk_result.h"
+
 namespace lc::client {
+namespace {
+
+// Storage use of RG32UI and RGBA32F, and RGBA32F attachments, are optional in
+// Vulkan: say which one is missing rather than fail in a driver.
+Status check_format(const vk::Device& device, VkFormat format, VkFormatFeatureFlags needed,
+                    const char* what) {
+    VkFormatProperties props;
+    vkGetPhysicalDeviceFormatProperties(device.physical().handle, format, &props);
+    if ((props.optimalTilingFeatures & needed) != needed)
+        return make_error(std::string("the device cannot use ") + what);
+    return Ok{};
+}
+
+}  // namespace
 
 Result<RenderTargets> RenderTargets::create(const vk::Device& device, uint32_t width,
                                             uint32_t height) {
+    LC_RETURN_IF_ERROR(check_format(
+        device, kGBufferFormat,
+        VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
+        "RGBA32F images as colour attachments and storage images (the G-buffer)"));
+    LC_RETURN_IF_ERROR(check_format(device, kCutFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
+                                    "RG32UI storage images (the cut image)"));
+    LC_RETURN_IF_ERROR(check_format(device, kDepthFormat,
+                                    VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                    "D32 depth attachments"));
     RenderTargets targets;
     targets.width = width;
     targets.height = height;

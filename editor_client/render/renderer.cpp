@@ -10,13 +10,15 @@
 #include <cmath>
 #include <cstring>
 
-#include "cut_view_comp.spv.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
+#include "protocol/channel_records.h"
+
+// SPIR-V generated from shaders/ at build time.
+#include "cut_view_comp.spv.h"
 #include "gbuffer_frag.spv.h"
 #include "gbuffer_vert.spv.h"
 #include "lightcuts_comp.spv.h"
-#include "protocol/channel_records.h"
 #include "reference_comp.spv.h"
 #include "tone_map_comp.spv.h"
 
@@ -116,9 +118,13 @@ Renderer::~Renderer() {
 Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, const Scene& scene,
                                                    const LightTree* tree,
                                                    const RendererOptions& options) {
-    if (options.workgroup_size == 0 || options.workgroup_size > 32)
-        return make_error("workgroup size " + std::to_string(options.workgroup_size) +
-                          " is outside 1..32");
+    const uint32_t max_invocations =
+        context.physical().properties.limits.maxComputeWorkGroupInvocations;
+    if (options.workgroup_size == 0 ||
+        options.workgroup_size * options.workgroup_size > max_invocations)
+        return make_error("workgroup size " + std::to_string(options.workgroup_size) + "x" +
+                          std::to_string(options.workgroup_size) + " exceeds the device's " +
+                          std::to_string(max_invocations) + " invocations per workgroup");
     std::unique_ptr<Renderer> renderer(new Renderer(context, scene, options));
     Result<GpuScene> gpu_scene = GpuScene::upload(context, scene);
     if (!gpu_scene) return make_error(gpu_scene.error());

@@ -15,17 +15,24 @@ namespace {
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
 VKAPI_ATTR VkBool32 VKAPI_CALL on_debug_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                VkDebugUtilsMessageTypeFlagsEXT /*types*/,
-                                                const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                                void* user_data) {
+                                                 VkDebugUtilsMessageTypeFlagsEXT types,
+                                                 const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                 void* user_data) {
     auto* count = static_cast<std::atomic<uint32_t>*>(user_data);
     const char* text = data != nullptr && data->pMessage != nullptr ? data->pMessage : "(no text)";
-    if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
+    const bool error = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) != 0;
+    // General warnings are the loader's notes (e.g. "layer forced enabled by
+    // VK_LOADER_LAYERS_ENABLE"): printed, but they say nothing about our use of Vulkan.
+    const bool about_our_usage = (types & (VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT)) != 0;
+    if (error) {
         spdlog::error("vulkan validation: {}", text);
-    } else {
+    } else if (about_our_usage) {
         spdlog::warn("vulkan validation: {}", text);
+    } else {
+        spdlog::info("vulkan loader: {}", text);
     }
-    count->fetch_add(1, std::memory_order_relaxed);
+    if (error || about_our_usage) count->fetch_add(1, std::memory_order_relaxed);
     return VK_FALSE;  // never abort the call: we count and report instead
 }
 

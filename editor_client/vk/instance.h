@@ -37,7 +37,8 @@ public:
     VkInstance handle() const { return instance_; }
     // The validation layer was requested and found.
     bool validation_enabled() const { return validation_enabled_; }
-    // Validation (and loader) warnings and errors reported so far.
+    // Validation warnings and errors (and any error) reported so far; the
+    // loader's general warnings are logged but not counted.
     uint32_t validation_message_count() const;
 
 private:

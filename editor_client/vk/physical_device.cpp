@@ -49,6 +49,14 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     features.pNext = &features13;
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!features13.dynamicRendering) return "dynamicRendering is not supported";
+    // The lightcuts walk votes across a subgroup (shaders/lightcuts.comp).
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(device, &properties);
+    if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
+        (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0)
+        return "subgroup vote operations in compute shaders are not supported";
     if (!features13.synchronization2) return "synchronization2 is not supported";
     if (surface != VK_NULL_HANDLE && !has_device_extension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
         return "VK_KHR_swapchain is not supported";

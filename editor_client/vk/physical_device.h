@@ -22,9 +22,10 @@ struct PhysicalDevice {
     bool is_software() const { return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }
 };
 
-// Requires Vulkan 1.3 with dynamic rendering and synchronization2; with a
-// surface, also presentation support and VK_KHR_swapchain. The environment
-// variable LC_VK_DEVICE (a substring of the device name) overrides the choice.
+// Requires Vulkan 1.3 with dynamic rendering, synchronization2 and subgroup
+// votes in compute shaders; with a surface, also presentation support and
+// VK_KHR_swapchain. The environment variable LC_VK_DEVICE (a substring of the
+// device name) restricts the choice.
 Result<PhysicalDevice> select_physical_device(VkInstance instance,
                                               VkSurfaceKHR surface = VK_NULL_HANDLE);
 

@@ -1,0 +1,58 @@
+#include "editor_client/editor/overlay_text.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace lc::client {
+namespace {
+
+std::string format(const char* pattern, auto... values) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, pattern, values...);
+    return buffer;
+}
+
+}  // namespace
+
+std::vector<std::string> overlay_lines(const EditorSession& session, const FrameInfo& frame) {
+    std::vector<std::string> lines;
+    const ViewState& view = session.view();
+    const double fps = frame.frame_ms > 0.0 ? 1000.0 / frame.frame_ms : 0.0;
+    lines.push_back(format("frame %.1f ms (%.1f fps), GPU %.1f ms, %ux%u%s", frame.frame_ms, fps,
+                           frame.gpu_ms, frame.width, frame.height,
+                           frame.divisor > 1 ? " (moving: reduced)" : ""));
+    lines.push_back(format("mode %s, criterion %s, error %.3g, max cut %u",
+                           render_mode_name(view.mode), criterion_name(view.criterion),
+                           view.error_ratio, view.max_cut));
+    if (frame.avg_cut && frame.max_cut)
+        lines.push_back(format("cut size: mean %.1f, max %u", *frame.avg_cut, *frame.max_cut));
+
+    size_t classic = 0;
+    for (const SceneLight& light : session.scene().lights) classic += light.classic ? 1 : 0;
+    lines.push_back(format("lights %zu (%zu in the tree, %zu classic)",
+                           session.scene().lights.size(), session.scene().lights.size() - classic,
+                           classic));
+    const std::shared_ptr<const LightTree> tree = session.tree();
+    if (!tree || tree->empty()) {
+        lines.push_back("tree: none (Build lighting to bake one)");
+    } else {
+        lines.push_back(format("tree: %zu nodes, %u leaves%s", tree->nodes.size(), tree->leaf_count,
+                               session.tree_matches_scene() ? "" : " (stale: lights changed)"));
+    }
+    if (std::optional<BakeProgress> progress = session.bake_progress()) {
+        lines.push_back(format("baking: %s %.0f%%",
+                               progress->stage.empty() ? "connecting" : progress->stage.c_str(),
+                               double(progress->percent)));
+    }
+    if (const std::optional<BakeReport>& last = session.last_bake()) {
+        if (last->succeeded)
+            lines.push_back(format("last bake: %.0f ms (build %.0f ms), %zu lights", last->total_ms,
+                                   last->build_ms, last->light_count));
+        else
+            lines.push_back("last bake " + std::string(last->cancelled ? "cancelled" : "failed") +
+                            ": " + last->error);
+    }
+    return lines;
+}
+
+}  // namespace lc::client

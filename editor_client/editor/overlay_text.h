@@ -1,0 +1,26 @@
+#pragma once
+// The text of the editor's overlay: frame time, cut sizes, light count, tree
+// state and the last bake. Kept apart from ImGui so it is tested as text.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "editor_client/editor/editor_session.h"
+
+namespace lc::client {
+
+// What the last frame measured (from the renderer's stats and timestamps).
+struct FrameInfo {
+    double frame_ms = 0.0;  // wall time of the last frame
+    double gpu_ms = 0.0;    // GPU time of the last frame
+    uint32_t width = 0;     // rendered size (reduced while moving)
+    uint32_t height = 0;
+    uint32_t divisor = 1;           // 1: full resolution
+    std::optional<double> avg_cut;  // absent in reference mode or before a read-back
+    std::optional<uint32_t> max_cut;
+};
+
+std::vector<std::string> overlay_lines(const EditorSession& session, const FrameInfo& frame);
+
+}  // namespace lc::client
