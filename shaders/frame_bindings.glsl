@@ -21,8 +21,10 @@ layout(std430, set = 0, binding = 10) buffer FrameCounters {
     uint max_cut;
     uint nonfinite_pixels;
     uint geometry_pixels;
-    uint pad;
+    uint max_cut_hits;  // bound criterion: pixels whose cut stopped at max-cut
 } counters;
+// Per-node box and cone for the bound criterion (GpuNodeBounds, same order as tree_nodes).
+layout(std430, set = 0, binding = 11) readonly buffer NodeBounds { GpuNodeBounds node_bounds[]; };
 
 layout(push_constant) uniform FrameConstants {
     uint width;

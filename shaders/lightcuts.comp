@@ -10,19 +10,28 @@
 //     unbounded, always inside) and it has children; mixed-type junctions are
 //     always refined. Every step moves forward in pre-order, so a chain of
 //     depth N costs at most N steps and there is no stack to overflow.
-//   bound (the paper, not implemented yet; the host refuses it): will keep a
-//     bounded max-heap of (node, estimate, bound) entries, at most max-cut of
-//     them, in private memory, refining the largest bound until every bound is
-//     <= error x total. It becomes select_cut_bound(), fills the same Cut with
-//     add_to_cut, reads GpuNodeBounds from a new binding, and main() picks it
-//     with a specialization constant (id 8 is reserved for the criterion).
+//   bound (the paper, Sec. 4): a max-heap of (bound, node, unit response)
+//     entries in private memory, at most max-cut of them (a specialization
+//     constant, so the array is sized at pipeline creation). The node with the
+//     largest error bound is refined until every bound is <= error x the total
+//     estimate, or the cut holds max-cut nodes (the pixel is then counted in
+//     counters.max_cut_hits). Mirrors bound_cut() in cpu_evaluator.cpp,
+//     including its tie order and the largest-channel comparisons.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_vote : require
 
 #include "cut_hash.glsl"
+#include "cluster_bounds.glsl"
 #include "lighting_pass.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1) in;
+
+const uint kCriterionRadius = 0u;
+const uint kCriterionBound = 1u;
+layout(constant_id = 8) const uint kCriterion = kCriterionRadius;
+layout(constant_id = 11) const float kErrorRatio = 0.02;
+// Heap capacity = the max-cut setting (at least 2 so one refinement fits).
+layout(constant_id = 12) const int kMaxCut = 2;
 
 struct Cut {
     vec3 irradiance;  // sum over cut nodes of I_C * color * G
@@ -73,12 +82,152 @@ Cut select_cut_radius(SurfacePoint p) {
     return cut;
 }
 
+// ---- bound criterion -------------------------------------------------------
+
+float heap_key[kMaxCut];
+int heap_node[kMaxCut];
+vec3 heap_unit[kMaxCut];  // f_r * G of the representative per unit intensity
+
+float max_channel(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// cpu_evaluator's heap_less: larger bound first, then the smaller node index.
+bool heap_less(int a, int b) {
+    if (heap_key[a] != heap_key[b]) return heap_key[a] < heap_key[b];
+    return heap_node[a] > heap_node[b];
+}
+
+void heap_swap(int a, int b) {
+    float k = heap_key[a];
+    heap_key[a] = heap_key[b];
+    heap_key[b] = k;
+    int n = heap_node[a];
+    heap_node[a] = heap_node[b];
+    heap_node[b] = n;
+    vec3 u = heap_unit[a];
+    heap_unit[a] = heap_unit[b];
+    heap_unit[b] = u;
+}
+
+void heap_push(inout int size, float key, int node, vec3 unit) {
+    int i = size++;
+    heap_key[i] = key;
+    heap_node[i] = node;
+    heap_unit[i] = unit;
+    while (i > 0) {
+        int parent = (i - 1) / 2;
+        if (!heap_less(parent, i)) break;
+        heap_swap(parent, i);
+        i = parent;
+    }
+}
+
+// Moves the last entry to the root and sifts it down.
+void heap_pop(inout int size) {
+    --size;
+    heap_swap(0, size);
+    int i = 0;
+    while (true) {
+        int largest = i;
+        int l = 2 * i + 1;
+        int r = l + 1;
+        if (l < size && heap_less(largest, l)) largest = l;
+        if (r < size && heap_less(largest, r)) largest = r;
+        if (largest == i) break;
+        heap_swap(i, largest);
+        i = largest;
+    }
+}
+
+// Error bound of node i (largest channel): 0 for a leaf (exact), +inf for a
+// mixed-type junction (always refined), else f_r x G bound x I_C.
+float node_key(int i, SurfacePoint p, vec3 brdf) {
+    if (tree_nodes[i].first_child == kEndOfWalk) return 0.0;
+    if ((tree_nodes[i].flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
+    vec3 intensity = tree_nodes[i].light.intensity;
+    return max_channel(brdf * geometric_bound(i, p.position, p.normal) * intensity);
+}
+
+vec3 unit_response(int i, SurfacePoint p, vec3 brdf) {
+    GpuLight unit_light = tree_nodes[i].light;
+    unit_light.intensity = vec3(1.0);
+    return brdf * light_irradiance(unit_light, p.position, p.normal);
+}
+
+// A child whose representative has the parent's parameters has the parent's
+// response: the evaluation is reused (paper Sec. 4.1).
+bool same_emitter(GpuLight a, GpuLight b) {
+    return a.position == b.position && a.direction == b.direction && a.type == b.type &&
+           a.range == b.range && a.spot_cos_outer == b.spot_cos_outer &&
+           a.spot_scale == b.spot_scale;
+}
+
+// Returns the outgoing radiance of the cut (f_r already applied) in `radiance`.
+Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
+    vec3 brdf = p.albedo * (1.0 / kPi);
+    max_cut_hit = false;
+    radiance = vec3(0.0);
+    Cut cut = Cut(vec3(0.0), 0u, 0u);
+    if (frame.node_count == 0u) return cut;
+    int size = 0;
+    vec3 root_unit = unit_response(0, p, brdf);
+    heap_push(size, node_key(0, p, brdf), 0, root_unit);
+    vec3 total = root_unit * tree_nodes[0].light.intensity;
+    // Each refinement adds one node net; node_count refinements always suffice.
+    for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
+        float key = heap_key[0];
+        if (!isinf(key)) {
+            if (!(key > 0.0)) break;
+            if (key <= kErrorRatio * max(max_channel(total), 0.0)) break;
+        }
+        // A mixed-type junction is refined past max-cut like on the CPU, as
+        // long as the array has room.
+        if ((!isinf(key) && size >= kMaxCut) || size + 1 > kMaxCut) {
+            max_cut_hit = true;
+            break;
+        }
+        int parent = heap_node[0];
+        vec3 parent_unit = heap_unit[0];
+        heap_pop(size);
+        GpuLight parent_light = tree_nodes[parent].light;
+        total -= parent_unit * parent_light.intensity;
+        // Children: first_child, and its escape when that is not the parent's
+        // escape (the right sibling of a left child).
+        int c0 = tree_nodes[parent].first_child;
+        int c1 = tree_nodes[c0].escape;
+        bool two = c1 != kEndOfWalk && c1 != tree_nodes[parent].escape;
+        for (int c = 0; c < (two ? 2 : 1); ++c) {
+            int child = c == 0 ? c0 : c1;
+            GpuLight light = tree_nodes[child].light;
+            vec3 unit = same_emitter(light, parent_light) ? parent_unit
+                                                          : unit_response(child, p, brdf);
+            total += unit * light.intensity;
+            heap_push(size, node_key(child, p, brdf), child, unit);
+        }
+    }
+    // The running total drifts; sum afresh.
+    for (int k = 0; k < size; ++k) {
+        radiance += heap_unit[k] * tree_nodes[heap_node[k]].light.intensity;
+        cut.hash += cut_hash_term(uint(heap_node[k]));
+    }
+    cut.size = uint(size);
+    return cut;
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
     SurfacePoint p;
     if (!load_surface(pixel, p)) {
         store_background(pixel);
+        return;
+    }
+    if (kCriterion == kCriterionBound) {
+        vec3 radiance;
+        bool max_cut_hit;
+        Cut cut = select_cut_bound(p, radiance, max_cut_hit);
+        if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
+        radiance += outgoing_radiance(p, classic_irradiance(p));
+        store_pixel(pixel, radiance, cut.size, cut.hash);
         return;
     }
     Cut cut = select_cut_radius(p);

@@ -201,11 +201,16 @@ TEST(EditorBake, SpawnedServerLivesForTheSession) {
     EditorSession session(make_room_scene(), options);
     EXPECT_TRUE(session.has_server());
     ASSERT_TRUE(session.add_procedural_lights(room_layout(30, 7)));
+    EXPECT_EQ(session.server_description(), "local (started at the first bake)");
+    std::string first_server;
     for (int i = 0; i < 2; ++i) {
         ASSERT_TRUE(session.start_bake());
         BakeReport report = session.wait_for_bake().value();
         ASSERT_TRUE(report.succeeded) << report.error;
+        if (i == 0) first_server = session.server_description();
     }
+    EXPECT_EQ(first_server.rfind("local 127.0.0.1:", 0), 0u) << first_server;
+    EXPECT_EQ(session.server_description(), first_server);  // the same process both times
     EXPECT_EQ(session.tree_generation(), 2u);
 }
 

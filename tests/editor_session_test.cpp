@@ -242,6 +242,7 @@ TEST(EditorSession, BakeWithoutServerSaysHowToConfigureOne) {
     EXPECT_NE(bake.error().find("--server"), std::string::npos) << bake.error();
     EXPECT_FALSE(session.bake_running());
     EXPECT_FALSE(session.tree_matches_scene());
+    EXPECT_NE(session.server_description().find("none"), std::string::npos);
 }
 
 TEST(EditorSession, SaveGeneratedSceneWritesLightsBack) {

@@ -571,6 +571,8 @@ TEST(GltfLoaderFuzz, RandomCorruptionsNeverCrash) {
             EXPECT_FALSE(scene.error().empty());
         }
     }
+    RecordProperty("loaded", loaded);
+    RecordProperty("rejected", rejected);
     EXPECT_GT(rejected, 100);  // the corruptions were real
     std::filesystem::remove_all(dir);
 }

@@ -161,6 +161,23 @@ TEST_F(RenderCommand, FloatImageHoldsTheLinearRadianceBottomUp) {
     EXPECT_EQ(first[0], hdr->rgb[3 * bottom_left]);
 }
 
+TEST_F(RenderCommand, BakesOnASpawnedServer) {
+    // The whole path: scene -> lightmass_server -> result channel -> GPU cut.
+    std::filesystem::path png = dir_ / "spawned.png", stats_path = dir_ / "spawned.json";
+    CommandRun r =
+        run(scene_path_.string() + " --spawn-server --builder agglomerative --mode cutsize" +
+                " --size 48x36 -o " + png.string() + " --stats " + stats_path.string(),
+            dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    std::ifstream in(stats_path);
+    nlohmann::json stats = nlohmann::json::parse(in);
+    EXPECT_EQ(stats["tree_lights"], 24);
+    EXPECT_EQ(stats["nodes"], 2 * 24 - 1);  // a binary tree over 24 leaves
+    EXPECT_GE(stats["max_cut"].get<int>(), 1);
+    EXPECT_EQ(stats["nonfinite_pixels"], 0);
+    EXPECT_TRUE(std::filesystem::exists(png));
+}
+
 TEST_F(RenderCommand, ErrorsNameTheProblem) {
     std::filesystem::path png = dir_ / "x.png";
     CommandRun no_tree = run(scene_path_.string() + " --mode lightcuts -o " + png.string(), dir_);

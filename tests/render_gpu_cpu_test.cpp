@@ -170,9 +170,10 @@ protected:
             }
             ++c.compared;
         }
-        std::printf("  %zu geometry pixels, %zu compared, %zu near a radius boundary, max relative "
-                    "error %.3g\n",
-                    c.geometry_pixels, c.compared, c.boundary_exempt, c.max_relative);
+        std::printf(
+            "  %zu geometry pixels, %zu compared, %zu near a radius boundary, max relative "
+            "error %.3g\n",
+            c.geometry_pixels, c.compared, c.boundary_exempt, c.max_relative);
         return c;
     }
 

@@ -1,9 +1,13 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
-//   [--seed N] [--mode reference|lightcuts|cuts|cutsize] [--criterion radius] [--size WxH]
+//   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
+//   [--error E] [--max-cut K] [--compare-reference] [--size WxH]
 //   [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I] [--exposure E] -o OUT.png
 //   [--float OUT.pfm] [--stats OUT.json] [--validation]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
-// the linear float image and the statistics.
+// the linear float image and the statistics. With a tree source the default is
+// lightcuts with the bound criterion; without one, the reference. `error` (and
+// --compare-reference) also renders the reference and measures lightcuts
+// against it (error_stats.h). Without --exposure the exposure is automatic.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -16,6 +20,7 @@
 
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/render/error_stats.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
@@ -32,12 +37,15 @@ struct RenderOptions {
     std::string scene;
     std::string tree;
     BakeFlags bake;
-    std::string mode = "reference";
-    std::string criterion = "radius";
+    std::string mode;  // empty: lightcuts with a tree source, else reference
+    std::string criterion = "bound";
+    float error_ratio = 0.02f;
+    uint32_t max_cut = kDefaultMaxCut;
+    bool compare_reference = false;
     std::string size = "512x512";
     std::string camera;
     std::optional<int> camera_index;
-    float exposure = 1.0f;
+    std::optional<float> exposure;  // none: automatic
     std::string output;
     std::string float_output;
     std::string stats;
@@ -61,22 +69,6 @@ void run_render(const RenderOptions& options) {
     Scene scene = or_fail(load_scene(options.scene, warnings));
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
-    RenderSettings settings;
-    std::optional<RenderMode> mode = parse_render_mode(options.mode);
-    std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
-    if (!mode) fail("unknown --mode '" + options.mode + "' (reference, lightcuts, cuts, cutsize)");
-    if (!criterion) fail("unknown --criterion '" + options.criterion + "' (radius)");
-    settings.mode = *mode;
-    settings.criterion = *criterion;
-    auto [width, height] = or_fail(parse_size(options.size));
-    settings.width = width;
-    settings.height = height;
-    if (!std::isfinite(options.exposure) || options.exposure < 0.0f)
-        fail("--exposure must be a finite number >= 0");
-    settings.exposure = options.exposure;
-    settings.camera = or_fail(
-        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
-
     TreeSource source;
     source.dump = options.tree;
     ProgressDisplay progress(stderr);
@@ -89,8 +81,39 @@ void run_render(const RenderOptions& options) {
         };
         source.bake = bake;
     }
+    RenderSettings settings;
+    const bool has_tree_source = !source.empty();
+    std::string mode_text = options.mode.empty() ? (has_tree_source ? "lightcuts" : "reference")
+                                                 : options.mode;
+    // `error` renders lightcuts and shows its error against the reference.
+    const bool error_mode = mode_text == "error";
+    std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
+    std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
+    if (!mode)
+        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, error)");
+    if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
+    settings.mode = *mode;
+    settings.criterion = *criterion;
+    if (!std::isfinite(options.error_ratio) || options.error_ratio < 0.0f)
+        fail("--error must be a finite number >= 0");
+    if (options.max_cut < 1 || options.max_cut > kMaxGpuCut)
+        fail("--max-cut must be in 1 .. " + std::to_string(kMaxGpuCut));
+    settings.error_ratio = options.error_ratio;
+    settings.max_cut = options.max_cut;
+    auto [width, height] = or_fail(parse_size(options.size));
+    settings.width = width;
+    settings.height = height;
+    if (options.exposure && (!std::isfinite(*options.exposure) || *options.exposure < 0.0f))
+        fail("--exposure must be a finite number >= 0");
+    settings.exposure = options.exposure.value_or(1.0f);
+    settings.camera = or_fail(
+        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    const bool compare = error_mode || options.compare_reference;
+    if (compare && !mode_needs_tree(settings.mode))
+        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
+
     if (mode_needs_tree(settings.mode) && source.empty())
-        fail("mode '" + options.mode +
+        fail("mode '" + mode_text +
              "' needs a light tree: give --tree TREE.lcut, --server "
              "HOST:PORT or --spawn-server");
     std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
@@ -105,10 +128,38 @@ void run_render(const RenderOptions& options) {
 
     RenderStats stats = or_fail(renderer->render(settings));
     std::vector<uint8_t> display = or_fail(renderer->read_display());
+    std::vector<float> hdr = or_fail(renderer->read_hdr());
+    stats.exposure = settings.exposure;
+    // Shaded modes without --exposure: tone-map the read-back at the automatic exposure.
+    const bool shaded = settings.mode == RenderMode::kReference ||
+                        (settings.mode == RenderMode::kLightcuts && !error_mode);
+    if (shaded && !options.exposure) {
+        stats.exposure = auto_exposure(hdr);
+        stats.auto_exposure = true;
+        display = tone_map_image(hdr, float(stats.exposure));
+    }
+    if (compare) {
+        RenderSettings reference_settings = settings;
+        reference_settings.mode = RenderMode::kReference;
+        RenderStats reference_stats = or_fail(renderer->render(reference_settings));
+        std::vector<float> reference = or_fail(renderer->read_hdr());
+        ErrorStats errors =
+            or_fail(compute_error_stats(hdr, reference, width, height, settings.error_ratio));
+        stats.has_error_stats = true;
+        stats.rel_err_mean = errors.rel_err_mean;
+        stats.rel_err_p99 = errors.rel_err_p99;
+        stats.frac_over_error = errors.frac_over_error;
+        stats.max_err = errors.max_err;
+        stats.error_pixels = errors.measured_pixels;
+        stats.reference_ms = reference_stats.render_ms;
+        if (error_mode) {
+            display = error_heatmap(errors, reference, width, height, settings.error_ratio);
+            stats.mode = "error";
+        }
+    }
     Status png = write_png(options.output, width, height, display);
     if (!png) fail(png.error());
     if (!options.float_output.empty()) {
-        std::vector<float> hdr = or_fail(renderer->read_hdr());
         FloatImage image;
         image.width = width;
         image.height = height;
@@ -128,6 +179,12 @@ void run_render(const RenderOptions& options) {
         Status written = write_stats_json(options.stats, stats);
         if (!written) fail(written.error());
     }
+    if (stats.has_error_stats)
+        std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
+                    "over %.3f, max %.4f, %llu max-cut hits\n",
+                    stats.reference_ms, stats.rel_err_mean, stats.rel_err_p99,
+                    stats.frac_over_error, (unsigned long long)stats.error_pixels,
+                    settings.error_ratio, stats.max_err, (unsigned long long)stats.max_cut_hits);
     std::printf(
         "%s: %s %ux%u, %llu lights (%llu in the tree, %llu classic), %llu nodes, render %.2f ms "
         "GPU, %.2f ms wall (%.0f ms total), avg cut %.2f, max cut %u, %llu non-finite pixels, "
@@ -150,19 +207,35 @@ void add_render_command(CLI::App& app) {
         cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
-    cmd->add_option("--mode", options->mode, "reference, lightcuts, cuts or cutsize")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}))
-        ->capture_default_str();
-    cmd->add_option("--criterion", options->criterion, "Cut criterion: radius (the thesis)")
+    cmd->add_option("--mode", options->mode,
+                    "reference, lightcuts, cuts, cutsize or error (relative error of lightcuts "
+                    "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
+                    "when a tree source (--tree, --server, --spawn-server) is given, else "
+                    "reference")
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "error"}));
+    cmd->add_option("--criterion", options->criterion,
+                    "Cut criterion: bound (the paper's error bounds) or radius (the thesis)")
         ->check(CLI::IsMember({"radius", "bound"}))
         ->capture_default_str();
+    cmd->add_option("--error", options->error_ratio,
+                    "Bound criterion: refine until every node's error bound is <= this x the "
+                    "pixel's total")
+        ->capture_default_str();
+    cmd->add_option("--max-cut", options->max_cut,
+                    "Bound criterion: most nodes in a cut (pixels that reach it are counted as "
+                    "max_cut_hits)")
+        ->capture_default_str();
+    cmd->add_flag("--compare-reference", options->compare_reference,
+                  "Also render the reference and write error statistics (rel_err_mean, "
+                  "rel_err_p99, frac_over_error, max_err; implied by --mode error)");
     cmd->add_option("--size", options->size, "Image size WxH")->capture_default_str();
     auto* camera = cmd->add_option("--camera", options->camera,
                                    "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
     cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")
         ->excludes(camera);
-    cmd->add_option("--exposure", options->exposure, "Linear exposure before the tone curve")
-        ->capture_default_str();
+    cmd->add_option("--exposure", options->exposure,
+                    "Linear exposure before the tone curve (default: automatic, the log-average "
+                    "luminance of the lit pixels maps to 0.18)");
     cmd->add_option("-o,--output", options->output, "8-bit PNG to write")->required();
     cmd->add_option("--float", options->float_output, "Linear float PFM to write");
     cmd->add_option("--stats", options->stats, "Statistics JSON to write");

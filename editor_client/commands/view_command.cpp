@@ -1,25 +1,31 @@
-// editor_client view SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--mode M]
-//   [--size WxH] [--camera ... | --camera-index I] [--exposure E] [--frames N --screenshot OUT.png]
-// A window with the rendered scene: drag with the left button to orbit, the
-// right button to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts,
-// cuts, cutsize; Esc or Q closes.
+// editor_client view SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server]
+//   [--token-file F] [--script FILE] [--mode M] [--size WxH] [--camera ... | --camera-index I]
+//   [--exposure E] [--frames N --screenshot OUT.png] [--headless] [--no-adaptive] [--no-panels]
+// The interactive editor: drag with the left button to orbit, the right button
+// to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts, cuts,
+// cutsize; Esc or Q closes. `--script` runs editor commands through the same
+// session functions the panels call, one command per frame.
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/editor/editor_session.h"
+#include "editor_client/editor/script_runner.h"
 #include "editor_client/render/render_inputs.h"
-#include "editor_client/render/renderer.h"
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/vk/context.h"
+#include "editor_client/window/editor_loop.h"
 #include "editor_client/window/glfw_window.h"
-#include "editor_client/window/view_loop.h"
+#include "editor_client/window/headless_window.h"
 
 namespace lc::client {
 namespace {
@@ -28,6 +34,7 @@ struct ViewCommandOptions {
     std::string scene;
     std::string tree;
     BakeFlags bake;
+    std::string script;
     std::string mode = "reference";
     std::string size = "800x600";
     std::string camera;
@@ -36,6 +43,9 @@ struct ViewCommandOptions {
     uint32_t frames = 0;
     std::string screenshot;
     bool validation = false;
+    bool headless = false;
+    bool no_adaptive = false;
+    bool no_panels = false;
 };
 
 [[noreturn]] void fail(const std::string& message) {
@@ -49,65 +59,97 @@ T or_fail(Result<T> result) {
     return std::move(result).value();
 }
 
+void or_fail(const Status& status) {
+    if (!status) fail(status.error());
+}
+
 void run_view(const ViewCommandOptions& options) {
     std::vector<std::string> warnings;
     Scene scene = or_fail(load_scene(options.scene, warnings));
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
-    ViewOptions view;
-    std::optional<RenderMode> mode = parse_render_mode(options.mode);
-    if (!mode) fail("unknown --mode '" + options.mode + "' (reference, lightcuts, cuts, cutsize)");
-    view.settings.mode = *mode;
     auto [width, height] = or_fail(parse_size(options.size));
-    view.settings.width = width;
-    view.settings.height = height;
     if (!std::isfinite(options.exposure) || options.exposure < 0.0f)
         fail("--exposure must be a finite number >= 0");
-    view.settings.exposure = options.exposure;
-    view.settings.camera = or_fail(
-        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
-    view.frames = options.frames;
-    view.screenshot = options.screenshot;
-    if (!options.screenshot.empty() && options.frames == 0)
-        fail("--screenshot needs --frames N (the frame to save is the last one)");
-
-    TreeSource source;
-    source.dump = options.tree;
-    ProgressDisplay progress(stderr);
-    if (options.bake.has_server()) {
-        BakeClientOptions bake = options.bake.to_options();
-        bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
-        bake.on_warning = [&](const std::string& w) {
-            progress.finish();
-            std::cerr << "server warning: " << w << "\n";
-        };
-        source.bake = bake;
-    }
-    if (mode_needs_tree(view.settings.mode) && source.empty())
+    if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
+        fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
+    std::optional<RenderMode> mode = parse_render_mode(options.mode);
+    if (!mode) fail("unknown --mode '" + options.mode + "' (reference, lightcuts, cuts, cutsize)");
+    const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
+    if (mode_needs_tree(*mode) && !can_get_tree)
         fail("mode '" + options.mode +
-             "' needs a light tree: give --tree TREE.lcut, --server "
-             "HOST:PORT or --spawn-server");
-    std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
-    progress.finish();
+             "' needs a light tree: give --tree TREE.lcut, --server HOST:PORT or --spawn-server");
+    const RenderCamera camera = or_fail(
+        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
 
-    std::unique_ptr<GlfwWindow> window =
-        or_fail(GlfwWindow::create(width, height, "lightcuts view: " + options.scene));
+    std::optional<ScriptRunner> script;
+    if (!options.script.empty())
+        script.emplace(or_fail(load_editor_script(options.script)), options.script);
+
+    EditorSessionOptions session_options;
+    session_options.aspect = float(width) / float(height);
+    if (options.bake.has_server()) session_options.bake = options.bake.to_options();
+    EditorSession session(std::move(scene), session_options);
+    or_fail(session.set_camera(camera));
+    or_fail(session.set_exposure(options.exposure));
+    session.set_mode(*mode);
+    if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
+
+    // A cut mode asked for on the command line with only a server: bake now.
+    // A fixed frame count waits for it, so those frames show the asked mode.
+    if (mode_needs_tree(*mode) && options.tree.empty()) {
+        or_fail(session.start_bake());
+        if (options.frames > 0) {
+            ProgressDisplay progress(stderr);
+            while (session.bake_running()) {
+                if (std::optional<BakeProgress> p = session.bake_progress())
+                    progress.update(p->stage, p->percent);
+                if (session.poll_bake()) break;
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            }
+            progress.finish();
+            const std::optional<BakeReport>& report = session.last_bake();
+            if (!report || !report->succeeded)
+                fail("bake failed: " + (report ? report->error : std::string("no report")));
+        }
+    }
+
+    std::unique_ptr<Window> window;
     vk::ContextOptions context_options;
     context_options.validation = options.validation;
-    context_options.instance_extensions = window->required_instance_extensions();
-    context_options.create_surface = [&](VkInstance instance) {
-        return window->create_surface(instance);
-    };
+    if (options.headless) {
+        window = std::make_unique<HeadlessWindow>(width, height);
+    } else {
+        std::unique_ptr<GlfwWindow> glfw =
+            or_fail(GlfwWindow::create(width, height, "lightcuts editor: " + options.scene));
+        context_options.instance_extensions = glfw->required_instance_extensions();
+        GlfwWindow* raw = glfw.get();
+        context_options.create_surface = [raw](VkInstance instance) {
+            return raw->create_surface(instance);
+        };
+        window = std::move(glfw);
+    }
     vk::Context context = or_fail(vk::Context::create(context_options));
-    std::unique_ptr<Renderer> renderer = or_fail(Renderer::create(context, scene, tree.get()));
-    for (const EffectDecision& d : renderer->effects().decisions)
-        spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
 
-    ViewSummary summary = or_fail(run_view_loop(*window, context, *renderer, view));
-    std::printf("%u frames, last in %s mode, %.2f ms GPU, %u validation messages%s%s\n",
-                summary.frames, render_mode_name(summary.last_settings.mode),
-                summary.last_render_ms, context.validation_message_count(),
-                options.screenshot.empty() ? "" : " -> ", options.screenshot.c_str());
+    EditorLoopOptions loop;
+    loop.width = width;
+    loop.height = height;
+    loop.frames = options.frames;
+    loop.screenshot = options.screenshot;
+    loop.script = script ? &*script : nullptr;
+    loop.adaptive_resolution = !options.no_adaptive;
+    loop.panels = !options.no_panels;
+    EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
+    const double steady_fps =
+        summary.steady_seconds > 0.0 ? summary.steady_frames / summary.steady_seconds : 0.0;
+    std::printf(
+        "%u frames, last in %s mode, %.2f ms GPU, %u validation messages%s%s\n"
+        "steady: %u frames in %.3f s = %.2f fps at %ux%u, %zu lights\n",
+        summary.frames, render_mode_name(summary.last_mode), summary.last_frame.gpu_ms,
+        context.validation_message_count(), options.screenshot.empty() ? "" : " -> ",
+        options.screenshot.c_str(), summary.steady_frames, summary.steady_seconds, steady_fps,
+        summary.last_frame.width, summary.last_frame.height, session.scene().lights.size());
+    if (script && script->state() == ScriptState::kFailed) fail(script->error());
 }
 
 }  // namespace
@@ -116,7 +158,7 @@ void add_view_command(CLI::App& app) {
     auto options = std::make_shared<ViewCommandOptions>();
     CLI::App* cmd = app.add_subcommand(
         "view",
-        "Show a scene in a window (left drag: orbit, right drag: pan, wheel: dolly, "
+        "The interactive editor (left drag: orbit, right drag: pan, wheel: dolly, "
         "1-4: reference/lightcuts/cuts/cutsize, Esc: quit)");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();
@@ -137,6 +179,14 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--frames", options->frames, "Render this many frames, then exit");
     cmd->add_option("--screenshot", options->screenshot,
                     "Save the last frame as PNG (with --frames)");
+    cmd->add_option("--script", options->script,
+                    "Editor commands, one per line (add-light, bake, mode, screenshot, save, ...)")
+        ->check(CLI::ExistingFile);
+    cmd->add_flag("--headless", options->headless,
+                  "Render without a window (frames are not shown; for scripts and benchmarks)");
+    cmd->add_flag("--no-adaptive", options->no_adaptive,
+                  "Always render at full size, also while the camera moves");
+    cmd->add_flag("--no-panels", options->no_panels, "Hide the editor panels and the overlay");
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_view(*options); });

@@ -269,6 +269,14 @@ bool EditorSession::has_server() const {
     return options_.bake.spawn_server || !options_.bake.server.empty();
 }
 
+std::string EditorSession::server_description() const {
+    if (options_.bake.spawn_server)
+        return spawned_server_ ? "local " + spawned_server_->address()
+                               : "local (started at the first bake)";
+    if (!options_.bake.server.empty()) return options_.bake.server;
+    return "none (--server HOST:PORT or --spawn-server)";
+}
+
 Status EditorSession::start_bake() {
     if (job_) return make_error("a bake is already running; cancel it or wait for it");
     if (!has_server())

@@ -95,6 +95,8 @@ public:
 
     // --- Bake ---
     bool has_server() const;
+    // For the status line: "HOST:PORT", "local 127.0.0.1:PORT", or why there is none.
+    std::string server_description() const;
     // Starts a bake of the current lights in the background.
     Status start_bake();
     void cancel_bake();

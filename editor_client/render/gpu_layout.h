@@ -50,8 +50,8 @@ struct alignas(16) GpuTreeNode {
     uint32_t flags = 0;
 };
 
-// Per-node bounds for the paper's error-bound criterion (not uploaded while
-// only the radius criterion exists; kept here so the layout is decided once).
+// Per-node bounds for the paper's error-bound criterion (binding 11 of the
+// compute set; the bound criterion of lightcuts.comp reads them).
 struct alignas(16) GpuNodeBounds {
     glm::vec3 bbox_min{0.0f};
     float cone_cos = 1.0f;
@@ -66,7 +66,7 @@ struct alignas(16) GpuFrameCounters {
     uint32_t max_cut = 0;
     uint32_t nonfinite_pixels = 0;
     uint32_t geometry_pixels = 0;
-    uint32_t pad = 0;
+    uint32_t max_cut_hits = 0;  // bound criterion: pixels whose cut stopped at max-cut
 };
 
 // Push constants shared by the compute passes.

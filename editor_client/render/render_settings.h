@@ -47,7 +47,14 @@ struct RenderSettings {
     uint32_t height = 512;
     RenderCamera camera;
     float exposure = 1.0f;  // linear scale applied before the tone curve
+    // Bound criterion (paper Sec. 4): refine until every node's error bound is
+    // <= error_ratio x the pixel's total estimate, or the cut holds max_cut nodes.
+    float error_ratio = 0.02f;
+    uint32_t max_cut = kDefaultMaxCut;
 };
+
+// Largest max-cut the GPU heap accepts (private memory per invocation).
+inline constexpr uint32_t kMaxGpuCut = 4096;
 
 // "ex,ey,ez,tx,ty,tz,fovy_degrees".
 Result<RenderCamera> parse_camera(std::string_view text);

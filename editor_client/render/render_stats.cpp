@@ -31,6 +31,21 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["light_evaluations"] = s.light_evaluations;
     j["effects_simulated"] = effects_json(s.effects_simulated);
     j["effects_skipped"] = effects_json(s.effects_skipped);
+    j["max_cut_hits"] = s.max_cut_hits;
+    if (s.max_cut_setting > 0) {
+        j["error_ratio"] = s.error_ratio;
+        j["max_cut_setting"] = s.max_cut_setting;
+    }
+    if (s.has_error_stats) {
+        j["rel_err_mean"] = s.rel_err_mean;
+        j["rel_err_p99"] = s.rel_err_p99;
+        j["frac_over_error"] = s.frac_over_error;
+        j["max_err"] = s.max_err;
+        j["error_pixels"] = s.error_pixels;
+        j["reference_ms"] = s.reference_ms;
+    }
+    j["exposure"] = s.exposure;
+    j["auto_exposure"] = s.auto_exposure;
     j["validation_messages"] = s.validation_messages;
     j["validation_enabled"] = s.validation_enabled;
     return j;

@@ -38,6 +38,20 @@ struct RenderStats {
     uint64_t light_evaluations = 0;  // light or cluster evaluations in the lighting pass
     std::vector<EffectDecision> effects_simulated;
     std::vector<EffectDecision> effects_skipped;
+    // Bound criterion: its settings and the pixels whose cut stopped at max_cut.
+    float error_ratio = 0.0f;
+    uint32_t max_cut_setting = 0;
+    uint64_t max_cut_hits = 0;
+    // Lightcuts against the reference rendered in the same run (error_stats.h).
+    bool has_error_stats = false;
+    double rel_err_mean = 0.0;
+    double rel_err_p99 = 0.0;
+    double frac_over_error = 0.0;
+    double max_err = 0.0;
+    uint64_t error_pixels = 0;   // pixels with a non-negligible reference
+    double reference_ms = 0.0;   // GPU time of the reference frame
+    double exposure = 1.0;       // the exposure the PNG was tone-mapped with
+    bool auto_exposure = false;
     uint32_t validation_messages = 0;
     bool validation_enabled = false;
 };

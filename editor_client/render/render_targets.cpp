@@ -22,10 +22,10 @@ Status check_format(const vk::Device& device, VkFormat format, VkFormatFeatureFl
 
 Result<RenderTargets> RenderTargets::create(const vk::Device& device, uint32_t width,
                                             uint32_t height) {
-    LC_RETURN_IF_ERROR(check_format(
-        device, kGBufferFormat,
-        VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
-        "RGBA32F images as colour attachments and storage images (the G-buffer)"));
+    LC_RETURN_IF_ERROR(
+        check_format(device, kGBufferFormat,
+                     VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
+                     "RGBA32F images as colour attachments and storage images (the G-buffer)"));
     LC_RETURN_IF_ERROR(check_format(device, kCutFormat, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT,
                                     "RG32UI storage images (the cut image)"));
     LC_RETURN_IF_ERROR(check_format(device, kDepthFormat,

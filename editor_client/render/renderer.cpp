@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -35,9 +36,11 @@ enum SpecId : uint32_t {
     kSpecRangeWindow = 5,
     kSpecClassicLights = 6,
     kSpecEmissive = 7,
-    kSpecCriterion = 8,  // reserved for the bound criterion
+    kSpecCriterion = 8,  // lightcuts.comp: radius or bound
     kSpecCutView = 9,
     kSpecTextures = 10,
+    kSpecErrorRatio = 11,  // lightcuts.comp, bound criterion (float bits)
+    kSpecMaxCut = 12,      // lightcuts.comp, bound criterion: heap capacity
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -53,7 +56,8 @@ enum FrameBinding : uint32_t {
     kBindTreeNodes = 8,
     kBindClassicLights = 9,
     kBindCounters = 10,
-    kFrameBindingCount = 11,
+    kBindNodeBounds = 11,
+    kFrameBindingCount = 12,
 };
 
 // Timestamp slots: start, then the end of each pass.
@@ -191,6 +195,7 @@ Status Renderer::upload_lights(const LightTree* tree) {
     std::vector<GpuLight> leaves;
     std::vector<GpuLight> classic;
     std::vector<GpuTreeNode> nodes;
+    std::vector<GpuNodeBounds> bounds;
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
         const SceneLight& light = scene_.lights[i];
         LC_RETURN_IF_ERROR(validate_scene_light(light, i));
@@ -207,6 +212,7 @@ Status Renderer::upload_lights(const LightTree* tree) {
         leaves = std::move(gpu_tree->leaves);
         nodes = std::move(gpu_tree->nodes);
         tree_depth_ = gpu_tree->depth;
+        bounds = make_gpu_node_bounds(*tree);
     }
     if (leaves.size() > UINT32_MAX || nodes.size() > size_t(INT32_MAX) ||
         classic.size() > UINT32_MAX)
@@ -224,6 +230,7 @@ Status Renderer::upload_lights(const LightTree* tree) {
     LC_RETURN_IF_ERROR(upload(leaf_lights_, std::as_bytes(std::span(leaves))));
     LC_RETURN_IF_ERROR(upload(classic_lights_, std::as_bytes(std::span(classic))));
     LC_RETURN_IF_ERROR(upload(tree_nodes_, std::as_bytes(std::span(nodes))));
+    LC_RETURN_IF_ERROR(upload(node_bounds_, std::as_bytes(std::span(bounds))));
     leaf_count_ = uint32_t(leaves.size());
     classic_count_ = uint32_t(classic.size());
     node_count_ = uint32_t(nodes.size());
@@ -257,9 +264,14 @@ Status Renderer::validate(const RenderSettings& settings) const {
     if (mode_needs_tree(settings.mode) && !has_tree_)
         return make_error(std::string("mode '") + render_mode_name(settings.mode) +
                           "' needs a light tree (--tree, --server or --spawn-server)");
-    if (settings.criterion != CutCriterion::kRadius)
-        return make_error(std::string("cut criterion '") + criterion_name(settings.criterion) +
-                          "' is not implemented in the renderer yet (use radius)");
+    if (settings.criterion != CutCriterion::kRadius && settings.criterion != CutCriterion::kBound)
+        return make_error("unknown cut criterion " +
+                          std::to_string(static_cast<int>(settings.criterion)));
+    if (!std::isfinite(settings.error_ratio) || settings.error_ratio < 0.0f)
+        return make_error("the error ratio must be a finite number >= 0");
+    if (settings.max_cut < 1 || settings.max_cut > kMaxGpuCut)
+        return make_error("max cut " + std::to_string(settings.max_cut) + " is outside 1 .. " +
+                          std::to_string(kMaxGpuCut));
     const RenderCamera& c = settings.camera;
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up) || !std::isfinite(c.yfov) ||
         !(c.yfov > 0.0f && c.yfov < 3.14f))
@@ -295,6 +307,7 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindTreeNodes, tree_nodes_.handle())
         .storage_buffer(kBindClassicLights, classic_lights_.handle())
         .storage_buffer(kBindCounters, counters_.handle())
+        .storage_buffer(kBindNodeBounds, node_bounds_.handle())
         .update(context_.device().handle());
     frame_set_dirty_ = false;
 }
@@ -323,9 +336,15 @@ Result<VkPipeline> Renderer::gbuffer_pipeline() {
     return gbuffer_pipeline_->handle();
 }
 
-Result<VkPipeline> Renderer::lighting_pipeline(RenderMode mode) {
+Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
+    const RenderMode mode = settings.mode;
     std::optional<vk::ComputePipeline>& slot =
         mode == RenderMode::kReference ? reference_pipeline_ : lightcuts_pipeline_;
+    // The cut settings are specialization constants: a change rebuilds the pipeline.
+    const bool bound = settings.criterion == CutCriterion::kBound;
+    const LightcutsPipelineKey key{settings.criterion, bound ? settings.error_ratio : 0.0f,
+                                   bound ? settings.max_cut : 0u};
+    if (mode != RenderMode::kReference && slot && !(lightcuts_key_ == key)) slot.reset();
     if (!slot) {
         vk::Specialization spec;
         spec.set_uint(kSpecWorkgroupX, options_.workgroup_size)
@@ -336,6 +355,13 @@ Result<VkPipeline> Renderer::lighting_pipeline(RenderMode mode) {
             .set_bool(kSpecRangeWindow, effects_.range_window)
             .set_bool(kSpecClassicLights, effects_.classic_lights)
             .set_bool(kSpecEmissive, effects_.emissive);
+        if (mode != RenderMode::kReference) {
+            // The heap needs room for one refinement (two children) even at max-cut 1.
+            spec.set_uint(kSpecCriterion, static_cast<uint32_t>(settings.criterion))
+                .set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(settings.error_ratio))
+                .set_uint(kSpecMaxCut, std::max(settings.max_cut, 2u));
+            lightcuts_key_ = key;
+        }
         auto code =
             mode == RenderMode::kReference ? spirv(reference_comp_spv) : spirv(lightcuts_comp_spv);
         Result<vk::ComputePipeline> pipeline = vk::ComputePipeline::create(
@@ -457,7 +483,7 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
     Result<VkPipeline> gbuffer = gbuffer_pipeline();
     if (!gbuffer) return make_error(gbuffer.error());
-    Result<VkPipeline> lighting = lighting_pipeline(settings.mode);
+    Result<VkPipeline> lighting = lighting_pipeline(settings);
     if (!lighting) return make_error(lighting.error());
     Result<VkPipeline> output = output_pipeline(settings.mode);
     if (!output) return make_error(output.error());
@@ -520,7 +546,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     // Build targets and pipelines before the clock starts: wall_ms is the frame.
     LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
     if (auto p = gbuffer_pipeline(); !p) return make_error(p.error());
-    if (auto p = lighting_pipeline(settings.mode); !p) return make_error(p.error());
+    if (auto p = lighting_pipeline(settings); !p) return make_error(p.error());
     if (auto p = output_pipeline(settings.mode); !p) return make_error(p.error());
 
     auto start = std::chrono::steady_clock::now();
@@ -556,6 +582,11 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.max_cut = counters->max_cut;
     stats.geometry_pixels = counters->geometry_pixels;
     stats.nonfinite_pixels = counters->nonfinite_pixels;
+    stats.max_cut_hits = counters->max_cut_hits;
+    if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
+        stats.error_ratio = settings.error_ratio;
+        stats.max_cut_setting = settings.max_cut;
+    }
 
     Result<std::vector<uint32_t>> cuts = read_cuts();
     if (!cuts) return make_error(cuts.error());

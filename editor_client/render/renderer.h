@@ -104,7 +104,7 @@ private:
     Status ensure_targets(uint32_t width, uint32_t height);
     void update_frame_descriptors();
     Result<VkPipeline> gbuffer_pipeline();
-    Result<VkPipeline> lighting_pipeline(RenderMode mode);
+    Result<VkPipeline> lighting_pipeline(const RenderSettings& settings);
     Result<VkPipeline> output_pipeline(RenderMode mode);
     void record_gbuffer_pass(VkCommandBuffer cmd, VkPipeline pipeline,
                              const RenderSettings& settings);
@@ -126,6 +126,7 @@ private:
     vk::Buffer tree_nodes_;
     vk::Buffer classic_lights_;
     vk::Buffer counters_;
+    vk::Buffer node_bounds_;  // GpuNodeBounds per tree node (bound criterion)
     vk::TimestampQueryPool timestamps_;
 
     vk::DescriptorSetLayout frame_layout_;
@@ -139,6 +140,14 @@ private:
     std::optional<vk::GraphicsPipeline> gbuffer_pipeline_;
     std::optional<vk::ComputePipeline> reference_pipeline_;
     std::optional<vk::ComputePipeline> lightcuts_pipeline_;
+    // The cut settings lightcuts_pipeline_ was specialised for.
+    struct LightcutsPipelineKey {
+        CutCriterion criterion = CutCriterion::kRadius;
+        float error_ratio = 0.0f;
+        uint32_t max_cut = 0;
+        bool operator==(const LightcutsPipelineKey&) const = default;
+    };
+    LightcutsPipelineKey lightcuts_key_;
     std::optional<vk::ComputePipeline> tone_map_pipeline_;
     std::optional<vk::ComputePipeline> cuts_view_pipeline_;
     std::optional<vk::ComputePipeline> cut_size_view_pipeline_;

@@ -334,7 +334,7 @@ Scene make_thesis_fig91_scene() {
         scene.lights.push_back(point_light(from_thesis(e.x, e.y, 150.0f), e.brightness, 250.0f,
                                            color, *Guid::parse(e.guid)));
     }
-    scene.cameras.push_back(look_at("thesis-fig91", glm::vec3(-75.0f, 650.0f, 550.0f),
+    scene.cameras.push_back(look_at("thesis-fig91", glm::vec3(-75.0f, 850.0f, 800.0f),
                                     glm::vec3(-75.0f, 0.0f, -50.0f), 0.9f));
     finish(scene);
     return scene;

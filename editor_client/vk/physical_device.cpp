@@ -50,7 +50,8 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!features13.dynamicRendering) return "dynamicRendering is not supported";
     // The lightcuts walk votes across a subgroup (shaders/lightcuts.comp).
-    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceSubgroupProperties subgroup{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &subgroup;
     vkGetPhysicalDeviceProperties2(device, &properties);

@@ -85,14 +85,14 @@ void GlfwWindow::set_title(const std::string& title) { glfwSetWindowTitle(window
 
 void GlfwWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));
-    if (action != GLFW_PRESS) return;
+    if (action != GLFW_PRESS || self->ui_keyboard_) return;
     if (key >= GLFW_KEY_1 && key <= GLFW_KEY_4) self->pending_.mode_key = key - GLFW_KEY_1 + 1;
     if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) glfwSetWindowShouldClose(window, GLFW_TRUE);
 }
 
 void GlfwWindow::on_cursor(GLFWwindow* window, double x, double y) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));
-    if (self->have_cursor_) {
+    if (self->have_cursor_ && !self->ui_mouse_) {
         glm::vec2 delta(float(x - self->last_x_), float(y - self->last_y_));
         if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
             self->pending_.orbit_drag += delta;
@@ -106,7 +106,7 @@ void GlfwWindow::on_cursor(GLFWwindow* window, double x, double y) {
 
 void GlfwWindow::on_scroll(GLFWwindow* window, double, double dy) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));
-    self->pending_.scroll += float(dy);
+    if (!self->ui_mouse_) self->pending_.scroll += float(dy);
 }
 
 }  // namespace lc::client

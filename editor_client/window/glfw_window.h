@@ -26,6 +26,15 @@ public:
     WindowInput poll() override;
     void set_title(const std::string& title) override;
 
+    // For the ImGui backend, which installs its callbacks after ours.
+    GLFWwindow* handle() const { return window_; }
+    // While the panels hold the mouse or keyboard, drags, the wheel and keys
+    // are theirs: they neither move the camera nor switch modes or close.
+    void set_ui_capture(bool mouse, bool keyboard) {
+        ui_mouse_ = mouse;
+        ui_keyboard_ = keyboard;
+    }
+
 private:
     GlfwWindow() = default;
 
@@ -37,6 +46,8 @@ private:
     WindowInput pending_;
     double last_x_ = 0.0, last_y_ = 0.0;
     bool have_cursor_ = false;
+    bool ui_mouse_ = false;
+    bool ui_keyboard_ = false;
 };
 
 }  // namespace lc::client

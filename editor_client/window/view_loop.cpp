@@ -13,62 +13,10 @@
 #include "editor_client/vk/sync.h"
 #include "editor_client/vk/vk_result.h"
 #include "editor_client/window/orbit_camera.h"
+#include "editor_client/window/presentation.h"
 
 namespace lc::client {
 namespace {
-
-// Per-swapchain objects: the swapchain and one "rendered" semaphore per image
-// (a present may still wait on the previous one of another image).
-struct Presentation {
-    vk::Swapchain swapchain;
-    std::vector<vk::Semaphore> rendered;
-};
-
-Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent,
-                                       Presentation* old) {
-    Presentation p;
-    Result<vk::Swapchain> swapchain = vk::Swapchain::create(
-        context.device(), context.surface(), extent, old != nullptr ? &old->swapchain : nullptr);
-    if (!swapchain) return make_error(swapchain.error());
-    p.swapchain = std::move(swapchain).value();
-    VkFormatProperties props;
-    vkGetPhysicalDeviceFormatProperties(context.physical().handle, p.swapchain.format(), &props);
-    if ((props.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) == 0)
-        return make_error("the swapchain format cannot be a blit destination");
-    for (size_t i = 0; i < p.swapchain.images().size(); ++i) {
-        Result<vk::Semaphore> s = vk::Semaphore::create(context.device().handle());
-        if (!s) return make_error(s.error());
-        p.rendered.push_back(std::move(s).value());
-    }
-    return p;
-}
-
-// Scales the renderer's display image onto the swapchain image.
-void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent) {
-    vk::transition_image(
-        cmd, {display.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-              VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
-    // The acquire semaphore is waited at the blit stage, so the layout change
-    // chains after it.
-    vk::transition_image(cmd, {target, VK_IMAGE_LAYOUT_UNDEFINED,
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                               0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
-    VkImageBlit region{};
-    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[1] = {int32_t(display.desc().width), int32_t(display.desc().height), 1};
-    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.dstOffsets[1] = {int32_t(extent.width), int32_t(extent.height), 1};
-    vkCmdBlitImage(cmd, display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
-                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_LINEAR);
-    vk::transition_image(cmd, {target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_BLIT_BIT,
-                               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0});
-    // Back to GENERAL, where the renderer and its read-backs expect it.
-    vk::transition_image(
-        cmd, {display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-              VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0});
-}
 
 RenderMode mode_for_key(int key) { return static_cast<RenderMode>(key - 1); }
 

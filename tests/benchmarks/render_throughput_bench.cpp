@@ -205,8 +205,9 @@ void BM_MinimalLightLoop(benchmark::State& state) {
             timestamps->write(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, 1);
         });
         if (!run) return make_error(run.error());
-        wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                      .count();
+        wall_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
         Result<std::vector<double>> ms = timestamps->read_ms();
         if (!ms) return make_error(ms.error());
         return (*ms)[1];

@@ -1,0 +1,324 @@
+#include "editor_client/window/editor_loop.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include <imgui.h>
+
+#include "editor_client/editor/editor_panels.h"
+#include "editor_client/render/image_io.h"
+#include "editor_client/render/renderer.h"
+#include "editor_client/vk/vk_result.h"
+#include "editor_client/window/glfw_window.h"
+#include "editor_client/window/imgui_layer.h"
+#include "editor_client/window/orbit_camera.h"
+#include "editor_client/window/presentation.h"
+
+namespace lc::client {
+namespace {
+
+bool same_camera(const RenderCamera& a, const RenderCamera& b) {
+    return a.eye == b.eye && a.target == b.target && a.up == b.up && a.yfov == b.yfov;
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+        .count();
+}
+
+// Keeps the renderer's lights and tree in step with the session: the renderer
+// reads the scene's lights only when its tree is set, so every edit or import
+// re-sets it. A tree baked for other lights is not shown: until the next bake
+// the view renders the edited lights in reference mode instead.
+class RendererSync {
+public:
+    RendererSync(Renderer& renderer, const EditorSession& session)
+        : renderer_(renderer), session_(session) {}
+
+    Status update() {
+        if (synced_ && revision_ == session_.scene_revision() &&
+            generation_ == session_.tree_generation())
+            return Ok{};
+        tree_ = session_.tree_matches_scene() ? session_.tree() : nullptr;
+        if (tree_ && tree_->empty()) tree_.reset();
+        LC_RETURN_IF_ERROR(renderer_.set_tree(tree_.get()));
+        revision_ = session_.scene_revision();
+        generation_ = session_.tree_generation();
+        synced_ = true;
+        return Ok{};
+    }
+
+    // The session's settings at a size, falling back to reference mode while
+    // there is no tree matching the lights.
+    RenderSettings settings(uint32_t width, uint32_t height) const {
+        const ViewState& view = session_.view();
+        RenderSettings s;
+        s.mode = view.mode;
+        if (mode_needs_tree(s.mode) && !renderer_.has_tree()) s.mode = RenderMode::kReference;
+        s.criterion = view.criterion;
+        s.width = width;
+        s.height = height;
+        s.camera = view.camera;
+        s.exposure = view.exposure;
+        return s;
+    }
+
+private:
+    Renderer& renderer_;
+    const EditorSession& session_;
+    std::shared_ptr<const LightTree> tree_;  // what the GPU holds a copy of
+    uint64_t revision_ = 0;
+    uint64_t generation_ = 0;
+    bool synced_ = false;
+};
+
+// Screenshots render the current state afresh at full size, so a scripted
+// screenshot right after an edit shows the edit (not the last, possibly
+// reduced, frame). Called between frames, when the GPU is idle.
+class LoopHost final : public EditorHost {
+public:
+    LoopHost(Renderer& renderer, RendererSync& sync, uint32_t width, uint32_t height)
+        : renderer_(renderer), sync_(sync), width_(width), height_(height) {}
+
+    Status screenshot(const std::filesystem::path& path) override {
+        if (path.empty()) return make_error("screenshot needs a file name");
+        LC_RETURN_IF_ERROR(sync_.update());
+        Result<RenderStats> rendered = renderer_.render(sync_.settings(width_, height_));
+        if (!rendered) return make_error("screenshot: " + rendered.error());
+        Result<std::vector<uint8_t>> pixels = renderer_.read_display();
+        if (!pixels) return make_error("screenshot: " + pixels.error());
+        std::error_code ec;
+        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+        LC_RETURN_IF_ERROR(write_png(path, renderer_.width(), renderer_.height(), *pixels));
+        ++count_;
+        return Ok{};
+    }
+    void request_quit() override { quit_ = true; }
+
+    bool quit_requested() const { return quit_; }
+    uint32_t count() const { return count_; }
+
+private:
+    Renderer& renderer_;
+    RendererSync& sync_;
+    uint32_t width_, height_;
+    bool quit_ = false;
+    uint32_t count_ = 0;
+};
+
+void log_bake(const BakeReport& report) {
+    for (const std::string& w : report.warnings) spdlog::warn("server warning: {}", w);
+    if (report.succeeded)
+        spdlog::info("bake: {} lights -> {} nodes in {:.0f} ms (build {:.0f} ms)",
+                     report.light_count, report.node_count, report.total_ms, report.build_ms);
+    else if (report.cancelled)
+        spdlog::info("bake cancelled; the previous tree stays");
+    else
+        spdlog::error("bake failed: {}; the previous tree stays", report.error);
+}
+
+}  // namespace
+
+Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context,
+                                          EditorSession& session,
+                                          const EditorLoopOptions& options) {
+    if (options.width == 0 || options.height == 0)
+        return make_error("the editor's render size must be at least 1x1");
+    const vk::Device& device = context.device();
+    const bool presenting = window.has_surface();
+    if (presenting && context.surface() == VK_NULL_HANDLE)
+        return make_error("the Vulkan context was created without the window's surface");
+
+    // The renderer keeps a reference to the session's scene, whose lights
+    // RendererSync re-reads after every edit.
+    Result<std::unique_ptr<Renderer>> created = Renderer::create(context, session.scene(), nullptr);
+    if (!created) return make_error(created.error());
+    Renderer& renderer = **created;
+    RendererSync sync(renderer, session);
+    LC_RETURN_IF_ERROR(sync.update());
+    LoopHost host(renderer, sync, options.width, options.height);
+
+    Result<VkCommandBuffer> cmd = context.command_pool().allocate();
+    if (!cmd) return make_error(cmd.error());
+    Result<vk::Fence> frame_done = vk::Fence::create(device.handle());
+    if (!frame_done) return make_error(frame_done.error());
+    Result<vk::Semaphore> image_ready = vk::Semaphore::create(device.handle());
+    if (!image_ready) return make_error(image_ready.error());
+    std::optional<Presentation> presentation;
+    bool recreate = presenting;
+    GlfwWindow* glfw = options.panels ? dynamic_cast<GlfwWindow*>(&window) : nullptr;
+    std::unique_ptr<ImGuiLayer> ui;  // made with the first swapchain (it needs its format)
+    PanelState panel_state;
+
+    OrbitCamera orbit(session.view().camera);
+    RenderCamera orbit_camera = session.view().camera;
+    AdaptiveResolution adaptive(options.adaptive);
+    EditorLoopSummary summary;
+    const auto started = std::chrono::steady_clock::now();
+    std::optional<std::chrono::steady_clock::time_point> steady_since;
+    if (options.script == nullptr) steady_since = started;
+
+    while (options.frames == 0 || summary.frames < options.frames) {
+        const auto frame_start = std::chrono::steady_clock::now();
+        if (ui) ui->discard_open_frame();
+        WindowInput input = window.poll();
+        if (input.close_requested) break;
+        if (ui) {
+            // The panels act on the session before this frame's settings are
+            // taken, so what they change shows in this very frame.
+            ui->begin_frame();
+            const ImGuiIO& io = ImGui::GetIO();
+            std::optional<ViewClick> click;
+            if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse)
+                click = ViewClick{io.MousePos.x, io.MousePos.y,
+                                  uint32_t(std::max(io.DisplaySize.x, 1.0f)),
+                                  uint32_t(std::max(io.DisplaySize.y, 1.0f))};
+            draw_editor_panels(session, host, panel_state, summary.last_frame, click);
+            glfw->set_ui_capture(ui->wants_mouse(), ui->wants_keyboard());
+        }
+
+        // A script or a panel may have moved the camera: orbit from there.
+        if (!same_camera(session.view().camera, orbit_camera)) {
+            orbit = OrbitCamera(session.view().camera);
+            orbit_camera = session.view().camera;
+        }
+        const bool moved = input.orbit_drag != glm::vec2(0.0f) ||
+                           input.pan_drag != glm::vec2(0.0f) || input.scroll != 0.0f;
+        if (moved) {
+            orbit.orbit(input.orbit_drag);
+            orbit.pan(input.pan_drag);
+            orbit.dolly(input.scroll);
+            RenderCamera next = orbit.camera();
+            next.up = session.view().camera.up;
+            if (session.set_camera(next)) orbit_camera = session.view().camera;
+        }
+        if (input.mode_key && *input.mode_key >= 1 && *input.mode_key <= kRenderModeCount)
+            session.set_mode(static_cast<RenderMode>(*input.mode_key - 1));
+
+        if (std::optional<BakeReport> report = session.poll_bake()) log_bake(*report);
+        if (options.script != nullptr && !steady_since) {
+            const ScriptState state = options.script->step(session, host);
+            summary.script_state = state;
+            if (state == ScriptState::kFailed) {
+                LC_RETURN_IF_ERROR(device.wait_idle());
+                return make_error(options.script->error());
+            }
+            if (state == ScriptState::kFinished || state == ScriptState::kQuit)
+                steady_since = std::chrono::steady_clock::now();
+        }
+        if (host.quit_requested()) break;
+        LC_RETURN_IF_ERROR(sync.update());
+
+        const uint32_t divisor =
+            options.adaptive_resolution ? adaptive.next_divisor(moved, elapsed_ms(started)) : 1;
+        const RenderSettings settings = sync.settings(reduced_size(options.width, divisor),
+                                                      reduced_size(options.height, divisor));
+
+        uint32_t image_index = 0;
+        if (presenting) {
+            VkExtent2D extent = window.framebuffer_size();
+            if (extent.width == 0 || extent.height == 0) {  // minimised: nothing to show
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+                continue;
+            }
+            if (presentation && (presentation->swapchain.extent().width != extent.width ||
+                                 presentation->swapchain.extent().height != extent.height))
+                recreate = true;
+            if (recreate) {
+                LC_RETURN_IF_ERROR(device.wait_idle());
+                Result<Presentation> next =
+                    make_presentation(context, extent, presentation ? &*presentation : nullptr);
+                if (!next) return make_error(next.error());
+                presentation = std::move(next).value();
+                recreate = false;
+                if (glfw != nullptr && !ui) {
+                    Result<std::unique_ptr<ImGuiLayer>> layer =
+                        ImGuiLayer::create(glfw->handle(), context, presentation->swapchain.format());
+                    if (!layer) return make_error("editor panels: " + layer.error());
+                    ui = std::move(layer).value();
+                }
+                if (ui) LC_RETURN_IF_ERROR(ui->attach(presentation->swapchain));
+            }
+            Result<vk::AcquireStatus> acquired =
+                presentation->swapchain.acquire(image_ready->handle(), image_index);
+            if (!acquired) return make_error(acquired.error());
+            if (*acquired == vk::AcquireStatus::kOutOfDate) {
+                recreate = true;
+                continue;
+            }
+        }
+
+        LC_VK_CHECK(vkResetCommandBuffer(*cmd, 0));
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        LC_VK_CHECK(vkBeginCommandBuffer(*cmd, &begin));
+        Status recorded = renderer.record(*cmd, settings);
+        const bool draw_panels = ui && ui->frame_open() && recorded && presenting;
+        if (recorded && presenting) {
+            record_blit(*cmd, renderer.display_image(),
+                        presentation->swapchain.images()[image_index],
+                        presentation->swapchain.extent(), draw_panels);
+            if (draw_panels) ui->record(*cmd, image_index);
+        }
+        LC_VK_CHECK(vkEndCommandBuffer(*cmd));
+        if (!recorded) {
+            LC_RETURN_IF_ERROR(device.wait_idle());
+            return make_error(recorded.error());
+        }
+
+        VkSemaphore wait = image_ready->handle();
+        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        VkSemaphore signal =
+            presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.waitSemaphoreCount = presenting ? 1 : 0;
+        submit.pWaitSemaphores = &wait;
+        submit.pWaitDstStageMask = &wait_stage;
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &*cmd;
+        submit.signalSemaphoreCount = presenting ? 1 : 0;
+        submit.pSignalSemaphores = &signal;
+        LC_VK_CHECK(vkQueueSubmit(device.queue(), 1, &submit, frame_done->handle()));
+        if (presenting) {
+            Result<vk::AcquireStatus> presented =
+                presentation->swapchain.present(device.queue(), signal, image_index);
+            if (!presented) return make_error(presented.error());
+            if (*presented == vk::AcquireStatus::kOutOfDate) recreate = true;
+        }
+        LC_RETURN_IF_ERROR(frame_done->wait_and_reset());
+
+        ++summary.frames;
+        FrameInfo& frame = summary.last_frame;
+        frame.frame_ms = elapsed_ms(frame_start);
+        frame.width = settings.width;
+        frame.height = settings.height;
+        frame.divisor = divisor;
+        if (Result<PassTimings> timings = renderer.read_timings()) frame.gpu_ms = timings->total_ms;
+        frame.avg_cut.reset();
+        frame.max_cut.reset();
+        if (settings.mode != RenderMode::kReference) {
+            if (Result<GpuFrameCounters> counters = renderer.read_counters())
+                frame.max_cut = counters->max_cut;
+        }
+        summary.last_mode = settings.mode;
+        adaptive.report_frame(divisor, frame.frame_ms);
+        if (steady_since) ++summary.steady_frames;
+        const std::vector<std::string> lines = overlay_lines(session, frame);
+        window.set_title("lightcuts editor: " + (lines.empty() ? std::string() : lines[0]));
+    }
+    LC_RETURN_IF_ERROR(device.wait_idle());
+    const auto ended = std::chrono::steady_clock::now();
+    summary.seconds = std::chrono::duration<double>(ended - started).count();
+    if (steady_since)
+        summary.steady_seconds = std::chrono::duration<double>(ended - *steady_since).count();
+
+    if (!options.screenshot.empty()) LC_RETURN_IF_ERROR(host.screenshot(options.screenshot));
+    summary.screenshots = host.count();
+    return summary;
+}
+
+}  // namespace lc::client

@@ -1,0 +1,179 @@
+#include "editor_client/window/imgui_layer.h"
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
+
+#include <atomic>
+
+#include "editor_client/vk/vk_result.h"
+
+namespace lc::client {
+namespace {
+
+std::atomic<bool> g_layer_exists{false};
+
+void check_imgui_vk(VkResult result) {
+    // The backend has no error channel; a failure here is logged by the
+    // validation layer when enabled, and shows as a missing panel.
+    (void)result;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window,
+                                                       const vk::Context& context,
+                                                       VkFormat swapchain_format) {
+    if (window == nullptr) return make_error("the editor panels need a GLFW window");
+    if (g_layer_exists.exchange(true)) return make_error("an ImGui layer already exists");
+    std::unique_ptr<ImGuiLayer> layer(new ImGuiLayer(context));
+    const VkDevice device = context.device().handle();
+
+    VkAttachmentDescription colour{};
+    colour.format = swapchain_format;
+    colour.samples = VK_SAMPLE_COUNT_1_BIT;
+    colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the blitted view stays under the panels
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colour.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    colour.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    colour.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colour.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    VkAttachmentReference reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &reference;
+    VkSubpassDependency dependency{};
+    dependency.srcSubpass = VK_SUBPASS_EXTERNAL;
+    dependency.dstSubpass = 0;
+    dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependency.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependency.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependency.dstAccessMask =
+        VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    VkRenderPassCreateInfo pass_info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+    pass_info.attachmentCount = 1;
+    pass_info.pAttachments = &colour;
+    pass_info.subpassCount = 1;
+    pass_info.pSubpasses = &subpass;
+    pass_info.dependencyCount = 1;
+    pass_info.pDependencies = &dependency;
+    LC_VK_CHECK(vkCreateRenderPass(device, &pass_info, nullptr, &layer->render_pass_));
+
+    // The font atlas is the backend's only descriptor set.
+    VkDescriptorPoolSize sizes{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
+    VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pool_info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    pool_info.maxSets = 4;
+    pool_info.poolSizeCount = 1;
+    pool_info.pPoolSizes = &sizes;
+    LC_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &layer->descriptor_pool_));
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // deterministic layout, no file left behind
+    ImGui::StyleColorsDark();
+    // Installed after GlfwWindow's callbacks, so ImGui chains to them.
+    if (!ImGui_ImplGlfw_InitForVulkan(window, true))
+        return make_error("ImGui could not attach to the GLFW window");
+    layer->glfw_ready_ = true;
+
+    ImGui_ImplVulkan_InitInfo init{};
+    init.Instance = context.instance().handle();
+    init.PhysicalDevice = context.physical().handle;
+    init.Device = device;
+    init.QueueFamily = context.device().queue_family();
+    init.Queue = context.device().queue();
+    init.DescriptorPool = layer->descriptor_pool_;
+    init.MinImageCount = 2;
+    init.ImageCount = 3;
+    init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+    init.CheckVkResultFn = &check_imgui_vk;
+    if (!ImGui_ImplVulkan_Init(&init, layer->render_pass_))
+        return make_error("ImGui's Vulkan backend failed to initialise");
+    layer->vulkan_ready_ = true;
+    LC_RETURN_IF_ERROR(context.command_pool().run_one_time(
+        context.device(), [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }));
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+    return layer;
+}
+
+ImGuiLayer::~ImGuiLayer() {
+    const VkDevice device = context_.device().handle();
+    vkDeviceWaitIdle(device);
+    if (frame_open_) ImGui::EndFrame();
+    if (vulkan_ready_) ImGui_ImplVulkan_Shutdown();
+    if (glfw_ready_) ImGui_ImplGlfw_Shutdown();
+    if (ImGui::GetCurrentContext() != nullptr) ImGui::DestroyContext();
+    destroy_framebuffers();
+    if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
+    if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device, render_pass_, nullptr);
+    g_layer_exists.store(false);
+}
+
+void ImGuiLayer::destroy_framebuffers() {
+    const VkDevice device = context_.device().handle();
+    for (VkFramebuffer f : framebuffers_) vkDestroyFramebuffer(device, f, nullptr);
+    for (VkImageView v : views_) vkDestroyImageView(device, v, nullptr);
+    framebuffers_.clear();
+    views_.clear();
+}
+
+Status ImGuiLayer::attach(const vk::Swapchain& swapchain) {
+    LC_RETURN_IF_ERROR(context_.device().wait_idle());
+    destroy_framebuffers();
+    const VkDevice device = context_.device().handle();
+    extent_ = swapchain.extent();
+    for (VkImage image : swapchain.images()) {
+        VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        view_info.image = image;
+        view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view_info.format = swapchain.format();
+        view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkImageView view = VK_NULL_HANDLE;
+        LC_VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
+        views_.push_back(view);
+        VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+        fb_info.renderPass = render_pass_;
+        fb_info.attachmentCount = 1;
+        fb_info.pAttachments = &view;
+        fb_info.width = extent_.width;
+        fb_info.height = extent_.height;
+        fb_info.layers = 1;
+        VkFramebuffer framebuffer = VK_NULL_HANDLE;
+        LC_VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &framebuffer));
+        framebuffers_.push_back(framebuffer);
+    }
+    ImGui_ImplVulkan_SetMinImageCount(2);
+    return Ok{};
+}
+
+void ImGuiLayer::discard_open_frame() {
+    if (frame_open_) ImGui::EndFrame();
+    frame_open_ = false;
+}
+
+void ImGuiLayer::begin_frame() {
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    frame_open_ = true;
+}
+
+void ImGuiLayer::record(VkCommandBuffer cmd, uint32_t image_index) {
+    ImGui::Render();
+    frame_open_ = false;
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = render_pass_;
+    begin.framebuffer = framebuffers_.at(image_index);
+    begin.renderArea.extent = extent_;
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
+    vkCmdEndRenderPass(cmd);
+}
+
+bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
+bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+
+}  // namespace lc::client

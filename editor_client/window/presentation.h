@@ -1,0 +1,34 @@
+#pragma once
+// The swapchain side of a frame loop, shared by the plain view loop and the
+// editor loop: the swapchain with one "rendered" semaphore per image, and the
+// blit that scales the renderer's display image onto a swapchain image.
+#include <vulkan/vulkan.h>
+
+#include <vector>
+
+#include "editor_client/vk/context.h"
+#include "editor_client/vk/image.h"
+#include "editor_client/vk/swapchain.h"
+#include "editor_client/vk/sync.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+// Per-swapchain objects: a present may still wait on the previous semaphore
+// of another image, so each image has its own.
+struct Presentation {
+    vk::Swapchain swapchain;
+    std::vector<vk::Semaphore> rendered;
+};
+
+Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent,
+                                       Presentation* old);
+
+// Scales `display` (GENERAL, written by compute) onto `target` and leaves
+// `target` ready to present and `display` back in GENERAL. With
+// `keep_target_for_drawing`, `target` ends in COLOR_ATTACHMENT_OPTIMAL instead
+// so a UI pass can draw over it (the pass then moves it to PRESENT_SRC).
+void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent,
+                 bool keep_target_for_drawing = false);
+
+}  // namespace lc::client

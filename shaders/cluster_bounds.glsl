@@ -1,0 +1,84 @@
+// Upper bounds on what a light-tree cluster can contribute at a point, for the
+// bound criterion (paper Sec. 4.1). A float mirror of geometric_bound() in
+// editor_client/render/cpu_evaluator.cpp: same cases, same order.
+#ifndef LC_CLUSTER_BOUNDS_GLSL
+#define LC_CLUSTER_BOUNDS_GLSL
+
+#include "common_lighting.glsl"
+#include "frame_bindings.glsl"
+
+// Upper bound of cos(angle(axis, v)) over every v in the box [lo, hi] (paper
+// Eq. 4): rotate the box's corners into a frame whose z is `axis`, bound them,
+// then bound v_z / |v| from the largest v_z and the smallest (or largest)
+// lateral extent.
+float max_cos_to_box(vec3 axis, vec3 lo, vec3 hi) {
+    // Orthonormal frame (t, s, axis), Duff et al.'s branchless construction.
+    float sign_z = axis.z < 0.0 ? -1.0 : 1.0;
+    float a = -1.0 / (sign_z + axis.z);
+    float b = axis.x * axis.y * a;
+    vec3 t = vec3(1.0 + sign_z * axis.x * axis.x * a, sign_z * b, -sign_z * axis.x);
+    vec3 s = vec3(b, sign_z + axis.y * axis.y * a, -axis.y);
+    vec3 llo = vec3(3.0e38);
+    vec3 lhi = vec3(-3.0e38);
+    for (int corner = 0; corner < 8; ++corner) {
+        vec3 c = vec3((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y,
+                      (corner & 4) != 0 ? hi.z : lo.z);
+        vec3 local = vec3(dot(c, t), dot(c, s), dot(c, axis));
+        llo = min(llo, local);
+        lhi = max(lhi, local);
+    }
+    float z_max = lhi.z;
+    vec2 lat_lo = llo.xy;
+    vec2 lat_hi = lhi.xy;
+    if (z_max >= 0.0) {
+        // Smallest squared lateral extent: 0 when the interval straddles 0.
+        vec2 m = mix(min(lat_lo * lat_lo, lat_hi * lat_hi), vec2(0.0),
+                     lessThanEqual(lat_lo * lat_hi, vec2(0.0)));
+        float denom2 = m.x + m.y + z_max * z_max;
+        if (!(denom2 > 0.0)) return 1.0;  // the box touches the origin
+        return min(1.0, z_max / sqrt(denom2));
+    }
+    vec2 m = max(lat_lo * lat_lo, lat_hi * lat_hi);
+    float denom2 = m.x + m.y + z_max * z_max;
+    return max(-1.0, z_max / sqrt(denom2));
+}
+
+// True when no spot of the cluster can reach x: each spot emits within pi/2 of
+// its direction, every direction lies within beta of the cone axis, so a point
+// seen from the box at more than pi/2 + beta from the axis is dark.
+bool spot_cluster_excluded(GpuNodeBounds nb, vec3 x) {
+    if (!(nb.cone_cos >= -1.0 && nb.cone_cos <= 1.0)) return false;
+    float axis_len = length(nb.cone_axis);
+    if (!(axis_len > 0.0)) return false;
+    float limit = 0.5 * kPi + acos(nb.cone_cos);
+    if (limit >= kPi) return false;
+    float cos_bound = max_cos_to_box(nb.cone_axis / axis_len, x - nb.bbox_max, x - nb.bbox_min);
+    return acos(clamp(cos_bound, -1.0, 1.0)) > limit + 1e-6;
+}
+
+// Upper bound of G (cosine with the normal included, visibility 1) over every
+// light of tree node i at point x with normal n.
+float geometric_bound(int i, vec3 x, vec3 n) {
+    GpuNodeBounds nb = node_bounds[i];
+    GpuLight rep = tree_nodes[i].light;
+    if (kDirectionalLights && rep.type == kLightDirectional) {
+        // The box holds the directions d_i; light arrives along -d_i.
+        return max(0.0, max_cos_to_box(n, -nb.bbox_max, -nb.bbox_min));
+    }
+    // Every light's sphere of influence lies inside the node's radius around
+    // the representative; a leaf uses its own range; unbounded stays unbounded.
+    bool leaf = tree_nodes[i].first_child == kEndOfWalk;
+    float radius = leaf ? (rep.range > 0.0 ? rep.range : -1.0) : tree_nodes[i].radius;
+    if (rep.range <= 0.0) radius = -1.0;
+    if (radius >= 0.0 && length(x - rep.position) >= radius) return 0.0;
+    vec3 closest = clamp(x, nb.bbox_min, nb.bbox_max);
+    float dmin2 = dot(x - closest, x - closest);
+    float window = radius >= 0.0 ? range_window(sqrt(dmin2), radius) : 1.0;
+    if (!(window > 0.0)) return 0.0;
+    float cos_bound = max_cos_to_box(n, nb.bbox_min - x, nb.bbox_max - x);
+    if (!(cos_bound > 0.0)) return 0.0;
+    if (kSpotLights && rep.type == kLightSpot && spot_cluster_excluded(nb, x)) return 0.0;
+    return cos_bound * window * inverse_square(dmin2);
+}
+
+#endif

@@ -1,0 +1,290 @@
+// The bound criterion on the GPU (lightcuts.comp) against the CPU evaluator's
+// kBound, its error against the reference on a room with ~2,000 lights, the
+// max-cut accounting, the error statistics and heatmap, and auto exposure.
+//
+// GPU vs CPU: the cut is decided in float on the GPU and in double on the CPU,
+// so a pixel whose largest bound sits within rounding of error x total may
+// refine once more or less. We require identical cuts (size and hash) on at
+// least 99% of the geometry pixels and, where the cuts agree, radiance within
+// 1e-3 relative (float sums of up to a few hundred terms).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "editor_client/render/cpu_evaluator.h"
+#include "editor_client/render/error_stats.h"
+#include "editor_client/render/renderer.h"
+#include "editor_client/scene/scene_generator.h"
+#include "lightmass_server/tree_builder.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+SurfacePoint surface_at(const GBufferReadback& g, size_t i) {
+    SurfacePoint p;
+    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
+    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
+    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
+    return p;
+}
+
+LightTree build_tree(const std::vector<SceneLight>& lights) {
+    bake::BuildOptions options;
+    options.builder = BuilderKind::kAgglomerative;
+    Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error();
+    return built.ok() ? std::move(built->tree) : LightTree{};
+}
+
+std::vector<SceneLight> room_lights(uint32_t count, LightTypeChoice type, float intensity) {
+    LightLayoutOptions options;
+    options.count = count;
+    options.type = type;
+    options.seed = 7;
+    options.box_min = kRoomLightBoxMin;
+    options.box_max = kRoomLightBoxMax;
+    options.intensity = intensity;
+    Result<std::vector<SceneLight>> lights = generate_lights(options);
+    EXPECT_TRUE(lights.ok()) << lights.error();
+    return lights.ok() ? *lights : std::vector<SceneLight>{};
+}
+
+RenderCamera room_camera() {
+    RenderCamera camera;
+    camera.eye = {0.0f, 1.6f, 4.8f};
+    camera.target = {0.0f, 1.2f, -5.0f};
+    camera.yfov = 1.2f;
+    return camera;
+}
+
+struct CutAgreement {
+    size_t geometry = 0;
+    size_t same_cut = 0;
+    double max_relative = 0.0;
+    uint64_t cpu_max_cut_hits = 0;
+};
+
+// Renders lightcuts-bound and compares every geometry pixel with the CPU.
+CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings,
+                              const LightTree& tree, uint64_t* gpu_hits = nullptr) {
+    CutAgreement a;
+    Result<RenderStats> stats = renderer.render(settings);
+    EXPECT_TRUE(stats.ok()) << stats.error();
+    if (!stats.ok()) return a;
+    EXPECT_EQ(stats->nonfinite_pixels, 0u);
+    if (gpu_hits) *gpu_hits = stats->max_cut_hits;
+    Result<GBufferReadback> g = renderer.read_gbuffer();
+    Result<std::vector<float>> hdr = renderer.read_hdr();
+    Result<std::vector<uint32_t>> cuts = renderer.read_cuts();
+    EXPECT_TRUE(g.ok() && hdr.ok() && cuts.ok());
+    if (!g.ok() || !hdr.ok() || !cuts.ok()) return a;
+    CutSettings cut_settings;
+    cut_settings.criterion = CutCriterion::kBound;
+    cut_settings.error_ratio = settings.error_ratio;
+    cut_settings.max_cut = settings.max_cut;
+    const size_t pixels = size_t(settings.width) * settings.height;
+    for (size_t i = 0; i < pixels; ++i) {
+        if (g->position[4 * i + 3] == 0.0f) continue;
+        ++a.geometry;
+        CutResult cpu = shade_lightcuts(tree, {}, surface_at(*g, i), cut_settings);
+        a.cpu_max_cut_hits += cpu.max_cut_hit ? 1 : 0;
+        if ((*cuts)[2 * i] != cpu.cut_size || (*cuts)[2 * i + 1] != cpu.cut_hash) continue;
+        ++a.same_cut;
+        for (int ch = 0; ch < 3; ++ch) {
+            const double want = cpu.radiance[ch];
+            const double err = std::abs(double((*hdr)[4 * i + ch]) - want);
+            const double relative = err / std::max(std::abs(want), 1e-12);
+            if (std::abs(want) > 1e-9) a.max_relative = std::max(a.max_relative, relative);
+            EXPECT_LE(err, 1e-3 * std::abs(want) + 1e-9)
+                << "pixel " << i << " channel " << ch << ": gpu " << (*hdr)[4 * i + ch]
+                << " cpu " << want;
+        }
+    }
+    std::printf("  %zu geometry pixels, %zu with the CPU's cut, max relative error %.3g\n",
+                a.geometry, a.same_cut, a.max_relative);
+    return a;
+}
+
+class BoundCriterion : public ::testing::Test {
+protected:
+    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
+    void TearDown() override {
+        if (context_) EXPECT_EQ(context_->validation_message_count(), 0u);
+    }
+    std::unique_ptr<vk::Context> context_;
+};
+
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
+    // Points with and without ranges, spots and directional lights: every bound
+    // (omni, oriented with cone, directional) and the mixed-type junctions.
+    Scene scene = make_room_scene();
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
+    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    scene.lights = lights;
+    LightTree tree = build_tree(lights);
+    ASSERT_FALSE(tree.empty());
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 48;
+    settings.camera = room_camera();
+    for (float error : {0.02f, 0.1f}) {
+        SCOPED_TRACE(error);
+        settings.error_ratio = error;
+        CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+        EXPECT_GT(a.geometry, 48u * 48u / 2);
+        EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+    }
+}
+
+TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
+    Scene scene = make_room_scene();
+    scene.lights = room_lights(2000, LightTypeChoice::kPoint, 0.5f);
+    LightTree tree = build_tree(scene.lights);
+    ASSERT_FALSE(tree.empty());
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 64;
+    settings.camera = room_camera();
+    settings.mode = RenderMode::kReference;
+    ASSERT_TRUE((*renderer)->render(settings).ok());
+    Result<std::vector<float>> reference = (*renderer)->read_hdr();
+    settings.mode = RenderMode::kLightcuts;
+    Result<RenderStats> stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    Result<std::vector<float>> lightcuts = (*renderer)->read_hdr();
+    ASSERT_TRUE(reference.ok() && lightcuts.ok());
+    Result<ErrorStats> errors =
+        compute_error_stats(*lightcuts, *reference, 64, 64, settings.error_ratio);
+    ASSERT_TRUE(errors.ok()) << errors.error();
+    std::printf("  avg cut %.1f of %llu lights, rel err mean %.4g p99 %.4g max %.4g, %.4f over "
+                "E, %llu max-cut hits\n",
+                stats->avg_cut, (unsigned long long)stats->tree_lights, errors->rel_err_mean,
+                errors->rel_err_p99, errors->max_err, errors->frac_over_error,
+                (unsigned long long)stats->max_cut_hits);
+    EXPECT_GT(errors->measured_pixels, 64u * 64u / 2);
+    EXPECT_LE(errors->frac_over_error, 0.01);
+    EXPECT_EQ(stats->max_cut_hits, 0u);
+    // Lightcuts must actually cut: far fewer evaluations than lights.
+    EXPECT_LT(stats->avg_cut, 2000.0 / 4.0);
+    EXPECT_GT(stats->avg_cut, 1.0);
+}
+
+TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
+    Scene scene = make_room_scene();
+    scene.lights = room_lights(200, LightTypeChoice::kPoint, 1.0f);
+    LightTree tree = build_tree(scene.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 32;
+    settings.camera = room_camera();
+    settings.max_cut = 2;
+    uint64_t gpu_hits = 0;
+    CutAgreement a = compare_with_cpu(**renderer, settings, tree, &gpu_hits);
+    Result<RenderStats> stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok());
+    EXPECT_LE(stats->max_cut, 2u);
+    EXPECT_GT(gpu_hits, a.geometry / 2) << "a 2-node cut cannot meet 2% on 200 lights";
+    // Float and double may disagree only on a pixel or two.
+    EXPECT_NEAR(double(gpu_hits), double(a.cpu_max_cut_hits), 0.01 * double(a.geometry) + 1.0);
+    // Settings change the pipeline: the default K hits nothing here.
+    settings.max_cut = kDefaultMaxCut;
+    stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok());
+    EXPECT_EQ(stats->max_cut_hits, 0u);
+    EXPECT_GT(stats->max_cut, 2u);
+}
+
+TEST_F(BoundCriterion, RejectsBadCutSettings) {
+    Scene scene = make_room_scene();
+    scene.lights = room_lights(8, LightTypeChoice::kPoint, 1.0f);
+    LightTree tree = build_tree(scene.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.camera = room_camera();
+    settings.max_cut = 0;
+    Status s = (*renderer)->validate(settings);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().find("max cut"), std::string::npos) << s.error();
+    settings.max_cut = 10;
+    settings.error_ratio = std::nanf("");
+    s = (*renderer)->validate(settings);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().find("error ratio"), std::string::npos) << s.error();
+}
+
+TEST(ErrorStats, KnownImages) {
+    // 4 pixels: background, 1% off, 10% off, and a negligible reference.
+    std::vector<float> reference = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 1, 1e-5f, 1e-5f, 1e-5f, 1};
+    std::vector<float> lightcuts = {0, 0, 0, 0, 1.01f, 1.01f, 1.01f, 1,
+                                    2.2f, 2.2f, 2.2f, 1, 1, 1, 1, 1};
+    Result<ErrorStats> s = compute_error_stats(lightcuts, reference, 2, 2, 0.02);
+    ASSERT_TRUE(s.ok()) << s.error();
+    EXPECT_EQ(s->measured_pixels, 2u);
+    EXPECT_NEAR(s->rel_err_mean, 0.055, 1e-5);
+    EXPECT_NEAR(s->max_err, 0.1, 1e-5);
+    EXPECT_NEAR(s->rel_err_p99, 0.1, 1e-5);
+    EXPECT_DOUBLE_EQ(s->frac_over_error, 0.5);
+    EXPECT_EQ(s->per_pixel[0], -1.0f);
+    EXPECT_EQ(s->per_pixel[3], -1.0f);
+    std::vector<uint8_t> heat = error_heatmap(*s, reference, 2, 2, 0.02);
+    ASSERT_EQ(heat.size(), 16u);
+    EXPECT_EQ(heat[0], 0);  // background black
+    // 10% error is past 2 x 2%: the hot end (red).
+    EXPECT_GT(heat[8], 200);
+    EXPECT_LT(heat[9], 60);
+    EXPECT_EQ(heat[12], heat[13]);  // negligible reference: grey
+    Result<ErrorStats> mismatch = compute_error_stats(lightcuts, reference, 3, 2, 0.02);
+    EXPECT_FALSE(mismatch.ok());
+}
+
+TEST(AutoExposure, MapsTheLogAverageTo018) {
+    std::vector<float> hdr;
+    for (int i = 0; i < 8; ++i) hdr.insert(hdr.end(), {4.0f, 4.0f, 4.0f, 1.0f});
+    hdr.insert(hdr.end(), {1e9f, 1e9f, 1e9f, 0.0f});  // background is ignored
+    EXPECT_NEAR(auto_exposure(hdr), 0.18f / 4.0f, 1e-6f);
+    std::vector<float> black(16, 0.0f);
+    EXPECT_EQ(auto_exposure(black), 1.0f);
+}
+
+TEST_F(BoundCriterion, ErrorHeatmapOfARealFrameIsFinite) {
+    Scene scene = make_room_scene();
+    scene.lights = room_lights(64, LightTypeChoice::kPoint, 1.0f);
+    LightTree tree = build_tree(scene.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 40;
+    settings.camera = room_camera();
+    settings.mode = RenderMode::kLightcuts;
+    ASSERT_TRUE((*renderer)->render(settings).ok());
+    Result<std::vector<float>> lightcuts = (*renderer)->read_hdr();
+    settings.mode = RenderMode::kReference;
+    ASSERT_TRUE((*renderer)->render(settings).ok());
+    Result<std::vector<float>> reference = (*renderer)->read_hdr();
+    ASSERT_TRUE(lightcuts.ok() && reference.ok());
+    Result<ErrorStats> s = compute_error_stats(*lightcuts, *reference, 40, 40, 0.02);
+    ASSERT_TRUE(s.ok());
+    EXPECT_TRUE(std::isfinite(s->rel_err_mean) && std::isfinite(s->max_err));
+    for (float e : s->per_pixel) ASSERT_TRUE(std::isfinite(e));
+    std::vector<uint8_t> heat = error_heatmap(*s, *reference, 40, 40, 0.02);
+    EXPECT_EQ(heat.size(), 40u * 40u * 4u);
+}
+
+}  // namespace
+}  // namespace lc::client
