@@ -63,21 +63,36 @@ bool refine_by_radius(int i, vec3 x) {
 // the walk to reach the node's escape (the walk only moves forward in
 // pre-order and never jumps past an escape of a node it is inside). Each lane
 // still gets exactly its own cut.
+// One step of the walk. Written as a function and called kRadiusUnroll times per
+// loop iteration: llvmpipe limits the loop iterations of an invocation
+// (loop_limits.glsl), not the straight-line steps inside one.
+void radius_walk_step(inout int i, inout bool waiting, inout int resume, inout Cut cut, SurfacePoint p) {
+    if (i == kEndOfWalk) return;  // i is the same on every lane of the subgroup
+    if (waiting && i == resume) waiting = false;
+    bool refine = !waiting && refine_by_radius(i, p.position);
+    if (!waiting && !refine) {
+        add_to_cut(cut, uint(i), tree_nodes[i].light, p);
+        waiting = true;
+        resume = tree_nodes[i].escape;
+    }
+    i = subgroupAny(refine) ? tree_nodes[i].first_child : tree_nodes[i].escape;
+}
+
 Cut select_cut_radius(SurfacePoint p) {
     Cut cut = Cut(vec3(0.0), 0u, 0u);
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;
     bool waiting = false;
     int resume = kEndOfWalk;
     // node_count steps always suffice; the limit only guards a corrupt upload.
-    for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; ++step) {
-        if (waiting && i == resume) waiting = false;
-        bool refine = !waiting && refine_by_radius(i, p.position);
-        if (!waiting && !refine) {
-            add_to_cut(cut, uint(i), tree_nodes[i].light, p);
-            waiting = true;
-            resume = tree_nodes[i].escape;
-        }
-        i = subgroupAny(refine) ? tree_nodes[i].first_child : tree_nodes[i].escape;
+    for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kRadiusUnroll) {
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
+        radius_walk_step(i, waiting, resume, cut, p);
     }
     return cut;
 }
@@ -90,52 +105,52 @@ vec3 heap_unit[kMaxCut];  // f_r * G of the representative per unit intensity
 
 float max_channel(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
-// cpu_evaluator's heap_less: larger bound first, then the smaller node index.
-bool heap_less(int a, int b) {
-    if (heap_key[a] != heap_key[b]) return heap_key[a] < heap_key[b];
-    return heap_node[a] > heap_node[b];
+// cpu_evaluator's heap_less on (key, node) pairs: larger bound first, then the
+// smaller node index.
+bool entry_less(float key_a, int node_a, float key_b, int node_b) {
+    if (key_a != key_b) return key_a < key_b;
+    return node_a > node_b;
 }
 
-void heap_swap(int a, int b) {
-    float k = heap_key[a];
-    heap_key[a] = heap_key[b];
-    heap_key[b] = k;
-    int n = heap_node[a];
-    heap_node[a] = heap_node[b];
-    heap_node[b] = n;
-    vec3 u = heap_unit[a];
-    heap_unit[a] = heap_unit[b];
-    heap_unit[b] = u;
-}
-
-void heap_push(inout int size, float key, int node, vec3 unit) {
-    int i = size++;
+void heap_store(int i, float key, int node, vec3 unit) {
     heap_key[i] = key;
     heap_node[i] = node;
     heap_unit[i] = unit;
-    while (i > 0) {
-        int parent = (i - 1) / 2;
-        if (!heap_less(parent, i)) break;
-        heap_swap(parent, i);
-        i = parent;
-    }
 }
 
-// Moves the last entry to the root and sifts it down.
+void heap_move(int to, int from) { heap_store(to, heap_key[from], heap_node[from], heap_unit[from]); }
+
+// Sifts with a hole instead of swaps: one write per level (scratch memory is
+// what a lane pays for on a CPU device).
+void heap_push(inout int size, float key, int node, vec3 unit) {
+    int i = size++;
+    while (i > 0) {
+        int parent = (i - 1) / 2;
+        if (!entry_less(heap_key[parent], heap_node[parent], key, node)) break;
+        heap_move(i, parent);
+        i = parent;
+    }
+    heap_store(i, key, node, unit);
+}
+
+// Removes the root: the last entry falls into the hole left at the top.
 void heap_pop(inout int size) {
     --size;
-    heap_swap(0, size);
+    float key = heap_key[size];
+    int node = heap_node[size];
+    vec3 unit = heap_unit[size];
     int i = 0;
     while (true) {
-        int largest = i;
         int l = 2 * i + 1;
+        if (l >= size) break;
         int r = l + 1;
-        if (l < size && heap_less(largest, l)) largest = l;
-        if (r < size && heap_less(largest, r)) largest = r;
-        if (largest == i) break;
-        heap_swap(i, largest);
-        i = largest;
+        int child = l;
+        if (r < size && entry_less(heap_key[l], heap_node[l], heap_key[r], heap_node[r])) child = r;
+        if (!entry_less(key, node, heap_key[child], heap_node[child])) break;
+        heap_move(i, child);
+        i = child;
     }
+    if (size > 0) heap_store(i, key, node, unit);
 }
 
 // Error bound of node i (largest channel): 0 for a leaf (exact), +inf for a

@@ -5,6 +5,7 @@
 
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
+#include "loop_limits.glsl"
 
 struct SurfacePoint {
     vec3 position;
@@ -26,7 +27,14 @@ bool load_surface(ivec2 pixel, out SurfacePoint p) {
 vec3 classic_irradiance(SurfacePoint p) {
     vec3 e = vec3(0.0);
     if (kClassicLights) {
-        for (uint i = 0u; i < frame.classic_count; ++i)
+        uint i = 0u;
+        for (; i + kLoopUnroll <= frame.classic_count; i += kLoopUnroll) {
+            e += light_irradiance(classic_lights[i], p.position, p.normal);
+            e += light_irradiance(classic_lights[i + 1u], p.position, p.normal);
+            e += light_irradiance(classic_lights[i + 2u], p.position, p.normal);
+            e += light_irradiance(classic_lights[i + 3u], p.position, p.normal);
+        }
+        for (; i < frame.classic_count; ++i)
             e += light_irradiance(classic_lights[i], p.position, p.normal);
     }
     return e;

@@ -4,6 +4,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
+#include "loop_limits.glsl"
 
 layout(local_size_x_id = 0, local_size_y_id = 1) in;
 
@@ -16,7 +17,14 @@ void main() {
         return;
     }
     vec3 irradiance = vec3(0.0);
-    for (uint i = 0u; i < frame.leaf_count; ++i)
+    uint i = 0u;
+    for (; i + kLoopUnroll <= frame.leaf_count; i += kLoopUnroll) {
+        irradiance += light_irradiance(leaf_lights[i], p.position, p.normal);
+        irradiance += light_irradiance(leaf_lights[i + 1u], p.position, p.normal);
+        irradiance += light_irradiance(leaf_lights[i + 2u], p.position, p.normal);
+        irradiance += light_irradiance(leaf_lights[i + 3u], p.position, p.normal);
+    }
+    for (; i < frame.leaf_count; ++i)
         irradiance += light_irradiance(leaf_lights[i], p.position, p.normal);
     irradiance += classic_irradiance(p);
     // Every leaf is in the "cut"; the hash is not needed for reference pixels.

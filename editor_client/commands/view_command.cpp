@@ -46,6 +46,7 @@ struct ViewCommandOptions {
     bool headless = false;
     bool no_adaptive = false;
     bool no_panels = false;
+    std::string window_screenshot;
 };
 
 [[noreturn]] void fail(const std::string& message) {
@@ -79,12 +80,11 @@ void run_view(const ViewCommandOptions& options) {
     if (mode_needs_tree(*mode) && !can_get_tree)
         fail("mode '" + options.mode +
              "' needs a light tree: give --tree TREE.lcut, --server HOST:PORT or --spawn-server");
-    const RenderCamera camera = or_fail(
-        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    const RenderCamera camera =
+        or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
 
     std::optional<ScriptRunner> script;
-    if (!options.script.empty())
-        script.emplace(or_fail(load_editor_script(options.script)), options.script);
+    if (!options.script.empty()) script.emplace(or_fail(load_editor_script(options.script)), options.script);
 
     EditorSessionOptions session_options;
     session_options.aspect = float(width) / float(height);
@@ -124,9 +124,7 @@ void run_view(const ViewCommandOptions& options) {
             or_fail(GlfwWindow::create(width, height, "lightcuts editor: " + options.scene));
         context_options.instance_extensions = glfw->required_instance_extensions();
         GlfwWindow* raw = glfw.get();
-        context_options.create_surface = [raw](VkInstance instance) {
-            return raw->create_surface(instance);
-        };
+        context_options.create_surface = [raw](VkInstance instance) { return raw->create_surface(instance); };
         window = std::move(glfw);
     }
     vk::Context context = or_fail(vk::Context::create(context_options));
@@ -139,6 +137,7 @@ void run_view(const ViewCommandOptions& options) {
     loop.script = script ? &*script : nullptr;
     loop.adaptive_resolution = !options.no_adaptive;
     loop.panels = !options.no_panels;
+    loop.window_screenshot = options.window_screenshot;
     EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
     const double steady_fps =
         summary.steady_seconds > 0.0 ? summary.steady_frames / summary.steady_seconds : 0.0;
@@ -156,29 +155,27 @@ void run_view(const ViewCommandOptions& options) {
 
 void add_view_command(CLI::App& app) {
     auto options = std::make_shared<ViewCommandOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "view",
-        "The interactive editor (left drag: orbit, right drag: pan, wheel: dolly, "
-        "1-4: reference/lightcuts/cuts/cutsize, Esc: quit)");
+    CLI::App* cmd =
+        app.add_subcommand("view",
+                           "The interactive editor (left drag: orbit, right drag: pan, wheel: dolly, "
+                           "1-4: reference/lightcuts/cuts/cutsize, Esc: quit)");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();
-    auto* tree =
-        cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
+    auto* tree = cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode, "First mode: reference, lightcuts, cuts or cutsize")
         ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}))
         ->capture_default_str();
     cmd->add_option("--size", options->size, "Window and render size WxH")->capture_default_str();
-    auto* camera = cmd->add_option("--camera", options->camera,
-                                   "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
+    auto* camera =
+        cmd->add_option("--camera", options->camera, "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
     cmd->add_option("--camera-index", options->camera_index, "Camera of the file to start from")
         ->excludes(camera);
     cmd->add_option("--exposure", options->exposure, "Linear exposure before the tone curve")
         ->capture_default_str();
     cmd->add_option("--frames", options->frames, "Render this many frames, then exit");
-    cmd->add_option("--screenshot", options->screenshot,
-                    "Save the last frame as PNG (with --frames)");
+    cmd->add_option("--screenshot", options->screenshot, "Save the last frame as PNG (with --frames)");
     cmd->add_option("--script", options->script,
                     "Editor commands, one per line (add-light, bake, mode, screenshot, save, ...)")
         ->check(CLI::ExistingFile);
@@ -186,6 +183,8 @@ void add_view_command(CLI::App& app) {
                   "Render without a window (frames are not shown; for scripts and benchmarks)");
     cmd->add_flag("--no-adaptive", options->no_adaptive,
                   "Always render at full size, also while the camera moves");
+    cmd->add_option("--window-screenshot", options->window_screenshot,
+                    "At the end, save the window as shown, panels included (PNG)");
     cmd->add_flag("--no-panels", options->no_panels, "Hide the editor panels and the overlay");
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

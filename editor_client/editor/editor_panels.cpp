@@ -23,7 +23,9 @@ void report(PanelState& state, const Status& status, const std::string& success)
     state.message = status ? success : status.error();
 }
 
-glm::vec3 to_vec3(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+glm::vec3 to_vec3(const std::array<float, 3>& a) {
+    return {a[0], a[1], a[2]};
+}
 
 const char* const kLightTypes[] = {"point", "spot", "directional"};
 const char* const kLayouts[] = {"random", "grid"};
@@ -35,8 +37,7 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
         report(state, session.set_mode(modes[mode]), std::string("mode ") + modes[mode]);
     if (mode_needs_tree(view.mode) && !session.tree_matches_scene())
-        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f),
-                           "no tree for these lights: showing reference");
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "no tree for these lights: showing reference");
     int criterion = int(view.criterion);
     const char* const criteria[] = {"radius", "bound"};
     if (ImGui::Combo("criterion", &criterion, criteria, IM_ARRAYSIZE(criteria)))
@@ -67,8 +68,8 @@ void draw_light_list(EditorSession& session, PanelState& state) {
                 const SceneLight& l = lights[size_t(i)];
                 char label[160];
                 std::snprintf(label, sizeof label, "%d %s (%.2f %.2f %.2f) %.3g%s", i,
-                              kLightTypes[int(l.type)], l.position.x, l.position.y, l.position.z,
-                              l.intensity, l.classic ? " classic" : "");
+                              kLightTypes[int(l.type)], l.position.x, l.position.y, l.position.z, l.intensity,
+                              l.classic ? " classic" : "");
                 const bool selected = session.selection() == size_t(i);
                 if (ImGui::Selectable(label, selected))
                     report(state, session.select(size_t(i)), "selected light " + std::to_string(i));
@@ -85,8 +86,7 @@ void draw_light_list(EditorSession& session, PanelState& state) {
         if (ImGui::Button("Delete selected")) to_delete = *selected;
     }
     if (to_delete)
-        report(state, session.remove_light(*to_delete),
-               "removed light " + std::to_string(*to_delete));
+        report(state, session.remove_light(*to_delete), "removed light " + std::to_string(*to_delete));
 }
 
 void draw_add_light(EditorSession& session, EditorHost& host, PanelState& state) {
@@ -143,15 +143,13 @@ void draw_bake_panel(EditorSession& session, PanelState& state) {
         std::snprintf(text, sizeof text, "%s %.0f%%",
                       progress.stage.empty() ? "connecting" : progress.stage.c_str(),
                       double(progress.percent));
-        ImGui::ProgressBar(std::clamp(progress.percent / 100.0f, 0.0f, 1.0f), ImVec2(-FLT_MIN, 0),
-                           text);
+        ImGui::ProgressBar(std::clamp(progress.percent / 100.0f, 0.0f, 1.0f), ImVec2(-FLT_MIN, 0), text);
         if (ImGui::Button("Cancel")) session.cancel_bake();
     } else {
         ImGui::BeginDisabled(!session.has_server());
         if (ImGui::Button("Build lighting"))
-            report(state, session.start_bake(), "baking " +
-                                                    std::to_string(session.scene().lights.size()) +
-                                                    " lights");
+            report(state, session.start_bake(),
+                   "baking " + std::to_string(session.scene().lights.size()) + " lights");
         ImGui::EndDisabled();
     }
     if (const std::optional<BakeReport>& last = session.last_bake(); last && !last->succeeded)
@@ -175,8 +173,8 @@ void draw_file_panel(EditorSession& session, PanelState& state) {
 }  // namespace
 
 bool apply_view_click(EditorSession& session, PanelState& state, const ViewClick& click) {
-    const Ray ray = camera_ray(session.view().camera, click.x, click.y, click.window_width,
-                               click.window_height);
+    const Ray ray =
+        camera_ray(session.view().camera, click.x, click.y, click.window_width, click.window_height);
     if (state.place_by_click) {
         const std::optional<SurfaceHit> hit = pick_surface(session.scene(), ray);
         if (!hit) {
@@ -195,27 +193,24 @@ bool apply_view_click(EditorSession& session, PanelState& state, const ViewClick
     return true;
 }
 
-void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& state,
-                        const FrameInfo& frame, const std::optional<ViewClick>& click) {
+void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& state, const FrameInfo& frame,
+                        const std::optional<ViewClick>& click) {
     if (click) apply_view_click(session, state, *click);
-    if (state.save_path[0] == '\0') std::snprintf(state.save_path.data(), state.save_path.size(),
-                                                  "%s", "edited.gltf");
+    if (state.save_path[0] == '\0')
+        std::snprintf(state.save_path.data(), state.save_path.size(), "%s", "edited.gltf");
 
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
     ImGui::Begin("Lightcuts editor");
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen))
-        draw_view_panel(session, state);
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_panel(session, state);
     if (ImGui::CollapsingHeader("Build lighting", ImGuiTreeNodeFlags_DefaultOpen))
         draw_bake_panel(session, state);
-    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
-        draw_light_list(session, state);
+    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_light_list(session, state);
     if (ImGui::CollapsingHeader("Add light")) draw_add_light(session, host, state);
-    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen))
-        draw_file_panel(session, state);
+    if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) draw_file_panel(session, state);
     if (!state.message.empty()) {
-        const ImVec4 colour = state.message_is_error ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f)
-                                                     : ImVec4(0.6f, 1.0f, 0.6f, 1.0f);
+        const ImVec4 colour =
+            state.message_is_error ? ImVec4(1.0f, 0.4f, 0.4f, 1.0f) : ImVec4(0.6f, 1.0f, 0.6f, 1.0f);
         ImGui::PushTextWrapPos(0.0f);
         ImGui::TextColored(colour, "%s", state.message.c_str());
         ImGui::PopTextWrapPos();
@@ -224,16 +219,15 @@ void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& st
 
     // The overlay: top right, no decoration, not movable.
     const ImGuiViewport* viewport = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - 8.0f,
-                                   viewport->WorkPos.y + 8.0f),
-                            ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+    ImGui::SetNextWindowPos(
+        ImVec2(viewport->WorkPos.x + viewport->WorkSize.x - 8.0f, viewport->WorkPos.y + 8.0f),
+        ImGuiCond_Always, ImVec2(1.0f, 0.0f));
     ImGui::SetNextWindowBgAlpha(0.55f);
     ImGui::Begin("overlay", nullptr,
                  ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                      ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
                      ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoMove);
-    for (const std::string& line : overlay_lines(session, frame))
-        ImGui::TextUnformatted(line.c_str());
+    for (const std::string& line : overlay_lines(session, frame)) ImGui::TextUnformatted(line.c_str());
     ImGui::End();
 }
 

@@ -47,8 +47,8 @@ struct ViewClick {
 // Draws every panel for this ImGui frame and applies what the user did to the
 // session (through the same functions `--script` uses). `click` is applied
 // first: it places the add-light form's position or selects a light.
-void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& state,
-                        const FrameInfo& frame, const std::optional<ViewClick>& click);
+void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& state, const FrameInfo& frame,
+                        const std::optional<ViewClick>& click);
 
 // The part of draw_editor_panels that handles a click (tested on its own).
 // With place_by_click: the surface under the cursor (lifted off it) becomes

@@ -280,7 +280,41 @@ Status Renderer::validate(const RenderSettings& settings) const {
         return make_error("the camera's eye and target coincide");
     if (!std::isfinite(settings.exposure) || settings.exposure < 0.0f)
         return make_error("exposure must be a finite number >= 0");
-    return Ok{};
+    return check_loop_budget(settings);
+}
+
+// llvmpipe stops an invocation's loops after 65,535 iterations in total, and
+// says nothing (shaders/loop_limits.glsl). Work that could exceed that budget is
+// refused here with the reason, never rendered truncated. Other devices have no
+// such limit.
+Status Renderer::check_loop_budget(const RenderSettings& settings) const {
+    const std::string device = context_.physical().name();
+    if (device.find("llvmpipe") == std::string::npos) return Ok{};
+    constexpr uint64_t kBudget = 65535;
+    constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8;  // as in loop_limits.glsl
+    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1;
+    uint64_t iterations = classic;
+    std::string what;
+    if (settings.mode == RenderMode::kReference) {
+        iterations += (uint64_t(leaf_count_) + kLightUnroll - 1) / kLightUnroll + 1;
+        what = std::to_string(leaf_count_) + " lights in reference mode";
+    } else if (settings.criterion == CutCriterion::kRadius) {
+        iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
+        what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
+    } else {
+        // Per refinement: a heap pop and two pushes (log2 K each), two children
+        // with an 8-corner bound each; then the final sum over the heap.
+        uint64_t k = settings.max_cut, log_k = 1;
+        while ((uint64_t(1) << log_k) < k + 1) ++log_k;
+        iterations += k * (3 * log_k + 2 * 8 + 4) + k;
+        what = "the bound criterion with max cut " + std::to_string(settings.max_cut);
+    }
+    if (iterations <= kBudget) return Ok{};
+    return make_error(what + " needs about " + std::to_string(iterations) +
+                      " shader loop iterations per pixel; llvmpipe (lavapipe) silently stops loops after " +
+                      std::to_string(kBudget) +
+                      ", so this render is refused rather than truncated: use fewer lights, a smaller "
+                      "--max-cut, the bound criterion, or a GPU");
 }
 
 Status Renderer::ensure_targets(uint32_t width, uint32_t height) {

@@ -71,6 +71,7 @@ public:
     // Checks settings against what the renderer holds (a tree for cut modes,
     // a known criterion, a finite camera).
     Status validate(const RenderSettings& settings) const;
+    Status check_loop_budget(const RenderSettings& settings) const;
 
     // Records every pass of one frame into `cmd`. All storage images end in
     // VK_IMAGE_LAYOUT_GENERAL; display_image() holds the 8-bit result.

@@ -26,8 +26,7 @@ bool same_camera(const RenderCamera& a, const RenderCamera& b) {
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-        .count();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
 }
 
 // Keeps the renderer's lights and tree in step with the session: the renderer
@@ -36,12 +35,10 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
 // the view renders the edited lights in reference mode instead.
 class RendererSync {
 public:
-    RendererSync(Renderer& renderer, const EditorSession& session)
-        : renderer_(renderer), session_(session) {}
+    RendererSync(Renderer& renderer, const EditorSession& session) : renderer_(renderer), session_(session) {}
 
     Status update() {
-        if (synced_ && revision_ == session_.scene_revision() &&
-            generation_ == session_.tree_generation())
+        if (synced_ && revision_ == session_.scene_revision() && generation_ == session_.tree_generation())
             return Ok{};
         tree_ = session_.tree_matches_scene() ? session_.tree() : nullptr;
         if (tree_ && tree_->empty()) tree_.reset();
@@ -113,8 +110,8 @@ private:
 void log_bake(const BakeReport& report) {
     for (const std::string& w : report.warnings) spdlog::warn("server warning: {}", w);
     if (report.succeeded)
-        spdlog::info("bake: {} lights -> {} nodes in {:.0f} ms (build {:.0f} ms)",
-                     report.light_count, report.node_count, report.total_ms, report.build_ms);
+        spdlog::info("bake: {} lights -> {} nodes in {:.0f} ms (build {:.0f} ms)", report.light_count,
+                     report.node_count, report.total_ms, report.build_ms);
     else if (report.cancelled)
         spdlog::info("bake cancelled; the previous tree stays");
     else
@@ -123,8 +120,7 @@ void log_bake(const BakeReport& report) {
 
 }  // namespace
 
-Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context,
-                                          EditorSession& session,
+Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context, EditorSession& session,
                                           const EditorLoopOptions& options) {
     if (options.width == 0 || options.height == 0)
         return make_error("the editor's render size must be at least 1x1");
@@ -174,8 +170,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             const ImGuiIO& io = ImGui::GetIO();
             std::optional<ViewClick> click;
             if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && !io.WantCaptureMouse)
-                click = ViewClick{io.MousePos.x, io.MousePos.y,
-                                  uint32_t(std::max(io.DisplaySize.x, 1.0f)),
+                click = ViewClick{io.MousePos.x, io.MousePos.y, uint32_t(std::max(io.DisplaySize.x, 1.0f)),
                                   uint32_t(std::max(io.DisplaySize.y, 1.0f))};
             draw_editor_panels(session, host, panel_state, summary.last_frame, click);
             glfw->set_ui_capture(ui->wants_mouse(), ui->wants_keyboard());
@@ -186,8 +181,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             orbit = OrbitCamera(session.view().camera);
             orbit_camera = session.view().camera;
         }
-        const bool moved = input.orbit_drag != glm::vec2(0.0f) ||
-                           input.pan_drag != glm::vec2(0.0f) || input.scroll != 0.0f;
+        const bool moved =
+            input.orbit_drag != glm::vec2(0.0f) || input.pan_drag != glm::vec2(0.0f) || input.scroll != 0.0f;
         if (moved) {
             orbit.orbit(input.orbit_drag);
             orbit.pan(input.pan_drag);
@@ -215,8 +210,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
 
         const uint32_t divisor =
             options.adaptive_resolution ? adaptive.next_divisor(moved, elapsed_ms(started)) : 1;
-        const RenderSettings settings = sync.settings(reduced_size(options.width, divisor),
-                                                      reduced_size(options.height, divisor));
+        const RenderSettings settings =
+            sync.settings(reduced_size(options.width, divisor), reduced_size(options.height, divisor));
 
         uint32_t image_index = 0;
         if (presenting) {
@@ -236,12 +231,11 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 presentation = std::move(next).value();
                 recreate = false;
                 if (glfw != nullptr && !ui) {
-                    Result<std::unique_ptr<ImGuiLayer>> layer =
-                        ImGuiLayer::create(glfw->handle(), context, presentation->swapchain.format());
+                    Result<std::unique_ptr<ImGuiLayer>> layer = ImGuiLayer::create(glfw->handle(), context);
                     if (!layer) return make_error("editor panels: " + layer.error());
                     ui = std::move(layer).value();
                 }
-                if (ui) LC_RETURN_IF_ERROR(ui->attach(presentation->swapchain));
+                if (ui) LC_RETURN_IF_ERROR(ui->resize(presentation->swapchain.extent()));
             }
             Result<vk::AcquireStatus> acquired =
                 presentation->swapchain.acquire(image_ready->handle(), image_index);
@@ -259,10 +253,14 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         Status recorded = renderer.record(*cmd, settings);
         const bool draw_panels = ui && ui->frame_open() && recorded && presenting;
         if (recorded && presenting) {
-            record_blit(*cmd, renderer.display_image(),
-                        presentation->swapchain.images()[image_index],
-                        presentation->swapchain.extent(), draw_panels);
-            if (draw_panels) ui->record(*cmd, image_index);
+            const VkImage target = presentation->swapchain.images()[image_index];
+            if (draw_panels) {
+                record_blit(*cmd, renderer.display_image(), ui->composite().handle(),
+                            presentation->swapchain.extent(), true);
+                ui->record(*cmd, target);
+            } else {
+                record_blit(*cmd, renderer.display_image(), target, presentation->swapchain.extent());
+            }
         }
         LC_VK_CHECK(vkEndCommandBuffer(*cmd));
         if (!recorded) {
@@ -272,8 +270,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
 
         VkSemaphore wait = image_ready->handle();
         VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        VkSemaphore signal =
-            presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
+        VkSemaphore signal = presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
         VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
         submit.waitSemaphoreCount = presenting ? 1 : 0;
         submit.pWaitSemaphores = &wait;
@@ -313,10 +310,16 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
     LC_RETURN_IF_ERROR(device.wait_idle());
     const auto ended = std::chrono::steady_clock::now();
     summary.seconds = std::chrono::duration<double>(ended - started).count();
-    if (steady_since)
-        summary.steady_seconds = std::chrono::duration<double>(ended - *steady_since).count();
+    if (steady_since) summary.steady_seconds = std::chrono::duration<double>(ended - *steady_since).count();
 
     if (!options.screenshot.empty()) LC_RETURN_IF_ERROR(host.screenshot(options.screenshot));
+    if (!options.window_screenshot.empty()) {
+        if (!ui) return make_error("--window-screenshot needs a window with panels");
+        Result<std::vector<uint8_t>> pixels = ui->read_composite();
+        if (!pixels) return make_error(pixels.error());
+        LC_RETURN_IF_ERROR(write_png(options.window_screenshot, ui->composite().desc().width,
+                                     ui->composite().desc().height, *pixels));
+    }
     summary.screenshots = host.count();
     return summary;
 }

@@ -26,6 +26,8 @@ struct EditorLoopOptions {
     std::filesystem::path screenshot;  // when set, a full-size frame is saved at the end
     ScriptRunner* script = nullptr;    // stepped once per frame (may be null)
     bool adaptive_resolution = true;
+    // The window as shown, panels included, saved at the end (needs panels).
+    std::filesystem::path window_screenshot;
     // Dear ImGui panels over the view (needs a GlfwWindow: ignored headless).
     bool panels = false;
     AdaptiveResolutionOptions adaptive;
@@ -44,7 +46,7 @@ struct EditorLoopSummary {
     uint32_t screenshots = 0;
 };
 
-Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context,
-                                          EditorSession& session, const EditorLoopOptions& options);
+Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context, EditorSession& session,
+                                          const EditorLoopOptions& options);
 
 }  // namespace lc::client

@@ -38,8 +38,7 @@ Result<std::unique_ptr<GlfwWindow>> GlfwWindow::create(uint32_t width, uint32_t 
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
     window->window_ = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
-    if (window->window_ == nullptr)
-        return make_error("cannot create a window: " + last_glfw_error());
+    if (window->window_ == nullptr) return make_error("cannot create a window: " + last_glfw_error());
     glfwSetWindowUserPointer(window->window_, window.get());
     glfwSetKeyCallback(window->window_, &GlfwWindow::on_key);
     glfwSetCursorPosCallback(window->window_, &GlfwWindow::on_cursor);
@@ -81,7 +80,9 @@ WindowInput GlfwWindow::poll() {
     return input;
 }
 
-void GlfwWindow::set_title(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
+void GlfwWindow::set_title(const std::string& title) {
+    glfwSetWindowTitle(window_, title.c_str());
+}
 
 void GlfwWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));

@@ -6,12 +6,15 @@
 
 #include <atomic>
 
+#include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
 
 namespace lc::client {
 namespace {
 
 std::atomic<bool> g_layer_exists{false};
+// 8-bit like the renderer's display image, so the blits copy values unchanged.
+constexpr VkFormat kCompositeFormat = VK_FORMAT_R8G8B8A8_UNORM;
 
 void check_imgui_vk(VkResult result) {
     // The backend has no error channel; a failure here is logged by the
@@ -21,23 +24,21 @@ void check_imgui_vk(VkResult result) {
 
 }  // namespace
 
-Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window,
-                                                       const vk::Context& context,
-                                                       VkFormat swapchain_format) {
+Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const vk::Context& context) {
     if (window == nullptr) return make_error("the editor panels need a GLFW window");
     if (g_layer_exists.exchange(true)) return make_error("an ImGui layer already exists");
     std::unique_ptr<ImGuiLayer> layer(new ImGuiLayer(context));
     const VkDevice device = context.device().handle();
 
     VkAttachmentDescription colour{};
-    colour.format = swapchain_format;
+    colour.format = kCompositeFormat;
     colour.samples = VK_SAMPLE_COUNT_1_BIT;
     colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the blitted view stays under the panels
     colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     colour.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
     colour.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
     colour.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    colour.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    colour.finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     VkAttachmentReference reference{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
     VkSubpassDescription subpass{};
     subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -49,15 +50,23 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window,
     dependency.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     dependency.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
     dependency.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    dependency.dstAccessMask =
-        VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependency.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    // The copy to the swapchain waits for the panels' writes.
+    VkSubpassDependency to_copy{};
+    to_copy.srcSubpass = 0;
+    to_copy.dstSubpass = VK_SUBPASS_EXTERNAL;
+    to_copy.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    to_copy.dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    to_copy.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    to_copy.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    const VkSubpassDependency dependencies[] = {dependency, to_copy};
     VkRenderPassCreateInfo pass_info{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
     pass_info.attachmentCount = 1;
     pass_info.pAttachments = &colour;
     pass_info.subpassCount = 1;
     pass_info.pSubpasses = &subpass;
-    pass_info.dependencyCount = 1;
-    pass_info.pDependencies = &dependency;
+    pass_info.dependencyCount = 2;
+    pass_info.pDependencies = dependencies;
     LC_VK_CHECK(vkCreateRenderPass(device, &pass_info, nullptr, &layer->render_pass_));
 
     // The font atlas is the backend's only descriptor set.
@@ -106,45 +115,42 @@ ImGuiLayer::~ImGuiLayer() {
     if (vulkan_ready_) ImGui_ImplVulkan_Shutdown();
     if (glfw_ready_) ImGui_ImplGlfw_Shutdown();
     if (ImGui::GetCurrentContext() != nullptr) ImGui::DestroyContext();
-    destroy_framebuffers();
+    destroy_framebuffer();
     if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
     if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device, render_pass_, nullptr);
     g_layer_exists.store(false);
 }
 
-void ImGuiLayer::destroy_framebuffers() {
-    const VkDevice device = context_.device().handle();
-    for (VkFramebuffer f : framebuffers_) vkDestroyFramebuffer(device, f, nullptr);
-    for (VkImageView v : views_) vkDestroyImageView(device, v, nullptr);
-    framebuffers_.clear();
-    views_.clear();
+void ImGuiLayer::destroy_framebuffer() {
+    if (framebuffer_ != VK_NULL_HANDLE)
+        vkDestroyFramebuffer(context_.device().handle(), framebuffer_, nullptr);
+    framebuffer_ = VK_NULL_HANDLE;
 }
 
-Status ImGuiLayer::attach(const vk::Swapchain& swapchain) {
+Status ImGuiLayer::resize(VkExtent2D extent) {
+    if (extent.width == extent_.width && extent.height == extent_.height && framebuffer_) return Ok{};
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
-    destroy_framebuffers();
-    const VkDevice device = context_.device().handle();
-    extent_ = swapchain.extent();
-    for (VkImage image : swapchain.images()) {
-        VkImageViewCreateInfo view_info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-        view_info.image = image;
-        view_info.viewType = VK_IMAGE_VIEW_TYPE_2D;
-        view_info.format = swapchain.format();
-        view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-        VkImageView view = VK_NULL_HANDLE;
-        LC_VK_CHECK(vkCreateImageView(device, &view_info, nullptr, &view));
-        views_.push_back(view);
-        VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-        fb_info.renderPass = render_pass_;
-        fb_info.attachmentCount = 1;
-        fb_info.pAttachments = &view;
-        fb_info.width = extent_.width;
-        fb_info.height = extent_.height;
-        fb_info.layers = 1;
-        VkFramebuffer framebuffer = VK_NULL_HANDLE;
-        LC_VK_CHECK(vkCreateFramebuffer(device, &fb_info, nullptr, &framebuffer));
-        framebuffers_.push_back(framebuffer);
-    }
+    destroy_framebuffer();
+    drawn_ = false;
+    vk::ImageDesc desc;
+    desc.width = extent.width;
+    desc.height = extent.height;
+    desc.format = kCompositeFormat;
+    desc.usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                 VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    Result<vk::Image> image = vk::Image::create(context_.device(), desc);
+    if (!image) return make_error("editor panels: " + image.error());
+    composite_ = std::move(image).value();
+    extent_ = extent;
+    VkImageView view = composite_.view();
+    VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+    fb_info.renderPass = render_pass_;
+    fb_info.attachmentCount = 1;
+    fb_info.pAttachments = &view;
+    fb_info.width = extent_.width;
+    fb_info.height = extent_.height;
+    fb_info.layers = 1;
+    LC_VK_CHECK(vkCreateFramebuffer(context_.device().handle(), &fb_info, nullptr, &framebuffer_));
     ImGui_ImplVulkan_SetMinImageCount(2);
     return Ok{};
 }
@@ -161,19 +167,49 @@ void ImGuiLayer::begin_frame() {
     frame_open_ = true;
 }
 
-void ImGuiLayer::record(VkCommandBuffer cmd, uint32_t image_index) {
+void ImGuiLayer::record(VkCommandBuffer cmd, VkImage swapchain_image) {
     ImGui::Render();
     frame_open_ = false;
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = render_pass_;
-    begin.framebuffer = framebuffers_.at(image_index);
+    begin.framebuffer = framebuffer_;
     begin.renderArea.extent = extent_;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
     vkCmdEndRenderPass(cmd);
+
+    vk::transition_image(
+        cmd, {swapchain_image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+              VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT});
+    VkImageBlit region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.srcOffsets[1] = {int32_t(extent_.width), int32_t(extent_.height), 1};
+    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.dstOffsets[1] = {int32_t(extent_.width), int32_t(extent_.height), 1};
+    // A blit, not a copy: it converts to the swapchain's format (BGRA, sRGB).
+    vkCmdBlitImage(cmd, composite_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapchain_image,
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region, VK_FILTER_NEAREST);
+    vk::transition_image(
+        cmd, {swapchain_image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+              VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_NONE, 0});
+    drawn_ = true;
 }
 
-bool ImGuiLayer::wants_mouse() const { return ImGui::GetIO().WantCaptureMouse; }
-bool ImGuiLayer::wants_keyboard() const { return ImGui::GetIO().WantCaptureKeyboard; }
+Result<std::vector<uint8_t>> ImGuiLayer::read_composite() const {
+    if (!drawn_) return make_error("no window frame was drawn, so no window screenshot");
+    Result<std::vector<std::byte>> bytes = vk::read_back_image(
+        context_.device(), context_.command_pool(), composite_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    if (!bytes) return make_error(bytes.error());
+    std::vector<uint8_t> out(bytes->size());
+    for (size_t i = 0; i < out.size(); ++i) out[i] = uint8_t(bytes.value()[i]);
+    return out;
+}
+
+bool ImGuiLayer::wants_mouse() const {
+    return ImGui::GetIO().WantCaptureMouse;
+}
+bool ImGuiLayer::wants_keyboard() const {
+    return ImGui::GetIO().WantCaptureKeyboard;
+}
 
 }  // namespace lc::client

@@ -21,8 +21,7 @@ struct Presentation {
     std::vector<vk::Semaphore> rendered;
 };
 
-Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent,
-                                       Presentation* old);
+Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent, Presentation* old);
 
 // Scales `display` (GENERAL, written by compute) onto `target` and leaves
 // `target` ready to present and `display` back in GENERAL. With

@@ -1,0 +1,99 @@
+// llvmpipe stops an invocation's loops after 65,535 iterations in total, without
+// a word. Above that many lights (or tree nodes) the renderer must still sum every
+// light, or refuse; it must never return a silently truncated sum.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "editor_client/render/cpu_evaluator.h"
+#include "editor_client/render/renderer.h"
+#include "render_test_support.h"
+
+namespace lc {
+namespace {
+
+using client::RenderMode;
+using client::Renderer;
+using client::RenderSettings;
+
+TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    client::Scene scene = test::make_floor_scene();
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> xz(-4.5f, 4.5f), y(0.5f, 4.5f);
+    for (uint32_t i = 0; i < 70000; ++i) {
+        SceneLight light = test::point_light({xz(rng), y(rng), xz(rng)}, glm::vec3(1.0f), 0.01f);
+        test::set_unit_guid(light, i);
+        scene.lights.push_back(light);
+    }
+    // All lights unbounded: the radius criterion refines to every leaf, so its
+    // cut is the whole tree and its sum is the reference.
+    LightTree tree = test::make_pairing_tree(scene.lights);
+    auto renderer = Renderer::create(*context, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+
+    RenderSettings settings;
+    settings.width = settings.height = 8;
+    settings.camera = test::floor_camera();
+    settings.exposure = 1.0f;
+    settings.mode = RenderMode::kReference;
+    ASSERT_TRUE((*renderer)->render(settings).ok());
+    auto reference = (*renderer)->read_hdr();
+    ASSERT_TRUE(reference.ok());
+    auto gbuffer = (*renderer)->read_gbuffer();
+    ASSERT_TRUE(gbuffer.ok()) << gbuffer.error();
+
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = client::CutCriterion::kRadius;
+    auto stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_EQ(stats->max_cut, 70000u);
+    auto walked = (*renderer)->read_hdr();
+    ASSERT_TRUE(walked.ok());
+
+    // The CPU sum at one floor pixel agrees with both.
+    size_t checked = 0;
+    for (size_t px = 0; px < 64; ++px) {
+        const auto& g = *gbuffer;
+        if (g.position[4 * px + 3] == 0.0f) continue;
+        client::SurfacePoint p;
+        p.position = {g.position[4 * px], g.position[4 * px + 1], g.position[4 * px + 2]};
+        p.normal = {g.normal[4 * px], g.normal[4 * px + 1], g.normal[4 * px + 2]};
+        p.albedo = {g.albedo[4 * px], g.albedo[4 * px + 1], g.albedo[4 * px + 2]};
+        double exact = client::shade_reference(scene.lights, p).x;
+        EXPECT_NEAR((*reference)[4 * px], exact, 1e-3 * exact) << "pixel " << px;
+        EXPECT_NEAR((*walked)[4 * px], exact, 1e-3 * exact) << "pixel " << px;
+        ++checked;
+    }
+    EXPECT_GT(checked, 10u);
+    EXPECT_EQ(context->validation_message_count(), 0u);
+}
+
+TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    if (context->physical().name().find("llvmpipe") == std::string::npos)
+        GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
+    client::Scene scene = test::make_floor_scene();
+    for (uint32_t i = 0; i < 8; ++i) {
+        SceneLight light = test::point_light({float(i) - 4.0f, 2.0f, 0.0f}, glm::vec3(1.0f), 1.0f);
+        test::set_unit_guid(light, i);
+        scene.lights.push_back(light);
+    }
+    LightTree tree = test::make_pairing_tree(scene.lights);
+    auto renderer = Renderer::create(*context, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.width = settings.height = 8;
+    settings.camera = test::floor_camera();
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = client::CutCriterion::kBound;
+    settings.max_cut = 4096;
+    auto stats = (*renderer)->render(settings);
+    ASSERT_FALSE(stats.ok());
+    EXPECT_NE(stats.error().find("65535"), std::string::npos) << stats.error();
+}
+
+}  // namespace
+}  // namespace lc
