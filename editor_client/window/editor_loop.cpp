@@ -268,25 +268,11 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             return make_error(recorded.error());
         }
 
-        VkSemaphore wait = image_ready->handle();
-        VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
-        VkSemaphore signal = presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
-        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-        submit.waitSemaphoreCount = presenting ? 1 : 0;
-        submit.pWaitSemaphores = &wait;
-        submit.pWaitDstStageMask = &wait_stage;
-        submit.commandBufferCount = 1;
-        submit.pCommandBuffers = &*cmd;
-        submit.signalSemaphoreCount = presenting ? 1 : 0;
-        submit.pSignalSemaphores = &signal;
-        LC_VK_CHECK(vkQueueSubmit(device.queue(), 1, &submit, frame_done->handle()));
-        if (presenting) {
-            Result<vk::AcquireStatus> presented =
-                presentation->swapchain.present(device.queue(), signal, image_index);
-            if (!presented) return make_error(presented.error());
-            if (*presented == vk::AcquireStatus::kOutOfDate) recreate = true;
-        }
-        LC_RETURN_IF_ERROR(frame_done->wait_and_reset());
+        Result<bool> out_of_date =
+            submit_and_present(device, presenting ? &*presentation : nullptr, *cmd, *image_ready, image_index,
+                               *frame_done);
+        if (!out_of_date) return make_error(out_of_date.error());
+        if (*out_of_date) recreate = true;
 
         ++summary.frames;
         FrameInfo& frame = summary.last_frame;

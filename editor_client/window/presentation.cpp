@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "editor_client/vk/barriers.h"
+#include "editor_client/vk/vk_result.h"
 
 namespace lc::client {
 
@@ -57,6 +58,32 @@ void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, 
     vk::transition_image(cmd,
                          {display.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
                           VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0});
+}
+
+Result<bool> submit_and_present(const vk::Device& device, Presentation* presentation, VkCommandBuffer cmd,
+                                const vk::Semaphore& image_ready, uint32_t image_index,
+                                const vk::Fence& frame_done) {
+    const bool presenting = presentation != nullptr;
+    VkSemaphore wait = image_ready.handle();
+    VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    VkSemaphore signal = presenting ? presentation->rendered[image_index].handle() : VK_NULL_HANDLE;
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.waitSemaphoreCount = presenting ? 1 : 0;
+    submit.pWaitSemaphores = &wait;
+    submit.pWaitDstStageMask = &wait_stage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    submit.signalSemaphoreCount = presenting ? 1 : 0;
+    submit.pSignalSemaphores = &signal;
+    LC_VK_CHECK(vkQueueSubmit(device.queue(), 1, &submit, frame_done.handle()));
+    bool out_of_date = false;
+    if (presenting) {
+        Result<vk::AcquireStatus> presented = presentation->swapchain.present(device.queue(), signal, image_index);
+        if (!presented) return make_error(presented.error());
+        out_of_date = *presented == vk::AcquireStatus::kOutOfDate;
+    }
+    LC_RETURN_IF_ERROR(frame_done.wait_and_reset());
+    return out_of_date;
 }
 
 }  // namespace lc::client

@@ -30,4 +30,11 @@ Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D ex
 void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent,
                  bool keep_target_for_drawing = false);
 
+// Submits one frame's commands and, with a presentation, presents swapchain
+// image `image_index` once they finish (waiting on `image_ready`, the acquire
+// semaphore). Waits for `frame_done`. True: the swapchain is out of date.
+Result<bool> submit_and_present(const vk::Device& device, Presentation* presentation, VkCommandBuffer cmd,
+                                const vk::Semaphore& image_ready, uint32_t image_index,
+                                const vk::Fence& frame_done);
+
 }  // namespace lc::client
