@@ -220,16 +220,9 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
                 continue;
             }
-            if (presentation && (presentation->swapchain.extent().width != extent.width ||
-                                 presentation->swapchain.extent().height != extent.height))
-                recreate = true;
-            if (recreate) {
-                LC_RETURN_IF_ERROR(device.wait_idle());
-                Result<Presentation> next =
-                    make_presentation(context, extent, presentation ? &*presentation : nullptr);
-                if (!next) return make_error(next.error());
-                presentation = std::move(next).value();
-                recreate = false;
+            Result<bool> remade = ensure_presentation(context, extent, presentation, recreate);
+            if (!remade) return make_error(remade.error());
+            if (*remade) {
                 if (glfw != nullptr && !ui) {
                     Result<std::unique_ptr<ImGuiLayer>> layer = ImGuiLayer::create(glfw->handle(), context);
                     if (!layer) return make_error("editor panels: " + layer.error());

@@ -60,6 +60,20 @@ void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, 
                           VK_PIPELINE_STAGE_2_BLIT_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0});
 }
 
+Result<bool> ensure_presentation(const vk::Context& context, VkExtent2D extent,
+                                 std::optional<Presentation>& presentation, bool& recreate) {
+    if (presentation && (presentation->swapchain.extent().width != extent.width ||
+                         presentation->swapchain.extent().height != extent.height))
+        recreate = true;
+    if (presentation && !recreate) return false;
+    LC_RETURN_IF_ERROR(context.device().wait_idle());
+    Result<Presentation> next = make_presentation(context, extent, presentation ? &*presentation : nullptr);
+    if (!next) return make_error(next.error());
+    presentation = std::move(next).value();
+    recreate = false;
+    return true;
+}
+
 Result<bool> submit_and_present(const vk::Device& device, Presentation* presentation, VkCommandBuffer cmd,
                                 const vk::Semaphore& image_ready, uint32_t image_index,
                                 const vk::Fence& frame_done) {

@@ -4,6 +4,7 @@
 // blit that scales the renderer's display image onto a swapchain image.
 #include <vulkan/vulkan.h>
 
+#include <optional>
 #include <vector>
 
 #include "editor_client/vk/context.h"
@@ -29,6 +30,11 @@ Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D ex
 // so a UI pass can draw over it (the pass then moves it to PRESENT_SRC).
 void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent,
                  bool keep_target_for_drawing = false);
+
+// Makes `presentation` match `extent`: (re)creates it when absent, when its
+// size differs, or when `recreate` is set (then cleared). True when it was made anew.
+Result<bool> ensure_presentation(const vk::Context& context, VkExtent2D extent,
+                                 std::optional<Presentation>& presentation, bool& recreate);
 
 // Submits one frame's commands and, with a presentation, presents swapchain
 // image `image_index` once they finish (waiting on `image_ready`, the acquire

@@ -69,17 +69,8 @@ Result<ViewSummary> run_view_loop(Window& window, const vk::Context& context, Re
                 std::this_thread::sleep_for(std::chrono::milliseconds(20));
                 continue;
             }
-            if (presentation && (presentation->swapchain.extent().width != extent.width ||
-                                 presentation->swapchain.extent().height != extent.height))
-                recreate = true;
-            if (recreate) {
-                LC_RETURN_IF_ERROR(device.wait_idle());
-                Result<Presentation> next =
-                    make_presentation(context, extent, presentation ? &*presentation : nullptr);
-                if (!next) return make_error(next.error());
-                presentation = std::move(next).value();
-                recreate = false;
-            }
+            Result<bool> remade = ensure_presentation(context, extent, presentation, recreate);
+            if (!remade) return make_error(remade.error());
             Result<vk::AcquireStatus> acquired =
                 presentation->swapchain.acquire(image_ready->handle(), image_index);
             if (!acquired) return make_error(acquired.error());
