@@ -10,7 +10,14 @@
 //     unbounded, always inside) and it has children; mixed-type junctions are
 //     always refined. Every step moves forward in pre-order, so a chain of
 //     depth N costs at most N steps and there is no stack to overflow.
-//   bound (the paper, Sec. 4): a max-heap of (bound, node, unit response)
+//   bound, walk search (the default; editor_client/render/bound_walk.h):
+//     threshold passes, each a pre-order walk shared by the subgroup like the
+//     radius walk, refining every node whose error bound exceeds the pass's
+//     threshold; passes stop once every bound on the cut is <= error x the
+//     cut's total, the cut would exceed max-cut (the pixel keeps the previous
+//     pass's cut and counts in counters.max_cut_hits) or the passes run out.
+//     Mirrors bound_walk_cut() in bound_walk.cpp.
+//   bound, heap search (the paper's order, Sec. 4): a max-heap of (bound, node, unit response)
 //     entries in private memory, at most max-cut of them (a specialization
 //     constant, so the array is sized at pipeline creation). The node with the
 //     largest error bound is refined until every bound is <= error x the total
@@ -30,8 +37,17 @@ const uint kCriterionRadius = 0u;
 const uint kCriterionBound = 1u;
 layout(constant_id = 8) const uint kCriterion = kCriterionRadius;
 layout(constant_id = 11) const float kErrorRatio = 0.02;
-// Heap capacity = the max-cut setting (at least 2 so one refinement fits).
+// Heap capacity = the max-cut setting (at least 2 so one refinement fits);
+// 2 under the walk search, which keeps no heap.
 layout(constant_id = 12) const int kMaxCut = 2;
+const uint kBoundSearchWalk = 0u;
+const uint kBoundSearchHeap = 1u;
+layout(constant_id = 13) const uint kBoundSearch = kBoundSearchWalk;
+// The walk search's max-cut and pass schedule (bound_walk.h).
+layout(constant_id = 14) const uint kWalkMaxCut = 1000u;
+layout(constant_id = 15) const uint kWalkMaxPasses = 12u;
+layout(constant_id = 16) const float kWalkShrink = 16.0;
+layout(constant_id = 17) const float kWalkMargin = 0.8;
 
 struct Cut {
     vec3 irradiance;  // sum over cut nodes of I_C * color * G
@@ -228,6 +244,96 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     return cut;
 }
 
+// ---- bound criterion, walk search ------------------------------------------
+
+// One threshold pass of one lane.
+struct WalkPass {
+    vec3 radiance;  // f_r already applied
+    uint size;
+    uint hash;
+    float worst;    // largest bound among the cut's non-leaf nodes
+    bool over;      // the cut would exceed max-cut: the pass is abandoned
+};
+
+// One step of a pass; like radius_walk_step, the subgroup shares the walk and
+// a lane that takes a node as a cluster waits for the walk to leave its
+// subtree. A lane sitting the pass out (done, or over max-cut) waits for
+// kEndOfWalk, which no node index equals.
+void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout WalkPass pass,
+                     float tau, bool limit_size, SurfacePoint p, vec3 brdf) {
+    if (i == kEndOfWalk) return;
+    if (waiting && i == resume) waiting = false;
+    bool refine = false;
+    if (!waiting) {
+        bool leaf = tree_nodes[i].first_child == kEndOfWalk;
+        bool mixed = (tree_nodes[i].flags & kNodeMixedTypes) != 0u;
+        float key = 0.0;
+        if (!leaf && !mixed)
+            key = max_channel(brdf * geometric_bound(i, p.position, p.normal) *
+                              tree_nodes[i].light.intensity);
+        refine = !leaf && (mixed || key > tau);
+        if (!refine) {
+            waiting = true;
+            if (limit_size && pass.size >= kWalkMaxCut) {
+                pass.over = true;
+                resume = kEndOfWalk;
+            } else {
+                pass.radiance += brdf * light_irradiance(tree_nodes[i].light, p.position, p.normal);
+                pass.size += 1u;
+                pass.hash += cut_hash_term(uint(i));
+                pass.worst = max(pass.worst, key);
+                resume = tree_nodes[i].escape;
+            }
+        }
+    }
+    i = subgroupAny(refine) ? tree_nodes[i].first_child : tree_nodes[i].escape;
+}
+
+Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
+    vec3 brdf = p.albedo * (1.0 / kPi);
+    max_cut_hit = false;
+    radiance = vec3(0.0);
+    Cut cut = Cut(vec3(0.0), 0u, 0u);
+    if (frame.node_count == 0u) return cut;
+    float tau = uintBitsToFloat(0x7f800000u);  // +inf: pass 0 keeps the per-type roots
+    bool done = false;
+    for (uint pass_index = 0u; pass_index < kWalkMaxPasses; ++pass_index) {
+        if (!subgroupAny(!done)) break;
+        WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
+        int i = 0;
+        bool waiting = done;
+        int resume = kEndOfWalk;
+        bool limit_size = pass_index > 0u;
+        for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kRadiusUnroll) {
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+        }
+        if (done) continue;
+        if (pass.over) {
+            done = true;
+            max_cut_hit = true;
+            continue;
+        }
+        radiance = pass.radiance;
+        cut.size = pass.size;
+        cut.hash = pass.hash;
+        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+        if (!(pass.worst > limit)) {
+            done = true;
+        } else {
+            tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
+        }
+    }
+    if (!done) max_cut_hit = true;  // still refining after the last pass
+    return cut;
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
@@ -239,7 +345,8 @@ void main() {
     if (kCriterion == kCriterionBound) {
         vec3 radiance;
         bool max_cut_hit;
-        Cut cut = select_cut_bound(p, radiance, max_cut_hit);
+        Cut cut = kBoundSearch == kBoundSearchWalk ? select_cut_bound_walk(p, radiance, max_cut_hit)
+                                                   : select_cut_bound(p, radiance, max_cut_hit);
         if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
         radiance += outgoing_radiance(p, classic_irradiance(p));
         store_pixel(pixel, radiance, cut.size, cut.hash);

@@ -86,6 +86,7 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
     cut_settings.criterion = CutCriterion::kBound;
     cut_settings.error_ratio = settings.error_ratio;
     cut_settings.max_cut = settings.max_cut;
+    cut_settings.search = settings.bound_search;
     const size_t pixels = size_t(settings.width) * settings.height;
     for (size_t i = 0; i < pixels; ++i) {
         if (g->position[4 * i + 3] == 0.0f) continue;
@@ -136,12 +137,15 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     settings.criterion = CutCriterion::kBound;
     settings.width = settings.height = 48;
     settings.camera = room_camera();
-    for (float error : {0.02f, 0.1f}) {
-        SCOPED_TRACE(error);
-        settings.error_ratio = error;
-        CutAgreement a = compare_with_cpu(**renderer, settings, tree);
-        EXPECT_GT(a.geometry, 48u * 48u / 2);
-        EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+    for (BoundSearch search : {BoundSearch::kWalk, BoundSearch::kHeap}) {
+        for (float error : {0.02f, 0.1f}) {
+            SCOPED_TRACE(testing::Message() << bound_search_name(search) << " " << error);
+            settings.bound_search = search;
+            settings.error_ratio = error;
+            CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+            EXPECT_GT(a.geometry, 48u * 48u / 2);
+            EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+        }
     }
 }
 

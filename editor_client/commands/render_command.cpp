@@ -1,8 +1,8 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
-//   [--error E] [--max-cut K] [--compare-reference] [--size WxH]
+//   [--error E] [--max-cut K] [--bound-search walk|heap] [--compare-reference] [--size WxH]
 //   [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I] [--exposure E] -o OUT.png
-//   [--float OUT.pfm] [--stats OUT.json] [--validation]
+//   [--float OUT.pfm] [--stats OUT.json] [--validation] [--sweep-error E1,E2,...]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -21,6 +21,7 @@
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/render/error_stats.h"
+#include "editor_client/render/error_sweep.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
@@ -41,6 +42,8 @@ struct RenderOptions {
     std::string criterion = "bound";
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
+    std::string bound_search = "walk";
+    std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     bool compare_reference = false;
     std::string size = "512x512";
     std::string camera;
@@ -100,6 +103,9 @@ void run_render(const RenderOptions& options) {
         fail("--max-cut must be in 1 .. " + std::to_string(kMaxGpuCut));
     settings.error_ratio = options.error_ratio;
     settings.max_cut = options.max_cut;
+    std::optional<BoundSearch> search = parse_bound_search(options.bound_search);
+    if (!search) fail("unknown --bound-search '" + options.bound_search + "' (walk, heap)");
+    settings.bound_search = *search;
     auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
@@ -109,6 +115,12 @@ void run_render(const RenderOptions& options) {
     settings.camera = or_fail(
         choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
     const bool compare = error_mode || options.compare_reference;
+    std::vector<float> sweep_ratios;
+    if (!options.sweep_error.empty()) {
+        sweep_ratios = or_fail(parse_error_list(options.sweep_error));
+        if (settings.mode == RenderMode::kReference)
+            fail("--sweep-error needs a lightcuts mode and a tree source");
+    }
     if (compare && !mode_needs_tree(settings.mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
 
@@ -126,6 +138,17 @@ void run_render(const RenderOptions& options) {
     for (const EffectDecision& d : renderer->effects().decisions)
         spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
 
+    if (!sweep_ratios.empty()) {
+        ErrorSweep sweep = or_fail(run_error_sweep(*renderer, settings, sweep_ratios));
+        std::string how = criterion_name(settings.criterion) + std::string(" criterion");
+        if (settings.criterion == CutCriterion::kBound)
+            how += std::string(", ") + bound_search_name(settings.bound_search) + " search";
+        std::printf("error sweep, %s, max cut %u, %ux%u:\n", how.c_str(), settings.max_cut, width,
+                    height);
+        print_error_sweep(stdout, sweep);
+    }
+    // Timings are of the work alone, not of lavapipe compiling the shaders.
+    if (Status warm = renderer->warm_up(settings); !warm) fail(warm.error());
     RenderStats stats = or_fail(renderer->render(settings));
     std::vector<uint8_t> display = or_fail(renderer->read_display());
     std::vector<float> hdr = or_fail(renderer->read_hdr());
@@ -141,6 +164,7 @@ void run_render(const RenderOptions& options) {
     if (compare) {
         RenderSettings reference_settings = settings;
         reference_settings.mode = RenderMode::kReference;
+        if (Status warm = renderer->warm_up(reference_settings); !warm) fail(warm.error());
         RenderStats reference_stats = or_fail(renderer->render(reference_settings));
         std::vector<float> reference = or_fail(renderer->read_hdr());
         ErrorStats errors =
@@ -225,6 +249,15 @@ void add_render_command(CLI::App& app) {
                     "Bound criterion: most nodes in a cut (pixels that reach it are counted as "
                     "max_cut_hits)")
         ->capture_default_str();
+    cmd->add_option("--bound-search", options->bound_search,
+                    "Bound criterion: walk (threshold passes, fast on SIMD devices) or heap (the "
+                    "paper's largest-bound-first order); both stop under the same rule")
+        ->check(CLI::IsMember({"walk", "heap"}))
+        ->capture_default_str();
+    cmd->add_option("--sweep-error", options->sweep_error,
+                    "Print the price of accuracy on this scene and camera: lightcuts at each "
+                    "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
+                    "GPU time, speedup, cut sizes and measured error");
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");

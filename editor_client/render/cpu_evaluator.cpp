@@ -19,6 +19,7 @@
 #include <numbers>
 #include <vector>
 
+#include "editor_client/render/bound_walk.h"
 #include "editor_client/render/shading_model.h"
 
 namespace lc::client {
@@ -341,8 +342,12 @@ CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> cla
                           const SurfacePoint& p, const CutSettings& settings) {
     CutResult result;
     if (!tree.empty()) {
-        result = settings.criterion == CutCriterion::kBound ? bound_cut(tree, p, settings)
-                                                            : radius_cut(tree, p);
+        if (settings.criterion == CutCriterion::kRadius) {
+            result = radius_cut(tree, p);
+        } else {
+            result = settings.search == BoundSearch::kWalk ? bound_walk_cut(tree, p, settings)
+                                                           : bound_cut(tree, p, settings);
+        }
     }
     shade_classic(classic_lights, p, result);
     return result;

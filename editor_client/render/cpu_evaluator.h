@@ -19,13 +19,20 @@ struct SurfacePoint {
 
 enum class CutCriterion : uint8_t { kRadius = 0, kBound = 1 };
 
-// Default maximum cut size for the bound criterion.
+// How the bound criterion finds its cut (both stop under the same rule: every
+// cut node's error bound <= error_ratio x the cut's total estimate, or max_cut).
+//   kWalk: threshold passes (bound_walk.h); the default, fast on SIMD devices.
+//   kHeap: the paper's refinement order, the largest bound first, in a heap.
+enum class BoundSearch : uint8_t { kWalk = 0, kHeap = 1 };
+
+// Default maximum cut size for the bound criterion (the paper's 1000).
 inline constexpr uint32_t kDefaultMaxCut = 1000;
 
 struct CutSettings {
     CutCriterion criterion = CutCriterion::kRadius;
     double error_ratio = 0.02;
     uint32_t max_cut = kDefaultMaxCut;
+    BoundSearch search = BoundSearch::kWalk;
 };
 
 struct CutResult {
@@ -33,6 +40,7 @@ struct CutResult {
     uint32_t cut_size = 0;     // tree nodes in the cut (classic lights not counted)
     uint32_t cut_hash = 0;     // see cut_hash_term(); equal cuts have equal hashes
     bool max_cut_hit = false;  // the bound criterion stopped at max_cut
+    uint32_t passes = 0;       // threshold passes walked (BoundSearch::kWalk)
 };
 
 // Order-independent identity of a cut: the sum (mod 2^32) of cut_hash_term(i)

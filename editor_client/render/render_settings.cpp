@@ -76,6 +76,22 @@ std::optional<CutCriterion> parse_criterion(std::string_view text) {
     return std::nullopt;
 }
 
+const char* bound_search_name(BoundSearch search) {
+    switch (search) {
+        case BoundSearch::kWalk:
+            return "walk";
+        case BoundSearch::kHeap:
+            return "heap";
+    }
+    return "unknown";
+}
+
+std::optional<BoundSearch> parse_bound_search(std::string_view text) {
+    if (text == "walk") return BoundSearch::kWalk;
+    if (text == "heap") return BoundSearch::kHeap;
+    return std::nullopt;
+}
+
 Result<RenderCamera> parse_camera(std::string_view text) {
     std::vector<std::string_view> parts = split(text, ',');
     if (parts.size() != 7)

@@ -29,6 +29,9 @@ inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kRefer
 const char* criterion_name(CutCriterion criterion);
 std::optional<CutCriterion> parse_criterion(std::string_view text);
 
+const char* bound_search_name(BoundSearch search);
+std::optional<BoundSearch> parse_bound_search(std::string_view text);
+
 // Right-handed, +Y up, looking from eye to target (glTF conventions).
 struct RenderCamera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
@@ -51,9 +54,10 @@ struct RenderSettings {
     // <= error_ratio x the pixel's total estimate, or the cut holds max_cut nodes.
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
+    BoundSearch bound_search = BoundSearch::kWalk;  // how the bound criterion finds the cut
 };
 
-// Largest max-cut the GPU heap accepts (private memory per invocation).
+// Largest max-cut the GPU accepts (the heap search keeps it in private memory per invocation).
 inline constexpr uint32_t kMaxGpuCut = 4096;
 
 // "ex,ey,ez,tx,ty,tz,fovy_degrees".

@@ -26,6 +26,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["wall_ms"] = s.wall_ms;
     j["avg_cut"] = s.avg_cut;
     j["max_cut"] = s.max_cut;
+    j["cut_p99"] = s.cut_p99;
     j["geometry_pixels"] = s.geometry_pixels;
     j["nonfinite_pixels"] = s.nonfinite_pixels;
     j["light_evaluations"] = s.light_evaluations;
@@ -35,6 +36,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;
+        j["bound_search"] = s.bound_search;
     }
     if (s.has_error_stats) {
         j["rel_err_mean"] = s.rel_err_mean;

@@ -33,6 +33,7 @@ struct RenderStats {
     // Cut size over pixels with geometry (reference mode: every leaf is the cut).
     double avg_cut = 0.0;
     uint32_t max_cut = 0;
+    uint32_t cut_p99 = 0;  // 99th percentile of the cut size over pixels with a cut
     uint64_t geometry_pixels = 0;
     uint64_t nonfinite_pixels = 0;
     uint64_t light_evaluations = 0;  // light or cluster evaluations in the lighting pass
@@ -41,6 +42,7 @@ struct RenderStats {
     // Bound criterion: its settings and the pixels whose cut stopped at max_cut.
     float error_ratio = 0.0f;
     uint32_t max_cut_setting = 0;
+    std::string bound_search;  // walk or heap
     uint64_t max_cut_hits = 0;
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "editor_client/render/bound_walk.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
 #include "protocol/channel_records.h"
@@ -41,6 +42,11 @@ enum SpecId : uint32_t {
     kSpecTextures = 10,
     kSpecErrorRatio = 11,  // lightcuts.comp, bound criterion (float bits)
     kSpecMaxCut = 12,      // lightcuts.comp, bound criterion: heap capacity
+    kSpecBoundSearch = 13,  // lightcuts.comp: walk or heap (bound_walk.h)
+    kSpecWalkMaxCut = 14,
+    kSpecWalkMaxPasses = 15,
+    kSpecWalkShrink = 16,  // float bits
+    kSpecWalkMargin = 17,  // float bits
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -301,6 +307,13 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
     } else if (settings.criterion == CutCriterion::kRadius) {
         iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
         what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
+    } else if (settings.bound_search == BoundSearch::kWalk) {
+        // Per pass, a lane visits at most 2K nodes (its cut of <= K nodes and
+        // the nodes above it), and the subgroup walks the union of its lanes'.
+        const uint64_t lanes = std::max<uint32_t>(context_.physical().subgroup_size, 1);
+        const uint64_t per_pass = (lanes * 2 * settings.max_cut + kRadiusUnroll - 1) / kRadiusUnroll + 1;
+        iterations += kWalkMaxPasses * (per_pass + 1);
+        what = "the bound criterion with max cut " + std::to_string(settings.max_cut);
     } else {
         // Per refinement: a heap pop and two pushes (log2 K each), two children
         // with an 8-corner bound each; then the final sum over the heap.
@@ -377,7 +390,8 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
     // The cut settings are specialization constants: a change rebuilds the pipeline.
     const bool bound = settings.criterion == CutCriterion::kBound;
     const LightcutsPipelineKey key{settings.criterion, bound ? settings.error_ratio : 0.0f,
-                                   bound ? settings.max_cut : 0u};
+                                   bound ? settings.max_cut : 0u,
+                                   bound ? settings.bound_search : BoundSearch::kWalk};
     if (mode != RenderMode::kReference && slot && !(lightcuts_key_ == key)) slot.reset();
     if (!slot) {
         vk::Specialization spec;
@@ -390,10 +404,17 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
             .set_bool(kSpecClassicLights, effects_.classic_lights)
             .set_bool(kSpecEmissive, effects_.emissive);
         if (mode != RenderMode::kReference) {
-            // The heap needs room for one refinement (two children) even at max-cut 1.
+            // The heap needs room for one refinement (two children) even at
+            // max-cut 1; the walk keeps no heap, so its array stays minimal.
+            const bool heap = settings.bound_search == BoundSearch::kHeap;
             spec.set_uint(kSpecCriterion, static_cast<uint32_t>(settings.criterion))
                 .set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(settings.error_ratio))
-                .set_uint(kSpecMaxCut, std::max(settings.max_cut, 2u));
+                .set_uint(kSpecMaxCut, heap ? std::max(settings.max_cut, 2u) : 2u)
+                .set_uint(kSpecBoundSearch, static_cast<uint32_t>(settings.bound_search))
+                .set_uint(kSpecWalkMaxCut, settings.max_cut)
+                .set_uint(kSpecWalkMaxPasses, kWalkMaxPasses)
+                .set_uint(kSpecWalkShrink, std::bit_cast<uint32_t>(kWalkShrink))
+                .set_uint(kSpecWalkMargin, std::bit_cast<uint32_t>(kWalkMargin));
             lightcuts_key_ = key;
         }
         auto code =
@@ -575,6 +596,14 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     return Ok{};
 }
 
+Status Renderer::warm_up(const RenderSettings& settings) {
+    RenderSettings tiny = settings;
+    tiny.width = tiny.height = 16;
+    Result<RenderStats> stats = render(tiny);
+    if (!stats) return make_error(stats.error());
+    return Ok{};
+}
+
 Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(validate(settings));
     // Build targets and pipelines before the clock starts: wall_ms is the frame.
@@ -620,12 +649,24 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;
+        stats.bound_search = bound_search_name(settings.bound_search);
     }
 
     Result<std::vector<uint32_t>> cuts = read_cuts();
     if (!cuts) return make_error(cuts.error());
     uint64_t cut_sum = 0;
-    for (size_t i = 0; i < cuts->size(); i += 2) cut_sum += (*cuts)[i];  // 0 on background
+    std::vector<uint32_t> geometry_cuts;  // for the percentile: pixels with a cut
+    geometry_cuts.reserve(cuts->size() / 2);
+    for (size_t i = 0; i < cuts->size(); i += 2) {
+        cut_sum += (*cuts)[i];  // 0 on background
+        if ((*cuts)[i] > 0) geometry_cuts.push_back((*cuts)[i]);
+    }
+    if (!geometry_cuts.empty()) {
+        const size_t rank = (geometry_cuts.size() * 99) / 100;
+        std::nth_element(geometry_cuts.begin(), geometry_cuts.begin() + ptrdiff_t(rank),
+                         geometry_cuts.end());
+        stats.cut_p99 = geometry_cuts[rank];
+    }
     stats.avg_cut =
         stats.geometry_pixels > 0 ? double(cut_sum) / double(stats.geometry_pixels) : 0.0;
     stats.light_evaluations = cut_sum + stats.geometry_pixels * classic_count_;

@@ -79,6 +79,11 @@ public:
 
     // Headless: records, submits, waits, and gathers statistics.
     Result<RenderStats> render(const RenderSettings& settings);
+    // Renders a 16x16 frame with these settings' pipelines, so that the next
+    // full frame's timing is the work alone: lavapipe compiles a pipeline's
+    // shaders on its first dispatch (~0.4 s for the lightcuts shader), inside
+    // the GPU timestamps. The last frame's read-backs are lost.
+    Status warm_up(const RenderSettings& settings);
 
     // Results of the last completed frame.
     Result<PassTimings> read_timings() const;
@@ -146,6 +151,7 @@ private:
         CutCriterion criterion = CutCriterion::kRadius;
         float error_ratio = 0.0f;
         uint32_t max_cut = 0;
+        BoundSearch search = BoundSearch::kWalk;
         bool operator==(const LightcutsPipelineKey&) const = default;
     };
     LightcutsPipelineKey lightcuts_key_;

@@ -58,6 +58,7 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0)
         return "subgroup vote operations in compute shaders are not supported";
+    out.subgroup_size = subgroup.subgroupSize;
     if (!features13.synchronization2) return "synchronization2 is not supported";
     if (surface != VK_NULL_HANDLE && !has_device_extension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
         return "VK_KHR_swapchain is not supported";

@@ -17,6 +17,7 @@ struct PhysicalDevice {
     // One family does graphics, compute and transfer (and presents, when a surface was given).
     uint32_t queue_family = 0;
     uint32_t timestamp_valid_bits = 0;
+    uint32_t subgroup_size = 1;  // lanes that share the lightcuts walk
 
     std::string name() const { return properties.deviceName; }
     bool is_software() const { return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }

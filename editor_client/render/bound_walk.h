@@ -1,0 +1,37 @@
+#pragma once
+// The bound criterion's cut found by threshold passes instead of a heap.
+//
+// The paper refines the node with the largest error bound until every bound is
+// <= error x the total estimate. The cut that rule stops at depends on the
+// threshold only through the final total T, so a walk that refines every node
+// whose bound exceeds a threshold tau finds a cut meeting the same rule once
+// tau <= error x T of its own cut. Each pass is a pre-order walk (no heap, no
+// stack: what a SIMD device wants); a pass that misses sets a lower tau and
+// walks again:
+//   pass 0: tau = +inf (the cut is the per-type roots);
+//   then, while the largest bound left on the cut, m, exceeds error x T:
+//   tau = max(kWalkMargin x error x T, m / kWalkShrink).
+// The margin makes the pass after the scale is found almost always the last;
+// the shrink bounds how far one pass can over-refine on a poor early T.
+// A pass whose cut would exceed max_cut is abandoned: the pixel keeps the
+// previous pass's cut (every node of it under one threshold, not a truncated
+// walk) and counts as a max-cut hit, as does a pixel still refining after
+// kWalkMaxPasses. Interior nodes are never evaluated, so there is nothing for
+// a child to reuse; cut nodes are evaluated once per pass.
+//
+// shaders/lightcuts.comp implements the same passes (constants come from here
+// as specialization constants), shared by a subgroup.
+#include <cstdint>
+
+#include "editor_client/render/cpu_evaluator.h"
+
+namespace lc::client {
+
+inline constexpr uint32_t kWalkMaxPasses = 12;
+inline constexpr float kWalkShrink = 16.0f;
+inline constexpr float kWalkMargin = 0.8f;
+
+// The cut of the bound criterion by threshold passes (classic lights not included).
+CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings);
+
+}  // namespace lc::client

@@ -1,0 +1,87 @@
+#include "editor_client/render/error_sweep.h"
+
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include "editor_client/render/error_stats.h"
+#include "editor_client/vk/vk_result.h"
+
+namespace lc::client {
+
+Result<std::vector<float>> parse_error_list(std::string_view text) {
+    std::vector<float> ratios;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string item(text.substr(start, comma - start));
+        float value = 0.0f;
+        const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
+        if (item.empty() || ec != std::errc() || end != item.data() + item.size() ||
+            !std::isfinite(value) || value < 0.0f)
+            return make_error("--sweep-error: '" + item +
+                              "' is not a finite error ratio >= 0 (expected e.g. "
+                              "0.005,0.01,0.02,0.05)");
+        ratios.push_back(value);
+        start = comma + 1;
+    }
+    return ratios;
+}
+
+Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
+                                   const std::vector<float>& error_ratios) {
+    ErrorSweep sweep;
+    RenderSettings reference_settings = settings;
+    reference_settings.mode = RenderMode::kReference;
+    LC_RETURN_IF_ERROR(renderer.warm_up(reference_settings));
+    Result<RenderStats> reference_stats = renderer.render(reference_settings);
+    if (!reference_stats) return make_error("reference: " + reference_stats.error());
+    Result<std::vector<float>> reference = renderer.read_hdr();
+    if (!reference) return make_error(reference.error());
+    sweep.reference_ms = reference_stats->render_ms;
+    sweep.reference_wall_ms = reference_stats->wall_ms;
+    sweep.lights = reference_stats->lights;
+
+    RenderSettings lightcuts = settings;
+    lightcuts.mode = RenderMode::kLightcuts;
+    for (float ratio : error_ratios) {
+        lightcuts.error_ratio = ratio;
+        LC_RETURN_IF_ERROR(renderer.warm_up(lightcuts));
+        Result<RenderStats> stats = renderer.render(lightcuts);
+        if (!stats) return make_error("error ratio " + std::to_string(ratio) + ": " + stats.error());
+        Result<std::vector<float>> hdr = renderer.read_hdr();
+        if (!hdr) return make_error(hdr.error());
+        Result<ErrorStats> errors =
+            compute_error_stats(*hdr, *reference, settings.width, settings.height, ratio);
+        if (!errors) return make_error(errors.error());
+        ErrorSweepRow row;
+        row.error_ratio = ratio;
+        row.render_ms = stats->render_ms;
+        row.wall_ms = stats->wall_ms;
+        row.avg_cut = stats->avg_cut;
+        row.cut_p99 = stats->cut_p99;
+        row.max_cut_hits = stats->max_cut_hits;
+        row.rel_err_mean = errors->rel_err_mean;
+        row.rel_err_p99 = errors->rel_err_p99;
+        row.frac_over_error = errors->frac_over_error;
+        row.max_err = errors->max_err;
+        sweep.rows.push_back(row);
+    }
+    return sweep;
+}
+
+void print_error_sweep(std::FILE* out, const ErrorSweep& sweep) {
+    std::fprintf(out, "reference: %llu lights, %.1f ms GPU, %.1f ms wall\n",
+                 (unsigned long long)sweep.lights, sweep.reference_ms, sweep.reference_wall_ms);
+    std::fprintf(out, "%8s %10s %10s %8s %8s %7s %9s %9s %9s %9s %8s\n", "error", "GPU ms", "wall ms", "speedup",
+                 "avg cut", "p99 cut", "err mean", "err p99", "over E", "err max", "max-cut");
+    for (const ErrorSweepRow& r : sweep.rows) {
+        const double speedup = r.render_ms > 0.0 ? sweep.reference_ms / r.render_ms : 0.0;
+        std::fprintf(out, "%8.4g %10.1f %10.1f %7.2fx %8.1f %7u %9.4f %9.4f %8.2f%% %9.4f %8llu\n",
+                     r.error_ratio, r.render_ms, r.wall_ms, speedup, r.avg_cut, r.cut_p99, r.rel_err_mean,
+                     r.rel_err_p99, 100.0 * r.frac_over_error, r.max_err,
+                     (unsigned long long)r.max_cut_hits);
+    }
+}
+
+}  // namespace lc::client

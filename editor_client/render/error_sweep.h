@@ -1,0 +1,46 @@
+#pragma once
+// The price of accuracy on one scene and camera: lightcuts rendered at several
+// error ratios, each measured against one reference frame of the same run.
+// `editor_client render --sweep-error 0.005,0.01,0.02,0.05` prints it.
+#include <cstdio>
+#include <string_view>
+#include <vector>
+
+#include "editor_client/render/render_settings.h"
+#include "editor_client/render/renderer.h"
+#include "protocol/result.h"
+
+namespace lc::client {
+
+struct ErrorSweepRow {
+    float error_ratio = 0.0f;
+    double render_ms = 0.0;  // GPU time of the lightcuts frame
+    double wall_ms = 0.0;
+    double avg_cut = 0.0;
+    uint32_t cut_p99 = 0;
+    uint64_t max_cut_hits = 0;
+    double rel_err_mean = 0.0;
+    double rel_err_p99 = 0.0;
+    double frac_over_error = 0.0;  // pixels whose error exceeds this row's ratio
+    double max_err = 0.0;
+};
+
+struct ErrorSweep {
+    double reference_ms = 0.0;  // GPU time of the reference frame
+    double reference_wall_ms = 0.0;
+    uint64_t lights = 0;
+    std::vector<ErrorSweepRow> rows;
+};
+
+// "0.005,0.01,0.02": finite ratios >= 0, at least one.
+Result<std::vector<float>> parse_error_list(std::string_view text);
+
+// Renders the reference once, then lightcuts (settings' criterion, max cut and
+// search) at each ratio. Leaves the renderer holding the last lightcuts frame.
+Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
+                                   const std::vector<float>& error_ratios);
+
+// The table a user reads: one row per ratio, the reference time on top.
+void print_error_sweep(std::FILE* out, const ErrorSweep& sweep);
+
+}  // namespace lc::client

@@ -1,0 +1,91 @@
+// `render --sweep-error`: the price of accuracy on one scene, measured against
+// one reference frame (editor_client/render/error_sweep.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "editor_client/render/error_sweep.h"
+#include "editor_client/render/renderer.h"
+#include "editor_client/scene/scene_generator.h"
+#include "lightmass_server/tree_builder.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+TEST(ErrorList, ParsesRatiosAndNamesTheBadOne) {
+    Result<std::vector<float>> ok = parse_error_list("0.005,0.01,0.2");
+    ASSERT_TRUE(ok.ok()) << ok.error();
+    EXPECT_EQ(*ok, (std::vector<float>{0.005f, 0.01f, 0.2f}));
+    for (const char* bad : {"", "0.01,", "0.01,abc", "-0.1", "nan", "0.01;0.02", "1e99"}) {
+        Result<std::vector<float>> r = parse_error_list(bad);
+        EXPECT_FALSE(r.ok()) << bad;
+        if (!r.ok()) {
+            EXPECT_NE(r.error().find("--sweep-error"), std::string::npos) << r.error();
+        }
+    }
+}
+
+class ErrorSweepRender : public ::testing::Test {
+protected:
+    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
+    void TearDown() override {
+        if (context_) {
+            EXPECT_EQ(context_->validation_message_count(), 0u);
+        }
+    }
+    std::unique_ptr<vk::Context> context_;
+};
+
+TEST_F(ErrorSweepRender, SmallerRatiosCostMoreAndErrLess) {
+    Scene scene = make_room_scene();
+    LightLayoutOptions layout;
+    layout.count = 1500;
+    layout.seed = 3;
+    layout.box_min = kRoomLightBoxMin;
+    layout.box_max = kRoomLightBoxMax;
+    layout.intensity = 0.5f;
+    Result<std::vector<SceneLight>> lights = generate_lights(layout);
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    scene.lights = *lights;
+    bake::BuildOptions options;
+    options.builder = BuilderKind::kAgglomerative;
+    Result<bake::BuildResult> built = bake::build_light_tree(scene.lights, options, nullptr);
+    ASSERT_TRUE(built.ok()) << built.error();
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &built->tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 48;
+    settings.camera.eye = {0.0f, 1.6f, 4.8f};
+    settings.camera.target = {0.0f, 1.2f, -5.0f};
+    settings.camera.yfov = 1.2f;
+    const std::vector<float> ratios{0.002f, 0.01f, 0.05f, 0.2f};
+    Result<ErrorSweep> sweep = run_error_sweep(**renderer, settings, ratios);
+    ASSERT_TRUE(sweep.ok()) << sweep.error();
+    print_error_sweep(stdout, *sweep);
+    ASSERT_EQ(sweep->rows.size(), ratios.size());
+    EXPECT_EQ(sweep->lights, 1500u);
+    EXPECT_GT(sweep->reference_ms, 0.0);
+    for (size_t i = 0; i < ratios.size(); ++i) {
+        const ErrorSweepRow& row = sweep->rows[i];
+        EXPECT_EQ(row.error_ratio, ratios[i]);
+        EXPECT_TRUE(std::isfinite(row.rel_err_mean) && std::isfinite(row.max_err));
+        EXPECT_GT(row.avg_cut, 1.0);
+        EXPECT_GE(row.cut_p99, uint32_t(row.avg_cut));
+        if (i == 0) continue;
+        const ErrorSweepRow& finer = sweep->rows[i - 1];
+        // Cut size is what a ratio buys; the error follows (noise aside).
+        EXPECT_LT(row.avg_cut, finer.avg_cut);
+        EXPECT_GT(row.rel_err_mean, 0.8 * finer.rel_err_mean);
+    }
+    EXPECT_LT(sweep->rows.front().rel_err_mean, 0.01);
+    EXPECT_LT(sweep->rows.front().rel_err_mean, 0.5 * sweep->rows.back().rel_err_mean);
+}
+
+}  // namespace
+}  // namespace lc::client
