@@ -8,9 +8,10 @@
 #include "frame_bindings.glsl"
 
 // Upper bound of cos(angle(axis, v)) over every v in the box [lo, hi] (paper
-// Eq. 4): rotate the box's corners into a frame whose z is `axis`, bound them,
-// then bound v_z / |v| from the largest v_z and the smallest (or largest)
-// lateral extent.
+// Eq. 4): rotate the box into a frame whose z is `axis` and take the rotated
+// box's bounding box (centre rotated, half extents through |R|: the same box
+// as the eight rotated corners', at a third of the work), then bound
+// v_z / |v| from the largest v_z and the smallest (or largest) lateral extent.
 float max_cos_to_box(vec3 axis, vec3 lo, vec3 hi) {
     // Orthonormal frame (t, s, axis), Duff et al.'s branchless construction.
     float sign_z = axis.z < 0.0 ? -1.0 : 1.0;
@@ -18,15 +19,14 @@ float max_cos_to_box(vec3 axis, vec3 lo, vec3 hi) {
     float b = axis.x * axis.y * a;
     vec3 t = vec3(1.0 + sign_z * axis.x * axis.x * a, sign_z * b, -sign_z * axis.x);
     vec3 s = vec3(b, sign_z + axis.y * axis.y * a, -axis.y);
-    vec3 llo = vec3(3.0e38);
-    vec3 lhi = vec3(-3.0e38);
-    for (int corner = 0; corner < 8; ++corner) {
-        vec3 c = vec3((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y,
-                      (corner & 4) != 0 ? hi.z : lo.z);
-        vec3 local = vec3(dot(c, t), dot(c, s), dot(c, axis));
-        llo = min(llo, local);
-        lhi = max(lhi, local);
-    }
+    vec3 center = 0.5 * (lo + hi);
+    vec3 half_extent = 0.5 * (hi - lo);
+    vec3 local = vec3(dot(center, t), dot(center, s), dot(center, axis));
+    vec3 reach = vec3(dot(half_extent, abs(t)), dot(half_extent, abs(s)), dot(half_extent, abs(axis)));
+    // Rounding must not shrink the box: widen it by a few float ulps.
+    reach += (abs(local) + reach) * 1e-6;
+    vec3 llo = local - reach;
+    vec3 lhi = local + reach;
     float z_max = lhi.z;
     vec2 lat_lo = llo.xy;
     vec2 lat_hi = lhi.xy;
@@ -57,18 +57,18 @@ bool spot_cluster_excluded(GpuNodeBounds nb, vec3 x) {
 }
 
 // Upper bound of G (cosine with the normal included, visibility 1) over every
-// light of tree node i at point x with normal n.
-float geometric_bound(int i, vec3 x, vec3 n) {
-    GpuNodeBounds nb = node_bounds[i];
-    GpuLight rep = tree_nodes[i].light;
+// light of a tree node (its record and bounds, loaded once by the caller) at
+// point x with normal n.
+float geometric_bound_of(GpuTreeNode node, GpuNodeBounds nb, vec3 x, vec3 n) {
+    GpuLight rep = node.light;
     if (kDirectionalLights && rep.type == kLightDirectional) {
         // The box holds the directions d_i; light arrives along -d_i.
         return max(0.0, max_cos_to_box(n, -nb.bbox_max, -nb.bbox_min));
     }
     // Every light's sphere of influence lies inside the node's radius around
     // the representative; a leaf uses its own range; unbounded stays unbounded.
-    bool leaf = tree_nodes[i].first_child == kEndOfWalk;
-    float radius = leaf ? (rep.range > 0.0 ? rep.range : -1.0) : tree_nodes[i].radius;
+    bool leaf = node.first_child == kEndOfWalk;
+    float radius = leaf ? (rep.range > 0.0 ? rep.range : -1.0) : node.radius;
     if (rep.range <= 0.0) radius = -1.0;
     if (radius >= 0.0 && length(x - rep.position) >= radius) return 0.0;
     vec3 closest = clamp(x, nb.bbox_min, nb.bbox_max);
@@ -79,6 +79,10 @@ float geometric_bound(int i, vec3 x, vec3 n) {
     if (!(cos_bound > 0.0)) return 0.0;
     if (kSpotLights && rep.type == kLightSpot && spot_cluster_excluded(nb, x)) return 0.0;
     return cos_bound * window * inverse_square(dmin2);
+}
+
+float geometric_bound(int i, vec3 x, vec3 n) {
+    return geometric_bound_of(tree_nodes[i], node_bounds[i], x, n);
 }
 
 #endif

@@ -22,6 +22,7 @@ layout(std430, set = 0, binding = 10) buffer FrameCounters {
     uint nonfinite_pixels;
     uint geometry_pixels;
     uint max_cut_hits;  // bound criterion: pixels whose cut stopped at max-cut
+    uint loop_limit_stops;  // walk search: pixels whose pass the device's loop limit cut short
 } counters;
 // Per-node box and cone for the bound criterion (GpuNodeBounds, same order as tree_nodes).
 layout(std430, set = 0, binding = 11) readonly buffer NodeBounds { GpuNodeBounds node_bounds[]; };

@@ -9,5 +9,6 @@
 
 const uint kLoopUnroll = 4u;    // light loops (reference, classic lights)
 const uint kRadiusUnroll = 8u;  // the radius criterion's tree walk
+const uint kWalkUnroll = 2u;    // the bound criterion's walk (checks its own completion)
 
 #endif

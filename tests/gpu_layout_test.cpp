@@ -33,7 +33,8 @@ TEST(GpuLayout, SizesAndOffsetsMatchTheGlslMirror) {
     EXPECT_EQ(sizeof(GpuNodeBounds), 48u);
     EXPECT_EQ(offsetof(GpuNodeBounds, bbox_max), 16u);
     EXPECT_EQ(offsetof(GpuNodeBounds, cone_axis), 32u);
-    EXPECT_EQ(sizeof(GpuFrameCounters), 16u);
+    EXPECT_EQ(sizeof(GpuFrameCounters), 32u);
+    EXPECT_EQ(offsetof(GpuFrameCounters, loop_limit_stops), 16u);
     EXPECT_EQ(sizeof(GpuFrameConstants), 32u);
     EXPECT_EQ(sizeof(GpuDrawConstants), 128u);
     EXPECT_EQ(alignof(GpuLight), 16u);

@@ -89,10 +89,52 @@ TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
     settings.camera = test::floor_camera();
     settings.mode = RenderMode::kLightcuts;
     settings.criterion = client::CutCriterion::kBound;
+    settings.bound_search = client::BoundSearch::kHeap;
     settings.max_cut = 4096;
     auto stats = (*renderer)->render(settings);
     ASSERT_FALSE(stats.ok());
     EXPECT_NE(stats.error().find("65535"), std::string::npos) << stats.error();
+}
+
+TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    if (context->physical().name().find("llvmpipe") == std::string::npos)
+        GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
+    client::Scene scene = test::make_floor_scene();
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> xz(-4.5f, 4.5f), y(0.5f, 4.5f);
+    for (uint32_t i = 0; i < 70000; ++i) {
+        SceneLight light = test::point_light({xz(rng), y(rng), xz(rng)}, glm::vec3(1.0f), 0.01f);
+        test::set_unit_guid(light, i);
+        scene.lights.push_back(light);
+    }
+    // Every junction flagged mixed-type: always refined, so the first pass
+    // walks all 139,999 nodes, two per iteration: past the 65,535 limit.
+    LightTree tree = test::make_pairing_tree(scene.lights);
+    for (LightTreeNode& node : tree.nodes)
+        if (!node.is_leaf()) node.mixed_types = true;
+    auto renderer = Renderer::create(*context, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.width = settings.height = 8;
+    settings.camera = test::floor_camera();
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = client::CutCriterion::kBound;
+    auto stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_GT(stats->geometry_pixels, 0u);
+    EXPECT_EQ(stats->loop_limit_stops, stats->geometry_pixels);
+    EXPECT_EQ(stats->nonfinite_pixels, 0u);
+    // A normal tree of the same lights walks to the end.
+    LightTree normal = test::make_pairing_tree(scene.lights);
+    auto renderer2 = Renderer::create(*context, scene, &normal);
+    ASSERT_TRUE(renderer2.ok()) << renderer2.error();
+    stats = (*renderer2)->render(settings);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_EQ(stats->loop_limit_stops, 0u);
+    EXPECT_GT(stats->avg_cut, 1.0);
+    EXPECT_EQ(context->validation_message_count(), 0u);
 }
 
 }  // namespace

@@ -203,6 +203,11 @@ void run_render(const RenderOptions& options) {
         Status written = write_stats_json(options.stats, stats);
         if (!written) fail(written.error());
     }
+    if (stats.loop_limit_stops > 0)
+        std::fprintf(stderr,
+                     "warning: the device's loop limit cut %llu pixels' cut search short; they "
+                     "keep their last complete pass (counted in loop_limit_stops)\n",
+                     (unsigned long long)stats.loop_limit_stops);
     if (stats.has_error_stats)
         std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
                     "over %.3f, max %.4f, %llu max-cut hits\n",

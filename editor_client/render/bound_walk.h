@@ -28,7 +28,7 @@
 namespace lc::client {
 
 inline constexpr uint32_t kWalkMaxPasses = 12;
-inline constexpr float kWalkShrink = 16.0f;
+inline constexpr float kWalkShrink = 512.0f;
 inline constexpr float kWalkMargin = 0.8f;
 
 // The cut of the bound criterion by threshold passes (classic lights not included).

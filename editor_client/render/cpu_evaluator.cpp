@@ -89,8 +89,9 @@ double max_channel(const glm::dvec3& v) {
 
 // Upper bound of cos(angle(axis, v)) over every vector v in the box [lo, hi]
 // (paper Eq. 4): rotate the box into a frame whose z is `axis`, take the
-// rotated corners' bounding box (which contains the rotated box), then bound
-// v_z / |v| using the largest v_z and the smallest (or largest) v_x^2 + v_y^2.
+// rotated box's bounding box (centre rotated, half extents through |R|: the
+// eight rotated corners' box), then bound v_z / |v| using the largest v_z and
+// the smallest (or largest) v_x^2 + v_y^2.
 double max_cos_to_box(const glm::dvec3& axis, const glm::dvec3& lo, const glm::dvec3& hi) {
     // Orthonormal frame (t, b, axis); Duff et al.'s branchless construction.
     const double sign = std::copysign(1.0, axis.z);
@@ -99,15 +100,15 @@ double max_cos_to_box(const glm::dvec3& axis, const glm::dvec3& lo, const glm::d
     const glm::dvec3 t(1.0 + sign * axis.x * axis.x * a, sign * b, -sign * axis.x);
     const glm::dvec3 s(b, sign + axis.y * axis.y * a, -axis.y);
 
-    glm::dvec3 llo(std::numeric_limits<double>::max());
-    glm::dvec3 lhi(std::numeric_limits<double>::lowest());
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::dvec3 c((corner & 1) ? hi.x : lo.x, (corner & 2) ? hi.y : lo.y,
-                           (corner & 4) ? hi.z : lo.z);
-        const glm::dvec3 local(glm::dot(c, t), glm::dot(c, s), glm::dot(c, axis));
-        llo = glm::min(llo, local);
-        lhi = glm::max(lhi, local);
-    }
+    const glm::dvec3 center = 0.5 * (lo + hi);
+    const glm::dvec3 half_extent = 0.5 * (hi - lo);
+    const glm::dvec3 local(glm::dot(center, t), glm::dot(center, s), glm::dot(center, axis));
+    glm::dvec3 reach(glm::dot(half_extent, glm::abs(t)), glm::dot(half_extent, glm::abs(s)),
+                           glm::dot(half_extent, glm::abs(axis)));
+    // Rounding must not shrink the box: widen it by a few double ulps.
+    reach += (glm::abs(local) + reach) * 1e-15;
+    const glm::dvec3 llo = local - reach;
+    const glm::dvec3 lhi = local + reach;
     const double z_max = lhi.z;
     auto min_sq = [](double l, double h) {
         return (l <= 0.0 && h >= 0.0) ? 0.0 : std::min(l * l, h * h);

@@ -67,6 +67,9 @@ struct alignas(16) GpuFrameCounters {
     uint32_t nonfinite_pixels = 0;
     uint32_t geometry_pixels = 0;
     uint32_t max_cut_hits = 0;  // bound criterion: pixels whose cut stopped at max-cut
+    // Walk search: pixels whose pass was cut short by the device's loop limit
+    // (llvmpipe, loop_limits.glsl); they keep their last complete pass.
+    uint32_t loop_limit_stops = 0;
 };
 
 // Push constants shared by the compute passes.
@@ -113,7 +116,8 @@ static_assert(sizeof(GpuNodeBounds) == 48);
 static_assert(offsetof(GpuNodeBounds, cone_cos) == 12);
 static_assert(offsetof(GpuNodeBounds, bbox_max) == 16);
 static_assert(offsetof(GpuNodeBounds, cone_axis) == 32);
-static_assert(sizeof(GpuFrameCounters) == 16);
+static_assert(sizeof(GpuFrameCounters) == 32);
+static_assert(offsetof(GpuFrameCounters, loop_limit_stops) == 16);
 static_assert(sizeof(GpuFrameConstants) == 32);
 static_assert(offsetof(GpuFrameConstants, exposure) == 20);
 static_assert(offsetof(GpuFrameConstants, scale_bar_rows) == 24);

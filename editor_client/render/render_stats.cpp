@@ -33,6 +33,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["effects_simulated"] = effects_json(s.effects_simulated);
     j["effects_skipped"] = effects_json(s.effects_skipped);
     j["max_cut_hits"] = s.max_cut_hits;
+    j["loop_limit_stops"] = s.loop_limit_stops;
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;

@@ -44,6 +44,7 @@ struct RenderStats {
     uint32_t max_cut_setting = 0;
     std::string bound_search;  // walk or heap
     uint64_t max_cut_hits = 0;
+    uint64_t loop_limit_stops = 0;  // walk search: passes the device's loop limit cut short
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;
     double rel_err_mean = 0.0;

@@ -308,12 +308,10 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
         iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
         what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
     } else if (settings.bound_search == BoundSearch::kWalk) {
-        // Per pass, a lane visits at most 2K nodes (its cut of <= K nodes and
-        // the nodes above it), and the subgroup walks the union of its lanes'.
-        const uint64_t lanes = std::max<uint32_t>(context_.physical().subgroup_size, 1);
-        const uint64_t per_pass = (lanes * 2 * settings.max_cut + kRadiusUnroll - 1) / kRadiusUnroll + 1;
-        iterations += kWalkMaxPasses * (per_pass + 1);
-        what = "the bound criterion with max cut " + std::to_string(settings.max_cut);
+        // The walk notices a pass the limit cut short (it did not reach the
+        // end of the tree), keeps the previous pass and counts the pixel in
+        // loop_limit_stops: nothing is truncated silently, so nothing to refuse.
+        return Ok{};
     } else {
         // Per refinement: a heap pop and two pushes (log2 K each), two children
         // with an 8-corner bound each; then the final sum over the heap.
@@ -646,6 +644,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.geometry_pixels = counters->geometry_pixels;
     stats.nonfinite_pixels = counters->nonfinite_pixels;
     stats.max_cut_hits = counters->max_cut_hits;
+    stats.loop_limit_stops = counters->loop_limit_stops;
     if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;
