@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Editor frame rate: 4,096 point lights in the generated room, baked once by a
 # local lightmass_server, shown by `editor_client view` at 640x360 in lightcuts
-# mode (radius criterion, full resolution: the camera does not move). Two runs:
-#   headless   frames rendered, never presented (the renderer and editor loop)
-#   xvfb       a real GLFW window and swapchain with the ImGui panels drawn
-#              (skipped when xvfb-run is missing)
+# mode (bound criterion, E = 0.02, the editor's default). Three runs:
+#   headless          camera still: every frame at full size, never presented
+#   headless_moving   camera orbiting every frame (--orbit): the adaptive
+#                     resolution renders at reduced size while it moves; the
+#                     first frame (full size, before any move) is included
+#   xvfb              a real GLFW window and swapchain with the ImGui panels
+#                     drawn, camera still (skipped when xvfb-run is missing)
 # Writes docs/bench/editor_fps.csv: run, lights, width, height, mode, frames,
 # seconds, fps, gpu_ms_last. The goal on lavapipe with two cores: >= 5 fps.
 # Usage: scripts/bench-editor.sh [build-dir] [frames]   (default: build, 10; a frame can take
@@ -51,6 +54,9 @@ view=("$client" view "$work/room.gltf" --tree "$work/room.lcut" --mode lightcuts
       --size 640x360 --frames "$frames")
 LC_VALIDATION=0 "${view[@]}" --headless > "$work/headless.log" 2>&1 || { cat "$work/headless.log"; exit 1; }
 record headless "$work/headless.log"
+LC_VALIDATION=0 "${view[@]}" --headless --frames 40 --orbit 4 > "$work/moving.log" 2>&1 \
+  || { cat "$work/moving.log"; exit 1; }
+record headless_moving "$work/moving.log"
 if command -v xvfb-run >/dev/null 2>&1; then
   LC_VALIDATION=0 xvfb-run -a -s "-screen 0 1280x720x24" "${view[@]}" > "$work/xvfb.log" 2>&1 \
     || { cat "$work/xvfb.log"; exit 1; }

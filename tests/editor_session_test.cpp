@@ -199,6 +199,7 @@ TEST(EditorSession, ProceduralLightsAreDeterministicInsideTheBoxAndOneUndoStep) 
 
 TEST(EditorSession, ViewControlsValidate) {
     EditorSession session(make_room_scene());
+    EXPECT_EQ(session.view().criterion, CutCriterion::kBound) << "the paper's criterion by default";
     ASSERT_TRUE(session.set_mode("lightcuts"));
     EXPECT_EQ(session.view().mode, RenderMode::kLightcuts);
     Status bad_mode = session.set_mode("sparkles");
@@ -221,6 +222,17 @@ TEST(EditorSession, ViewControlsValidate) {
     ASSERT_TRUE(session.set_max_cut(64));
     EXPECT_EQ(session.view().max_cut, 64u);
     EXPECT_FALSE(session.set_max_cut(0).ok());
+    EXPECT_FALSE(session.set_max_cut(kMaxGpuCut + 1).ok()) << "the renderer would refuse it";
+
+    // Every control reaches the renderer (error ratio and max cut once did not).
+    RenderSettings shown = render_settings_for(session.view(), 320, 200, /*has_tree=*/true);
+    EXPECT_EQ(shown.mode, RenderMode::kLightcuts);
+    EXPECT_EQ(shown.criterion, CutCriterion::kBound);
+    EXPECT_FLOAT_EQ(shown.error_ratio, 0.05f);
+    EXPECT_EQ(shown.max_cut, 64u);
+    EXPECT_EQ(shown.width, 320u);
+    EXPECT_EQ(shown.height, 200u);
+    EXPECT_EQ(render_settings_for(session.view(), 320, 200, false).mode, RenderMode::kReference);
 
     RenderCamera camera;
     camera.eye = {0, 1, 4};

@@ -45,6 +45,7 @@ struct ViewCommandOptions {
     bool validation = false;
     bool headless = false;
     bool no_adaptive = false;
+    float orbit_drag = 0.0f;
     bool no_panels = false;
     std::string window_screenshot;
 };
@@ -136,6 +137,8 @@ void run_view(const ViewCommandOptions& options) {
     loop.screenshot = options.screenshot;
     loop.script = script ? &*script : nullptr;
     loop.adaptive_resolution = !options.no_adaptive;
+    if (!std::isfinite(options.orbit_drag)) fail("--orbit must be a finite number of pixels");
+    loop.orbit_drag_per_frame = options.orbit_drag;
     loop.panels = !options.no_panels;
     loop.window_screenshot = options.window_screenshot;
     EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
@@ -183,6 +186,9 @@ void add_view_command(CLI::App& app) {
                   "Render without a window (frames are not shown; for scripts and benchmarks)");
     cmd->add_flag("--no-adaptive", options->no_adaptive,
                   "Always render at full size, also while the camera moves");
+    cmd->add_option("--orbit", options->orbit_drag,
+                    "Orbit the camera by this many pixels of drag every frame (measures the "
+                    "frame rate while the camera moves, at reduced resolution)");
     cmd->add_option("--window-screenshot", options->window_screenshot,
                     "At the end, save the window as shown, panels included (PNG)");
     cmd->add_flag("--no-panels", options->no_panels, "Hide the editor panels and the overlay");

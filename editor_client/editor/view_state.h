@@ -9,11 +9,11 @@ namespace lc::client {
 // Bounds of the error-ratio control (the paper's default is 0.02).
 inline constexpr double kMinErrorRatio = 1e-4;
 inline constexpr double kMaxErrorRatio = 1.0;
-inline constexpr uint32_t kMaxMaxCut = 1u << 16;
+inline constexpr uint32_t kMaxMaxCut = kMaxGpuCut;  // what the renderer accepts
 
 struct ViewState {
     RenderMode mode = RenderMode::kReference;
-    CutCriterion criterion = CutCriterion::kRadius;
+    CutCriterion criterion = CutCriterion::kBound;  // the paper's, as `render` defaults to
     double error_ratio = 0.02;
     uint32_t max_cut = kDefaultMaxCut;
     RenderCamera camera;
@@ -21,5 +21,22 @@ struct ViewState {
 
     CutSettings cut_settings() const { return {criterion, error_ratio, max_cut}; }
 };
+
+// What the renderer is asked for at a size: every control of the view, with
+// reference mode while there is no tree to cut.
+inline RenderSettings render_settings_for(const ViewState& view, uint32_t width, uint32_t height,
+                                          bool has_tree) {
+    RenderSettings s;
+    s.mode = view.mode;
+    if (mode_needs_tree(s.mode) && !has_tree) s.mode = RenderMode::kReference;
+    s.criterion = view.criterion;
+    s.error_ratio = float(view.error_ratio);
+    s.max_cut = view.max_cut;
+    s.width = width;
+    s.height = height;
+    s.camera = view.camera;
+    s.exposure = view.exposure;
+    return s;
+}
 
 }  // namespace lc::client

@@ -52,16 +52,7 @@ public:
     // The session's settings at a size, falling back to reference mode while
     // there is no tree matching the lights.
     RenderSettings settings(uint32_t width, uint32_t height) const {
-        const ViewState& view = session_.view();
-        RenderSettings s;
-        s.mode = view.mode;
-        if (mode_needs_tree(s.mode) && !renderer_.has_tree()) s.mode = RenderMode::kReference;
-        s.criterion = view.criterion;
-        s.width = width;
-        s.height = height;
-        s.camera = view.camera;
-        s.exposure = view.exposure;
-        return s;
+        return render_settings_for(session_.view(), width, height, renderer_.has_tree());
     }
 
 private:
@@ -163,6 +154,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (ui) ui->discard_open_frame();
         WindowInput input = window.poll();
         if (input.close_requested) break;
+        input.orbit_drag.x += options.orbit_drag_per_frame;
         if (ui) {
             // The panels act on the session before this frame's settings are
             // taken, so what they change shows in this very frame.

@@ -26,6 +26,9 @@ struct EditorLoopOptions {
     std::filesystem::path screenshot;  // when set, a full-size frame is saved at the end
     ScriptRunner* script = nullptr;    // stepped once per frame (may be null)
     bool adaptive_resolution = true;
+    // Added to the user's orbit drag every frame, in pixels: a camera that
+    // keeps moving, for measuring the frame rate while it does (0: off).
+    float orbit_drag_per_frame = 0.0f;
     // The window as shown, panels included, saved at the end (needs panels).
     std::filesystem::path window_screenshot;
     // Dear ImGui panels over the view (needs a GlfwWindow: ignored headless).
