@@ -51,14 +51,14 @@ PY
 }
 
 view=("$client" view "$work/room.gltf" --tree "$work/room.lcut" --mode lightcuts
-      --size 640x360 --frames "$frames")
-LC_VALIDATION=0 "${view[@]}" --headless > "$work/headless.log" 2>&1 || { cat "$work/headless.log"; exit 1; }
+      --size 640x360)
+LC_VALIDATION=0 "${view[@]}" --frames "$frames" --headless > "$work/headless.log" 2>&1 || { cat "$work/headless.log"; exit 1; }
 record headless "$work/headless.log"
 LC_VALIDATION=0 "${view[@]}" --headless --frames 40 --orbit 4 > "$work/moving.log" 2>&1 \
   || { cat "$work/moving.log"; exit 1; }
 record headless_moving "$work/moving.log"
 if command -v xvfb-run >/dev/null 2>&1; then
-  LC_VALIDATION=0 xvfb-run -a -s "-screen 0 1280x720x24" "${view[@]}" > "$work/xvfb.log" 2>&1 \
+  LC_VALIDATION=0 xvfb-run -a -s "-screen 0 1280x720x24" "${view[@]}" --frames "$frames" > "$work/xvfb.log" 2>&1 \
     || { cat "$work/xvfb.log"; exit 1; }
   record xvfb_window_with_panels "$work/xvfb.log"
 fi
