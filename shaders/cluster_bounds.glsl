@@ -23,8 +23,10 @@ float max_cos_to_box(vec3 axis, vec3 lo, vec3 hi) {
     vec3 half_extent = 0.5 * (hi - lo);
     vec3 local = vec3(dot(center, t), dot(center, s), dot(center, axis));
     vec3 reach = vec3(dot(half_extent, abs(t)), dot(half_extent, abs(s)), dot(half_extent, abs(axis)));
-    // Rounding must not shrink the box: widen it by a few float ulps.
-    reach += (abs(local) + reach) * 1e-6;
+    // Rounding must not shrink the box: widen it by a few float ulps of the
+    // largest terms the dot products summed (a grazing corner cancels them).
+    vec3 magnitude = vec3(dot(abs(center), abs(t)), dot(abs(center), abs(s)), dot(abs(center), abs(axis)));
+    reach += (magnitude + reach) * 1e-6;
     vec3 llo = local - reach;
     vec3 lhi = local + reach;
     float z_max = lhi.z;

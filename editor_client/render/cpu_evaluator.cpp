@@ -105,8 +105,12 @@ double max_cos_to_box(const glm::dvec3& axis, const glm::dvec3& lo, const glm::d
     const glm::dvec3 local(glm::dot(center, t), glm::dot(center, s), glm::dot(center, axis));
     glm::dvec3 reach(glm::dot(half_extent, glm::abs(t)), glm::dot(half_extent, glm::abs(s)),
                            glm::dot(half_extent, glm::abs(axis)));
-    // Rounding must not shrink the box: widen it by a few double ulps.
-    reach += (glm::abs(local) + reach) * 1e-15;
+    // Rounding must not shrink the box: widen it by a few double ulps of the
+    // largest terms the dot products summed (a grazing corner cancels them).
+    const glm::dvec3 magnitude(glm::dot(glm::abs(center), glm::abs(t)),
+                               glm::dot(glm::abs(center), glm::abs(s)),
+                               glm::dot(glm::abs(center), glm::abs(axis)));
+    reach += (magnitude + reach) * 1e-15;
     const glm::dvec3 llo = local - reach;
     const glm::dvec3 lhi = local + reach;
     const double z_max = lhi.z;
