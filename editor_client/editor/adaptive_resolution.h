@@ -10,7 +10,7 @@ namespace lc::client {
 struct AdaptiveResolutionOptions {
     double target_frame_ms = 100.0;  // moving frames aim at this (10 fps)
     double settle_ms = 200.0;        // still this long: render at full size
-    uint32_t max_divisor = 4;        // at most 1/4 of the width and height
+    uint32_t max_divisor = 8;        // at most 1/8 of the width and height
 };
 
 class AdaptiveResolution {
