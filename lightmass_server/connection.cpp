@@ -17,33 +17,53 @@ using namespace std::chrono_literals;
 constexpr size_t kMaxOpenChannels = 4;
 constexpr size_t kMaxStoredScenes = 4;
 constexpr auto kFlushGrace = 5s;
+constexpr auto kTlsShutdownGrace = std::chrono::milliseconds(1000);
 constexpr auto kProgressInterval = 100ms;
 
 auto ec_token(boost::system::error_code& ec) { return asio::redirect_error(asio::use_awaitable, ec); }
 
 }  // namespace
 
-Connection::Connection(tcp::socket socket, const ServerOptions& options, asio::thread_pool& workers,
+Connection::Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
                        const ChannelRecorder& recorder, uint64_t id)
-    : socket_(std::move(socket)),
+    : transport_(std::move(transport)),
       options_(options),
       workers_(workers),
       recorder_(recorder),
       id_(id),
       decoder_(options.max_frame_bytes),
-      wake_(socket_.get_executor()) {
+      wake_(transport_.get_executor()) {
     boost::system::error_code ec;
-    auto remote = socket_.remote_endpoint(ec);
+    auto remote = transport_.lowest_layer().remote_endpoint(ec);
     peer_ = ec ? "unknown peer" : remote.address().to_string() + ":" + std::to_string(remote.port());
 }
 
 void Connection::start() {
     last_read_ = Clock::now();
-    spdlog::info("connection {}: accepted from {}", id_, peer_);
+    spdlog::info("connection {}: accepted from {}{}", id_, peer_, transport_.is_tls() ? " (TLS)" : "");
     auto self = shared_from_this();
-    asio::co_spawn(socket_.get_executor(), [self] { return self->read_loop(); }, asio::detached);
-    asio::co_spawn(socket_.get_executor(), [self] { return self->write_loop(); }, asio::detached);
-    asio::co_spawn(socket_.get_executor(), [self] { return self->watchdog(); }, asio::detached);
+    asio::co_spawn(
+        transport_.get_executor(), [self] { return self->handshake_then_serve(); }, asio::detached);
+    asio::co_spawn(transport_.get_executor(), [self] { return self->watchdog(); }, asio::detached);
+}
+
+awaitable<void> Connection::handshake_then_serve() {
+    boost::system::error_code ec = co_await transport_.handshake(TransportRole::kServer);
+    if (closed_) co_return;
+    if (ec) {
+        // A plain client, a client that does not trust our certificate, or a
+        // scanner: only this connection ends.
+        std::string reason =
+            "TLS handshake with " + peer_ + " failed: " + transport_.handshake_error_text(ec);
+        spdlog::warn("connection {}: {}", id_, reason);
+        close(reason);
+        co_return;
+    }
+    handshaken_ = true;
+    last_read_ = Clock::now();
+    auto self = shared_from_this();
+    asio::co_spawn(transport_.get_executor(), [self] { return self->read_loop(); }, asio::detached);
+    asio::co_spawn(transport_.get_executor(), [self] { return self->write_loop(); }, asio::detached);
 }
 
 void Connection::close(const std::string& reason) {
@@ -52,9 +72,7 @@ void Connection::close(const std::string& reason) {
     spdlog::info("connection {}: closed ({})", id_, reason);
     if (bake_) bake_->cancel->store(true);  // a client that disconnects cancels its bake
     stream_.reset();
-    boost::system::error_code ignored;
-    socket_.shutdown(tcp::socket::shutdown_both, ignored);
-    socket_.close(ignored);
+    transport_.close();
     wake_.cancel();
 }
 
@@ -85,9 +103,9 @@ awaitable<void> Connection::read_loop() {
     std::vector<std::vector<uint8_t>> frames;
     while (!closed_ && !closing_) {
         boost::system::error_code ec;
-        size_t n = co_await socket_.async_read_some(asio::buffer(buffer), ec_token(ec));
+        size_t n = co_await transport_.read_some(asio::buffer(buffer), ec);
         if (ec) {
-            close(ec == asio::error::eof ? "peer closed the connection" : "read failed: " + ec.message());
+            close(is_peer_closed(ec) ? "peer closed the connection" : "read failed: " + ec.message());
             co_return;
         }
         last_read_ = Clock::now();
@@ -130,6 +148,8 @@ awaitable<void> Connection::write_loop() {
             }
             frame = std::move(*next);
         } else if (closing_) {
+            // TLS: close_notify, so the peer knows the error it read was the last word.
+            co_await transport_.shutdown(kTlsShutdownGrace);
             close(closing_reason_);
             co_return;
         } else {
@@ -138,8 +158,7 @@ awaitable<void> Connection::write_loop() {
             co_await wake_.async_wait(ec_token(ec));
             continue;
         }
-        boost::system::error_code ec;
-        co_await asio::async_write(socket_, asio::buffer(frame), ec_token(ec));
+        boost::system::error_code ec = co_await transport_.write(asio::buffer(frame));
         if (ec) {
             close("write failed: " + ec.message());
             co_return;
@@ -148,7 +167,7 @@ awaitable<void> Connection::write_loop() {
 }
 
 awaitable<void> Connection::watchdog() {
-    asio::steady_timer timer(socket_.get_executor());
+    asio::steady_timer timer(transport_.get_executor());
     while (!closed_) {
         boost::system::error_code ec;
         timer.expires_after(200ms);
@@ -156,7 +175,10 @@ awaitable<void> Connection::watchdog() {
         if (closed_) co_return;
         auto now = Clock::now();
         auto quiet = now - last_read_;
-        if (closing_ && now - closing_since_ > kFlushGrace) {
+        if (!handshaken_ && quiet > options_.read_timeout) {
+            close("TLS handshake not finished within " + std::to_string(options_.read_timeout.count()) +
+                  " ms");
+        } else if (closing_ && now - closing_since_ > kFlushGrace) {
             close(closing_reason_ + "; peer did not read the error in time");
         } else if (decoder_.buffered_bytes() > 0 && quiet > options_.read_timeout) {
             close("stalled in the middle of a frame for " +
@@ -351,7 +373,7 @@ bool Connection::on_bake_request(const BakeRequestMsg& request) {
     send(ProgressMsg{request.bake_id, "queued", 0.0f});
 
     auto self = shared_from_this();
-    auto executor = socket_.get_executor();
+    auto executor = transport_.get_executor();
     uint32_t bake_id = request.bake_id;
     asio::post(workers_, [self, executor, lights, build, cancel, bake_id] {
         auto last_sent = Clock::now() - kProgressInterval;

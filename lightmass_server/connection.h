@@ -1,8 +1,9 @@
 #pragma once
 // One client connection: a reader, a writer and a watchdog coroutine sharing
-// one socket on the server's I/O thread. Bakes run on the worker pool and post
-// their progress and results back here. A malformed frame closes this
-// connection only; a bad scene is refused with an error and the connection stays.
+// one transport (plain TCP or TLS) on the server's I/O thread. Bakes run on the
+// worker pool and post their progress and results back here. A failed TLS
+// handshake or a malformed frame closes this connection only; a bad scene is
+// refused with an error and the connection stays.
 #include <atomic>
 #include <chrono>
 #include <deque>
@@ -21,12 +22,13 @@
 #include "protocol/channel_records.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/messages.h"
+#include "protocol/transport.h"
 
 namespace lc::bake {
 
 class Connection : public std::enable_shared_from_this<Connection> {
 public:
-    Connection(tcp::socket socket, const ServerOptions& options, asio::thread_pool& workers,
+    Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
                const ChannelRecorder& recorder, uint64_t id);
 
     void start();
@@ -49,6 +51,8 @@ private:
         std::shared_ptr<std::atomic<bool>> cancel;
     };
 
+    // The TLS handshake (nothing for plain TCP), then the reader and the writer.
+    awaitable<void> handshake_then_serve();
     awaitable<void> read_loop();
     awaitable<void> write_loop();
     awaitable<void> watchdog();
@@ -66,7 +70,7 @@ private:
     void send_error(uint32_t bake_id, ErrorCode code, const std::string& text);
     void wake_writer();
 
-    tcp::socket socket_;
+    Transport transport_;
     const ServerOptions& options_;
     asio::thread_pool& workers_;
     const ChannelRecorder& recorder_;
@@ -78,6 +82,7 @@ private:
     std::deque<std::vector<uint8_t>> outbox_;
     std::optional<ResultStream> stream_;
     bool closed_ = false;
+    bool handshaken_ = false;  // TLS handshake done (plain TCP: at once)
     bool greeted_ = false;
     bool closing_ = false;
     std::string closing_reason_;

@@ -1,5 +1,5 @@
 // lightmass_server: the Lightcuts bake server. Listens on loopback unless told
-// otherwise (then a token is required), prints "listening on HOST:PORT" first.
+// otherwise (then a token and TLS are required), prints "listening on HOST:PORT" first.
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
     std::string listen = "127.0.0.1:0";
     std::string port_file;
     std::string token_file;
+    std::string tls_cert;
+    std::string tls_key;
     std::string record_dir;
     unsigned threads = 1;
     int read_timeout_ms = 30000;
@@ -62,6 +64,12 @@ int main(int argc, char** argv) {
     app.add_option("--record", record_dir, "Write every channel received and sent as a dump file here");
     app.add_option("--token-file", token_file,
                    "Clients must present this token (required to listen off loopback)");
+    auto* cert_opt =
+        app.add_option("--tls-cert", tls_cert,
+                       "Serve TLS with this PEM certificate chain (required to listen off loopback)");
+    auto* key_opt = app.add_option("--tls-key", tls_key, "PEM private key of --tls-cert");
+    cert_opt->needs(key_opt);
+    key_opt->needs(cert_opt);
     app.add_option("--read-timeout-ms", read_timeout_ms, "Drop a peer stalled mid-frame after this long")
         ->capture_default_str()->check(CLI::PositiveNumber);
     app.add_option("--idle-timeout-ms", idle_timeout_ms, "Drop a peer silent this long with nothing running")
@@ -81,6 +89,8 @@ int main(int argc, char** argv) {
     options.record_dir = record_dir;
     options.read_timeout = std::chrono::milliseconds(read_timeout_ms);
     options.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
+    options.tls_certificate = tls_cert;
+    options.tls_private_key = tls_key;
     if (!token_file.empty()) {
         auto token = lc::bake::read_token_file(token_file);
         if (!token) {
@@ -105,6 +115,8 @@ int main(int argc, char** argv) {
     }
     std::string address = endpoint->address().to_string();
     if (endpoint->address().is_v6()) address = "[" + address + "]";
+    if (!options.tls_certificate.empty())
+        spdlog::info("TLS on every connection, certificate '{}'", options.tls_certificate.string());
     std::printf("listening on %s:%u\n", address.c_str(), static_cast<unsigned>(endpoint->port()));
     std::fflush(stdout);
     if (!port_file.empty() && !write_port_file(port_file, endpoint->port())) {

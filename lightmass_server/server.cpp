@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "protocol/tls_context.h"
+
 namespace lc::bake {
 
 Server::Server(ServerOptions options)
@@ -16,9 +18,12 @@ Server::~Server() {
 }
 
 Result<tcp::endpoint> Server::listen() {
-    if (!is_loopback_host(options_.host) && !options_.token)
-        return make_error("refusing to listen on non-loopback address '" + options_.host +
-                          "' without authentication: pass --token-file FILE");
+    if (Status secure = check_server_security(options_); !secure) return make_error(secure.error());
+    if (!options_.tls_certificate.empty()) {
+        auto context = make_tls_server_context(options_.tls_certificate, options_.tls_private_key);
+        if (!context) return make_error(context.error());
+        tls_context_ = std::move(context.value());
+    }
     boost::system::error_code ec;
     tcp::resolver resolver(io_);
     auto endpoints = resolver.resolve(options_.host, std::to_string(options_.port), ec);
@@ -62,7 +67,9 @@ awaitable<void> Server::accept_loop() {
         }
         socket.set_option(tcp::no_delay(true), ec);
         std::erase_if(connections_, [](const std::weak_ptr<Connection>& w) { return w.expired(); });
-        auto connection = std::make_shared<Connection>(std::move(socket), options_, workers_, recorder_,
+        Transport transport = tls_context_ ? Transport::tls(std::move(socket), *tls_context_)
+                                           : Transport::plain(std::move(socket));
+        auto connection = std::make_shared<Connection>(std::move(transport), options_, workers_, recorder_,
                                                        next_connection_id_++);
         connections_.push_back(connection);
         connection->start();

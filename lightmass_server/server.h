@@ -1,6 +1,7 @@
 #pragma once
-// The bake server: accepts TCP connections on one I/O thread, runs bakes on a
-// worker pool, stops cleanly on stop() (which SIGINT/SIGTERM call in main).
+// The bake server: accepts TCP connections (TLS when given a certificate) on
+// one I/O thread, runs bakes on a worker pool, stops cleanly on stop() (which
+// SIGINT/SIGTERM call in main).
 #include <memory>
 #include <vector>
 
@@ -9,6 +10,7 @@
 #include "lightmass_server/server_options.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/result.h"
+#include "protocol/transport.h"
 
 namespace lc::bake {
 
@@ -17,7 +19,8 @@ public:
     explicit Server(ServerOptions options);
     ~Server();
 
-    // Binds and listens. Refuses a non-loopback address without a token.
+    // Loads the TLS certificate and key, binds and listens. Refuses a
+    // non-loopback address without both a token and TLS.
     Result<tcp::endpoint> listen();
     // Serves until stop(); call from one thread.
     void run();
@@ -30,6 +33,8 @@ private:
     awaitable<void> accept_loop();
 
     ServerOptions options_;
+    // Declared before io_: connections still queued on io_ at destruction use it.
+    std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
     asio::io_context io_;
     asio::thread_pool workers_;
     tcp::acceptor acceptor_;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "protocol/frame_decoder.h"
+#include "protocol/result.h"
 
 namespace lc::bake {
 
@@ -16,6 +17,9 @@ struct ServerOptions {
     unsigned bake_threads = 1;
     std::filesystem::path record_dir;    // empty: no recording
     std::optional<std::string> token;    // required when host is not loopback
+    // PEM files; both set: every connection speaks TLS. Required off loopback.
+    std::filesystem::path tls_certificate;
+    std::filesystem::path tls_private_key;
     uint32_t max_frame_bytes = kDefaultMaxFrameBytes;
     // A peer that stops mid-frame for this long is dropped.
     std::chrono::milliseconds read_timeout{30000};
@@ -25,5 +29,9 @@ struct ServerOptions {
 
 // True for 127.0.0.0/8, ::1 and "localhost".
 bool is_loopback_host(const std::string& host);
+
+// What is missing for these options to be served: a TLS file without its
+// pair, or (off loopback) the token or TLS. Names the flags to pass.
+Status check_server_security(const ServerOptions& options);
 
 }  // namespace lc::bake

@@ -15,8 +15,8 @@ PACKAGES=(
   # Vulkan on the CPU (lavapipe), shaders, window
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
   glslang-tools spirv-tools libglfw3-dev libimgui-dev
-  # headless window tests and plots
-  xvfb xauth python3-matplotlib python3-numpy
+  # headless window tests, plots, test certificates for TLS
+  xvfb xauth python3-matplotlib python3-numpy openssl
 )
 
 SUDO=""

@@ -306,7 +306,9 @@ TEST(BakeRoundTrip, CancelStopsTheBakeAndServerKeepsServing) {
 }
 
 TEST(BakeRoundTrip, TokenRequiredOffLoopback) {
-    // Listening on all interfaces without a token is refused at start.
+    // Listening on all interfaces without a token is refused at start, and so
+    // is a token without TLS (TlsChannel.OffLoopbackNeedsTokenAndTls serves
+    // off loopback with both); the token itself is checked here on loopback.
     auto refused = ServerProcess::spawn_with(server_binary(), {"--listen", "0.0.0.0:0"});
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().find("did not report"), std::string::npos) << refused.error();
@@ -314,7 +316,10 @@ TEST(BakeRoundTrip, TokenRequiredOffLoopback) {
     auto dir = test::make_temp_dir("token");
     auto token_path = dir / "token";
     std::ofstream(token_path) << "correct-horse-battery-staple\n";
-    auto server = start_server({"--listen", "0.0.0.0:0", "--token-file", token_path.string()});
+    auto no_tls = ServerProcess::spawn_with(server_binary(),
+                                            {"--listen", "0.0.0.0:0", "--token-file", token_path.string()});
+    ASSERT_FALSE(no_tls.ok());
+    auto server = start_server({"--token-file", token_path.string()});
     ASSERT_TRUE(server);
     BakeClientOptions options;
     options.server = "127.0.0.1:" + std::to_string(test::port_of(server->address()));

@@ -10,12 +10,19 @@
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
 #include "protocol/frame_decoder.h"
+#include "protocol/tls_context.h"
+#include "protocol/transport.h"
 
 namespace lc::client {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
+
+// A server that never answers the TLS handshake (one that does not speak TLS
+// and waits for more bytes) is given up on after this long.
+constexpr auto kTlsHandshakeLimit = 10s;
+constexpr auto kShutdownLimit = 1000ms;
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -47,7 +54,11 @@ Result<std::string> read_token(const std::filesystem::path& path) {
 // One bake over one connection, as a coroutine on a private io_context.
 class BakeSession {
 public:
-    BakeSession(asio::io_context& io, const BakeClientOptions& options) : io_(io), socket_(io), options_(options) {}
+    // `tls`: null for plain TCP; otherwise the client context, which outlives the session.
+    BakeSession(asio::io_context& io, const BakeClientOptions& options, asio::ssl::context* tls)
+        : io_(io),
+          transport_(tls ? Transport::tls(tcp::socket(io), *tls) : Transport::plain(tcp::socket(io))),
+          options_(options) {}
 
     awaitable<Result<BakeOutcome>> run(std::span<const SceneLight> lights, const Guid& scene_guid,
                                       std::string host, std::string port, std::string token);
@@ -57,20 +68,24 @@ public:
     std::string abort_reason;
 
 private:
+    awaitable<Status> connect(const std::string& host, const std::string& port);
     awaitable<Status> send(const Message& message);
     awaitable<Result<Message>> receive();
+    std::string hello_failure(const std::string& what) const;
     void abort(const std::string& reason) {
         if (abort_reason.empty()) abort_reason = reason;
-        boost::system::error_code ignored;
-        socket_.close(ignored);
+        transport_.close();
     }
     Error failure(const std::string& what) {
         return make_error(abort_reason.empty() ? what : abort_reason);
     }
 
     asio::io_context& io_;
-    tcp::socket socket_;
+    Transport transport_;
     const BakeClientOptions& options_;
+    std::string address_;  // "HOST:PORT" for messages
+    std::optional<Clock::time_point> handshake_deadline_;  // set while a TLS handshake runs
+    std::vector<uint8_t> first_bytes_;  // the server's first bytes, to recognise a TLS answer
     FrameDecoder decoder_;
     std::deque<std::vector<uint8_t>> frames_;
     bool uploading_ = true;
@@ -80,8 +95,7 @@ private:
 
 awaitable<Status> BakeSession::send(const Message& message) {
     std::vector<uint8_t> frame = encode_frame(message);
-    boost::system::error_code ec;
-    co_await asio::async_write(socket_, asio::buffer(frame), asio::redirect_error(asio::use_awaitable, ec));
+    boost::system::error_code ec = co_await transport_.write(asio::buffer(frame));
     if (ec) co_return failure("connection lost while sending " + std::string(message_name(message)) + ": " + ec.message());
     co_return Ok{};
 }
@@ -91,8 +105,12 @@ awaitable<Result<Message>> BakeSession::receive() {
     std::vector<std::vector<uint8_t>> decoded;
     while (frames_.empty()) {
         boost::system::error_code ec;
-        size_t n = co_await socket_.async_read_some(asio::buffer(buffer), asio::redirect_error(asio::use_awaitable, ec));
-        if (ec) co_return failure(ec == asio::error::eof ? "the server closed the connection" : "connection lost: " + ec.message());
+        size_t n = co_await transport_.read_some(asio::buffer(buffer), ec);
+        if (ec)
+            co_return failure(is_peer_closed(ec) ? "the server closed the connection"
+                                                 : "connection lost: " + ec.message());
+        size_t keep = std::min(n, first_bytes_.size() < 2 ? 2 - first_bytes_.size() : 0);
+        first_bytes_.insert(first_bytes_.end(), buffer.data(), buffer.data() + keep);
         decoded.clear();
         bool ok = decoder_.consume({buffer.data(), n}, decoded);
         for (auto& f : decoded) frames_.push_back(std::move(f));
@@ -112,6 +130,12 @@ awaitable<void> BakeSession::watchdog(Clock::time_point deadline) {
         timer.expires_after(50ms);
         co_await timer.async_wait(asio::redirect_error(asio::use_awaitable, ec));
         if (finished) co_return;
+        if (handshake_deadline_ && Clock::now() > *handshake_deadline_) {
+            auto limit_s = std::chrono::duration_cast<std::chrono::seconds>(kTlsHandshakeLimit).count();
+            abort("TLS handshake with " + address_ + " did not finish within " + std::to_string(limit_s) +
+                  " s (is the server started with --tls-cert?)");
+            co_return;
+        }
         if (Clock::now() > deadline) {
             abort("bake timed out after " + std::to_string(static_cast<int>(options_.timeout_seconds)) + " s");
             co_return;
@@ -123,32 +147,67 @@ awaitable<void> BakeSession::watchdog(Clock::time_point deadline) {
                 co_return;
             }
             std::vector<uint8_t> frame = encode_frame(CancelMsg{bake_id_});
-            co_await asio::async_write(socket_, asio::buffer(frame), asio::redirect_error(asio::use_awaitable, ec));
+            ec = co_await transport_.write(asio::buffer(frame));
         }
     }
+}
+
+awaitable<Status> BakeSession::connect(const std::string& host, const std::string& port) {
+    address_ = host + ":" + port;
+    boost::system::error_code ec;
+    tcp::resolver resolver(io_);
+    auto endpoints = co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
+    if (ec) co_return failure("cannot resolve server '" + host + "': " + ec.message());
+    co_await asio::async_connect(transport_.lowest_layer(), endpoints,
+                                 asio::redirect_error(asio::use_awaitable, ec));
+    if (ec) co_return failure("cannot connect to " + address_ + ": " + ec.message());
+    transport_.lowest_layer().set_option(tcp::no_delay(true), ec);
+    if (!transport_.is_tls()) co_return Ok{};
+
+    if (Status named = transport_.expect_peer_host(host); !named) co_return make_error(named.error());
+    handshake_deadline_ = Clock::now() + kTlsHandshakeLimit;
+    ec = co_await transport_.handshake(TransportRole::kClient);
+    handshake_deadline_.reset();
+    if (!abort_reason.empty()) co_return make_error(abort_reason);  // timed out or cancelled
+    if (!ec) co_return Ok{};
+    std::string text = "TLS handshake with " + address_ + " failed: " + transport_.handshake_error_text(ec);
+    if (is_certificate_rejection(ec))
+        text += "; the server's certificate must be signed by the CA given with --tls-ca FILE "
+                "(or be that file) and name '" + host + "'";
+    else if (!is_peer_closed(ec))
+        text += " (is the server started with --tls-cert? without it, drop --tls)";
+    co_return make_error(text);
+}
+
+// Why the Hello exchange failed, with the likely cause when a plain client
+// meets a TLS server (which answers with a TLS record, or closes at once).
+std::string BakeSession::hello_failure(const std::string& what) const {
+    if (transport_.is_tls()) return what;
+    if (looks_like_tls_record(first_bytes_.data(), first_bytes_.size()))
+        return "the server at " + address_ + " speaks TLS: connect with --tls (and --tls-ca FILE when its "
+               "certificate is self-signed)";
+    if (first_bytes_.empty())
+        return what + " before answering Hello (if the server uses TLS, started with --tls-cert, "
+                      "connect with --tls)";
+    return what;
 }
 
 awaitable<Result<BakeOutcome>> BakeSession::run(std::span<const SceneLight> lights, const Guid& scene_guid,
                                                 std::string host, std::string port, std::string token) {
     auto start = Clock::now();
     ChannelRecorder recorder(options_.record_dir);
-    boost::system::error_code ec;
-    tcp::resolver resolver(io_);
-    auto endpoints = co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
-    if (ec) co_return failure("cannot resolve server '" + host + "': " + ec.message());
-    co_await asio::async_connect(socket_, endpoints, asio::redirect_error(asio::use_awaitable, ec));
-    if (ec) co_return failure("cannot connect to " + host + ":" + port + ": " + ec.message());
-    socket_.set_option(tcp::no_delay(true), ec);
-
-    // Handshake.
     // GCC 12 destroys temporaries in co_await expressions twice: every awaited
     // call below takes named locals only.
+    Status connected = co_await connect(host, port);
+    if (!connected) co_return make_error(connected.error());
+
+    // Protocol handshake.
     Message hello = HelloMsg{kProtocolVersion, "editor_client 0.1.0", token};
     Status sent = co_await send(hello);
-    if (!sent) co_return make_error(sent.error());
+    if (!sent) co_return make_error(hello_failure(sent.error()));
     {
         Result<Message> reply = co_await receive();
-        if (!reply) co_return make_error(reply.error());
+        if (!reply) co_return make_error(hello_failure(reply.error()));
         if (auto* err = std::get_if<ErrorMsg>(&reply.value())) co_return make_error("server refused the connection: " + err->text);
         auto* ack = std::get_if<HelloAckMsg>(&reply.value());
         if (!ack) co_return make_error(std::string("expected HelloAck, got ") + message_name(reply.value()));
@@ -257,9 +316,7 @@ awaitable<Result<BakeOutcome>> BakeSession::run(std::span<const SceneLight> ligh
             }
             outcome.result_channel = std::move(result_bytes);
             outcome.total_ms = ms_since(start);
-            boost::system::error_code ignored;
-            socket_.shutdown(tcp::socket::shutdown_both, ignored);
-            socket_.close(ignored);
+            co_await transport_.shutdown(kShutdownLimit);
             co_return outcome;
         } else {
             co_return make_error(std::string("unexpected message from the server: ") + message_name(m));
@@ -276,6 +333,8 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
 
     std::unique_ptr<ServerProcess> spawned;
     std::string address = options.server;
+    if (options.spawn_server && options.tls)
+        return make_error("--tls is for --server: a spawned server listens on loopback without TLS");
     if (options.spawn_server) {
         auto process = ServerProcess::spawn();
         if (!process) return make_error(process.error());
@@ -286,9 +345,15 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     if (!split_host_port(address, host, port)) return make_error("server address must be HOST:PORT, got '" + address + "'");
     Result<std::string> token = read_token(options.token_file);
     if (!token) return make_error(token.error());
+    std::shared_ptr<asio::ssl::context> tls;
+    if (options.tls) {
+        auto context = make_tls_client_context(options.tls_ca_file);
+        if (!context) return make_error(context.error());
+        tls = std::move(context.value());
+    }
 
     asio::io_context io;
-    BakeSession session(io, options);
+    BakeSession session(io, options, tls.get());
     std::optional<Result<BakeOutcome>> outcome;
     auto deadline = Clock::now() + std::chrono::milliseconds(static_cast<int64_t>(options.timeout_seconds * 1000.0));
     asio::co_spawn(io, session.run(lights, scene_guid, host, port, token.value()),

@@ -21,6 +21,11 @@ struct BakeClientOptions {
     std::string server;            // "HOST:PORT"; ignored when spawn_server
     bool spawn_server = false;     // start build/bin/lightmass_server on loopback for this bake
     std::filesystem::path token_file;
+    // TLS to a server started with --tls-cert: the certificate must verify
+    // against tls_ca_file (PEM: a CA, or the server's self-signed certificate),
+    // or the system's trust store when it is empty, and name the host of `server`.
+    bool tls = false;
+    std::filesystem::path tls_ca_file;
     std::filesystem::path record_dir;  // when set, every channel's bytes are dumped there
     BuilderKind builder = BuilderKind::kOptimalPair;
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;

@@ -15,6 +15,13 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
         group->require_option(1);
     }
     cmd.add_option("--token-file", token_file, "Token for a server that requires one");
+    auto* tls_opt =
+        cmd.add_flag("--tls", tls, "Connect to --server over TLS (a server started with --tls-cert)");
+    auto* ca_opt = cmd.add_option("--tls-ca", tls_ca,
+                                  "PEM CA (or the server's self-signed certificate) to verify the server "
+                                  "against; implies --tls (default: the system's trusted CAs)");
+    tls_opt->excludes(spawn_opt);
+    ca_opt->excludes(spawn_opt);
     cmd.add_option("--builder", builder, "Tree builder")
         ->check(CLI::IsMember({"optimal-pair", "agglomerative", "lbvh"}))
         ->capture_default_str();
@@ -39,6 +46,8 @@ BakeClientOptions BakeFlags::to_options() const {
     options.server = server;
     options.spawn_server = spawn_server;
     options.token_file = token_file;
+    options.tls = tls || !tls_ca.empty();
+    options.tls_ca_file = tls_ca;
     options.record_dir = record_dir;
     options.builder = builders.at(builder);
     options.pairing = pairings.at(pairing);

@@ -12,6 +12,8 @@ struct BakeFlags {
     std::string server;
     bool spawn_server = false;
     std::string token_file;
+    bool tls = false;
+    std::string tls_ca;
     std::string builder = "optimal-pair";
     std::string pairing = "auto";
     std::string representative = "intensity";
@@ -19,8 +21,8 @@ struct BakeFlags {
     uint64_t seed = 0;
     std::string record_dir;
 
-    // Adds --server, --spawn-server, --token-file, --builder, --pairing,
-    // --representative, --exact-limit, --seed and --record to a subcommand.
+    // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
+    // --pairing, --representative, --exact-limit, --seed and --record to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
     BakeClientOptions to_options() const;
