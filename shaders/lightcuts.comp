@@ -48,6 +48,7 @@ layout(constant_id = 14) const uint kWalkMaxCut = 1000u;
 layout(constant_id = 15) const uint kWalkMaxPasses = 12u;
 layout(constant_id = 16) const float kWalkShrink = 512.0;
 layout(constant_id = 17) const float kWalkMargin = 0.8;
+layout(constant_id = 18) const uint kWalkBisections = 6u;
 
 struct Cut {
     vec3 irradiance;  // sum over cut nodes of I_C * color * G
@@ -302,6 +303,11 @@ Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hi
     if (frame.node_count == 0u) return cut;
     float tau = uintBitsToFloat(0x7f800000u);  // +inf: pass 0 keeps the per-type roots
     bool done = false;
+    bool rule_met = false;
+    bool bisecting = false;
+    float fit_hi = 0.0;   // largest bound on the last cut that fit
+    float over_lo = 0.0;  // a threshold whose cut exceeded max-cut
+    uint bisections_left = kWalkBisections;
     for (uint pass_index = 0u; pass_index < kWalkMaxPasses; ++pass_index) {
         if (!subgroupAny(!done)) break;
         WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
@@ -324,21 +330,34 @@ Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hi
             continue;
         }
         if (pass.over) {
+            bisecting = true;
+            over_lo = tau;
+        } else {
+            radiance = pass.radiance;
+            cut.size = pass.size;
+            cut.hash = pass.hash;
+            float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+            if (!(pass.worst > limit)) {
+                done = true;
+                rule_met = true;
+                continue;
+            }
+            fit_hi = pass.worst;
+            if (!bisecting) {
+                tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
+                continue;
+            }
+        }
+        // Over max-cut once: bisect between the last fit and the last over.
+        if (bisections_left == 0u) {
             done = true;
-            max_cut_hit = true;
             continue;
         }
-        radiance = pass.radiance;
-        cut.size = pass.size;
-        cut.hash = pass.hash;
-        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
-        if (!(pass.worst > limit)) {
-            done = true;
-        } else {
-            tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
-        }
+        --bisections_left;
+        tau = sqrt(fit_hi) * sqrt(max(over_lo, fit_hi * 1e-6));
     }
-    if (!done) max_cut_hit = true;  // still refining after the last pass
+    // Stopped by max-cut, or still refining after the last pass.
+    max_cut_hit = !rule_met && !loop_limit_stop;
     return cut;
 }
 

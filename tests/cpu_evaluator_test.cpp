@@ -886,18 +886,29 @@ CutResult walk_by_ancestors(const LightTree& tree, const SurfacePoint& p, double
                             uint32_t max_cut) {
     CutResult result;
     double tau = std::numeric_limits<double>::infinity();
+    double fit = 0.0, over = 0.0;
+    int bisections = -1;  // -1: not bisecting yet
     for (uint32_t pass = 0; pass < kWalkMaxPasses; ++pass) {
         const ThresholdCut cut = cut_by_ancestors(tree, p, tau);
-        if (pass > 0 && cut.size > max_cut) {
-            result.max_cut_hit = true;
-            return result;
+        const bool too_big = pass > 0 && cut.size > max_cut;
+        if (too_big) {
+            over = tau;
+            if (bisections < 0) bisections = 0;
+        } else {
+            result.radiance = cut.radiance;
+            result.cut_size = cut.size;
+            result.cut_hash = cut.hash;
+            const double limit = ratio * std::max(max_channel(cut.radiance), 0.0);
+            if (cut.worst <= limit) return result;
+            fit = cut.worst;
+            if (bisections < 0) {
+                tau = std::max(double(kWalkMargin) * limit, cut.worst / double(kWalkShrink));
+                continue;
+            }
         }
-        result.radiance = cut.radiance;
-        result.cut_size = cut.size;
-        result.cut_hash = cut.hash;
-        const double limit = ratio * std::max(max_channel(cut.radiance), 0.0);
-        if (cut.worst <= limit) return result;
-        tau = std::max(double(kWalkMargin) * limit, cut.worst / double(kWalkShrink));
+        if (bisections == int(kWalkBisections)) break;
+        ++bisections;
+        tau = bisection_threshold(fit, over);
     }
     result.max_cut_hit = true;
     return result;
@@ -964,6 +975,29 @@ TEST(BoundWalk, OverMaxCutKeepsTheLastWholePassAndSaysSo) {
     EXPECT_FALSE(all.max_cut_hit);
     EXPECT_EQ(all.cut_size, 64u);
     expect_near_rel(all.radiance, shade_tree_leaves(tree, surface({0, 0, 0})), 1e-12);
+}
+
+TEST(BoundWalk, AtTheCapKeepsACutCloseToIt) {
+    // Found by the accuracy sweep: when a pass overshot max-cut the walk kept
+    // the previous pass, up to kWalkShrink times coarser, so a smaller error
+    // ratio could give a coarser (and worse) image. It now bisects.
+    std::mt19937_64 rng(53);
+    const std::vector<SceneLight> lights =
+        random_lights(rng, 3000, LightType::kPoint, {-5, -5, 0.2f}, {5, 5, 3}, false);
+    const LightTree tree = build_test_tree(lights, 4);
+    std::uniform_real_distribution<double> u(-5, 5);
+    double fine_cut = 0.0, coarse_cut = 0.0;
+    for (int k = 0; k < 50; ++k) {
+        const SurfacePoint p = surface({u(rng), u(rng), 0.0});
+        const CutResult fine = shade_lightcuts(tree, {}, p, {CutCriterion::kBound, 0.0005, 100});
+        const CutResult coarse = shade_lightcuts(tree, {}, p, {CutCriterion::kBound, 0.2, 100});
+        ASSERT_TRUE(fine.max_cut_hit);
+        EXPECT_LE(fine.cut_size, 100u);
+        EXPECT_GE(fine.cut_size, 50u) << "a cut at the cap should use most of it";
+        fine_cut += fine.cut_size;
+        coarse_cut += coarse.cut_size;
+    }
+    EXPECT_GE(fine_cut, coarse_cut);
 }
 
 TEST(BoundWalk, AgreesWithTheHeapOnErrorAndCutSizeOverARoom) {

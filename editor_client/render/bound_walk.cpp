@@ -59,28 +59,44 @@ Pass walk_pass(const LightTree& tree, const SurfacePoint& p, double tau) {
 
 }  // namespace
 
+double bisection_threshold(double fit_hi, double over_lo) {
+    return std::sqrt(fit_hi) * std::sqrt(std::max(over_lo, fit_hi * 1e-6));
+}
+
 CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
     CutResult result;
     if (tree.empty()) return result;
     const double error_ratio = settings.error_ratio >= 0.0 ? settings.error_ratio : 0.0;
     const uint32_t max_cut = std::max<uint32_t>(settings.max_cut, 1);
     double tau = std::numeric_limits<double>::infinity();
+    bool bisecting = false;
+    double fit_hi = 0.0;   // largest bound on the last cut that fit: any tau >= it gives that cut
+    double over_lo = 0.0;  // a tau whose cut exceeded max_cut
+    uint32_t bisections_left = kWalkBisections;
     for (uint32_t pass_index = 0; pass_index < kWalkMaxPasses; ++pass_index) {
         const Pass pass = walk_pass(tree, p, tau);
         result.passes = pass_index + 1;
         // Pass 0 is the per-type roots and always kept, whatever max_cut says.
         if (pass_index > 0 && pass.size > max_cut) {
-            result.max_cut_hit = true;
-            return result;
+            bisecting = true;
+            over_lo = tau;
+        } else {
+            result.radiance = pass.radiance;
+            result.cut_size = pass.size;
+            result.cut_hash = pass.hash;
+            const double limit = error_ratio * std::max(max_channel(pass.radiance), 0.0);
+            if (!(pass.worst > limit)) return result;  // the rule holds: not a max-cut hit
+            fit_hi = pass.worst;
+            if (!bisecting) {
+                tau = std::max(double(kWalkMargin) * limit, pass.worst / double(kWalkShrink));
+                continue;
+            }
         }
-        result.radiance = pass.radiance;
-        result.cut_size = pass.size;
-        result.cut_hash = pass.hash;
-        const double limit = error_ratio * std::max(max_channel(pass.radiance), 0.0);
-        if (!(pass.worst > limit)) return result;
-        tau = std::max(double(kWalkMargin) * limit, pass.worst / double(kWalkShrink));
+        if (bisections_left == 0) break;
+        --bisections_left;
+        tau = bisection_threshold(fit_hi, over_lo);
     }
-    result.max_cut_hit = true;  // still refining after the last pass
+    result.max_cut_hit = true;  // stopped by max_cut, or still refining after the last pass
     return result;
 }
 

@@ -13,10 +13,13 @@
 //   tau = max(kWalkMargin x error x T, m / kWalkShrink).
 // The margin makes the pass after the scale is found almost always the last;
 // the shrink bounds how far one pass can over-refine on a poor early T.
-// A pass whose cut would exceed max_cut is abandoned: the pixel keeps the
-// previous pass's cut (every node of it under one threshold, not a truncated
-// walk) and counts as a max-cut hit, as does a pixel still refining after
-// kWalkMaxPasses. Interior nodes are never evaluated, so there is nothing for
+// A pass whose cut would exceed max_cut is abandoned, and the passes left
+// bisect (geometric mean) between the last threshold that fit and the one
+// that did not, kWalkBisections times at most: the pixel keeps the finest cut
+// found within max_cut (every node of it under one threshold, never a
+// truncated walk) and counts as a max-cut hit, as does a pixel still refining
+// after kWalkMaxPasses. (Without the bisection a pixel at the cap kept a cut
+// far below it, up to kWalkShrink times coarser: found by the accuracy sweep.) Interior nodes are never evaluated, so there is nothing for
 // a child to reuse; cut nodes are evaluated once per pass.
 //
 // shaders/lightcuts.comp implements the same passes (constants come from here
@@ -30,6 +33,12 @@ namespace lc::client {
 inline constexpr uint32_t kWalkMaxPasses = 12;
 inline constexpr float kWalkShrink = 512.0f;
 inline constexpr float kWalkMargin = 0.8f;
+inline constexpr uint32_t kWalkBisections = 6;
+
+// The next threshold between one whose cut fit (fit_hi: the largest bound on
+// that cut) and one whose cut exceeded max_cut (over_lo): their geometric
+// mean, with over_lo kept above fit_hi x 1e-6 so that a zero makes progress.
+double bisection_threshold(double fit_hi, double over_lo);
 
 // The cut of the bound criterion by threshold passes (classic lights not included).
 CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings);

@@ -47,6 +47,7 @@ enum SpecId : uint32_t {
     kSpecWalkMaxPasses = 15,
     kSpecWalkShrink = 16,  // float bits
     kSpecWalkMargin = 17,  // float bits
+    kSpecWalkBisections = 18,
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -412,7 +413,8 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
                 .set_uint(kSpecWalkMaxCut, settings.max_cut)
                 .set_uint(kSpecWalkMaxPasses, kWalkMaxPasses)
                 .set_uint(kSpecWalkShrink, std::bit_cast<uint32_t>(kWalkShrink))
-                .set_uint(kSpecWalkMargin, std::bit_cast<uint32_t>(kWalkMargin));
+                .set_uint(kSpecWalkMargin, std::bit_cast<uint32_t>(kWalkMargin))
+                .set_uint(kSpecWalkBisections, kWalkBisections);
             lightcuts_key_ = key;
         }
         auto code =

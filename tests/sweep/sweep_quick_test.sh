@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the quick accuracy sweep (scripts/sweep-accuracy.sh --quick, about 2-3 minutes
+# Runs the quick accuracy sweep (scripts/sweep-accuracy.sh --quick, 1-2 minutes
 # on 2 cores) into a temporary directory and checks its output with
 # scripts/check_sweep.py: columns, finite values, ranges, monotone error against
 # the error ratio, sublinear cut growth, figures present.
