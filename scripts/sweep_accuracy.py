@@ -637,6 +637,16 @@ def pareto_front(points):
 ERROR_FLOOR = 1e-5  # exact results (zero error) are drawn here on log axes
 
 
+def finish_plot(plt, fig, ax, path):
+    """The common end of a single-axes figure: grid, legend, layout, PNG."""
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return True
+
+
 def plot_pareto(rows, path):
     plt = plt_module()
     data = [r for r in ok_rows(rows, "pareto") if num(r, "rel_err_mean") is not None]
@@ -727,12 +737,7 @@ def plot_time_vs_lights(rows, path):
     ax.set_ylabel("render time, GPU timestamps (ms)")
     ax.set_title("Render time against light count, %s (log-log; slope = fitted exponent)"
                  % data[0]["size"], fontsize=9)
-    ax.grid(True, which="both", alpha=0.25)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return True
+    return finish_plot(plt, fig, ax, path)
 
 
 def plot_cut_vs_lights(rows, path):
@@ -765,12 +770,7 @@ def plot_cut_vs_lights(rows, path):
     ax.set_ylabel("cut size (nodes per pixel)")
     ax.set_title("Cut size against light count, bound criterion E=0.02, max cut %d, %s"
                  % (DEFAULT_MAX_CUT, data[0]["size"]), fontsize=9)
-    ax.grid(True, which="both", alpha=0.25)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return True
+    return finish_plot(plt, fig, ax, path)
 
 
 def plot_build_vs_lights(bakes, path):
@@ -804,12 +804,7 @@ def plot_build_vs_lights(bakes, path):
     ax.set_ylabel("time (ms)")
     ax.set_title("Tree build time (server) and transfer + import (client) against light count",
                  fontsize=9)
-    ax.grid(True, which="both", alpha=0.25)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return True
+    return finish_plot(plt, fig, ax, path)
 
 
 def plot_pairing(bakes, path):
