@@ -2,6 +2,8 @@
 // subprocess), and the frame loop driven by a headless window's input script.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <glm/geometric.hpp>
 
 #include <cstdlib>
@@ -58,6 +60,32 @@ TEST(OrbitCamera, StartsWhereTheCameraIsAndOrbitsAroundTheTarget) {
     orbit.orbit({0.0f, 1e6f});
     RenderCamera top = orbit.camera();
     EXPECT_LT((top.eye - top.target).y / glm::length(top.eye - top.target), 1.0f);
+}
+
+TEST(OrbitCamera, FliesAlongTheViewAndLooksAroundTheEye) {
+    RenderCamera start;
+    start.eye = {0.0f, 1.5f, 5.0f};
+    start.target = {0.0f, 1.5f, 0.0f};
+    OrbitCamera camera(start);
+    // W for 2 units: eye and target move forward (-Z) together.
+    camera.fly({0.0f, 0.0f, 1.0f}, 2.0f);
+    RenderCamera moved = camera.camera();
+    EXPECT_NEAR(moved.eye.z, 3.0f, 1e-4f);
+    EXPECT_NEAR(moved.target.z, -2.0f, 1e-4f);
+    EXPECT_NEAR(moved.eye.y, 1.5f, 1e-4f);
+    // D + R: right (+X) and up, 1 unit along their diagonal.
+    camera.fly({1.0f, 1.0f, 0.0f}, 1.0f);
+    EXPECT_NEAR(camera.camera().eye.x, std::sqrt(0.5f), 1e-4f);
+    EXPECT_NEAR(camera.camera().eye.y, 1.5f + std::sqrt(0.5f), 1e-4f);
+    camera.fly({0.0f, 0.0f, 0.0f}, 1.0f);  // no keys: no move
+    EXPECT_NEAR(camera.camera().eye.x, std::sqrt(0.5f), 1e-4f);
+    // Looking around keeps the eye where it is and turns the view.
+    const glm::vec3 eye = camera.camera().eye;
+    const glm::vec3 forward = glm::normalize(camera.camera().target - eye);
+    camera.look({150.0f, 40.0f});
+    EXPECT_NEAR(glm::length(camera.camera().eye - eye), 0.0f, 1e-3f);
+    EXPECT_LT(glm::dot(glm::normalize(camera.camera().target - camera.camera().eye), forward), 0.9f);
+    EXPECT_GE(camera.fly_speed(), 0.5f);
 }
 
 TEST(ViewLoop, HeadlessScriptSwitchesModesAndOrbits) {

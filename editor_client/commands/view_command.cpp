@@ -161,6 +161,7 @@ void add_view_command(CLI::App& app) {
     CLI::App* cmd =
         app.add_subcommand("view",
                            "The interactive editor (left drag: orbit, right drag: pan, wheel: dolly, "
+                           "W/A/S/D/R/F: fly, Shift + left drag: look around, "
                            "1-4: reference/lightcuts/cuts/cutsize, Esc: quit)");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();

@@ -173,12 +173,17 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             orbit = OrbitCamera(session.view().camera);
             orbit_camera = session.view().camera;
         }
-        const bool moved =
-            input.orbit_drag != glm::vec2(0.0f) || input.pan_drag != glm::vec2(0.0f) || input.scroll != 0.0f;
+        const bool moved = input.orbit_drag != glm::vec2(0.0f) || input.pan_drag != glm::vec2(0.0f) ||
+                           input.look_drag != glm::vec2(0.0f) || input.fly != glm::vec3(0.0f) ||
+                           input.scroll != 0.0f;
         if (moved) {
             orbit.orbit(input.orbit_drag);
             orbit.pan(input.pan_drag);
+            orbit.look(input.look_drag);
             orbit.dolly(input.scroll);
+            // Fly by the last frame's time (capped, so one slow frame is not a leap).
+            const double frame_s = std::min(summary.last_frame.frame_ms, 250.0) / 1000.0;
+            orbit.fly(input.fly, orbit.fly_speed() * float(std::max(frame_s, 1.0 / 60.0)));
             RenderCamera next = orbit.camera();
             next.up = session.view().camera.up;
             if (session.set_camera(next)) orbit_camera = session.view().camera;

@@ -75,6 +75,11 @@ VkExtent2D GlfwWindow::framebuffer_size() const {
 WindowInput GlfwWindow::poll() {
     glfwPollEvents();
     WindowInput input = pending_;
+    if (!ui_keyboard_) {
+        auto held = [&](int key) { return glfwGetKey(window_, key) == GLFW_PRESS ? 1.0f : 0.0f; };
+        input.fly = {held(GLFW_KEY_D) - held(GLFW_KEY_A), held(GLFW_KEY_R) - held(GLFW_KEY_F),
+                     held(GLFW_KEY_W) - held(GLFW_KEY_S)};
+    }
     input.close_requested = glfwWindowShouldClose(window_) == GLFW_TRUE;
     pending_ = WindowInput{};
     return input;
@@ -95,8 +100,10 @@ void GlfwWindow::on_cursor(GLFWwindow* window, double x, double y) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));
     if (self->have_cursor_ && !self->ui_mouse_) {
         glm::vec2 delta(float(x - self->last_x_), float(y - self->last_y_));
+        const bool shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
+                           glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
         if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS)
-            self->pending_.orbit_drag += delta;
+            (shift ? self->pending_.look_drag : self->pending_.orbit_drag) += delta;
         if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
             self->pending_.pan_drag += delta;
     }

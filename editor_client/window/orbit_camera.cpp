@@ -36,6 +36,27 @@ void OrbitCamera::pan(glm::vec2 drag) {
     target_ += (-drag.x * right + drag.y * up) * scale;
 }
 
+void OrbitCamera::fly(glm::vec3 axes, float distance) {
+    if (!(distance > 0.0f) || axes == glm::vec3(0.0f)) return;
+    RenderCamera c = camera();
+    glm::vec3 forward = glm::normalize(c.target - c.eye);
+    glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    glm::vec3 step = axes.x * right + axes.y * glm::vec3(0, 1, 0) + axes.z * forward;
+    const float length = glm::length(step);
+    if (length > 0.0f) target_ += step / length * distance;
+}
+
+void OrbitCamera::look(glm::vec2 drag) {
+    const glm::vec3 eye = camera().eye;
+    yaw_ -= drag.x * kRadiansPerPixel;
+    pitch_ = std::clamp(pitch_ - drag.y * kRadiansPerPixel, -kMaxPitch, kMaxPitch);
+    glm::vec3 dir(std::cos(pitch_) * std::sin(yaw_), std::sin(pitch_),
+                  std::cos(pitch_) * std::cos(yaw_));
+    target_ = eye - dir * distance_;
+}
+
+float OrbitCamera::fly_speed() const { return std::max(0.5f * distance_, 0.5f); }
+
 void OrbitCamera::dolly(float steps) {
     distance_ = std::clamp(distance_ * std::pow(0.9f, steps), 1e-4f, 1e7f);
 }

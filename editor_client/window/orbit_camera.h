@@ -1,6 +1,8 @@
 #pragma once
 // Mouse orbit around a target: left drag turns (yaw about +Y, pitch clamped
-// short of the poles), right drag pans, the wheel dollies.
+// short of the poles), right drag pans, the wheel dollies. Fly controls move
+// eye and target together along the view's axes, and look turns the view
+// about the eye (the target swings round it).
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -15,6 +17,12 @@ public:
     void orbit(glm::vec2 drag_pixels);
     void pan(glm::vec2 drag_pixels);
     void dolly(float wheel_steps);
+    // axes: x right, y world up, z forward (the view direction); distance in scene units.
+    void fly(glm::vec3 axes, float distance);
+    void look(glm::vec2 drag_pixels);
+    // The fly speed the editor uses: half the orbit distance per second (at
+    // least 0.5 units), so small and large scenes cross in similar times.
+    float fly_speed() const;
     RenderCamera camera() const;
 
 private:

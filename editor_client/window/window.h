@@ -4,6 +4,7 @@
 #include <vulkan/vulkan.h>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@ namespace lc::client {
 struct WindowInput {
     glm::vec2 orbit_drag{0.0f};   // pixels dragged with the left button held
     glm::vec2 pan_drag{0.0f};     // pixels dragged with the right button held
+    glm::vec2 look_drag{0.0f};    // pixels dragged with Shift and the left button held
+    // Fly keys held now, each axis -1, 0 or 1: x right (D/A), y up (R/F), z forward (W/S).
+    glm::vec3 fly{0.0f};
     float scroll = 0.0f;          // wheel steps, positive away from the user
     std::optional<int> mode_key;  // 1..4 pressed (the last one wins)
     bool close_requested = false;
