@@ -707,13 +707,28 @@ def pow2_axis(ax, counts):
     ax.set_xticklabels(["2^%d" % int(round(math.log2(c))) for c in counts])
 
 
-def plot_time_vs_lights(rows, path):
+def start_light_count_plot(rows):
+    """The common start of a plot against the light count: the 'lights' group's rows."""
     plt = plt_module()
     data = ok_rows(rows, "lights")
     if not data:
-        return False
+        return plt, data, None, None, []
     fig, ax = plt.subplots(figsize=(7.5, 5))
-    counts = sorted({int(r["lights"]) for r in data})
+    return plt, data, fig, ax, sorted({int(r["lights"]) for r in data})
+
+
+def light_count_axes(ax, counts, ylabel):
+    """Log-log axes with the light counts as powers of two."""
+    pow2_axis(ax, counts)
+    ax.set_yscale("log")
+    ax.set_xlabel("lights")
+    ax.set_ylabel(ylabel)
+
+
+def plot_time_vs_lights(rows, path):
+    plt, data, fig, ax, counts = start_light_count_plot(rows)
+    if not data:
+        return False
     ref = {}
     for r in data:
         if num(r, "reference_ms"):
@@ -731,22 +746,16 @@ def plot_time_vs_lights(rows, path):
             ax.plot([x for x, _ in sel], [y for _, y in sel], "-s", color=BUILDER_COLOURS[builder],
                     label="lightcuts bound E=0.02, %s tree (slope %s)" % (
                         builder, slope_text(slope, 2)))
-    pow2_axis(ax, counts)
-    ax.set_yscale("log")
-    ax.set_xlabel("lights")
-    ax.set_ylabel("render time, GPU timestamps (ms)")
+    light_count_axes(ax, counts, "render time, GPU timestamps (ms)")
     ax.set_title("Render time against light count, %s (log-log; slope = fitted exponent)"
                  % data[0]["size"], fontsize=9)
     return finish_plot(plt, fig, ax, path)
 
 
 def plot_cut_vs_lights(rows, path):
-    plt = plt_module()
-    data = ok_rows(rows, "lights")
+    plt, data, fig, ax, counts = start_light_count_plot(rows)
     if not data:
         return False
-    fig, ax = plt.subplots(figsize=(7.5, 5))
-    counts = sorted({int(r["lights"]) for r in data})
     ax.plot(counts, counts, "k:", label="reference: every light (slope 1)")
     for builder in BUILDERS:
         sel = sorted((int(r["lights"]), num(r, "avg_cut"), num(r, "max_cut"), num(r, "cut_p99"))
@@ -764,22 +773,16 @@ def plot_cut_vs_lights(rows, path):
         if p99:
             ax.plot([x for x, _ in p99], [y for _, y in p99], "-.", color=colour, alpha=0.8,
                     label="%s: 99th-percentile cut" % builder)
-    pow2_axis(ax, counts)
-    ax.set_yscale("log")
-    ax.set_xlabel("lights")
-    ax.set_ylabel("cut size (nodes per pixel)")
+    light_count_axes(ax, counts, "cut size (nodes per pixel)")
     ax.set_title("Cut size against light count, bound criterion E=0.02, max cut %d, %s"
                  % (DEFAULT_MAX_CUT, data[0]["size"]), fontsize=9)
     return finish_plot(plt, fig, ax, path)
 
 
 def plot_build_vs_lights(bakes, path):
-    plt = plt_module()
-    data = ok_rows(bakes, "lights")
+    plt, data, fig, ax, counts = start_light_count_plot(bakes)
     if not data:
         return False
-    fig, ax = plt.subplots(figsize=(7.5, 5))
-    counts = sorted({int(r["lights"]) for r in data})
     for builder in BUILDERS:
         sel = sorted((int(r["lights"]), num(r, "build_ms"), num(r, "transfer_import_ms"),
                       r.get("exact") != "false") for r in data if r["builder"] == builder)
@@ -798,10 +801,7 @@ def plot_build_vs_lights(bakes, path):
                     label="%s: approximate pairing (auto)" % builder)
         ax.plot(xs, [s[2] for s in sel], ":", color=colour, alpha=0.7,
                 label="%s: transfer + import" % builder)
-    pow2_axis(ax, counts)
-    ax.set_yscale("log")
-    ax.set_xlabel("lights")
-    ax.set_ylabel("time (ms)")
+    light_count_axes(ax, counts, "time (ms)")
     ax.set_title("Tree build time (server) and transfer + import (client) against light count",
                  fontsize=9)
     return finish_plot(plt, fig, ax, path)

@@ -16,17 +16,23 @@ using client::RenderMode;
 using client::Renderer;
 using client::RenderSettings;
 
-TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
-    std::unique_ptr<vk::Context> context;
-    LC_REQUIRE_VULKAN(context);
+// The floor with `count` unbounded dim point lights scattered above it.
+client::Scene floor_with_scattered_lights(uint32_t count, uint32_t seed) {
     client::Scene scene = test::make_floor_scene();
-    std::mt19937 rng(3);
+    std::mt19937 rng(seed);
     std::uniform_real_distribution<float> xz(-4.5f, 4.5f), y(0.5f, 4.5f);
-    for (uint32_t i = 0; i < 70000; ++i) {
+    for (uint32_t i = 0; i < count; ++i) {
         SceneLight light = test::point_light({xz(rng), y(rng), xz(rng)}, glm::vec3(1.0f), 0.01f);
         test::set_unit_guid(light, i);
         scene.lights.push_back(light);
     }
+    return scene;
+}
+
+TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    client::Scene scene = floor_with_scattered_lights(70000, 3);
     // All lights unbounded: the radius criterion refines to every leaf, so its
     // cut is the whole tree and its sum is the reference.
     LightTree tree = test::make_pairing_tree(scene.lights);
@@ -101,14 +107,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     LC_REQUIRE_VULKAN(context);
     if (context->physical().name().find("llvmpipe") == std::string::npos)
         GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
-    client::Scene scene = test::make_floor_scene();
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> xz(-4.5f, 4.5f), y(0.5f, 4.5f);
-    for (uint32_t i = 0; i < 70000; ++i) {
-        SceneLight light = test::point_light({xz(rng), y(rng), xz(rng)}, glm::vec3(1.0f), 0.01f);
-        test::set_unit_guid(light, i);
-        scene.lights.push_back(light);
-    }
+    client::Scene scene = floor_with_scattered_lights(70000, 5);
     // Every junction flagged mixed-type: always refined, so the first pass
     // walks all 139,999 nodes, two per iteration: past the 65,535 limit.
     LightTree tree = test::make_pairing_tree(scene.lights);

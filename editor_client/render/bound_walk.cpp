@@ -23,18 +23,13 @@ struct Pass {
 // chain-shaped tree is as deep as it has lights.
 Pass walk_pass(const LightTree& tree, const SurfacePoint& p, double tau) {
     Pass pass;
-    const int32_t size = static_cast<int32_t>(tree.nodes.size());
     std::vector<int32_t> stack{0};
     while (!stack.empty()) {
         const int32_t index = stack.back();
         stack.pop_back();
         const LightTreeNode& node = tree.nodes[size_t(index)];
-        // Valid children only: children come after their parent, so a
-        // malformed index cannot make the walk loop.
         int32_t children[2];
-        int child_count = 0;
-        for (int32_t child : {node.left, node.right})
-            if (child > index && child < size) children[child_count++] = child;
+        const int child_count = valid_children(tree, index, children);
         double key = 0.0;  // a leaf is exact
         bool refine = false;
         if (child_count > 0) {

@@ -193,17 +193,6 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
     return a.node > b.node;
 }
 
-// Valid children only: a malformed index is treated as absent, and children
-// always come after their parent, so traversal terminates on any input.
-int child_list(const LightTree& tree, int32_t index, int32_t out[2]) {
-    const LightTreeNode& node = tree.nodes[size_t(index)];
-    const int32_t size = static_cast<int32_t>(tree.nodes.size());
-    int count = 0;
-    for (int32_t child : {node.left, node.right}) {
-        if (child > index && child < size) out[count++] = child;
-    }
-    return count;
-}
 
 CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
                     const glm::dvec3* reuse_unit) {
@@ -213,7 +202,7 @@ CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
     e.unit = reuse_unit ? *reuse_unit : unit_response(emitter_of(node), p);
     e.estimate = e.unit * glm::dvec3(node.intensity);
     int32_t children[2];
-    if (child_list(tree, index, children) == 0) {
+    if (valid_children(tree, index, children) == 0) {
         e.key = 0.0;  // a leaf is exact
     } else if (node.mixed_types) {
         e.key = std::numeric_limits<double>::infinity();
@@ -236,7 +225,7 @@ CutResult radius_cut(const LightTree& tree, const SurfacePoint& p) {
         stack.pop_back();
         const LightTreeNode& node = tree.nodes[size_t(index)];
         int32_t children[2];
-        const int child_count = child_list(tree, index, children);
+        const int child_count = valid_children(tree, index, children);
         bool refine = false;
         if (child_count > 0) {
             if (node.mixed_types || node.radius < 0.0f) {
@@ -279,7 +268,7 @@ CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSetti
         total -= parent.estimate;
         const int32_t representative = tree.nodes[size_t(parent.node)].representative;
         int32_t children[2];
-        const int child_count = child_list(tree, parent.node, children);
+        const int child_count = valid_children(tree, parent.node, children);
         for (int c = 0; c < child_count; ++c) {
             // The child that shares the representative reuses its evaluation.
             const bool shares = tree.nodes[size_t(children[c])].representative == representative;
@@ -299,6 +288,16 @@ CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSetti
 }
 
 }  // namespace
+
+int valid_children(const LightTree& tree, int32_t index, int32_t out[2]) {
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    const int32_t size = static_cast<int32_t>(tree.nodes.size());
+    int count = 0;
+    for (int32_t child : {node.left, node.right}) {
+        if (child > index && child < size) out[count++] = child;
+    }
+    return count;
+}
 
 uint32_t cut_hash_term(uint32_t node_index) {
     // murmur3's fmix32 finaliser of i + 1 (so node 0 does not hash to 0).

@@ -47,6 +47,11 @@ struct CutResult {
 // over its node indices i. The shaders compute the same.
 uint32_t cut_hash_term(uint32_t node_index);
 
+// The children of node `index` that are valid (a malformed index counts as
+// absent; children always come after their parent, so any traversal ends):
+// writes them to `out` and returns how many.
+int valid_children(const LightTree& tree, int32_t index, int32_t out[2]);
+
 // Outgoing radiance at p from one light (shading_model.h), exact.
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p);
 // A tree node evaluated as a cluster: the representative's position, direction,

@@ -227,19 +227,15 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 }
                 if (ui) LC_RETURN_IF_ERROR(ui->resize(presentation->swapchain.extent()));
             }
-            Result<vk::AcquireStatus> acquired =
-                presentation->swapchain.acquire(image_ready->handle(), image_index);
-            if (!acquired) return make_error(acquired.error());
-            if (*acquired == vk::AcquireStatus::kOutOfDate) {
+            Result<bool> stale = acquire_image(*presentation, *image_ready, image_index);
+            if (!stale) return make_error(stale.error());
+            if (*stale) {
                 recreate = true;
                 continue;
             }
         }
 
-        LC_VK_CHECK(vkResetCommandBuffer(*cmd, 0));
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        LC_VK_CHECK(vkBeginCommandBuffer(*cmd, &begin));
+        LC_RETURN_IF_ERROR(begin_frame_commands(*cmd));
         Status recorded = renderer.record(*cmd, settings);
         const bool draw_panels = ui && ui->frame_open() && recorded && presenting;
         if (recorded && presenting) {

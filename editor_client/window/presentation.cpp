@@ -7,6 +7,21 @@
 
 namespace lc::client {
 
+Result<bool> acquire_image(Presentation& presentation, const vk::Semaphore& image_ready,
+                           uint32_t& image_index) {
+    Result<vk::AcquireStatus> acquired = presentation.swapchain.acquire(image_ready.handle(), image_index);
+    if (!acquired) return make_error(acquired.error());
+    return *acquired == vk::AcquireStatus::kOutOfDate;
+}
+
+Status begin_frame_commands(VkCommandBuffer cmd) {
+    LC_VK_CHECK(vkResetCommandBuffer(cmd, 0));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    LC_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    return Ok{};
+}
+
 Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent, Presentation* old) {
     Presentation p;
     Result<vk::Swapchain> swapchain = vk::Swapchain::create(context.device(), context.surface(), extent,

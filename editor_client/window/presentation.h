@@ -36,6 +36,14 @@ void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, 
 Result<bool> ensure_presentation(const vk::Context& context, VkExtent2D extent,
                                  std::optional<Presentation>& presentation, bool& recreate);
 
+// Acquires the next swapchain image into `image_index`, signalling
+// `image_ready`. True: the swapchain is out of date (recreate, skip the frame).
+Result<bool> acquire_image(Presentation& presentation, const vk::Semaphore& image_ready,
+                           uint32_t& image_index);
+
+// Resets `cmd` and begins it for one submission: a frame's commands.
+Status begin_frame_commands(VkCommandBuffer cmd);
+
 // Submits one frame's commands and, with a presentation, presents swapchain
 // image `image_index` once they finish (waiting on `image_ready`, the acquire
 // semaphore). Waits for `frame_done`. True: the swapchain is out of date.

@@ -71,19 +71,15 @@ Result<ViewSummary> run_view_loop(Window& window, const vk::Context& context, Re
             }
             Result<bool> remade = ensure_presentation(context, extent, presentation, recreate);
             if (!remade) return make_error(remade.error());
-            Result<vk::AcquireStatus> acquired =
-                presentation->swapchain.acquire(image_ready->handle(), image_index);
-            if (!acquired) return make_error(acquired.error());
-            if (*acquired == vk::AcquireStatus::kOutOfDate) {
+            Result<bool> stale = acquire_image(*presentation, *image_ready, image_index);
+            if (!stale) return make_error(stale.error());
+            if (*stale) {
                 recreate = true;
                 continue;
             }
         }
 
-        LC_VK_CHECK(vkResetCommandBuffer(*cmd, 0));
-        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        LC_VK_CHECK(vkBeginCommandBuffer(*cmd, &begin));
+        LC_RETURN_IF_ERROR(begin_frame_commands(*cmd));
         Status recorded = renderer.record(*cmd, settings);
         if (recorded && presenting)
             record_blit(*cmd, renderer.display_image(),
