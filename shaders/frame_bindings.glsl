@@ -22,10 +22,15 @@ layout(std430, set = 0, binding = 10) buffer FrameCounters {
     uint nonfinite_pixels;
     uint geometry_pixels;
     uint max_cut_hits;  // bound criterion: pixels whose cut stopped at max-cut
-    uint loop_limit_stops;  // walk search: pixels whose pass the device's loop limit cut short
+    uint loop_limit_stops;  // pixels whose walk or shadow ray the device's loop limit cut short
+    uint shadow_rays;       // low 32 bits
+    uint shadow_rays_high;  // high 32 bits
 } counters;
 // Per-node box and cone for the bound criterion (GpuNodeBounds, same order as tree_nodes).
 layout(std430, set = 0, binding = 11) readonly buffer NodeBounds { GpuNodeBounds node_bounds[]; };
+// The shadow-casting triangles and their BVH (editor_client/render/shadow_bvh.h).
+layout(std430, set = 0, binding = 12) readonly buffer BvhNodes { GpuBvhNode bvh_nodes[]; };
+layout(std430, set = 0, binding = 13) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };
 
 layout(push_constant) uniform FrameConstants {
     uint width;
@@ -35,6 +40,10 @@ layout(push_constant) uniform FrameConstants {
     uint node_count;
     float exposure;
     uint scale_bar_rows;
+    float shadow_bias;
+    uint light_begin;
+    uint light_end;
+    uint bvh_node_count;
     uint pad;
 } frame;
 

@@ -40,4 +40,24 @@ struct GpuNodeBounds {
     float pad1;
 };
 
+// editor_client/render/shadow_bvh.h
+const uint kBvhLeafCountBits = 3u;
+const uint kBvhLeafCountMask = 7u;
+
+struct GpuBvhNode {
+    vec3 bbox_min;
+    int escape;
+    vec3 bbox_max;
+    uint triangles;  // leaf: first << kBvhLeafCountBits | count; inner: 0
+};
+
+struct GpuShadowTriangle {
+    vec3 v0;
+    float pad0;
+    vec3 edge1;
+    float pad1;
+    vec3 edge2;
+    float pad2;
+};
+
 #endif

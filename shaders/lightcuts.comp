@@ -57,7 +57,7 @@ struct Cut {
 };
 
 void add_to_cut(inout Cut cut, uint node_index, GpuLight cluster, SurfacePoint p) {
-    cut.irradiance += light_irradiance(cluster, p.position, p.normal);
+    cut.irradiance += visible_irradiance(cluster, p.position, p.normal);
     cut.size += 1u;
     cut.hash += cut_hash_term(node_index);
 }
@@ -95,7 +95,8 @@ void radius_walk_step(inout int i, inout bool waiting, inout int resume, inout C
     i = subgroupAny(refine) ? tree_nodes[i].first_child : tree_nodes[i].escape;
 }
 
-Cut select_cut_radius(SurfacePoint p) {
+// `cut_short`: the walk did not reach its end (the device's loop limit).
+Cut select_cut_radius(SurfacePoint p, out bool cut_short) {
     Cut cut = Cut(vec3(0.0), 0u, 0u);
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;
     bool waiting = false;
@@ -111,6 +112,7 @@ Cut select_cut_radius(SurfacePoint p) {
         radius_walk_step(i, waiting, resume, cut, p);
         radius_walk_step(i, waiting, resume, cut, p);
     }
+    cut_short = i != kEndOfWalk;
     return cut;
 }
 
@@ -182,7 +184,7 @@ float node_key(int i, SurfacePoint p, vec3 brdf) {
 vec3 unit_response(int i, SurfacePoint p, vec3 brdf) {
     GpuLight unit_light = tree_nodes[i].light;
     unit_light.intensity = vec3(1.0);
-    return brdf * light_irradiance(unit_light, p.position, p.normal);
+    return brdf * visible_irradiance(unit_light, p.position, p.normal);
 }
 
 // A child whose representative has the parent's parameters has the parent's
@@ -282,7 +284,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                pass.radiance += brdf * light_irradiance(node.light, p.position, p.normal);
+                pass.radiance += brdf * visible_irradiance(node.light, p.position, p.normal);
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);
@@ -377,12 +379,12 @@ void main() {
                       ? select_cut_bound_walk(p, radiance, max_cut_hit, loop_limit_stop)
                       : select_cut_bound(p, radiance, max_cut_hit);
         if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
-        if (loop_limit_stop) atomicAdd(counters.loop_limit_stops, 1u);
         radiance += outgoing_radiance(p, classic_irradiance(p));
-        store_pixel(pixel, radiance, cut.size, cut.hash);
+        store_pixel(pixel, radiance, cut.size, cut.hash, loop_limit_stop);
         return;
     }
-    Cut cut = select_cut_radius(p);
+    bool walk_cut_short;
+    Cut cut = select_cut_radius(p, walk_cut_short);
     vec3 irradiance = cut.irradiance + classic_irradiance(p);
-    store_pixel(pixel, outgoing_radiance(p, irradiance), cut.size, cut.hash);
+    store_pixel(pixel, outgoing_radiance(p, irradiance), cut.size, cut.hash, walk_cut_short);
 }

@@ -6,6 +6,7 @@
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 #include "loop_limits.glsl"
+#include "shadow_rays.glsl"
 
 struct SurfacePoint {
     vec3 position;
@@ -29,13 +30,13 @@ vec3 classic_irradiance(SurfacePoint p) {
     if (kClassicLights) {
         uint i = 0u;
         for (; i + kLoopUnroll <= frame.classic_count; i += kLoopUnroll) {
-            e += light_irradiance(classic_lights[i], p.position, p.normal);
-            e += light_irradiance(classic_lights[i + 1u], p.position, p.normal);
-            e += light_irradiance(classic_lights[i + 2u], p.position, p.normal);
-            e += light_irradiance(classic_lights[i + 3u], p.position, p.normal);
+            e += visible_irradiance(classic_lights[i], p.position, p.normal);
+            e += visible_irradiance(classic_lights[i + 1u], p.position, p.normal);
+            e += visible_irradiance(classic_lights[i + 2u], p.position, p.normal);
+            e += visible_irradiance(classic_lights[i + 3u], p.position, p.normal);
         }
         for (; i < frame.classic_count; ++i)
-            e += light_irradiance(classic_lights[i], p.position, p.normal);
+            e += visible_irradiance(classic_lights[i], p.position, p.normal);
     }
     return e;
 }
@@ -53,7 +54,10 @@ void store_background(ivec2 pixel) {
 }
 
 // Non-finite radiance is counted and written as 0, so no NaN/Inf reaches an image.
-void store_pixel(ivec2 pixel, vec3 radiance, uint cut_size, uint cut_hash) {
+// `cut_short`: a walk of this pixel was ended by the device's loop limit.
+void store_pixel(ivec2 pixel, vec3 radiance, uint cut_size, uint cut_hash, bool cut_short) {
+    flush_shadow_ray_count();
+    if (cut_short || g_shadow_walk_cut_short) atomicAdd(counters.loop_limit_stops, 1u);
     if (any(isnan(radiance)) || any(isinf(radiance))) {
         atomicAdd(counters.nonfinite_pixels, 1u);
         radiance = vec3(0.0);

@@ -1,6 +1,11 @@
 #version 460
 // Reference mode: every tree leaf (or scene light) plus every classic light,
-// summed exactly in float at each pixel with geometry.
+// summed exactly in float at each pixel with geometry, each light with its
+// shadow ray when the scene has shadows. One dispatch sums the leaves
+// [light_begin, light_end) onto the previous dispatches' partial sum, so that
+// no invocation exceeds llvmpipe's loop budget (Renderer::reference_chunks):
+// the first dispatch adds the classic lights and emission, the last one
+// stores the pixel with its checks and counters.
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
@@ -16,17 +21,30 @@ void main() {
         store_background(pixel);
         return;
     }
+    const bool first = frame.light_begin == 0u;
+    const bool last = frame.light_end >= frame.leaf_count;
     vec3 irradiance = vec3(0.0);
-    uint i = 0u;
-    for (; i + kLoopUnroll <= frame.leaf_count; i += kLoopUnroll) {
-        irradiance += light_irradiance(leaf_lights[i], p.position, p.normal);
-        irradiance += light_irradiance(leaf_lights[i + 1u], p.position, p.normal);
-        irradiance += light_irradiance(leaf_lights[i + 2u], p.position, p.normal);
-        irradiance += light_irradiance(leaf_lights[i + 3u], p.position, p.normal);
+    uint i = frame.light_begin;
+    uint end = min(frame.light_end, frame.leaf_count);
+    for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
+        irradiance += visible_irradiance(leaf_lights[i], p.position, p.normal);
+        irradiance += visible_irradiance(leaf_lights[i + 1u], p.position, p.normal);
+        irradiance += visible_irradiance(leaf_lights[i + 2u], p.position, p.normal);
+        irradiance += visible_irradiance(leaf_lights[i + 3u], p.position, p.normal);
     }
-    for (; i < frame.leaf_count; ++i)
-        irradiance += light_irradiance(leaf_lights[i], p.position, p.normal);
-    irradiance += classic_irradiance(p);
-    // Every leaf is in the "cut"; the hash is not needed for reference pixels.
-    store_pixel(pixel, outgoing_radiance(p, irradiance), frame.leaf_count, 0u);
+    for (; i < end; ++i) irradiance += visible_irradiance(leaf_lights[i], p.position, p.normal);
+    vec3 radiance;
+    if (first) {
+        radiance = outgoing_radiance(p, irradiance + classic_irradiance(p));
+    } else {
+        radiance = p.albedo * (1.0 / kPi) * irradiance + imageLoad(hdr_image, pixel).rgb;
+    }
+    if (last) {
+        // Every leaf is in the "cut"; the hash is not needed for reference pixels.
+        store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
+    } else {
+        imageStore(hdr_image, pixel, vec4(radiance, 1.0));
+        flush_shadow_ray_count();
+        if (g_shadow_walk_cut_short) atomicAdd(counters.loop_limit_stops, 1u);
+    }
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "editor_client/render/gpu_layout.h"
+#include "editor_client/render/shadow_bvh.h"
 #include "editor_client/render/shading_model.h"
 
 namespace lc::client {
@@ -35,7 +36,20 @@ TEST(GpuLayout, SizesAndOffsetsMatchTheGlslMirror) {
     EXPECT_EQ(offsetof(GpuNodeBounds, cone_axis), 32u);
     EXPECT_EQ(sizeof(GpuFrameCounters), 32u);
     EXPECT_EQ(offsetof(GpuFrameCounters, loop_limit_stops), 16u);
-    EXPECT_EQ(sizeof(GpuFrameConstants), 32u);
+    EXPECT_EQ(offsetof(GpuFrameCounters, shadow_rays), 20u);
+    EXPECT_EQ(offsetof(GpuFrameCounters, shadow_rays_high), 24u);
+    EXPECT_EQ(sizeof(GpuFrameConstants), 48u);
+    EXPECT_EQ(offsetof(GpuFrameConstants, shadow_bias), 28u);
+    EXPECT_EQ(offsetof(GpuFrameConstants, light_begin), 32u);
+    EXPECT_EQ(offsetof(GpuFrameConstants, light_end), 36u);
+    EXPECT_EQ(offsetof(GpuFrameConstants, bvh_node_count), 40u);
+    EXPECT_EQ(sizeof(GpuBvhNode), 32u);
+    EXPECT_EQ(offsetof(GpuBvhNode, escape), 12u);
+    EXPECT_EQ(offsetof(GpuBvhNode, bbox_max), 16u);
+    EXPECT_EQ(offsetof(GpuBvhNode, triangles), 28u);
+    EXPECT_EQ(sizeof(GpuShadowTriangle), 48u);
+    EXPECT_EQ(offsetof(GpuShadowTriangle, edge1), 16u);
+    EXPECT_EQ(offsetof(GpuShadowTriangle, edge2), 32u);
     EXPECT_EQ(sizeof(GpuDrawConstants), 128u);
     EXPECT_EQ(alignof(GpuLight), 16u);
     EXPECT_EQ(alignof(GpuTreeNode), 16u);

@@ -130,7 +130,12 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     scene.lights = lights;
     LightTree tree = build_tree(lights);
     ASSERT_FALSE(tree.empty());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    // The closed room hides the directional lights entirely (shadows would be
+    // on); this test is about the bounds, so every light is visible here.
+    RendererOptions visible;
+    visible.shadows = ShadowMode::kOff;
+    Result<std::unique_ptr<Renderer>> renderer =
+        Renderer::create(*context_, scene, &tree, visible);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;

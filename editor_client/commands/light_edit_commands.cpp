@@ -188,7 +188,7 @@ void add_make_scene(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("make-scene", "Write a procedural scene to glTF");
-    cmd->add_option("name", o->name, "room | thesis-fig91 | thesis-test1 | thesis-test2")
+    cmd->add_option("name", o->name, "room | furnished-room | thesis-fig91 | thesis-test1 | thesis-test2")
         ->required();
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
     cmd->callback([o] {

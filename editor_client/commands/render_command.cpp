@@ -1,8 +1,8 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
-//   [--error E] [--max-cut K] [--bound-search walk|heap] [--compare-reference] [--size WxH]
-//   [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I] [--exposure E] -o OUT.png
-//   [--float OUT.pfm] [--stats OUT.json] [--validation] [--sweep-error E1,E2,...]
+//   [--error E] [--max-cut K] [--bound-search walk|heap] [--shadows auto|on|off]
+//   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
+//   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation] [--sweep-error E1,E2,...]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -43,6 +43,7 @@ struct RenderOptions {
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
     std::string bound_search = "walk";
+    std::string shadows = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     bool compare_reference = false;
     std::string size = "512x512";
@@ -134,7 +135,10 @@ void run_render(const RenderOptions& options) {
     vk::ContextOptions context_options;
     context_options.validation = options.validation;
     vk::Context context = or_fail(vk::Context::create(context_options));
-    std::unique_ptr<Renderer> renderer = or_fail(Renderer::create(context, scene, tree.get()));
+    RendererOptions renderer_options;
+    renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
+    std::unique_ptr<Renderer> renderer =
+        or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
     for (const EffectDecision& d : renderer->effects().decisions)
         spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
 
@@ -258,6 +262,11 @@ void add_render_command(CLI::App& app) {
                     "Bound criterion: walk (threshold passes, fast on SIMD devices) or heap (the "
                     "paper's largest-bound-first order); both stop under the same rule")
         ->check(CLI::IsMember({"walk", "heap"}))
+        ->capture_default_str();
+    cmd->add_option("--shadows", options->shadows,
+                    "Shadow rays: auto (simulated when a surface may hide a light; the stats "
+                    "JSON says why), on or off")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
     cmd->add_option("--sweep-error", options->sweep_error,
                     "Print the price of accuracy on this scene and camera: lightcuts at each "

@@ -21,6 +21,8 @@
 
 #include "editor_client/render/bound_walk.h"
 #include "editor_client/render/shading_model.h"
+#include "editor_client/render/shadow_bvh.h"
+#include "editor_client/render/shadow_ray.h"
 
 namespace lc::client {
 namespace {
@@ -80,6 +82,9 @@ glm::dvec3 unit_response(const Emitter& e, const SurfacePoint& p) {
             G *= shading::spot_attenuation(cos_s, e.cos_inner, e.cos_outer);
         }
     }
+    if (G > 0.0 && p.occluders != nullptr)
+        G *= light_visibility(*p.occluders, p.shadow_bias, e.type, e.position, e.direction,
+                              p.position, p.normal);
     return brdf(p) * G;
 }
 

@@ -11,10 +11,18 @@
 
 namespace lc::client {
 
+class ShadowBvh;
+
 struct SurfacePoint {
     glm::dvec3 position{0.0};
     glm::dvec3 normal{0.0, 0.0, 1.0};  // unit
     glm::dvec3 albedo{1.0};           // linear diffuse albedo
+    // What may hide a light from this point (null: nothing, V = 1), and how
+    // far its shadow rays start along the normal (shadow_ray.h). A light, or
+    // a cluster's representative, whose contribution is not zero is shaded
+    // with its visibility.
+    const ShadowBvh* occluders = nullptr;
+    double shadow_bias = 0.0;
 };
 
 enum class CutCriterion : uint8_t { kRadius = 0, kBound = 1 };

@@ -70,6 +70,10 @@ struct alignas(16) GpuFrameCounters {
     // Walk search: pixels whose pass was cut short by the device's loop limit
     // (llvmpipe, loop_limits.glsl); they keep their last complete pass.
     uint32_t loop_limit_stops = 0;
+    // Shadow rays the lighting pass traced: a 64-bit count in two words.
+    uint32_t shadow_rays = 0;
+    uint32_t shadow_rays_high = 0;
+    uint32_t pad = 0;
 };
 
 // Push constants shared by the compute passes.
@@ -81,6 +85,14 @@ struct alignas(16) GpuFrameConstants {
     uint32_t node_count = 0;
     float exposure = 1.0f;
     uint32_t scale_bar_rows = 0;  // cutsize mode: rows at the bottom for the colour scale
+    // Shadow rays start this far along the normal (shadow_ray.h); 0 without shadows.
+    float shadow_bias = 0.0f;
+    // Reference mode sums the leaves [light_begin, light_end) per dispatch, so
+    // that no dispatch exceeds llvmpipe's loop budget; the first also adds the
+    // classic lights and emission, the last one stores the pixel.
+    uint32_t light_begin = 0;
+    uint32_t light_end = 0;
+    uint32_t bvh_node_count = 0;  // shadow BVH nodes (0: nothing occludes)
     uint32_t pad = 0;
 };
 
@@ -118,7 +130,11 @@ static_assert(offsetof(GpuNodeBounds, bbox_max) == 16);
 static_assert(offsetof(GpuNodeBounds, cone_axis) == 32);
 static_assert(sizeof(GpuFrameCounters) == 32);
 static_assert(offsetof(GpuFrameCounters, loop_limit_stops) == 16);
-static_assert(sizeof(GpuFrameConstants) == 32);
+static_assert(offsetof(GpuFrameCounters, shadow_rays) == 20);
+static_assert(sizeof(GpuFrameConstants) == 48);
+static_assert(offsetof(GpuFrameConstants, shadow_bias) == 28);
+static_assert(offsetof(GpuFrameConstants, light_begin) == 32);
+static_assert(offsetof(GpuFrameConstants, bvh_node_count) == 40);
 static_assert(offsetof(GpuFrameConstants, exposure) == 20);
 static_assert(offsetof(GpuFrameConstants, scale_bar_rows) == 24);
 static_assert(sizeof(GpuDrawConstants) == 128);  // Vulkan's guaranteed push-constant space

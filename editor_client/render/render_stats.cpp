@@ -34,6 +34,13 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["effects_skipped"] = effects_json(s.effects_skipped);
     j["max_cut_hits"] = s.max_cut_hits;
     j["loop_limit_stops"] = s.loop_limit_stops;
+    j["shadows"] = s.shadows;
+    j["shadow_rays"] = s.shadow_rays;
+    j["shadow_rays_per_pixel"] =
+        s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
+    j["shadow_triangles"] = s.shadow_triangles;
+    j["shadow_bvh_nodes"] = s.shadow_bvh_nodes;
+    if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;

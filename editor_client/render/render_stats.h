@@ -44,7 +44,13 @@ struct RenderStats {
     uint32_t max_cut_setting = 0;
     std::string bound_search;  // walk or heap
     uint64_t max_cut_hits = 0;
-    uint64_t loop_limit_stops = 0;  // walk search: passes the device's loop limit cut short
+    uint64_t loop_limit_stops = 0;  // pixels whose walk or shadow ray the device's loop limit cut short
+    // Shadows: simulated or not (effects), rays traced, the occluders' size.
+    bool shadows = false;
+    uint64_t shadow_rays = 0;
+    uint32_t shadow_triangles = 0;
+    uint32_t shadow_bvh_nodes = 0;
+    uint32_t reference_dispatches = 0;  // reference mode: dispatches the leaves were split over
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;
     double rel_err_mean = 0.0;

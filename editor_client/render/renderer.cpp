@@ -48,6 +48,7 @@ enum SpecId : uint32_t {
     kSpecWalkShrink = 16,  // float bits
     kSpecWalkMargin = 17,  // float bits
     kSpecWalkBisections = 18,
+    kSpecShadows = 19,  // shadow_rays.glsl
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -64,7 +65,9 @@ enum FrameBinding : uint32_t {
     kBindClassicLights = 9,
     kBindCounters = 10,
     kBindNodeBounds = 11,
-    kFrameBindingCount = 12,
+    kBindBvhNodes = 12,
+    kBindShadowTriangles = 13,
+    kFrameBindingCount = 14,
 };
 
 // Timestamp slots: start, then the end of each pass.
@@ -245,11 +248,33 @@ Status Renderer::upload_lights(const LightTree* tree) {
     return Ok{};
 }
 
+Status Renderer::upload_occluders() {
+    shadow_bvh_ = ShadowBvh::build(effects_.occluders);
+    shadow_bias_ = shadow_ray_bias(scene_);
+    const ShadowBvhStats& s = shadow_bvh_.stats();
+    spdlog::debug("shadow BVH: {} triangles ({} degenerate, {} not casting) in {} nodes, depth {}",
+                  s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.nodes, s.depth);
+    auto upload = [&](vk::Buffer& out, std::span<const std::byte> bytes) -> Status {
+        Result<vk::Buffer> buffer = vk::Buffer::create_with_data(
+            context_.device(), context_.command_pool(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+        if (!buffer) return make_error("shadow BVH: " + buffer.error());
+        out = std::move(buffer).value();
+        return Ok{};
+    };
+    LC_RETURN_IF_ERROR(upload(bvh_nodes_, std::as_bytes(std::span(shadow_bvh_.gpu_nodes()))));
+    LC_RETURN_IF_ERROR(
+        upload(shadow_triangles_, std::as_bytes(std::span(shadow_bvh_.gpu_triangles()))));
+    frame_set_dirty_ = true;
+    return Ok{};
+}
+
 Status Renderer::set_tree(const LightTree* tree) {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     LC_RETURN_IF_ERROR(upload_lights(tree));
     has_tree_ = tree != nullptr;
-    effects_ = analyse_scene_effects(scene_, tree);
+    effects_ = analyse_scene_effects(scene_, tree, options_.shadows);
+    // Which surfaces can hide a light depends on where the lights are.
+    LC_RETURN_IF_ERROR(upload_occluders());
     for (const EffectDecision& d : effects_.decisions)
         spdlog::debug("effect {}: {} ({})", d.name, d.simulated ? "simulated" : "skipped",
                       d.reason);
@@ -290,21 +315,54 @@ Status Renderer::validate(const RenderSettings& settings) const {
     return check_loop_budget(settings);
 }
 
+namespace {
+constexpr uint64_t kLoopBudget = 65535;
+// As in loop_limits.glsl and shadow_rays.glsl.
+constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8, kShadowUnroll = 4;
+}  // namespace
+
+// Worst-case loop iterations of one shadow ray: every BVH node once.
+static uint64_t shadow_ray_iterations(bool shadows, const ShadowBvh& bvh) {
+    if (!shadows || bvh.empty()) return 0;
+    return (uint64_t(bvh.gpu_nodes().size()) + kShadowUnroll - 1) / kShadowUnroll + 1;
+}
+
+static bool has_loop_limit(const vk::Context& context) {
+    return context.physical().name().find("llvmpipe") != std::string::npos;
+}
+
+uint32_t Renderer::reference_chunk() const {
+    const uint32_t all = std::max(leaf_count_, 1u);
+    if (!has_loop_limit(context_)) return all;
+    const uint64_t ray = shadow_ray_iterations(effects_.shadows, shadow_bvh_);
+    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1 +
+                             uint64_t(classic_count_) * ray;
+    // Per group of kLightUnroll leaves: one iteration and their rays; the
+    // remainder loop may add kLightUnroll - 1 single leaves.
+    const uint64_t per_group = 1 + kLightUnroll * ray;
+    const uint64_t tail = (kLightUnroll - 1) * (1 + ray) + 2;
+    if (classic + tail + per_group > kLoopBudget) return kLightUnroll;  // refused by the check
+    const uint64_t groups = (kLoopBudget - classic - tail) / per_group;
+    return uint32_t(std::min<uint64_t>(all, groups * kLightUnroll));
+}
+
 // llvmpipe stops an invocation's loops after 65,535 iterations in total, and
-// says nothing (shaders/loop_limits.glsl). Work that could exceed that budget is
-// refused here with the reason, never rendered truncated. Other devices have no
-// such limit.
+// says nothing (shaders/loop_limits.glsl). Reference mode splits its leaves
+// over dispatches that each fit (reference_chunk); shadow rays and the bound
+// walk notice a walk the limit cut short and count it (loop_limit_stops);
+// other work that could exceed the budget is refused here with the reason,
+// never rendered truncated. Other devices have no such limit.
 Status Renderer::check_loop_budget(const RenderSettings& settings) const {
-    const std::string device = context_.physical().name();
-    if (device.find("llvmpipe") == std::string::npos) return Ok{};
-    constexpr uint64_t kBudget = 65535;
-    constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8;  // as in loop_limits.glsl
-    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1;
+    if (!has_loop_limit(context_)) return Ok{};
+    const uint64_t ray = shadow_ray_iterations(effects_.shadows, shadow_bvh_);
+    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1 +
+                             uint64_t(classic_count_) * ray;
     uint64_t iterations = classic;
     std::string what;
     if (settings.mode == RenderMode::kReference) {
-        iterations += (uint64_t(leaf_count_) + kLightUnroll - 1) / kLightUnroll + 1;
-        what = std::to_string(leaf_count_) + " lights in reference mode";
+        iterations += 1 + kLightUnroll * ray + (kLightUnroll - 1) * (1 + ray) + 2;
+        what = std::to_string(classic_count_) + " classic lights" +
+               (ray > 0 ? " with shadow rays" : "") + " in reference mode";
     } else if (settings.criterion == CutCriterion::kRadius) {
         iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
         what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
@@ -321,10 +379,10 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
         iterations += k * (3 * log_k + 2 * 8 + 4) + k;
         what = "the bound criterion with max cut " + std::to_string(settings.max_cut);
     }
-    if (iterations <= kBudget) return Ok{};
+    if (iterations <= kLoopBudget) return Ok{};
     return make_error(what + " needs about " + std::to_string(iterations) +
                       " shader loop iterations per pixel; llvmpipe (lavapipe) silently stops loops after " +
-                      std::to_string(kBudget) +
+                      std::to_string(kLoopBudget) +
                       ", so this render is refused rather than truncated: use fewer lights, a smaller "
                       "--max-cut, the bound criterion, or a GPU");
 }
@@ -354,6 +412,8 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindClassicLights, classic_lights_.handle())
         .storage_buffer(kBindCounters, counters_.handle())
         .storage_buffer(kBindNodeBounds, node_bounds_.handle())
+        .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
+        .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
         .update(context_.device().handle());
     frame_set_dirty_ = false;
 }
@@ -401,7 +461,8 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
             .set_bool(kSpecDirectionalLights, effects_.directional_lights)
             .set_bool(kSpecRangeWindow, effects_.range_window)
             .set_bool(kSpecClassicLights, effects_.classic_lights)
-            .set_bool(kSpecEmissive, effects_.emissive);
+            .set_bool(kSpecEmissive, effects_.emissive)
+            .set_bool(kSpecShadows, effects_.shadows && !shadow_bvh_.empty());
         if (mode != RenderMode::kReference) {
             // The heap needs room for one refinement (two children) even at
             // max-cut 1; the walk keeps no heap, so its array stays minimal.
@@ -568,16 +629,37 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     constants.exposure = settings.exposure;
     constants.scale_bar_rows =
         settings.mode == RenderMode::kCutSize ? std::min(kScaleBarRows, targets_.height / 4) : 0u;
+    const bool shadows = effects_.shadows && !shadow_bvh_.empty();
+    constants.shadow_bias = shadows ? shadow_bias_ : 0.0f;
+    constants.bvh_node_count = shadows ? uint32_t(shadow_bvh_.gpu_nodes().size()) : 0u;
+    constants.light_begin = 0;
+    constants.light_end = leaf_count_;
     const uint32_t groups_x =
         (targets_.width + options_.workgroup_size - 1) / options_.workgroup_size;
     const uint32_t groups_y =
         (targets_.height + options_.workgroup_size - 1) / options_.workgroup_size;
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, compute_layout_.handle(), 0, 1,
                             &frame_set_, 0, nullptr);
-    vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       sizeof(constants), &constants);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, *lighting);
-    vkCmdDispatch(cmd, groups_x, groups_y, 1);
+    if (settings.mode == RenderMode::kReference) {
+        // Each dispatch adds its leaves to the previous dispatches' sums.
+        const uint32_t chunk = reference_chunk();
+        uint32_t begin = 0;
+        do {
+            constants.light_begin = begin;
+            constants.light_end = leaf_count_ - begin > chunk ? begin + chunk : leaf_count_;
+            if (begin > 0)
+                vk::memory_barrier(cmd, kCompute, kStorageReadWrite, kCompute, kStorageReadWrite);
+            vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                               sizeof(constants), &constants);
+            vkCmdDispatch(cmd, groups_x, groups_y, 1);
+            begin = constants.light_end;
+        } while (begin < leaf_count_);
+    } else {
+        vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof(constants), &constants);
+        vkCmdDispatch(cmd, groups_x, groups_y, 1);
+    }
     timestamps_.write(cmd, kCompute, kTsLighting);
 
     // Output: tone mapping or cut visualisation into the display image.
@@ -647,6 +729,12 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.nonfinite_pixels = counters->nonfinite_pixels;
     stats.max_cut_hits = counters->max_cut_hits;
     stats.loop_limit_stops = counters->loop_limit_stops;
+    stats.shadows = effects_.shadows && !shadow_bvh_.empty();
+    stats.shadow_rays = (uint64_t(counters->shadow_rays_high) << 32) | counters->shadow_rays;
+    stats.shadow_triangles = shadow_bvh_.stats().triangles;
+    stats.shadow_bvh_nodes = shadow_bvh_.stats().nodes;
+    if (settings.mode == RenderMode::kReference)
+        stats.reference_dispatches = (std::max(leaf_count_, 1u) + reference_chunk() - 1) / reference_chunk();
     if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;

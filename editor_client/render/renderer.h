@@ -17,6 +17,8 @@
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
+#include "editor_client/render/shadow_bvh.h"
+#include "editor_client/render/shadow_ray.h"
 #include "editor_client/scene/scene.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/compute_pipeline.h"
@@ -32,6 +34,7 @@ namespace lc::client {
 
 struct RendererOptions {
     uint32_t workgroup_size = 8;  // compute workgroups are size x size
+    ShadowMode shadows = ShadowMode::kAuto;  // auto: the scene analysis decides
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
@@ -101,11 +104,18 @@ public:
     uint32_t classic_count() const { return classic_count_; }
     uint32_t node_count() const { return node_count_; }
     uint32_t tree_depth() const { return tree_depth_; }
+    // The occluders shadow rays test (SceneEffects::occluders, rebuilt with the tree).
+    const ShadowBvh& shadow_bvh() const { return shadow_bvh_; }
+    float shadow_bias() const { return shadow_bias_; }
+    // Reference mode's dispatches: leaves per dispatch so that none exceeds
+    // the device's loop budget (all of them in one on devices without one).
+    uint32_t reference_chunk() const;
 
 private:
     Renderer(const vk::Context& context, const Scene& scene, const RendererOptions& options);
 
     Status create_frame_resources();
+    Status upload_occluders();
     Status upload_lights(const LightTree* tree);
     Status ensure_targets(uint32_t width, uint32_t height);
     void update_frame_descriptors();
@@ -133,6 +143,10 @@ private:
     vk::Buffer classic_lights_;
     vk::Buffer counters_;
     vk::Buffer node_bounds_;  // GpuNodeBounds per tree node (bound criterion)
+    ShadowBvh shadow_bvh_;
+    float shadow_bias_ = 0.0f;
+    vk::Buffer bvh_nodes_;         // GpuBvhNode, pre-order
+    vk::Buffer shadow_triangles_;  // GpuShadowTriangle, in leaf order
     vk::TimestampQueryPool timestamps_;
 
     vk::DescriptorSetLayout frame_layout_;

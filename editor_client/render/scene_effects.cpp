@@ -5,6 +5,8 @@
 
 #include <algorithm>
 
+#include "editor_client/render/occlusion_analysis.h"
+
 namespace lc::client {
 namespace {
 
@@ -40,13 +42,25 @@ std::vector<EffectDecision> SceneEffects::skipped() const {
     return out;
 }
 
-SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree) {
+SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
+                                   ShadowMode shadow_mode) {
     LightCensus census;
+    // Where the shaded lights are: cluster representatives are leaves, so the
+    // leaves (or the scene lights) and the classic lights are every position.
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> directions;
     if (tree != nullptr) {
         // Clusters are evaluated through their representative, which shares
         // its leaf's type and range; mixed-type junctions are never evaluated.
-        for (const LightTreeNode& node : tree->nodes)
+        for (const LightTreeNode& node : tree->nodes) {
             if (!node.mixed_types) census.add(node.type, node.range);
+            if (!node.is_leaf()) continue;
+            if (node.type == LightType::kDirectional) {
+                directions.push_back(node.direction);
+            } else {
+                positions.push_back(node.position);
+            }
+        }
     }
     for (const SceneLight& light : scene.lights) {
         if (light.classic) {
@@ -54,6 +68,13 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree) {
             census.add(light.type, light.range);
         } else if (tree == nullptr) {
             census.add(light.type, light.range);
+        } else {
+            continue;
+        }
+        if (light.type == LightType::kDirectional) {
+            directions.push_back(light.direction);
+        } else {
+            positions.push_back(light.position);
         }
     }
     const char* source = tree != nullptr ? "the tree and the classic lights" : "the scene";
@@ -103,9 +124,17 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree) {
     effects.emissive =
         decide("emissive surfaces", emissive, "a drawn material has a non-zero emissive factor",
                "no drawn material emits light");
+    const std::string shadows = "shadows (a shadow ray per evaluated light or cluster)";
+    if (shadow_mode == ShadowMode::kOff) {
+        decide(shadows, false, "", "--shadows off: every light is treated as visible (V = 1)");
+    } else {
+        const bool forced = shadow_mode == ShadowMode::kOn;
+        OcclusionAnalysis occlusion = analyse_occlusion(scene, positions, directions, !forced);
+        const std::string why = (forced ? "--shadows on: " : "") + occlusion.reason;
+        effects.shadows = decide(shadows, occlusion.possible, why, why + "; V = 1");
+        effects.occluders = std::move(occlusion.occluders);
+    }
     // Effects the renderer does not simulate yet, stated so nobody assumes them.
-    decide("shadows (light visibility)", false, "",
-           "not implemented yet: every light is treated as visible (V = 1)");
     decide("specular reflection", false, "",
            "not implemented yet: the shading model is Lambert on the base colour");
     decide("indirect lighting (virtual point lights)", false, "",

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "editor_client/render/shadow_ray.h"
 #include "editor_client/scene/scene.h"
 #include "protocol/light_tree.h"
 
@@ -27,6 +28,9 @@ struct SceneEffects {
     bool textures = false;
     bool classic_lights = false;
     bool emissive = false;
+    bool shadows = false;  // shadow rays (visibility) for tree and classic lights
+    // What shadow rays test: three vertices per triangle (occlusion_analysis.h).
+    std::vector<glm::vec3> occluders;
 
     std::vector<EffectDecision> decisions;
 
@@ -36,8 +40,10 @@ struct SceneEffects {
 
 // `tree` (may be null) holds the tree lights when one was imported; otherwise
 // the scene's non-classic lights are what reference mode evaluates. Classic
-// lights always come from the scene.
-SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree);
+// lights always come from the scene. `shadows`: auto simulates visibility when
+// a surface may hide a light (occlusion_analysis.h); on and off are the user's.
+SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
+                                   ShadowMode shadows = ShadowMode::kAuto);
 
 // [{name, reason}, ...]
 nlohmann::json effects_json(const std::vector<EffectDecision>& decisions);

@@ -492,6 +492,14 @@ Status Loader::convert_materials() {
         Result<int> emissive_texture = texture_for(in.emissiveTexture, what + " emissiveTexture");
         if (!emissive_texture) return Error{emissive_texture.error()};
         out.emissive_texture = *emissive_texture;
+        // Light passes through blended and transmissive surfaces (a lamp's
+        // glass): they are drawn opaque but hide no light.
+        double transmission = 0.0;
+        auto glass = in.extensions.find("KHR_materials_transmission");
+        if (glass != in.extensions.end() && glass->second.IsObject() &&
+            glass->second.Get("transmissionFactor").IsNumber())
+            transmission = glass->second.Get("transmissionFactor").GetNumberAsDouble();
+        out.casts_shadows = in.alphaMode != "BLEND" && !(transmission > 0.0);
         scene_.materials.push_back(out);
     }
     return Ok{};

@@ -28,6 +28,9 @@ struct Material {
     float roughness = 1.0f;
     glm::vec3 emissive_factor{0.0f};
     int emissive_texture = -1;
+    // False for surfaces light passes through (alphaMode BLEND, or a
+    // KHR_materials_transmission factor > 0): they are drawn but block no light.
+    bool casts_shadows = true;
 };
 
 struct Mesh {

@@ -310,6 +310,46 @@ Scene make_room_scene() {
     return scene;
 }
 
+namespace {
+
+// An axis-aligned box of six outward-facing quads.
+void add_box(Scene& scene, const glm::vec3& lo, const glm::vec3& hi, int material) {
+    auto corner = [&](int x, int y, int z) {
+        return glm::vec3(x ? hi.x : lo.x, y ? hi.y : lo.y, z ? hi.z : lo.z);
+    };
+    add_quad(scene, {corner(0, 0, 0), corner(1, 0, 0), corner(1, 0, 1), corner(0, 0, 1)},
+             glm::vec3(0, -1, 0), material);
+    add_quad(scene, {corner(0, 1, 0), corner(1, 1, 0), corner(1, 1, 1), corner(0, 1, 1)},
+             glm::vec3(0, 1, 0), material);
+    add_quad(scene, {corner(0, 0, 0), corner(1, 0, 0), corner(1, 1, 0), corner(0, 1, 0)},
+             glm::vec3(0, 0, -1), material);
+    add_quad(scene, {corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1), corner(0, 1, 1)},
+             glm::vec3(0, 0, 1), material);
+    add_quad(scene, {corner(0, 0, 0), corner(0, 0, 1), corner(0, 1, 1), corner(0, 1, 0)},
+             glm::vec3(-1, 0, 0), material);
+    add_quad(scene, {corner(1, 0, 0), corner(1, 0, 1), corner(1, 1, 1), corner(1, 1, 0)},
+             glm::vec3(1, 0, 0), material);
+}
+
+}  // namespace
+
+Scene make_furnished_room_scene() {
+    Scene scene = make_room_scene();
+    scene.materials.push_back(diffuse(0.45f));
+    const int furniture = int(scene.materials.size()) - 1;
+    // A table (top and four legs) in the middle of the floor.
+    add_box(scene, {-1.2f, 0.72f, -0.8f}, {1.2f, 0.78f, 0.8f}, furniture);
+    for (float x : {-1.1f, 1.02f})
+        for (float z : {-0.7f, 0.62f}) add_box(scene, {x, 0.0f, z}, {x + 0.08f, 0.72f, z + 0.08f}, furniture);
+    // Two pillars reaching the ceiling, a partition wall and a cabinet.
+    add_box(scene, {-3.3f, 0.0f, -2.3f}, {-2.7f, 3.0f, -1.7f}, furniture);
+    add_box(scene, {2.7f, 0.0f, -2.3f}, {3.3f, 3.0f, -1.7f}, furniture);
+    add_box(scene, {-4.99f, 0.0f, 1.0f}, {-2.0f, 2.2f, 1.1f}, furniture);
+    add_box(scene, {2.5f, 0.0f, -4.99f}, {4.5f, 1.4f, -4.3f}, furniture);
+    finish(scene);
+    return scene;
+}
+
 Scene make_thesis_fig91_scene() {
     struct Entry {
         float x, y;
@@ -386,16 +426,18 @@ Scene make_thesis_test2_scene() {
 }
 
 std::vector<std::string> named_scene_names() {
-    return {"room", "thesis-fig91", "thesis-test1", "thesis-test2"};
+    return {"room", "furnished-room", "thesis-fig91", "thesis-test1", "thesis-test2"};
 }
 
 Result<Scene> make_named_scene(std::string_view name) {
     if (name == "room") return make_room_scene();
+    if (name == "furnished-room") return make_furnished_room_scene();
     if (name == "thesis-fig91") return make_thesis_fig91_scene();
     if (name == "thesis-test1") return make_thesis_test1_scene();
     if (name == "thesis-test2") return make_thesis_test2_scene();
     return make_error("unknown scene '" + std::string(name) +
-                      "' (expected room, thesis-fig91, thesis-test1 or thesis-test2)");
+                      "' (expected room, furnished-room, thesis-fig91, thesis-test1 or "
+                      "thesis-test2)");
 }
 
 }  // namespace lc::client

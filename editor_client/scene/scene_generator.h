@@ -61,6 +61,9 @@ inline constexpr glm::vec3 kRoomMax{5.0f, 3.0f, 5.0f};
 inline constexpr glm::vec3 kRoomLightBoxMin{-4.7f, 0.3f, -4.7f};
 inline constexpr glm::vec3 kRoomLightBoxMax{4.7f, 2.7f, 4.7f};
 Scene make_room_scene();
+// The room with furniture that casts shadows: a table, two pillars, a
+// partition wall and a cabinet (one darker diffuse material).
+Scene make_furnished_room_scene();
 
 // Thesis Figure 9.1: five point lights of radius (range) 250 at height 150
 // above a floor, with the thesis's positions, brightness, colours and GUIDs.
@@ -71,7 +74,7 @@ Scene make_thesis_test1_scene();
 // Thesis Test 2: five lights in two close pairs and one single light.
 Scene make_thesis_test2_scene();
 
-// "room", "thesis-fig91", "thesis-test1", "thesis-test2".
+// "room", "furnished-room", "thesis-fig91", "thesis-test1", "thesis-test2".
 std::vector<std::string> named_scene_names();
 Result<Scene> make_named_scene(std::string_view name);
 

@@ -1,0 +1,409 @@
+// The occluder BVH: binned SAH built top-down from an explicit work list (no
+// recursion), emitted in pre-order with escapes, walked without a stack.
+#include "editor_client/render/shadow_bvh.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <utility>
+
+namespace lc::client {
+namespace {
+
+// Binned SAH: this many bins per axis, on all three axes of the centroid bounds.
+constexpr uint32_t kSahBins = 16;
+// Past this depth every split is an object median. SAH alone may peel a few
+// triangles off per level (a geometric chain does), so the depth could grow
+// like the count; the medians bound it by kMaxSahDepth + log2(count).
+constexpr uint32_t kMaxSahDepth = 48;
+// A leaf's word keeps kBvhLeafCountBits for the count, the rest for the first index.
+constexpr size_t kMaxTriangles = (size_t{1} << (32 - kBvhLeafCountBits)) - 1;
+
+// Each slab distance (b - o) * (1 / d) carries up to three roundings; widening
+// the exit by 2 * gamma(3) keeps every box the exact ray touches (pbrt-v3, 3.9.2).
+constexpr double kUnitRoundoff = std::numeric_limits<double>::epsilon() * 0.5;
+constexpr double kGamma3 = 3.0 * kUnitRoundoff / (1.0 - 3.0 * kUnitRoundoff);
+constexpr double kSlabExitScale = 1.0 + 2.0 * kGamma3;
+
+constexpr float kFloatInf = std::numeric_limits<float>::infinity();
+
+// Float boxes throughout the build: triangle vertices are floats, so the unions
+// are exact and the node boxes need no rounding of their own.
+struct FloatBox {
+    glm::vec3 lo{kFloatInf};
+    glm::vec3 hi{-kFloatInf};
+
+    void grow(const glm::vec3& p_lo, const glm::vec3& p_hi) {
+        lo = glm::min(lo, p_lo);
+        hi = glm::max(hi, p_hi);
+    }
+    void grow(const FloatBox& other) { grow(other.lo, other.hi); }
+
+    // Half the surface area, in double: float extents near FLT_MAX would overflow.
+    double half_area() const {
+        const glm::dvec3 e = glm::dvec3(hi) - glm::dvec3(lo);
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+};
+
+// What the build moves around: the records themselves are partitioned (not an
+// index array), so every pass reads memory in order.
+struct BuildTriangle {
+    glm::vec3 lo;
+    glm::vec3 hi;
+    glm::vec3 centroid;  // of the bounds; only steers the splits
+    uint32_t index;      // into the kept triangles: the deterministic tie-break
+};
+
+struct BuildTask {
+    uint32_t begin;
+    uint32_t end;
+    uint32_t depth;
+};
+
+bool is_finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool is_finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Zero area as the double test sees it: the edges' cross product vanishes (no
+// overflow: float differences squared stay far below the double range).
+bool has_zero_area(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+    return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+}
+
+// The centroid bin of c on one axis; clamps the top edge and any rounding.
+uint32_t bin_of(float c, double c_min, double bins_per_unit) {
+    const double x = (static_cast<double>(c) - c_min) * bins_per_unit;
+    if (!(x > 0.0)) return 0;
+    if (x >= static_cast<double>(kSahBins - 1)) return kSahBins - 1;
+    return static_cast<uint32_t>(x);
+}
+
+// Splits [begin, end) after the plane of least SAH cost over the 16 bins of each
+// axis whose centroids spread; returns the first index of the right side, or
+// nothing when every centroid coincides. The first of equal costs wins (x, y,
+// z; low planes first), so the choice is deterministic.
+std::optional<uint32_t> sah_split(std::vector<BuildTriangle>& tris, uint32_t begin, uint32_t end,
+                                  const FloatBox& centroid_bounds) {
+    struct Bin {
+        FloatBox box;
+        uint32_t count = 0;
+    };
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_axis = -1;
+    uint32_t best_plane = 0;  // left side: bins 0..best_plane
+    std::array<double, 3> bins_per_unit{};
+    for (int axis = 0; axis < 3; ++axis) {
+        const double extent =
+            static_cast<double>(centroid_bounds.hi[axis]) - static_cast<double>(centroid_bounds.lo[axis]);
+        if (!(extent > 0.0)) continue;
+        bins_per_unit[axis] = kSahBins / extent;
+        std::array<Bin, kSahBins> bins;
+        for (uint32_t i = begin; i < end; ++i) {
+            const BuildTriangle& t = tris[i];
+            Bin& bin = bins[bin_of(t.centroid[axis], centroid_bounds.lo[axis], bins_per_unit[axis])];
+            bin.box.grow(t.lo, t.hi);
+            ++bin.count;
+        }
+        // Sweep from the right for the right sides' areas, then from the left.
+        std::array<double, kSahBins> right_area{};
+        std::array<uint32_t, kSahBins> right_count{};
+        FloatBox right_box;
+        uint32_t right_n = 0;
+        for (uint32_t b = kSahBins - 1; b > 0; --b) {
+            right_box.grow(bins[b].box);
+            right_n += bins[b].count;
+            right_area[b] = right_n > 0 ? right_box.half_area() : 0.0;
+            right_count[b] = right_n;
+        }
+        FloatBox left_box;
+        uint32_t left_n = 0;
+        for (uint32_t plane = 0; plane + 1 < kSahBins; ++plane) {
+            left_box.grow(bins[plane].box);
+            left_n += bins[plane].count;
+            const uint32_t right_of_plane = right_count[plane + 1];
+            if (left_n == 0 || right_of_plane == 0) continue;
+            const double cost = left_box.half_area() * left_n + right_area[plane + 1] * right_of_plane;
+            if (cost < best_cost) {
+                best_cost = cost;
+                best_axis = axis;
+                best_plane = plane;
+            }
+        }
+    }
+    if (best_axis < 0) return std::nullopt;
+
+    // Partition in place by the same bin function, so the sides match the sweep.
+    const double c_min = centroid_bounds.lo[best_axis];
+    const double per_unit = bins_per_unit[best_axis];
+    auto goes_left = [&](const BuildTriangle& t) {
+        return bin_of(t.centroid[best_axis], c_min, per_unit) <= best_plane;
+    };
+    uint32_t lo = begin;
+    uint32_t hi = end;
+    while (lo < hi) {
+        if (goes_left(tris[lo])) {
+            ++lo;
+        } else {
+            --hi;
+            std::swap(tris[lo], tris[hi]);
+        }
+    }
+    if (lo == begin || lo == end) return std::nullopt;  // cannot happen: both sides counted
+    return lo;
+}
+
+// The object median on the centroids' longest axis, ordered by (centroid, index):
+// a strict total order, so even identical triangles split evenly and the same
+// way every time.
+uint32_t median_split(std::vector<BuildTriangle>& tris, uint32_t begin, uint32_t end,
+                      const FloatBox& centroid_bounds) {
+    const glm::dvec3 extent = glm::dvec3(centroid_bounds.hi) - glm::dvec3(centroid_bounds.lo);
+    int axis = 0;
+    if (extent.y > extent[axis]) axis = 1;
+    if (extent.z > extent[axis]) axis = 2;
+    const uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(tris.begin() + begin, tris.begin() + mid, tris.begin() + end,
+                     [axis](const BuildTriangle& a, const BuildTriangle& b) {
+                         if (a.centroid[axis] != b.centroid[axis]) return a.centroid[axis] < b.centroid[axis];
+                         return a.index < b.index;
+                     });
+    return mid;
+}
+
+// One float ulp outward (never past the largest float): the box stays a
+// conservative bound of the float triangles, with a margin for the shaders'
+// float slab test.
+void store_widened_bounds(const FloatBox& box, GpuBvhNode& node) {
+    constexpr float kLowest = std::numeric_limits<float>::lowest();
+    constexpr float kMax = std::numeric_limits<float>::max();
+    for (int a = 0; a < 3; ++a) {
+        node.bbox_min[a] = std::nextafter(box.lo[a], kLowest);
+        node.bbox_max[a] = std::nextafter(box.hi[a], kMax);
+    }
+}
+
+uint32_t saturate_u32(size_t n) {
+    return static_cast<uint32_t>(std::min<size_t>(n, std::numeric_limits<uint32_t>::max()));
+}
+
+// Does origin + t * direction, 0 <= t <= t_max, touch the node's box? A zero
+// direction component is a containment test (its slab would give 0 * inf =
+// NaN on a face); the comparisons are written so a NaN from an overflowing
+// 1 / (denormal) leaves the interval unchanged, never a false miss.
+bool segment_touches_box(const glm::dvec3& origin, const glm::dvec3& direction,
+                         const glm::dvec3& inv_direction, double t_max, const GpuBvhNode& node) {
+    double t_enter = 0.0;
+    double t_exit = t_max;
+    for (int a = 0; a < 3; ++a) {
+        const double lo = node.bbox_min[a];
+        const double hi = node.bbox_max[a];
+        if (direction[a] == 0.0) {
+            if (origin[a] < lo || origin[a] > hi) return false;
+            continue;
+        }
+        double t_near = (lo - origin[a]) * inv_direction[a];
+        double t_far = (hi - origin[a]) * inv_direction[a];
+        if (inv_direction[a] < 0.0) std::swap(t_near, t_far);
+        if (t_near > t_enter) t_enter = t_near;
+        if (t_far < t_exit) t_exit = t_far;
+    }
+    return t_enter <= t_exit * kSlabExitScale;
+}
+
+// Moller-Trumbore, both faces: a hit strictly inside (0, t_max). The barycentric
+// tests are negated so a NaN (a near-parallel ray whose 1 / det overflows) misses.
+bool segment_hits_triangle(const glm::dvec3& origin, const glm::dvec3& direction, double t_max,
+                           const glm::dvec3* v) {
+    const glm::dvec3 edge1 = v[1] - v[0];
+    const glm::dvec3 edge2 = v[2] - v[0];
+    const glm::dvec3 p = glm::cross(direction, edge2);
+    const double det = glm::dot(edge1, p);
+    if (det == 0.0) return false;  // the ray is parallel to (or in) the triangle's plane
+    const double inv_det = 1.0 / det;
+    const glm::dvec3 s = origin - v[0];
+    const double u = glm::dot(s, p) * inv_det;
+    if (!(u >= 0.0 && u <= 1.0)) return false;
+    const glm::dvec3 q = glm::cross(s, edge1);
+    const double w = glm::dot(direction, q) * inv_det;
+    if (!(w >= 0.0 && u + w <= 1.0)) return false;
+    const double t = glm::dot(edge2, q) * inv_det;
+    return t > 0.0 && t < t_max;
+}
+
+}  // namespace
+
+ShadowBvh ShadowBvh::build(const Scene& scene) {
+    std::vector<glm::vec3> casting;
+    size_t skipped_degenerate = 0;
+    size_t skipped_non_casting = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        const size_t full_triples = mesh.indices.size() / 3;
+        // A trailing partial triple is no triangle: count it as a degenerate one.
+        if (mesh.indices.size() % 3 != 0) ++skipped_degenerate;
+        // Out-of-range materials fall back to glTF's default material, which casts.
+        const bool casts = mesh.material < 0 ||
+                           static_cast<size_t>(mesh.material) >= scene.materials.size() ||
+                           scene.materials[static_cast<size_t>(mesh.material)].casts_shadows;
+        if (!casts) {
+            skipped_non_casting += full_triples;
+            continue;
+        }
+        for (size_t t = 0; t < full_triples; ++t) {
+            const uint32_t* idx = &mesh.indices[3 * t];
+            const size_t n = mesh.positions.size();
+            if (idx[0] >= n || idx[1] >= n || idx[2] >= n) {
+                ++skipped_degenerate;
+                continue;
+            }
+            casting.push_back(mesh.positions[idx[0]]);
+            casting.push_back(mesh.positions[idx[1]]);
+            casting.push_back(mesh.positions[idx[2]]);
+        }
+    }
+    ShadowBvh bvh = build(std::span<const glm::vec3>(casting));
+    bvh.stats_.skipped_degenerate = saturate_u32(bvh.stats_.skipped_degenerate + skipped_degenerate);
+    bvh.stats_.skipped_non_casting = saturate_u32(skipped_non_casting);
+    return bvh;
+}
+
+ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
+    ShadowBvh bvh;
+    size_t skipped = triangle_vertices.size() % 3 != 0 ? 1 : 0;  // a trailing partial triangle
+
+    // Keep the finite triangles of nonzero area.
+    std::vector<BuildTriangle> tris;
+    const size_t input_count = triangle_vertices.size() / 3;
+    tris.reserve(std::min(input_count, kMaxTriangles));
+    for (size_t t = 0; t < input_count; ++t) {
+        const glm::vec3& a = triangle_vertices[3 * t];
+        const glm::vec3& b = triangle_vertices[3 * t + 1];
+        const glm::vec3& c = triangle_vertices[3 * t + 2];
+        if (!is_finite(a) || !is_finite(b) || !is_finite(c) || has_zero_area(a, b, c)) {
+            ++skipped;
+            continue;
+        }
+        // 2^29 - 1 triangles is the most a leaf word can address; a scene past it
+        // (over 19 GB of float vertices) keeps the first ones and counts the rest here.
+        if (tris.size() == kMaxTriangles) {
+            ++skipped;
+            continue;
+        }
+        BuildTriangle bt;
+        bt.lo = glm::min(a, glm::min(b, c));
+        bt.hi = glm::max(a, glm::max(b, c));
+        bt.centroid = 0.5f * bt.lo + 0.5f * bt.hi;  // halves first: lo + hi may overflow
+        bt.index = static_cast<uint32_t>(t);
+        tris.push_back(bt);
+    }
+    bvh.stats_.skipped_degenerate = saturate_u32(skipped);
+    bvh.stats_.triangles = static_cast<uint32_t>(tris.size());
+    if (tris.empty()) return bvh;
+
+    // Top-down, with an explicit LIFO of ranges: the left range is popped (and so
+    // emitted) right after its parent, and all of its subtree before the right
+    // range: the nodes come out in pre-order.
+    const uint32_t count = static_cast<uint32_t>(tris.size());
+    bvh.nodes_.reserve(2 * static_cast<size_t>(count));  // leaves <= count, inner = leaves - 1
+    std::vector<BuildTask> work{{0, count, 0}};
+    while (!work.empty()) {
+        const BuildTask task = work.back();
+        work.pop_back();
+        FloatBox bounds;
+        FloatBox centroid_bounds;
+        for (uint32_t i = task.begin; i < task.end; ++i) {
+            bounds.grow(tris[i].lo, tris[i].hi);
+            centroid_bounds.grow(tris[i].centroid, tris[i].centroid);
+        }
+        GpuBvhNode node;
+        store_widened_bounds(bounds, node);
+        bvh.stats_.depth = std::max(bvh.stats_.depth, task.depth);
+        const uint32_t n = task.end - task.begin;
+        if (n <= kBvhMaxLeafSize) {
+            node.triangles = (task.begin << kBvhLeafCountBits) | n;
+            bvh.nodes_.push_back(node);
+            continue;
+        }
+        bvh.nodes_.push_back(node);  // inner: triangles = 0, first child next
+        std::optional<uint32_t> mid;
+        if (task.depth < kMaxSahDepth) mid = sah_split(tris, task.begin, task.end, centroid_bounds);
+        if (!mid) mid = median_split(tris, task.begin, task.end, centroid_bounds);
+        work.push_back({*mid, task.end, task.depth + 1});
+        work.push_back({task.begin, *mid, task.depth + 1});
+    }
+
+    // Escapes from subtree sizes, children after parents: size(i) = 1 for a leaf,
+    // else 1 + size(left) + size(right) with left = i + 1, right = i + 1 + size(left).
+    const size_t node_count = bvh.nodes_.size();
+    std::vector<uint32_t> subtree_size(node_count, 1);
+    for (size_t i = node_count; i-- > 0;) {
+        if (bvh.nodes_[i].triangles != 0) continue;
+        const size_t left = i + 1;
+        const size_t right = left + subtree_size[left];
+        subtree_size[i] = 1 + subtree_size[left] + subtree_size[right];
+    }
+    for (size_t i = 0; i < node_count; ++i) {
+        const size_t escape = i + subtree_size[i];
+        bvh.nodes_[i].escape = escape == node_count ? kGpuEndOfWalk : static_cast<int32_t>(escape);
+    }
+
+    // The triangles in leaf order: floats (vertex and edges) for the shaders,
+    // the exact vertices in double for the CPU test.
+    bvh.triangles_.resize(count);
+    bvh.vertices_.resize(3 * static_cast<size_t>(count));
+    for (uint32_t i = 0; i < count; ++i) {
+        const size_t source = 3 * static_cast<size_t>(tris[i].index);
+        const glm::dvec3 v0(triangle_vertices[source]);
+        const glm::dvec3 v1(triangle_vertices[source + 1]);
+        const glm::dvec3 v2(triangle_vertices[source + 2]);
+        bvh.vertices_[3 * size_t{i}] = v0;
+        bvh.vertices_[3 * size_t{i} + 1] = v1;
+        bvh.vertices_[3 * size_t{i} + 2] = v2;
+        GpuShadowTriangle& g = bvh.triangles_[i];
+        g.v0 = glm::vec3(v0);
+        g.edge1 = glm::vec3(v1 - v0);
+        g.edge2 = glm::vec3(v2 - v0);
+    }
+    bvh.stats_.nodes = static_cast<uint32_t>(node_count);
+    return bvh;
+}
+
+bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
+    if (nodes_.empty() || !(t_max > 0.0)) return false;
+    if (!is_finite(origin) || !is_finite(direction)) return false;
+    const glm::dvec3 inv_direction = 1.0 / direction;  // +-inf on zero components
+    int32_t i = 0;
+    // Every step moves forward (to i + 1 or to an escape past the subtree), so the
+    // walk visits each node at most once.
+    while (i != kGpuEndOfWalk) {
+        const GpuBvhNode& node = nodes_[static_cast<size_t>(i)];
+        if (!segment_touches_box(origin, direction, inv_direction, t_max, node)) {
+            i = node.escape;
+            continue;
+        }
+        if (node.triangles == 0) {
+            ++i;
+            continue;
+        }
+        const uint32_t first = node.triangles >> kBvhLeafCountBits;
+        const uint32_t n = node.triangles & ((1u << kBvhLeafCountBits) - 1);
+        for (uint32_t k = 0; k < n; ++k) {
+            const glm::dvec3* v = &vertices_[3 * (static_cast<size_t>(first) + k)];
+            if (segment_hits_triangle(origin, direction, t_max, v)) return true;
+        }
+        i = node.escape;
+    }
+    return false;
+}
+
+}  // namespace lc::client

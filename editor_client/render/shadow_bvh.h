@@ -1,0 +1,80 @@
+#pragma once
+// The occluders for shadow rays: the scene's shadow-casting triangles in a
+// bounding volume hierarchy, answered on the CPU in double precision and
+// uploaded for the shaders in a stackless layout (pre-order nodes, each with
+// its escape: the next node in pre-order after its subtree), so an any-hit
+// traversal needs no stack at all: hit an inner node -> go to index + 1 (its
+// first child), hit a leaf -> test its triangles then go to escape, miss ->
+// go to escape; the walk ends at kGpuEndOfWalk.
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "editor_client/render/gpu_layout.h"
+#include "editor_client/scene/scene.h"
+
+namespace lc::client {
+
+// One BVH node as the shaders read it (std430, mirrored in shaders/gpu_layout.glsl).
+struct alignas(16) GpuBvhNode {
+    glm::vec3 bbox_min{0.0f};
+    int32_t escape = kGpuEndOfWalk;  // next node in pre-order after this subtree
+    glm::vec3 bbox_max{0.0f};
+    // Leaves: first triangle << kBvhLeafCountBits | triangle count (1..kBvhMaxLeafSize);
+    // inner nodes: 0 (a count of 0 means "inner": its first child is the next node).
+    uint32_t triangles = 0;
+};
+
+// One triangle as the shaders test it (Moller-Trumbore: a vertex and two edges).
+struct alignas(16) GpuShadowTriangle {
+    glm::vec3 v0{0.0f};
+    float pad0 = 0.0f;
+    glm::vec3 edge1{0.0f};  // v1 - v0
+    float pad1 = 0.0f;
+    glm::vec3 edge2{0.0f};  // v2 - v0
+    float pad2 = 0.0f;
+};
+
+inline constexpr uint32_t kBvhLeafCountBits = 3;
+inline constexpr uint32_t kBvhMaxLeafSize = 4;  // < 2^kBvhLeafCountBits
+static_assert(sizeof(GpuBvhNode) == 32);
+static_assert(sizeof(GpuShadowTriangle) == 48);
+
+// Statistics for logs and stats JSON.
+struct ShadowBvhStats {
+    uint32_t triangles = 0;            // shadow-casting triangles kept
+    uint32_t skipped_degenerate = 0;   // zero-area or non-finite triangles dropped
+    uint32_t skipped_non_casting = 0;  // triangles of materials that cast no shadow
+    uint32_t nodes = 0;
+    uint32_t depth = 0;  // longest root-to-leaf path, in edges
+};
+
+class ShadowBvh {
+public:
+    // Every triangle of every mesh whose material casts shadows
+    // (Material::casts_shadows). Deterministic: the same scene gives the same nodes.
+    static ShadowBvh build(const Scene& scene);
+    // From a flat triangle list (3 vertices per triangle), for tests and tools.
+    static ShadowBvh build(std::span<const glm::vec3> triangle_vertices);
+
+    bool empty() const { return nodes_.empty(); }
+    const ShadowBvhStats& stats() const { return stats_; }
+
+    // Any triangle hit at origin + t * direction with 0 < t < t_max?
+    // `direction` need not be unit length (t is in its units). Both faces occlude.
+    bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const;
+
+    // The stackless layout the shaders traverse (node 0 is the root).
+    const std::vector<GpuBvhNode>& gpu_nodes() const { return nodes_; }
+    const std::vector<GpuShadowTriangle>& gpu_triangles() const { return triangles_; }
+
+private:
+    std::vector<GpuBvhNode> nodes_;
+    std::vector<GpuShadowTriangle> triangles_;  // in leaf order
+    std::vector<glm::dvec3> vertices_;          // 3 per triangle, in leaf order, for the CPU test
+    ShadowBvhStats stats_;
+};
+
+}  // namespace lc::client

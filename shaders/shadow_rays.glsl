@@ -1,0 +1,134 @@
+// Shadow rays: is a light visible from a shading point? Mirrors
+// editor_client/render/shadow_ray.h (the ray) and ShadowBvh::occluded (the
+// stackless any-hit walk over the pre-order BVH: hit an inner node -> next
+// index, its first child; hit a leaf -> its triangles, then its escape; miss
+// -> escape). kShadows is false when the scene analysis finds that nothing can
+// hide a light (scene_effects.cpp); the rays then compile away.
+#ifndef LC_SHADOW_RAYS_GLSL
+#define LC_SHADOW_RAYS_GLSL
+
+#extension GL_KHR_shader_subgroup_vote : require
+
+#include "common_lighting.glsl"
+#include "frame_bindings.glsl"
+
+layout(constant_id = 19) const bool kShadows = false;
+
+// Node visits per loop iteration (llvmpipe's loop limiter counts iterations).
+const uint kShadowUnroll = 4u;
+// Beyond any scene: the far end of a ray towards a directional light.
+const float kShadowRayFar = 1e30;
+
+// Set when the device's loop limit ended a traversal before it finished (the
+// light then counts as visible and the pixel in counters.loop_limit_stops).
+bool g_shadow_walk_cut_short = false;
+// Rays this invocation traced; added to the frame's counter once per pixel.
+uint g_shadow_rays = 0u;
+
+// Slab test in the ray's parameter. A zero direction component was replaced
+// by a tiny one (no 0 * inf); the far distance is widened by a few ulps so a
+// flat box (a wall) is never missed through rounding.
+bool ray_hits_box(vec3 origin, vec3 inv_direction, float t_max, vec3 lo, vec3 hi) {
+    vec3 t0 = (lo - origin) * inv_direction;
+    vec3 t1 = (hi - origin) * inv_direction;
+    vec3 near = min(t0, t1);
+    vec3 far = max(t0, t1);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float leave = min(min(far.x, far.y), min(far.z, t_max)) * 1.000001;
+    return enter <= leave;
+}
+
+// Moller-Trumbore, both faces; a hit strictly between the ends of the ray.
+bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri) {
+    vec3 p = cross(direction, tri.edge2);
+    float det = dot(tri.edge1, p);
+    if (det == 0.0) return false;  // the ray lies in the triangle's plane
+    float inv_det = 1.0 / det;
+    vec3 s = origin - tri.v0;
+    float u = dot(s, p) * inv_det;
+    vec3 q = cross(s, tri.edge1);
+    float v = dot(direction, q) * inv_det;
+    float t = dot(tri.edge2, q) * inv_det;
+    return u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
+}
+
+// One step of the subgroup's shared walk: every lane reads the same node (a
+// uniform read, where llvmpipe loads once instead of gathering per lane), the
+// subgroup enters an inner node when any lane's ray that is still searching
+// hits its box, and a leaf's triangles are tested by every such lane.
+void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
+                      vec3 inv_direction, float t_max) {
+    if (i == kEndOfWalk) return;
+    GpuBvhNode node = bvh_nodes[i];
+    bool enter = !hit && ray_hits_box(origin, inv_direction, t_max, node.bbox_min, node.bbox_max);
+    uint count = node.triangles & kBvhLeafCountMask;
+    if (count == 0u) {
+        i = subgroupAny(enter) ? i + 1 : node.escape;
+        return;
+    }
+    uint first = node.triangles >> kBvhLeafCountBits;
+    for (uint k = 0u; k < count; ++k) {
+        GpuShadowTriangle tri = shadow_triangles[first + k];
+        if (enter && ray_hits_triangle(origin, direction, t_max, tri)) hit = true;
+    }
+    i = node.escape;
+}
+
+// `searching` false: this lane needs no ray (it still walks with the others).
+bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
+    vec3 safe = mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
+    vec3 inv_direction = 1.0 / safe;
+    int i = 0;
+    bool hit = !searching;
+    // Every node is visited at most once; the bound only guards a corrupt upload.
+    for (uint step = 0u; i != kEndOfWalk && subgroupAny(!hit) && step < frame.bvh_node_count;
+         step += kShadowUnroll) {
+        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
+        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
+        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
+        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
+    }
+    if (!hit && i != kEndOfWalk) g_shadow_walk_cut_short = true;
+    return searching && hit;
+}
+
+// V in {0, 1} of `light` (or a cluster's representative) from point x with
+// unit normal n; call it only where the light's contribution is non-zero.
+// The ray starts shadow_bias along the normal and stops shadow_bias short of
+// a positional light.
+// Call it in uniform control flow (every lane of the subgroup): the lanes
+// walk the BVH together; `needed` false (a zero contribution) traces nothing.
+float light_visibility(GpuLight light, vec3 x, vec3 n, bool needed) {
+    if (!kShadows || frame.bvh_node_count == 0u) return 1.0;
+    vec3 origin = x + n * frame.shadow_bias;
+    vec3 direction = -light.direction;
+    float t_max = kShadowRayFar;
+    if (light.type != kLightDirectional) {
+        direction = light.position - origin;
+        float distance = length(direction);
+        needed = needed && distance > frame.shadow_bias;
+        t_max = 1.0 - frame.shadow_bias / max(distance, frame.shadow_bias);
+    }
+    if (needed) ++g_shadow_rays;
+    if (!subgroupAny(needed)) return 1.0;
+    return ray_occluded(origin, direction, t_max, needed) ? 0.0 : 1.0;
+}
+
+// Adds this invocation's rays to the frame's counter, which is 64-bit: the
+// low word, then the carry into the high word.
+void flush_shadow_ray_count() {
+    if (!kShadows || g_shadow_rays == 0u) return;
+    uint before = atomicAdd(counters.shadow_rays, g_shadow_rays);
+    if (before + g_shadow_rays < before) atomicAdd(counters.shadow_rays_high, 1u);
+    g_shadow_rays = 0u;
+}
+
+// I * color * G * V: the shading model's irradiance with the light's visibility.
+// In uniform control flow, like light_visibility.
+vec3 visible_irradiance(GpuLight light, vec3 x, vec3 n) {
+    vec3 e = light_irradiance(light, x, n);
+    if (kShadows) e *= light_visibility(light, x, n, max(e.x, max(e.y, e.z)) > 0.0);
+    return e;
+}
+
+#endif

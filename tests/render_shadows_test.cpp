@@ -1,0 +1,298 @@
+// Shadows on the GPU (shaders/shadow_rays.glsl) against the CPU evaluator with
+// the same occluders (ShadowBvh, in double): the reference, the bound
+// criterion's walk and heap, the radius criterion, classic lights, and the
+// reference split over several dispatches. Also: shadows are skipped where
+// nothing can hide a light, forced on and off by the user, and counted.
+//
+// Tolerance: a shadow ray that grazes an edge may hit in float and miss in
+// double, so a few pixels may differ; we require 99% of the geometry pixels
+// within 1e-3 relative (the cut must match too, for lightcuts).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "editor_client/render/cpu_evaluator.h"
+#include "editor_client/render/renderer.h"
+#include "editor_client/render/shadow_ray.h"
+#include "editor_client/scene/scene_generator.h"
+#include "lightmass_server/tree_builder.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+constexpr uint32_t kSize = 48;
+
+SurfacePoint surface_at(const GBufferReadback& g, size_t i) {
+    SurfacePoint p;
+    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
+    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
+    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
+    return p;
+}
+
+double max_channel_of(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
+
+std::vector<SceneLight> furnished_room_lights(uint32_t count, uint32_t seed) {
+    LightLayoutOptions options;
+    options.count = count;
+    options.seed = seed;
+    options.type = LightTypeChoice::kPoint;
+    options.box_min = kRoomLightBoxMin;
+    options.box_max = kRoomLightBoxMax;
+    options.intensity = 4.0f;
+    Result<std::vector<SceneLight>> lights = generate_lights(options);
+    EXPECT_TRUE(lights.ok()) << lights.error();
+    std::vector<SceneLight> out = lights.ok() ? *lights : std::vector<SceneLight>{};
+    // One light under the table: only the floor beneath it sees it.
+    SceneLight under = out.empty() ? SceneLight{} : out.front();
+    under.position = {0.0f, 0.35f, 0.0f};
+    under.intensity = 6.0f;
+    test::set_unit_guid(under, 999);
+    out.push_back(under);
+    return out;
+}
+
+LightTree build_tree(const std::vector<SceneLight>& lights) {
+    bake::BuildOptions options;
+    options.builder = BuilderKind::kAgglomerative;
+    Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error();
+    return built.ok() ? std::move(built->tree) : LightTree{};
+}
+
+RenderCamera room_camera() {
+    RenderCamera camera;
+    camera.eye = {0.0f, 2.2f, 4.6f};
+    camera.target = {0.0f, 0.4f, -1.0f};
+    camera.yfov = 1.1f;
+    return camera;
+}
+
+struct Agreement {
+    size_t geometry = 0;
+    size_t agree = 0;
+    size_t shadowed = 0;  // pixels where the CPU's shadows remove light
+    uint64_t shadow_rays = 0;
+};
+
+// Renders, then compares every geometry pixel with expected(p) (p carrying the
+// renderer's occluders); `cuts` also requires the same cut size and hash.
+template <typename Expected>
+Agreement compare(Renderer& renderer, const RenderSettings& settings, Expected expected,
+                  bool cuts_must_match) {
+    Agreement a;
+    Result<RenderStats> stats = renderer.render(settings);
+    EXPECT_TRUE(stats.ok()) << stats.error();
+    if (!stats.ok()) return a;
+    EXPECT_EQ(stats->nonfinite_pixels, 0u);
+    EXPECT_EQ(stats->loop_limit_stops, 0u);
+    a.shadow_rays = stats->shadow_rays;
+    Result<GBufferReadback> g = renderer.read_gbuffer();
+    Result<std::vector<float>> hdr = renderer.read_hdr();
+    Result<std::vector<uint32_t>> gpu_cuts = renderer.read_cuts();
+    EXPECT_TRUE(g.ok() && hdr.ok() && gpu_cuts.ok());
+    if (!g.ok() || !hdr.ok() || !gpu_cuts.ok()) return a;
+    for (size_t i = 0; i < size_t(settings.width) * settings.height; ++i) {
+        if (g->position[4 * i + 3] == 0.0f) continue;
+        ++a.geometry;
+        SurfacePoint p = surface_at(*g, i);
+        SurfacePoint unshadowed = p;
+        p.occluders = &renderer.shadow_bvh();
+        p.shadow_bias = renderer.shadow_bias();
+        CutResult cpu = expected(p);
+        CutResult open = expected(unshadowed);
+        if (max_channel_of(open.radiance) > 1.001 * max_channel_of(cpu.radiance)) ++a.shadowed;
+        if (cuts_must_match &&
+            ((*gpu_cuts)[2 * i] != cpu.cut_size || (*gpu_cuts)[2 * i + 1] != cpu.cut_hash))
+            continue;
+        bool close = true;
+        for (int ch = 0; ch < 3; ++ch) {
+            const double want = cpu.radiance[ch];
+            close = close && std::abs(double((*hdr)[4 * i + ch]) - want) <=
+                                 1e-3 * std::abs(want) + 1e-7;
+        }
+        a.agree += close;
+    }
+    std::printf("  %zu geometry pixels, %zu agree, %zu shadowed, %llu shadow rays\n", a.geometry,
+                a.agree, a.shadowed, static_cast<unsigned long long>(a.shadow_rays));
+    return a;
+}
+
+class Shadows : public ::testing::Test {
+protected:
+    void SetUp() override {
+        LC_REQUIRE_VULKAN(context_);
+        scene_ = make_furnished_room_scene();
+        scene_.lights = furnished_room_lights(40, 11);
+        tree_ = build_tree(scene_.lights);
+        settings_.width = settings_.height = kSize;
+        settings_.camera = room_camera();
+    }
+    void TearDown() override {
+        if (context_) {
+            EXPECT_EQ(context_->validation_message_count(), 0u);
+        }
+    }
+    std::unique_ptr<vk::Context> context_;
+    Scene scene_;
+    LightTree tree_;
+    RenderSettings settings_;
+};
+
+TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    ASSERT_TRUE((*renderer)->effects().shadows);
+    settings_.mode = RenderMode::kReference;
+    Agreement a = compare(
+        **renderer, settings_,
+        [&](const SurfacePoint& p) {
+            CutResult r;
+            r.radiance = shade_tree_leaves(tree_, p);
+            return r;
+        },
+        false);
+    EXPECT_GE(a.agree, a.geometry * 99 / 100);
+    EXPECT_GT(a.shadowed, a.geometry / 10) << "the furniture should shadow part of the view";
+    EXPECT_GT(a.shadow_rays, 0u);
+}
+
+TEST_F(Shadows, BoundWalkAndHeapMatchTheCpu) {
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    settings_.mode = RenderMode::kLightcuts;
+    settings_.criterion = CutCriterion::kBound;
+    settings_.error_ratio = 0.02f;
+    settings_.max_cut = 64;
+    for (BoundSearch search : {BoundSearch::kWalk, BoundSearch::kHeap}) {
+        settings_.bound_search = search;
+        CutSettings cut;
+        cut.criterion = CutCriterion::kBound;
+        cut.error_ratio = settings_.error_ratio;
+        cut.max_cut = settings_.max_cut;
+        cut.search = search;
+        Agreement a = compare(
+            **renderer, settings_,
+            [&](const SurfacePoint& p) { return shade_lightcuts(tree_, {}, p, cut); }, true);
+        EXPECT_GE(a.agree, a.geometry * 98 / 100) << bound_search_name(search);
+        EXPECT_GT(a.shadowed, a.geometry / 10);
+    }
+}
+
+TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
+    // Ranged lights so the radius criterion has finite radii, and two classic
+    // lights that are shaded one by one, with shadows too.
+    for (SceneLight& l : scene_.lights) l.range = 4.0f;
+    std::vector<SceneLight> classic;
+    for (glm::vec3 at : {glm::vec3(0.0f, 0.3f, 0.1f), glm::vec3(-3.0f, 2.5f, -3.0f)}) {
+        SceneLight c = scene_.lights.front();
+        c.position = at;
+        c.classic = true;
+        c.range = 0.0f;
+        test::set_unit_guid(c, 500 + uint32_t(classic.size()));
+        classic.push_back(c);
+    }
+    tree_ = build_tree(scene_.lights);
+    scene_.lights.insert(scene_.lights.end(), classic.begin(), classic.end());
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    settings_.mode = RenderMode::kLightcuts;
+    settings_.criterion = CutCriterion::kRadius;
+    CutSettings radius;
+    Agreement a = compare(
+        **renderer, settings_,
+        [&](const SurfacePoint& p) { return shade_lightcuts(tree_, classic, p, radius); }, true);
+    EXPECT_GE(a.agree, a.geometry * 98 / 100);
+}
+
+TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
+    // A shelf of many small boxes makes a deep BVH, so that a dispatch can
+    // hold only a few lights within llvmpipe's loop budget.
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 24; ++j) {
+            const float x = -3.0f + 0.25f * float(i), z = -3.0f + 0.25f * float(j);
+            Mesh top = test::make_quad({x, 1.2f, z + 0.1f}, {0.1f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.1f},
+                                       0);
+            scene_.meshes.push_back(top);
+        }
+    scene_.lights = furnished_room_lights(400, 12);
+    tree_ = build_tree(scene_.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    settings_.mode = RenderMode::kReference;
+    const uint32_t chunk = (*renderer)->reference_chunk();
+    std::printf("  %u BVH nodes, %u leaves per dispatch\n",
+                uint32_t((*renderer)->shadow_bvh().gpu_nodes().size()), chunk);
+    if ((*renderer)->leaf_count() <= chunk)
+        GTEST_SKIP() << "this device has no loop limit: one dispatch holds every light";
+    Agreement a = compare(
+        **renderer, settings_,
+        [&](const SurfacePoint& p) {
+            CutResult r;
+            r.radiance = shade_tree_leaves(tree_, p);
+            return r;
+        },
+        false);
+    EXPECT_GE(a.agree, a.geometry * 99 / 100);
+    Result<RenderStats> stats = (*renderer)->render(settings_);
+    ASSERT_TRUE(stats.ok());
+    EXPECT_GT(stats->reference_dispatches, 1u);
+}
+
+TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
+    Scene empty = make_room_scene();
+    empty.lights = scene_.lights;
+    LightTree tree = build_tree(empty.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, empty, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    EXPECT_FALSE((*renderer)->effects().shadows);
+    settings_.mode = RenderMode::kReference;
+    Result<RenderStats> stats = (*renderer)->render(settings_);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_FALSE(stats->shadows);
+    EXPECT_EQ(stats->shadow_rays, 0u);
+
+    RendererOptions off;
+    off.shadows = ShadowMode::kOff;
+    Result<std::unique_ptr<Renderer>> no_shadows =
+        Renderer::create(*context_, scene_, &tree_, off);
+    ASSERT_TRUE(no_shadows.ok()) << no_shadows.error();
+    EXPECT_FALSE((*no_shadows)->effects().shadows);
+    stats = (*no_shadows)->render(settings_);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_EQ(stats->shadow_rays, 0u);
+}
+
+TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {
+    // Hard case: every ray to a light sealed in the cabinet is blocked; the
+    // image is finite and no brighter than without that light.
+    SceneLight sealed = scene_.lights.front();
+    sealed.position = {3.5f, 0.7f, -4.6f};  // inside the cabinet
+    sealed.intensity = 1e6f;
+    test::set_unit_guid(sealed, 777);
+    std::vector<SceneLight> with = scene_.lights;
+    with.push_back(sealed);
+    LightTree tree = build_tree(with);
+    Scene scene = scene_;
+    scene.lights = with;
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    settings_.mode = RenderMode::kReference;
+    Agreement a = compare(
+        **renderer, settings_,
+        [&](const SurfacePoint& p) {
+            CutResult r;
+            r.radiance = shade_tree_leaves(tree, p);
+            return r;
+        },
+        false);
+    EXPECT_GE(a.agree, a.geometry * 99 / 100);
+}
+
+}  // namespace
+}  // namespace lc::client
