@@ -15,7 +15,9 @@
 layout(constant_id = 19) const bool kShadows = false;
 
 // Node visits per loop iteration (llvmpipe's loop limiter counts iterations).
-const uint kShadowUnroll = 4u;
+// One: the walk is inlined wherever a light is shaded (up to eight times in a
+// loop body), and more copies made lavapipe's shader compile take seconds.
+const uint kShadowUnroll = 1u;
 // Beyond any scene: the far end of a ray towards a directional light.
 const float kShadowRayFar = 1e30;
 
@@ -67,9 +69,14 @@ void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
         return;
     }
     uint first = node.triangles >> kBvhLeafCountBits;
-    for (uint k = 0u; k < count; ++k) {
-        GpuShadowTriangle tri = shadow_triangles[first + k];
-        if (enter && ray_hits_triangle(origin, direction, t_max, tri)) hit = true;
+    // A constant trip count, so the compiler unrolls it: a loop here would
+    // spend llvmpipe's loop budget (Renderer::reference_chunk counts node
+    // visits only).
+    for (uint k = 0u; k < 4u; ++k) {
+        if (k < count) {
+            GpuShadowTriangle tri = shadow_triangles[first + k];
+            if (enter && ray_hits_triangle(origin, direction, t_max, tri)) hit = true;
+        }
     }
     i = node.escape;
 }
@@ -83,9 +90,6 @@ bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
     // Every node is visited at most once; the bound only guards a corrupt upload.
     for (uint step = 0u; i != kEndOfWalk && subgroupAny(!hit) && step < frame.bvh_node_count;
          step += kShadowUnroll) {
-        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
-        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
-        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
         shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
     }
     if (!hit && i != kEndOfWalk) g_shadow_walk_cut_short = true;

@@ -244,6 +244,57 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
     EXPECT_GT(stats->reference_dispatches, 1u);
 }
 
+TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
+    // Worst case for the dispatch split: a stack of triangles whose boxes
+    // every near-vertical ray enters but whose triangles it misses (each
+    // covers the half of its square away from the axis), so each ray visits
+    // every node and tests every triangle. A regression test: a triangle loop
+    // the compiler did not unroll once spent 9x the budget counted per ray.
+    Scene scene;
+    scene.materials = make_room_scene().materials;
+    scene.meshes.push_back(make_room_scene().meshes[0]);  // the floor
+    Mesh stack;
+    for (int k = 0; k < 600; ++k) {
+        const float y = 0.5f + 0.003f * float(k);
+        const uint32_t base = uint32_t(stack.positions.size());
+        stack.positions.insert(stack.positions.end(),
+                               {{-0.9f, y, 1.0f}, {1.0f, y, 1.0f}, {1.0f, y, -0.9f}});
+        stack.normals.insert(stack.normals.end(), 3, glm::vec3(0, 1, 0));
+        stack.indices.insert(stack.indices.end(), {base, base + 1, base + 2});
+    }
+    stack.material = 0;
+    scene.meshes.push_back(stack);
+    std::vector<SceneLight> lights = furnished_room_lights(1200, 13);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
+    for (SceneLight& l : lights) l.position = {jitter(rng), 2.8f + jitter(rng), jitter(rng)};
+    scene.lights = lights;
+    scene.bounds_min = {-5, 0, -5};
+    scene.bounds_max = {5, 3, 5};
+    LightTree tree = build_tree(lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    ASSERT_TRUE((*renderer)->effects().shadows);
+    if ((*renderer)->leaf_count() <= (*renderer)->reference_chunk())
+        GTEST_SKIP() << "this device has no loop limit: one dispatch holds every light";
+    RenderSettings settings;
+    settings.mode = RenderMode::kReference;
+    settings.width = settings.height = 16;
+    settings.camera.eye = {-0.6f, 0.3f, -0.6f};
+    settings.camera.target = {0.0f, 0.0f, 0.0f};
+    settings.camera.yfov = 0.5f;
+    Agreement a = compare(
+        **renderer, settings,
+        [&](const SurfacePoint& p) {
+            CutResult r;
+            r.radiance = shade_tree_leaves(tree, p);
+            return r;
+        },
+        false);
+    EXPECT_GE(a.agree, a.geometry * 99 / 100);
+    EXPECT_GT(a.geometry, 0u);
+}
+
 TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     Scene empty = make_room_scene();
     empty.lights = scene_.lights;

@@ -318,7 +318,7 @@ Status Renderer::validate(const RenderSettings& settings) const {
 namespace {
 constexpr uint64_t kLoopBudget = 65535;
 // As in loop_limits.glsl and shadow_rays.glsl.
-constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8, kShadowUnroll = 4;
+constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8, kShadowUnroll = 1;
 }  // namespace
 
 // Worst-case loop iterations of one shadow ray: every BVH node once.

@@ -339,8 +339,10 @@ Scene make_furnished_room_scene() {
     const int furniture = int(scene.materials.size()) - 1;
     // A table (top and four legs) in the middle of the floor.
     add_box(scene, {-1.2f, 0.72f, -0.8f}, {1.2f, 0.78f, 0.8f}, furniture);
-    for (float x : {-1.1f, 1.02f})
-        for (float z : {-0.7f, 0.62f}) add_box(scene, {x, 0.0f, z}, {x + 0.08f, 0.72f, z + 0.08f}, furniture);
+    for (float x : {-1.1f, 1.02f}) {
+        for (float z : {-0.7f, 0.62f})
+            add_box(scene, {x, 0.0f, z}, {x + 0.08f, 0.72f, z + 0.08f}, furniture);
+    }
     // Two pillars reaching the ceiling, a partition wall and a cabinet.
     add_box(scene, {-3.3f, 0.0f, -2.3f}, {-2.7f, 3.0f, -1.7f}, furniture);
     add_box(scene, {2.7f, 0.0f, -2.3f}, {3.3f, 3.0f, -1.7f}, furniture);
