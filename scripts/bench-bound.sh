@@ -1,17 +1,26 @@
 #!/usr/bin/env bash
 # Lightcuts with the paper's error-bound criterion (walk search) against the
-# reference, one run per row, on the generated room (add-lights: random point
-# lights, unbounded, 819.2 cd in total: 0.05 cd each at 16,384), baked with the
-# agglomerative builder on a spawned server, at E = 0.02 and 0.005. Each frame
-# is timed after a warm-up frame (lavapipe compiles shaders on first use). Writes docs/bench/bound_targets.csv:
-#   lights, size, reference_ms, lightcuts_ms, speedup, avg_cut, max_cut,
-#   max_cut_hits, rel_err_mean, rel_err_p99, frac_over_error, error_ratio
-# The *_ms columns are the whole frame's GPU time (G-buffer, lighting, tone
-# map) by timestamps; speedup = reference_ms / lightcuts_ms. Error statistics
-# are over pixels whose reference luminance exceeds 1e-3 x the mean
-# (editor_client/render/error_stats.h).
+# reference, on two room-like scenes with random point lights spread through
+# them (add-lights, unbounded, 819.2 cd in total whatever the count):
+#   room            the empty room: nothing can hide a light, so the scene
+#                   analysis turns shadows off (V = 1 everywhere);
+#   furnished-room  the room with a table, two pillars, a partition and a
+#                   cabinet: shadows on, one shadow ray per light in the
+#                   reference and one per cut node in lightcuts (the paper's
+#                   setting: its speed-ups are counted in shadow rays).
+# Each scene is baked once (agglomerative, spawned server) and rendered with
+# `render --sweep-error 0.02,0.01,0.005 --sweep-csv`: one reference frame, then
+# lightcuts at each ratio, every frame timed after a warm-up (lavapipe compiles
+# shaders on first use). Writes docs/bench/bound_targets.csv:
+#   scene, size, then the sweep's columns (editor_client/render/error_sweep.h):
+#   lights, shadows, reference_ms, error_ratio, lightcuts_ms, speedup, avg_cut,
+#   cut_p99, max_cut_hits, rel_err_mean, rel_err_p99, frac_over_error,
+#   frac_over_2pct, max_err, reference_shadow_rays, shadow_rays, loop_limit_stops
+# The *_ms columns are the whole frame's GPU time (G-buffer, lighting, tone map)
+# by timestamps. Error statistics are over pixels whose reference luminance
+# exceeds 1e-3 x the mean (editor_client/render/error_stats.h).
 # Usage: scripts/bench-bound.sh [build-dir] [--large]
-#   --large adds 131072 lights at 128x128 (a long bake).
+#   --large adds 131072 lights at 128x128 (the shadowed reference takes minutes).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
@@ -26,37 +35,28 @@ mkdir -p docs/bench
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-run_case() {  # lights size error
-  local lights=$1 size=$2 error=$3
-  local scene="$work/room_${lights}.gltf" tree="$work/room_${lights}.lcut"
-  local stats="$work/stats_${lights}_${error}.json"
-  if [[ ! -f "$tree" ]]; then
-    # Total intensity held at 819 cd whatever the count, so images compare.
-    "$client" add-lights --count "$lights" --layout random --type point \
-      --intensity "$(python3 -c "print(819.2 / $lights)")" --range 0 -o "$scene" >/dev/null
-    "$client" bake "$scene" --spawn-server --builder agglomerative -o "$tree" >/dev/null
-  fi
+run_case() {  # scene lights size
+  local scene_name=$1 lights=$2 size=$3
+  local base="$work/${scene_name}_${lights}"
+  "$client" make-scene "$scene_name" -o "$base.empty.gltf" >/dev/null
+  # The room's default light box: 0.3 m from every wall, the floor and the ceiling.
+  "$client" add-lights "$base.empty.gltf" --count "$lights" --layout random --type point \
+    --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity "$(python3 -c "print(819.2 / $lights)")" --range 0 -o "$base.gltf" >/dev/null
+  "$client" bake "$base.gltf" --spawn-server --builder agglomerative -o "$base.lcut" >/dev/null
   # Validation would slow the GPU work down; the benchmark measures the renderer alone.
-  LC_VALIDATION=0 "$client" render "$scene" --tree "$tree" \
-    --mode lightcuts --criterion bound --error "$error" --compare-reference --size "$size" \
-    -o "$work/room_${lights}.png" --stats "$stats"
-  python3 - "$stats" "$lights" "$size" >>"$work/rows.csv" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[1]))
-ref, lc = s["reference_ms"], s["render_ms"]
-print(",".join([sys.argv[2], sys.argv[3], "%.1f" % ref, "%.1f" % lc, "%.2f" % (ref / lc),
-                "%.1f" % s["avg_cut"], str(s["max_cut"]), str(s["max_cut_hits"]),
-                "%.4f" % s["rel_err_mean"], "%.4f" % s["rel_err_p99"],
-                "%.4f" % s["frac_over_error"], "%g" % s["error_ratio"]]))
-PY
+  LC_VALIDATION=0 "$client" render "$base.gltf" --tree "$base.lcut" --criterion bound \
+    --sweep-error 0.02,0.01,0.005 --sweep-csv "$base.csv" --size "$size" -o "$base.png" \
+    >"$base.log" 2>&1 || { cat "$base.log"; exit 1; }
+  grep -A4 '^reference' "$base.log"
+  tail -n +2 "$base.csv" | sed "s/^/$scene_name,$size,/" >>"$work/rows.csv"
 }
 
-for error in 0.02 0.005; do run_case 16384 256x256 "$error"; done
-if [[ "$large" == "--large" ]]; then
-  for error in 0.02 0.005; do run_case 131072 128x128 "$error"; done
-fi
+for scene in room furnished-room; do
+  run_case "$scene" 16384 256x256
+  if [[ "$large" == "--large" ]]; then run_case "$scene" 131072 128x128; fi
+done
 {
-  echo "lights,size,reference_ms,lightcuts_ms,speedup,avg_cut,max_cut,max_cut_hits,rel_err_mean,rel_err_p99,frac_over_error,error_ratio"
+  echo "scene,size,lights,shadows,reference_ms,error_ratio,lightcuts_ms,speedup,avg_cut,cut_p99,max_cut_hits,rel_err_mean,rel_err_p99,frac_over_error,frac_over_2pct,max_err,reference_shadow_rays,shadow_rays,loop_limit_stops"
   cat "$work/rows.csv"
 } >"$out"
 cat "$out"

@@ -36,5 +36,28 @@ for mode in reference lightcuts cuts cutsize; do
   "$bin/editor_client" render "$out/room.gltf" --tree "$out/room.lcut" --mode "$mode" --size 512x512 \
       -o "$out/room_$mode.png" --float "$out/room_$mode.pfm" --stats "$out/room_$mode.json"
 done
+
+# The same room furnished (a table, two pillars, a partition, a cabinet) with 1,024 unbounded
+# point lights: the scene analysis turns shadows on here (it found none to trace in the empty
+# room above) and the stats say why. `error` renders lightcuts and the reference, both with
+# shadow rays, and writes the relative error as a heatmap.
+"$bin/editor_client" make-scene furnished-room -o "$out/furnished_empty.gltf"
+"$bin/editor_client" add-lights "$out/furnished_empty.gltf" --count 1024 --layout random --type point \
+    --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity 0.8 --range 0 --seed 9 -o "$out/furnished.gltf"
+"$bin/editor_client" bake "$out/furnished.gltf" --server "$server" --builder agglomerative \
+    -o "$out/furnished.lcut" > /dev/null
+for mode in lightcuts error; do
+  "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --mode "$mode" \
+      --size 256x256 -o "$out/furnished_$mode.png" --stats "$out/furnished_$mode.json"
+done
+python3 - "$out/room_reference.json" "$out/furnished_error.json" <<'PY'
+import json, sys
+for path in sys.argv[1:]:
+    s = json.load(open(path))
+    for d in s["effects_simulated"] + s["effects_skipped"]:
+        if d["name"].startswith("shadows"):
+            on = d in s["effects_simulated"]
+            print("demo: %s: shadows %s (%s)" % (path, "on" if on else "off", d["reason"]))
+PY
 echo "demo: images and stats in $out/"
 ls -1 "$out"

@@ -15,8 +15,10 @@
 layout(constant_id = 19) const bool kShadows = false;
 
 // Node visits per loop iteration (llvmpipe's loop limiter counts iterations).
-// One: the walk is inlined wherever a light is shaded (up to eight times in a
-// loop body), and more copies made lavapipe's shader compile take seconds.
+// One: the walk is inlined wherever a light is shaded (four times in the
+// reference's loop body, eight in the radius walk's), and more copies made
+// lavapipe's shader compile take seconds and the bound walk 2x slower
+// (measured: 4 visits per iteration, 16,384 lights, 2.4 s against 1.1 s).
 const uint kShadowUnroll = 1u;
 // Beyond any scene: the far end of a ray towards a directional light.
 const float kShadowRayFar = 1e30;

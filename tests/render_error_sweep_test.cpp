@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
 #include <vector>
 
 #include "editor_client/render/error_sweep.h"
@@ -85,6 +88,37 @@ TEST_F(ErrorSweepRender, SmallerRatiosCostMoreAndErrLess) {
     }
     EXPECT_LT(sweep->rows.front().rel_err_mean, 0.01);
     EXPECT_LT(sweep->rows.front().rel_err_mean, 0.5 * sweep->rows.back().rel_err_mean);
+    // The fixed 2% yardstick: above the row's own ratio it counts fewer pixels
+    // than "over E", below it more; the finest ratio has the fewest.
+    for (const ErrorSweepRow& row : sweep->rows) {
+        EXPECT_GE(row.frac_over_2pct, 0.0);
+        EXPECT_LE(row.frac_over_2pct, 1.0);
+        if (row.error_ratio < 0.02f) {
+            EXPECT_LE(row.frac_over_2pct, row.frac_over_error);
+        }
+        if (row.error_ratio > 0.02f) {
+            EXPECT_GE(row.frac_over_2pct, row.frac_over_error);
+        }
+    }
+    EXPECT_LT(sweep->rows.front().frac_over_2pct, sweep->rows.back().frac_over_2pct);
+    EXPECT_FALSE(sweep->shadows) << "the empty room needs no shadow rays";
+
+    // The CSV: a header and one row per ratio, the ratio in its column.
+    const std::filesystem::path csv =
+        std::filesystem::temp_directory_path() / "lc_error_sweep_test.csv";
+    ASSERT_TRUE(write_error_sweep_csv(csv, *sweep).ok());
+    std::ifstream in(csv);
+    std::string header, line;
+    std::getline(in, header);
+    EXPECT_EQ(header.rfind("lights,shadows,reference_ms,error_ratio,", 0), 0u) << header;
+    size_t rows = 0;
+    while (std::getline(in, line)) {
+        EXPECT_EQ(line.rfind("1500,0,", 0), 0u) << line;
+        ++rows;
+    }
+    EXPECT_EQ(rows, ratios.size());
+    std::filesystem::remove(csv);
+    EXPECT_FALSE(write_error_sweep_csv("/nonexistent-dir/x.csv", *sweep).ok());
 }
 
 }  // namespace

@@ -80,10 +80,12 @@ struct Agreement {
     uint64_t shadow_rays = 0;
 };
 
-// Renders, then compares every geometry pixel with expected(p) (p carrying the
-// renderer's occluders); `cuts` also requires the same cut size and hash.
-template <typename Expected>
-Agreement compare(Renderer& renderer, const RenderSettings& settings, Expected expected,
+// Renders, then compares every geometry pixel with the CPU's frame:
+// expected(g, shadowed) gives one CutResult per pixel, its points carrying the
+// renderer's occluders when `shadowed`. `cuts_must_match` also requires the
+// same cut size and hash.
+template <typename ExpectedFrame>
+Agreement compare(Renderer& renderer, const RenderSettings& settings, ExpectedFrame expected,
                   bool cuts_must_match) {
     Agreement a;
     Result<RenderStats> stats = renderer.render(settings);
@@ -97,16 +99,13 @@ Agreement compare(Renderer& renderer, const RenderSettings& settings, Expected e
     Result<std::vector<uint32_t>> gpu_cuts = renderer.read_cuts();
     EXPECT_TRUE(g.ok() && hdr.ok() && gpu_cuts.ok());
     if (!g.ok() || !hdr.ok() || !gpu_cuts.ok()) return a;
+    const std::vector<CutResult> shadowed = expected(*g, true);
+    const std::vector<CutResult> open = expected(*g, false);
     for (size_t i = 0; i < size_t(settings.width) * settings.height; ++i) {
         if (g->position[4 * i + 3] == 0.0f) continue;
         ++a.geometry;
-        SurfacePoint p = surface_at(*g, i);
-        SurfacePoint unshadowed = p;
-        p.occluders = &renderer.shadow_bvh();
-        p.shadow_bias = renderer.shadow_bias();
-        CutResult cpu = expected(p);
-        CutResult open = expected(unshadowed);
-        if (max_channel_of(open.radiance) > 1.001 * max_channel_of(cpu.radiance)) ++a.shadowed;
+        const CutResult& cpu = shadowed[i];
+        if (max_channel_of(open[i].radiance) > 1.001 * max_channel_of(cpu.radiance)) ++a.shadowed;
         if (cuts_must_match &&
             ((*gpu_cuts)[2 * i] != cpu.cut_size || (*gpu_cuts)[2 * i + 1] != cpu.cut_hash))
             continue;
@@ -121,6 +120,28 @@ Agreement compare(Renderer& renderer, const RenderSettings& settings, Expected e
     std::printf("  %zu geometry pixels, %zu agree, %zu shadowed, %llu shadow rays\n", a.geometry,
                 a.agree, a.shadowed, static_cast<unsigned long long>(a.shadow_rays));
     return a;
+}
+
+// The point at pixel i, with the renderer's occluders when `shadowed`.
+SurfacePoint point_at(const Renderer& renderer, const GBufferReadback& g, size_t i,
+                      bool shadowed) {
+    SurfacePoint p = surface_at(g, i);
+    if (shadowed) {
+        p.occluders = &renderer.shadow_bvh();
+        p.shadow_bias = renderer.shadow_bias();
+    }
+    return p;
+}
+
+// An expected frame from a per-pixel function of the surface point.
+template <typename PerPixel>
+auto per_pixel(const Renderer& renderer, PerPixel f) {
+    return [&renderer, f](const GBufferReadback& g, bool shadowed) {
+        std::vector<CutResult> out(size_t(g.width) * g.height);
+        for (size_t i = 0; i < out.size(); ++i)
+            if (g.position[4 * i + 3] != 0.0f) out[i] = f(point_at(renderer, g, i, shadowed));
+        return out;
+    };
 }
 
 class Shadows : public ::testing::Test {
@@ -151,11 +172,11 @@ TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
     settings_.mode = RenderMode::kReference;
     Agreement a = compare(
         **renderer, settings_,
-        [&](const SurfacePoint& p) {
+        per_pixel(**renderer, [&](const SurfacePoint& p) {
             CutResult r;
             r.radiance = shade_tree_leaves(tree_, p);
             return r;
-        },
+        }),
         false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     EXPECT_GT(a.shadowed, a.geometry / 10) << "the furniture should shadow part of the view";
@@ -178,7 +199,9 @@ TEST_F(Shadows, BoundWalkAndHeapMatchTheCpu) {
         cut.search = search;
         Agreement a = compare(
             **renderer, settings_,
-            [&](const SurfacePoint& p) { return shade_lightcuts(tree_, {}, p, cut); }, true);
+            per_pixel(**renderer,
+                      [&](const SurfacePoint& p) { return shade_lightcuts(tree_, {}, p, cut); }),
+            true);
         EXPECT_GE(a.agree, a.geometry * 98 / 100) << bound_search_name(search);
         EXPECT_GT(a.shadowed, a.geometry / 10);
     }
@@ -206,7 +229,9 @@ TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
     CutSettings radius;
     Agreement a = compare(
         **renderer, settings_,
-        [&](const SurfacePoint& p) { return shade_lightcuts(tree_, classic, p, radius); }, true);
+        per_pixel(**renderer,
+                  [&](const SurfacePoint& p) { return shade_lightcuts(tree_, classic, p, radius); }),
+        true);
     EXPECT_GE(a.agree, a.geometry * 98 / 100);
 }
 
@@ -232,11 +257,11 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
         GTEST_SKIP() << "this device has no loop limit: one dispatch holds every light";
     Agreement a = compare(
         **renderer, settings_,
-        [&](const SurfacePoint& p) {
+        per_pixel(**renderer, [&](const SurfacePoint& p) {
             CutResult r;
             r.radiance = shade_tree_leaves(tree_, p);
             return r;
-        },
+        }),
         false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     Result<RenderStats> stats = (*renderer)->render(settings_);
@@ -285,11 +310,11 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     settings.camera.yfov = 0.5f;
     Agreement a = compare(
         **renderer, settings,
-        [&](const SurfacePoint& p) {
+        per_pixel(**renderer, [&](const SurfacePoint& p) {
             CutResult r;
             r.radiance = shade_tree_leaves(tree, p);
             return r;
-        },
+        }),
         false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     EXPECT_GT(a.geometry, 0u);
@@ -336,11 +361,11 @@ TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {
     settings_.mode = RenderMode::kReference;
     Agreement a = compare(
         **renderer, settings_,
-        [&](const SurfacePoint& p) {
+        per_pixel(**renderer, [&](const SurfacePoint& p) {
             CutResult r;
             r.radiance = shade_tree_leaves(tree, p);
             return r;
-        },
+        }),
         false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
 }

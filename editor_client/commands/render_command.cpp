@@ -2,7 +2,8 @@
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--shadows auto|on|off]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
-//   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation] [--sweep-error E1,E2,...]
+//   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
+//   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -45,6 +46,7 @@ struct RenderOptions {
     std::string bound_search = "walk";
     std::string shadows = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
+    std::string sweep_csv;    // and write it here
     bool compare_reference = false;
     std::string size = "512x512";
     std::string camera;
@@ -122,6 +124,7 @@ void run_render(const RenderOptions& options) {
         if (settings.mode == RenderMode::kReference)
             fail("--sweep-error needs a lightcuts mode and a tree source");
     }
+    if (!options.sweep_csv.empty() && sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
     if (compare && !mode_needs_tree(settings.mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
 
@@ -150,6 +153,10 @@ void run_render(const RenderOptions& options) {
         std::printf("error sweep, %s, max cut %u, %ux%u:\n", how.c_str(), settings.max_cut, width,
                     height);
         print_error_sweep(stdout, sweep);
+        if (!options.sweep_csv.empty()) {
+            if (Status written = write_error_sweep_csv(options.sweep_csv, sweep); !written)
+                fail(written.error());
+        }
     }
     // Timings are of the work alone, not of lavapipe compiling the shaders.
     if (Status warm = renderer->warm_up(settings); !warm) fail(warm.error());
@@ -272,6 +279,8 @@ void add_render_command(CLI::App& app) {
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
                     "GPU time, speedup, cut sizes and measured error");
+    cmd->add_option("--sweep-csv", options->sweep_csv,
+                    "With --sweep-error: also write the table as CSV (one row per ratio)");
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");

@@ -41,6 +41,8 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
     sweep.reference_ms = reference_stats->render_ms;
     sweep.reference_wall_ms = reference_stats->wall_ms;
     sweep.lights = reference_stats->lights;
+    sweep.reference_shadow_rays = reference_stats->shadow_rays;
+    sweep.shadows = reference_stats->shadows;
 
     RenderSettings lightcuts = settings;
     lightcuts.mode = RenderMode::kLightcuts;
@@ -54,6 +56,9 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
         Result<ErrorStats> errors =
             compute_error_stats(*hdr, *reference, settings.width, settings.height, ratio);
         if (!errors) return make_error(errors.error());
+        Result<ErrorStats> at_2pct =
+            compute_error_stats(*hdr, *reference, settings.width, settings.height, 0.02f);
+        if (!at_2pct) return make_error(at_2pct.error());
         ErrorSweepRow row;
         row.error_ratio = ratio;
         row.render_ms = stats->render_ms;
@@ -64,24 +69,52 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
         row.rel_err_mean = errors->rel_err_mean;
         row.rel_err_p99 = errors->rel_err_p99;
         row.frac_over_error = errors->frac_over_error;
+        row.frac_over_2pct = at_2pct->frac_over_error;
         row.max_err = errors->max_err;
+        row.shadow_rays = stats->shadow_rays;
+        row.loop_limit_stops = stats->loop_limit_stops;
         sweep.rows.push_back(row);
     }
     return sweep;
 }
 
 void print_error_sweep(std::FILE* out, const ErrorSweep& sweep) {
-    std::fprintf(out, "reference: %llu lights, %.1f ms GPU, %.1f ms wall\n",
-                 (unsigned long long)sweep.lights, sweep.reference_ms, sweep.reference_wall_ms);
-    std::fprintf(out, "%8s %10s %10s %8s %8s %7s %9s %9s %9s %9s %8s\n", "error", "GPU ms", "wall ms", "speedup",
-                 "avg cut", "p99 cut", "err mean", "err p99", "over E", "err max", "max-cut");
+    std::fprintf(out, "reference: %llu lights, %.1f ms GPU, %.1f ms wall%s\n",
+                 (unsigned long long)sweep.lights, sweep.reference_ms, sweep.reference_wall_ms,
+                 sweep.shadows ? ", with shadow rays" : "");
+    std::fprintf(out, "%8s %10s %10s %8s %8s %7s %9s %9s %9s %9s %9s %8s\n", "error", "GPU ms",
+                 "wall ms", "speedup", "avg cut", "p99 cut", "err mean", "err p99", "over E",
+                 "over 2%", "err max", "max-cut");
     for (const ErrorSweepRow& r : sweep.rows) {
         const double speedup = r.render_ms > 0.0 ? sweep.reference_ms / r.render_ms : 0.0;
-        std::fprintf(out, "%8.4g %10.1f %10.1f %7.2fx %8.1f %7u %9.4f %9.4f %8.2f%% %9.4f %8llu\n",
-                     r.error_ratio, r.render_ms, r.wall_ms, speedup, r.avg_cut, r.cut_p99, r.rel_err_mean,
-                     r.rel_err_p99, 100.0 * r.frac_over_error, r.max_err,
-                     (unsigned long long)r.max_cut_hits);
+        std::fprintf(out,
+                     "%8.4g %10.1f %10.1f %7.2fx %8.1f %7u %9.4f %9.4f %8.2f%% %8.2f%% %9.4f %8llu\n",
+                     r.error_ratio, r.render_ms, r.wall_ms, speedup, r.avg_cut, r.cut_p99,
+                     r.rel_err_mean, r.rel_err_p99, 100.0 * r.frac_over_error,
+                     100.0 * r.frac_over_2pct, r.max_err, (unsigned long long)r.max_cut_hits);
     }
+}
+
+Status write_error_sweep_csv(const std::filesystem::path& path, const ErrorSweep& sweep) {
+    std::FILE* out = std::fopen(path.string().c_str(), "w");
+    if (out == nullptr) return make_error("cannot write the error sweep to " + path.string());
+    std::fprintf(out,
+                 "lights,shadows,reference_ms,error_ratio,lightcuts_ms,speedup,avg_cut,cut_p99,"
+                 "max_cut_hits,rel_err_mean,rel_err_p99,frac_over_error,frac_over_2pct,max_err,"
+                 "reference_shadow_rays,shadow_rays,loop_limit_stops\n");
+    for (const ErrorSweepRow& r : sweep.rows) {
+        const double speedup = r.render_ms > 0.0 ? sweep.reference_ms / r.render_ms : 0.0;
+        std::fprintf(out, "%llu,%d,%.1f,%g,%.1f,%.2f,%.1f,%u,%llu,%.5f,%.5f,%.5f,%.5f,%.4f,%llu,%llu,%llu\n",
+                     (unsigned long long)sweep.lights, sweep.shadows ? 1 : 0, sweep.reference_ms,
+                     r.error_ratio, r.render_ms, speedup, r.avg_cut, r.cut_p99,
+                     (unsigned long long)r.max_cut_hits, r.rel_err_mean, r.rel_err_p99,
+                     r.frac_over_error, r.frac_over_2pct, r.max_err,
+                     (unsigned long long)sweep.reference_shadow_rays,
+                     (unsigned long long)r.shadow_rays, (unsigned long long)r.loop_limit_stops);
+    }
+    const bool ok = std::fclose(out) == 0;
+    if (!ok) return make_error("cannot write the error sweep to " + path.string());
+    return Ok{};
 }
 
 }  // namespace lc::client

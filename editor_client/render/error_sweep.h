@@ -3,6 +3,7 @@
 // error ratios, each measured against one reference frame of the same run.
 // `editor_client render --sweep-error 0.005,0.01,0.02,0.05` prints it.
 #include <cstdio>
+#include <filesystem>
 #include <string_view>
 #include <vector>
 
@@ -22,13 +23,18 @@ struct ErrorSweepRow {
     double rel_err_mean = 0.0;
     double rel_err_p99 = 0.0;
     double frac_over_error = 0.0;  // pixels whose error exceeds this row's ratio
+    double frac_over_2pct = 0.0;   // pixels whose error exceeds 2% (a fixed visibility yardstick)
     double max_err = 0.0;
+    uint64_t shadow_rays = 0;
+    uint64_t loop_limit_stops = 0;
 };
 
 struct ErrorSweep {
     double reference_ms = 0.0;  // GPU time of the reference frame
     double reference_wall_ms = 0.0;
     uint64_t lights = 0;
+    uint64_t reference_shadow_rays = 0;
+    bool shadows = false;
     std::vector<ErrorSweepRow> rows;
 };
 
@@ -41,6 +47,9 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
                                    const std::vector<float>& error_ratios);
 
 // The table a user reads: one row per ratio, the reference time on top.
+// One row per ratio, with the reference's figures repeated (columns named in
+// the header line).
+Status write_error_sweep_csv(const std::filesystem::path& path, const ErrorSweep& sweep);
 void print_error_sweep(std::FILE* out, const ErrorSweep& sweep);
 
 }  // namespace lc::client
