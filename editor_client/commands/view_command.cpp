@@ -36,6 +36,7 @@ struct ViewCommandOptions {
     BakeFlags bake;
     std::string script;
     std::string mode = "reference";
+    std::string shadows = "auto";
     std::string size = "800x600";
     std::string camera;
     std::optional<int> camera_index;
@@ -141,6 +142,7 @@ void run_view(const ViewCommandOptions& options) {
     loop.orbit_drag_per_frame = options.orbit_drag;
     loop.panels = !options.no_panels;
     loop.window_screenshot = options.window_screenshot;
+    loop.shadows = or_fail(parse_shadow_mode(options.shadows));
     EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
     const double steady_fps =
         summary.steady_seconds > 0.0 ? summary.steady_frames / summary.steady_seconds : 0.0;
@@ -193,6 +195,10 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--window-screenshot", options->window_screenshot,
                     "At the end, save the window as shown, panels included (PNG)");
     cmd->add_flag("--no-panels", options->no_panels, "Hide the editor panels and the overlay");
+    cmd->add_option("--shadows", options->shadows,
+                    "Shadow rays: auto (when a surface may hide a light), on or off")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_view(*options); });

@@ -122,7 +122,10 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
 
     // The renderer keeps a reference to the session's scene, whose lights
     // RendererSync re-reads after every edit.
-    Result<std::unique_ptr<Renderer>> created = Renderer::create(context, session.scene(), nullptr);
+    RendererOptions renderer_options;
+    renderer_options.shadows = options.shadows;
+    Result<std::unique_ptr<Renderer>> created =
+        Renderer::create(context, session.scene(), nullptr, renderer_options);
     if (!created) return make_error(created.error());
     Renderer& renderer = **created;
     RendererSync sync(renderer, session);

@@ -13,6 +13,7 @@
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/script_runner.h"
+#include "editor_client/render/shadow_ray.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/window/window.h"
 #include "protocol/result.h"
@@ -34,6 +35,7 @@ struct EditorLoopOptions {
     // Dear ImGui panels over the view (needs a GlfwWindow: ignored headless).
     bool panels = false;
     AdaptiveResolutionOptions adaptive;
+    ShadowMode shadows = ShadowMode::kAuto;  // the renderer's (scene analysis by default)
 };
 
 struct EditorLoopSummary {
