@@ -320,6 +320,56 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     EXPECT_GT(a.geometry, 0u);
 }
 
+TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
+    // A light lying on the table top, one on the floor where the camera
+    // looks, a spot inside a pillar, a sun the closed room hides entirely,
+    // and a light 1e12 times brighter than the rest: finite everywhere, the
+    // same answer as the CPU.
+    std::vector<SceneLight> lights = furnished_room_lights(30, 21);
+    SceneLight on_table = lights.front();
+    on_table.position = {0.0f, 0.78f, 0.0f};
+    SceneLight on_floor = lights.front();
+    on_floor.position = {0.0f, 0.0f, 2.0f};
+    SceneLight in_pillar = lights.front();
+    in_pillar.type = LightType::kSpot;
+    in_pillar.position = {-3.0f, 1.5f, -2.0f};
+    in_pillar.direction = {0.0f, -1.0f, 0.0f};
+    in_pillar.outer_cone_angle = 0.6f;
+    in_pillar.inner_cone_angle = 0.3f;
+    SceneLight sun = lights.front();
+    sun.type = LightType::kDirectional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    SceneLight blinding = lights.front();
+    blinding.position = {4.0f, 2.5f, 4.0f};
+    blinding.intensity = lights.front().intensity * 1e12f;
+    uint32_t id = 800;
+    for (SceneLight* l : {&on_table, &on_floor, &in_pillar, &sun, &blinding}) {
+        test::set_unit_guid(*l, id++);
+        lights.push_back(*l);
+    }
+    scene_.lights = lights;
+    tree_ = build_tree(lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    ASSERT_TRUE((*renderer)->effects().shadows);
+    settings_.mode = RenderMode::kReference;
+    Agreement a = compare(
+        **renderer, settings_,
+        per_pixel(**renderer, [&](const SurfacePoint& p) {
+            CutResult r;
+            r.radiance = shade_tree_leaves(tree_, p);
+            return r;
+        }),
+        false);
+    EXPECT_GE(a.agree, a.geometry * 99 / 100);
+    settings_.mode = RenderMode::kLightcuts;
+    settings_.criterion = CutCriterion::kBound;
+    Result<RenderStats> stats = (*renderer)->render(settings_);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_EQ(stats->nonfinite_pixels, 0u);
+    EXPECT_GT(stats->shadow_rays, 0u);
+}
+
 TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     Scene empty = make_room_scene();
     empty.lights = scene_.lights;
