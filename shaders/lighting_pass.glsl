@@ -53,11 +53,16 @@ void store_background(ivec2 pixel) {
     imageStore(cut_image, pixel, uvec4(0u));
 }
 
-// Non-finite radiance is counted and written as 0, so no NaN/Inf reaches an image.
-// `cut_short`: a walk of this pixel was ended by the device's loop limit.
-void store_pixel(ivec2 pixel, vec3 radiance, uint cut_size, uint cut_hash, bool cut_short) {
+// This invocation's shadow rays, and whether the device's loop limit ended a
+// walk of it (`cut_short`: the cut's walk; shadow rays note their own).
+void flush_pixel_counters(bool cut_short) {
     flush_shadow_ray_count();
     if (cut_short || g_shadow_walk_cut_short) atomicAdd(counters.loop_limit_stops, 1u);
+}
+
+// Non-finite radiance is counted and written as 0, so no NaN/Inf reaches an image.
+void store_pixel(ivec2 pixel, vec3 radiance, uint cut_size, uint cut_hash, bool cut_short) {
+    flush_pixel_counters(cut_short);
     if (any(isnan(radiance)) || any(isinf(radiance))) {
         atomicAdd(counters.nonfinite_pixels, 1u);
         radiance = vec3(0.0);

@@ -44,7 +44,6 @@ void main() {
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
     } else {
         imageStore(hdr_image, pixel, vec4(radiance, 1.0));
-        flush_shadow_ray_count();
-        if (g_shadow_walk_cut_short) atomicAdd(counters.loop_limit_stops, 1u);
+        flush_pixel_counters(false);
     }
 }

@@ -24,33 +24,8 @@
 namespace lc::client {
 namespace {
 
-SurfacePoint surface_at(const GBufferReadback& g, size_t i) {
-    SurfacePoint p;
-    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
-    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
-    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
-    return p;
-}
-
-LightTree build_tree(const std::vector<SceneLight>& lights) {
-    bake::BuildOptions options;
-    options.builder = BuilderKind::kAgglomerative;
-    Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
-    EXPECT_TRUE(built.ok()) << built.error();
-    return built.ok() ? std::move(built->tree) : LightTree{};
-}
-
 std::vector<SceneLight> room_lights(uint32_t count, LightTypeChoice type, float intensity) {
-    LightLayoutOptions options;
-    options.count = count;
-    options.type = type;
-    options.seed = 7;
-    options.box_min = kRoomLightBoxMin;
-    options.box_max = kRoomLightBoxMax;
-    options.intensity = intensity;
-    Result<std::vector<SceneLight>> lights = generate_lights(options);
-    EXPECT_TRUE(lights.ok()) << lights.error();
-    return lights.ok() ? *lights : std::vector<SceneLight>{};
+    return test::room_lights(count, 7, type, intensity);
 }
 
 RenderCamera room_camera() {
@@ -91,7 +66,7 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
     for (size_t i = 0; i < pixels; ++i) {
         if (g->position[4 * i + 3] == 0.0f) continue;
         ++a.geometry;
-        CutResult cpu = shade_lightcuts(tree, {}, surface_at(*g, i), cut_settings);
+        CutResult cpu = shade_lightcuts(tree, {}, test::gbuffer_point(*g, i), cut_settings);
         a.cpu_max_cut_hits += cpu.max_cut_hit ? 1 : 0;
         if ((*cuts)[2 * i] != cpu.cut_size || (*cuts)[2 * i + 1] != cpu.cut_hash) continue;
         ++a.same_cut;
@@ -128,7 +103,7 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
     for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
     scene.lights = lights;
-    LightTree tree = build_tree(lights);
+    LightTree tree = test::agglomerative_tree(lights);
     ASSERT_FALSE(tree.empty());
     // The closed room hides the directional lights entirely (shadows would be
     // on); this test is about the bounds, so every light is visible here.
@@ -157,7 +132,7 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
 TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(2000, LightTypeChoice::kPoint, 0.5f);
-    LightTree tree = build_tree(scene.lights);
+    LightTree tree = test::agglomerative_tree(scene.lights);
     ASSERT_FALSE(tree.empty());
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
@@ -206,7 +181,7 @@ TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
 TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(200, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = build_tree(scene.lights);
+    LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
@@ -234,7 +209,7 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
 TEST_F(BoundCriterion, RejectsBadCutSettings) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(8, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = build_tree(scene.lights);
+    LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
@@ -289,7 +264,7 @@ TEST(AutoExposure, MapsTheLogAverageTo018) {
 TEST_F(BoundCriterion, ErrorHeatmapOfARealFrameIsFinite) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(64, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = build_tree(scene.lights);
+    LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;

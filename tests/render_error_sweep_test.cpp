@@ -44,20 +44,11 @@ protected:
 
 TEST_F(ErrorSweepRender, SmallerRatiosCostMoreAndErrLess) {
     Scene scene = make_room_scene();
-    LightLayoutOptions layout;
-    layout.count = 1500;
-    layout.seed = 3;
-    layout.box_min = kRoomLightBoxMin;
-    layout.box_max = kRoomLightBoxMax;
-    layout.intensity = 0.5f;
-    Result<std::vector<SceneLight>> lights = generate_lights(layout);
-    ASSERT_TRUE(lights.ok()) << lights.error();
-    scene.lights = *lights;
-    bake::BuildOptions options;
-    options.builder = BuilderKind::kAgglomerative;
-    Result<bake::BuildResult> built = bake::build_light_tree(scene.lights, options, nullptr);
-    ASSERT_TRUE(built.ok()) << built.error();
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &built->tree);
+    scene.lights = test::room_lights(1500, 3, LightTypeChoice::kPoint, 0.5f);
+    ASSERT_EQ(scene.lights.size(), 1500u);
+    const LightTree tree = test::agglomerative_tree(scene.lights);
+    ASSERT_FALSE(tree.empty());
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
     RenderSettings settings;

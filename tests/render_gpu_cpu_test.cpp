@@ -38,15 +38,6 @@ struct Comparison {
     double max_relative = 0.0;
 };
 
-// The surface point the lighting pass saw at pixel i.
-SurfacePoint surface_at(const GBufferReadback& g, size_t i) {
-    SurfacePoint p;
-    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
-    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
-    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
-    return p;
-}
-
 glm::dvec3 emissive_at(const GBufferReadback& g, size_t i) {
     return {g.emissive[4 * i], g.emissive[4 * i + 1], g.emissive[4 * i + 2]};
 }
@@ -133,7 +124,7 @@ protected:
         for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
             if (g->position[4 * i + 3] == 0.0f) continue;
             ++c.geometry_pixels;
-            SurfacePoint p = surface_at(*g, i);
+            SurfacePoint p = test::gbuffer_point(*g, i);
             cpu_cuts[i] = expected(p);
             cpu[i] = cpu_cuts[i].radiance + emissive_at(*g, i);
             max_cpu = std::max({max_cpu, cpu[i].x, cpu[i].y, cpu[i].z});
@@ -151,7 +142,7 @@ protected:
             }
             if (cut_tree != nullptr && ((*cuts)[2 * i] != cpu_cuts[i].cut_size ||
                                         (*cuts)[2 * i + 1] != cpu_cuts[i].cut_hash)) {
-                SurfacePoint p = surface_at(*g, i);
+                SurfacePoint p = test::gbuffer_point(*g, i);
                 EXPECT_TRUE(near_radius_boundary(*cut_tree, p))
                     << "pixel " << i << ": GPU cut (" << (*cuts)[2 * i] << ", "
                     << (*cuts)[2 * i + 1] << ") vs CPU (" << cpu_cuts[i].cut_size << ", "

@@ -27,27 +27,10 @@ namespace {
 
 constexpr uint32_t kSize = 48;
 
-SurfacePoint surface_at(const GBufferReadback& g, size_t i) {
-    SurfacePoint p;
-    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
-    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
-    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
-    return p;
-}
-
 double max_channel_of(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 
 std::vector<SceneLight> furnished_room_lights(uint32_t count, uint32_t seed) {
-    LightLayoutOptions options;
-    options.count = count;
-    options.seed = seed;
-    options.type = LightTypeChoice::kPoint;
-    options.box_min = kRoomLightBoxMin;
-    options.box_max = kRoomLightBoxMax;
-    options.intensity = 4.0f;
-    Result<std::vector<SceneLight>> lights = generate_lights(options);
-    EXPECT_TRUE(lights.ok()) << lights.error();
-    std::vector<SceneLight> out = lights.ok() ? *lights : std::vector<SceneLight>{};
+    std::vector<SceneLight> out = test::room_lights(count, seed, LightTypeChoice::kPoint, 4.0f);
     // One light under the table: only the floor beneath it sees it.
     SceneLight under = out.empty() ? SceneLight{} : out.front();
     under.position = {0.0f, 0.35f, 0.0f};
@@ -55,14 +38,6 @@ std::vector<SceneLight> furnished_room_lights(uint32_t count, uint32_t seed) {
     test::set_unit_guid(under, 999);
     out.push_back(under);
     return out;
-}
-
-LightTree build_tree(const std::vector<SceneLight>& lights) {
-    bake::BuildOptions options;
-    options.builder = BuilderKind::kAgglomerative;
-    Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
-    EXPECT_TRUE(built.ok()) << built.error();
-    return built.ok() ? std::move(built->tree) : LightTree{};
 }
 
 RenderCamera room_camera() {
@@ -125,7 +100,7 @@ Agreement compare(Renderer& renderer, const RenderSettings& settings, ExpectedFr
 // The point at pixel i, with the renderer's occluders when `shadowed`.
 SurfacePoint point_at(const Renderer& renderer, const GBufferReadback& g, size_t i,
                       bool shadowed) {
-    SurfacePoint p = surface_at(g, i);
+    SurfacePoint p = test::gbuffer_point(g, i);
     if (shadowed) {
         p.occluders = &renderer.shadow_bvh();
         p.shadow_bias = renderer.shadow_bias();
@@ -144,13 +119,22 @@ auto per_pixel(const Renderer& renderer, PerPixel f) {
     };
 }
 
+// The CPU's exact sum over the tree's leaves (reference mode), as an expected frame.
+auto leaves_frame(const Renderer& renderer, const LightTree& tree) {
+    return per_pixel(renderer, [&tree](const SurfacePoint& p) {
+        CutResult r;
+        r.radiance = shade_tree_leaves(tree, p);
+        return r;
+    });
+}
+
 class Shadows : public ::testing::Test {
 protected:
     void SetUp() override {
         LC_REQUIRE_VULKAN(context_);
         scene_ = make_furnished_room_scene();
         scene_.lights = furnished_room_lights(40, 11);
-        tree_ = build_tree(scene_.lights);
+        tree_ = test::agglomerative_tree(scene_.lights);
         settings_.width = settings_.height = kSize;
         settings_.camera = room_camera();
     }
@@ -170,14 +154,7 @@ TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
-    Agreement a = compare(
-        **renderer, settings_,
-        per_pixel(**renderer, [&](const SurfacePoint& p) {
-            CutResult r;
-            r.radiance = shade_tree_leaves(tree_, p);
-            return r;
-        }),
-        false);
+    Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree_), false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     EXPECT_GT(a.shadowed, a.geometry / 10) << "the furniture should shadow part of the view";
     EXPECT_GT(a.shadow_rays, 0u);
@@ -220,7 +197,7 @@ TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
         test::set_unit_guid(c, 500 + uint32_t(classic.size()));
         classic.push_back(c);
     }
-    tree_ = build_tree(scene_.lights);
+    tree_ = test::agglomerative_tree(scene_.lights);
     scene_.lights.insert(scene_.lights.end(), classic.begin(), classic.end());
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
@@ -246,7 +223,7 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
             scene_.meshes.push_back(top);
         }
     scene_.lights = furnished_room_lights(400, 12);
-    tree_ = build_tree(scene_.lights);
+    tree_ = test::agglomerative_tree(scene_.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
@@ -255,14 +232,7 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
                 uint32_t((*renderer)->shadow_bvh().gpu_nodes().size()), chunk);
     if ((*renderer)->leaf_count() <= chunk)
         GTEST_SKIP() << "this device has no loop limit: one dispatch holds every light";
-    Agreement a = compare(
-        **renderer, settings_,
-        per_pixel(**renderer, [&](const SurfacePoint& p) {
-            CutResult r;
-            r.radiance = shade_tree_leaves(tree_, p);
-            return r;
-        }),
-        false);
+    Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree_), false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok());
@@ -296,7 +266,7 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     scene.lights = lights;
     scene.bounds_min = {-5, 0, -5};
     scene.bounds_max = {5, 3, 5};
-    LightTree tree = build_tree(lights);
+    LightTree tree = test::agglomerative_tree(lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
@@ -308,14 +278,7 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     settings.camera.eye = {-0.6f, 0.3f, -0.6f};
     settings.camera.target = {0.0f, 0.0f, 0.0f};
     settings.camera.yfov = 0.5f;
-    Agreement a = compare(
-        **renderer, settings,
-        per_pixel(**renderer, [&](const SurfacePoint& p) {
-            CutResult r;
-            r.radiance = shade_tree_leaves(tree, p);
-            return r;
-        }),
-        false);
+    Agreement a = compare(**renderer, settings, leaves_frame(**renderer, tree), false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     EXPECT_GT(a.geometry, 0u);
 }
@@ -348,19 +311,12 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
         lights.push_back(*l);
     }
     scene_.lights = lights;
-    tree_ = build_tree(lights);
+    tree_ = test::agglomerative_tree(lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
-    Agreement a = compare(
-        **renderer, settings_,
-        per_pixel(**renderer, [&](const SurfacePoint& p) {
-            CutResult r;
-            r.radiance = shade_tree_leaves(tree_, p);
-            return r;
-        }),
-        false);
+    Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree_), false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kBound;
@@ -373,7 +329,7 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
 TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     Scene empty = make_room_scene();
     empty.lights = scene_.lights;
-    LightTree tree = build_tree(empty.lights);
+    LightTree tree = test::agglomerative_tree(empty.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, empty, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_FALSE((*renderer)->effects().shadows);
@@ -403,20 +359,13 @@ TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {
     test::set_unit_guid(sealed, 777);
     std::vector<SceneLight> with = scene_.lights;
     with.push_back(sealed);
-    LightTree tree = build_tree(with);
+    LightTree tree = test::agglomerative_tree(with);
     Scene scene = scene_;
     scene.lights = with;
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
-    Agreement a = compare(
-        **renderer, settings_,
-        per_pixel(**renderer, [&](const SurfacePoint& p) {
-            CutResult r;
-            r.radiance = shade_tree_leaves(tree, p);
-            return r;
-        }),
-        false);
+    Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree), false);
     EXPECT_GE(a.agree, a.geometry * 99 / 100);
 }
 

@@ -14,12 +14,48 @@
 #include <string>
 #include <vector>
 
+#include "editor_client/render/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene.h"
+#include "editor_client/scene/scene_generator.h"
+#include "lightmass_server/tree_builder.h"
 #include "editor_client/vk/context.h"
 #include "protocol/light_tree.h"
 
 namespace lc::test {
+
+// The surface point the lighting pass saw at pixel i of a G-buffer read-back.
+inline client::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i) {
+    client::SurfacePoint p;
+    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
+    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
+    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
+    return p;
+}
+
+// `count` lights generated in the room's light box (scene_generator.h).
+inline std::vector<SceneLight> room_lights(uint32_t count, uint64_t seed,
+                                           client::LightTypeChoice type, float intensity) {
+    client::LightLayoutOptions options;
+    options.count = count;
+    options.seed = seed;
+    options.type = type;
+    options.box_min = client::kRoomLightBoxMin;
+    options.box_max = client::kRoomLightBoxMax;
+    options.intensity = intensity;
+    Result<std::vector<SceneLight>> lights = client::generate_lights(options);
+    EXPECT_TRUE(lights.ok()) << lights.error();
+    return lights.ok() ? *lights : std::vector<SceneLight>{};
+}
+
+// The paper's agglomerative tree over `lights` (empty, and a failure, if the build fails).
+inline LightTree agglomerative_tree(const std::vector<SceneLight>& lights) {
+    bake::BuildOptions options;
+    options.builder = BuilderKind::kAgglomerative;
+    Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error();
+    return built.ok() ? std::move(built->tree) : LightTree{};
+}
 
 // Null (and the reason in `why`) when no usable Vulkan device exists.
 inline std::unique_ptr<vk::Context> make_headless_context(std::string& why) {

@@ -166,6 +166,18 @@ private:
 
 // --- Scenes and rays ----------------------------------------------------------
 
+// The triangles of `tris` whose area is not zero in double (the ones the
+// build keeps), in order.
+Triangles with_area(const Triangles& tris) {
+    Triangles kept;
+    for (size_t i = 0; i + 2 < tris.size(); i += 3) {
+        const glm::dvec3 n = glm::cross(glm::dvec3(tris[i + 1]) - glm::dvec3(tris[i]),
+                                        glm::dvec3(tris[i + 2]) - glm::dvec3(tris[i]));
+        if (n != glm::dvec3(0.0)) kept.insert(kept.end(), {tris[i], tris[i + 1], tris[i + 2]});
+    }
+    return kept;
+}
+
 // `count` triangles with centres in center +- extent and vertices within
 // +- size (0.2 .. 2 times) of their centre.
 Triangles random_soup(size_t count, uint64_t seed, const glm::dvec3& center, double extent, double size) {
@@ -430,12 +442,7 @@ TEST(ShadowBvhTest, GridAlignedScenesAgreeExactlyWithBruteForce) {
         }
     }
     const ShadowBvh bvh = ShadowBvh::build(tris);
-    Triangles kept;
-    for (size_t i = 0; i < tris.size(); i += 3) {
-        const glm::dvec3 n = glm::cross(glm::dvec3(tris[i + 1]) - glm::dvec3(tris[i]),
-                                        glm::dvec3(tris[i + 2]) - glm::dvec3(tris[i]));
-        if (n != glm::dvec3(0.0)) kept.insert(kept.end(), {tris[i], tris[i + 1], tris[i + 2]});
-    }
+    const Triangles kept = with_area(tris);
     EXPECT_EQ(bvh.stats().skipped_degenerate, (tris.size() - kept.size()) / 3);
     expect_valid_layout(bvh, kept);
     const BruteForce reference(kept);
@@ -732,12 +739,7 @@ TEST(ShadowBvhTest, FarFromTheOriginAndSmall) {
         const glm::dvec3 center(1e3, 1e3, -1e3);
         const Triangles tris = random_soup(2000, 19, center, 0.02, 1e-3);
         const ShadowBvh bvh = ShadowBvh::build(tris);
-        Triangles kept;
-        for (size_t i = 0; i < tris.size(); i += 3) {
-            const glm::dvec3 n = glm::cross(glm::dvec3(tris[i + 1]) - glm::dvec3(tris[i]),
-                                            glm::dvec3(tris[i + 2]) - glm::dvec3(tris[i]));
-            if (n != glm::dvec3(0.0)) kept.insert(kept.end(), {tris[i], tris[i + 1], tris[i + 2]});
-        }
+        const Triangles kept = with_area(tris);
         expect_valid_layout(bvh, kept);
         EXPECT_GT(kept.size(), tris.size() * 9 / 10);
         const AgreementCounts counts =
@@ -752,12 +754,7 @@ TEST(ShadowBvhTest, FarFromTheOriginAndSmall) {
         const glm::dvec3 center(1e6, 1e6, 1e6);
         const Triangles tris = random_soup(500, 31, center, 0.01, 1e-3);
         const ShadowBvh bvh = ShadowBvh::build(tris);
-        Triangles kept;
-        for (size_t i = 0; i < tris.size(); i += 3) {
-            const glm::dvec3 n = glm::cross(glm::dvec3(tris[i + 1]) - glm::dvec3(tris[i]),
-                                            glm::dvec3(tris[i + 2]) - glm::dvec3(tris[i]));
-            if (n != glm::dvec3(0.0)) kept.insert(kept.end(), {tris[i], tris[i + 1], tris[i + 2]});
-        }
+        const Triangles kept = with_area(tris);
         expect_valid_layout(bvh, kept);
         EXPECT_EQ(bvh.stats().skipped_degenerate + bvh.stats().triangles, 500u);
         EXPECT_GT(bvh.stats().skipped_degenerate, 400u);

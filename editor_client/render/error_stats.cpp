@@ -86,6 +86,13 @@ Result<ErrorStats> compute_error_stats(std::span<const float> lightcuts,
     return stats;
 }
 
+double fraction_over(const ErrorStats& stats, double threshold) {
+    if (stats.measured_pixels == 0) return 0.0;
+    uint64_t over = 0;
+    for (float e : stats.per_pixel) over += e >= 0.0f && double(e) > threshold;
+    return double(over) / double(stats.measured_pixels);
+}
+
 std::vector<uint8_t> error_heatmap(const ErrorStats& stats, std::span<const float> reference,
                                    uint32_t width, uint32_t height, double error_ratio) {
     std::vector<uint8_t> out(size_t(width) * height * 4, 0);

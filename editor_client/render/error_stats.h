@@ -33,6 +33,10 @@ Result<ErrorStats> compute_error_stats(std::span<const float> lightcuts,
                                        std::span<const float> reference, uint32_t width,
                                        uint32_t height, double error_ratio);
 
+// Fraction of the measured pixels whose relative error exceeds `threshold`
+// (frac_over_error for another ratio, without measuring again).
+double fraction_over(const ErrorStats& stats, double threshold);
+
 // RGBA8 heatmap of ErrorStats::per_pixel: 0 dark blue .. 2 x error_ratio and
 // above red, unmeasured geometry grey, background black, with the colour
 // scale bar (0 left, 2 x error_ratio right) in the bottom rows.

@@ -56,9 +56,6 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
         Result<ErrorStats> errors =
             compute_error_stats(*hdr, *reference, settings.width, settings.height, ratio);
         if (!errors) return make_error(errors.error());
-        Result<ErrorStats> at_2pct =
-            compute_error_stats(*hdr, *reference, settings.width, settings.height, 0.02f);
-        if (!at_2pct) return make_error(at_2pct.error());
         ErrorSweepRow row;
         row.error_ratio = ratio;
         row.render_ms = stats->render_ms;
@@ -69,7 +66,7 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
         row.rel_err_mean = errors->rel_err_mean;
         row.rel_err_p99 = errors->rel_err_p99;
         row.frac_over_error = errors->frac_over_error;
-        row.frac_over_2pct = at_2pct->frac_over_error;
+        row.frac_over_2pct = fraction_over(*errors, 0.02);
         row.max_err = errors->max_err;
         row.shadow_rays = stats->shadow_rays;
         row.loop_limit_stops = stats->loop_limit_stops;

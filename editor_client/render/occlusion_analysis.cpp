@@ -59,9 +59,7 @@ OcclusionAnalysis analyse_occlusion(const Scene& scene, std::span<const glm::vec
     std::vector<Triangle> triangles;
     std::vector<glm::dvec3> vertices;
     for (const Mesh& mesh : scene.meshes) {
-        const bool casts = mesh.material < 0 || size_t(mesh.material) >= scene.materials.size() ||
-                           scene.materials[size_t(mesh.material)].casts_shadows;
-        if (!casts) continue;
+        if (!casts_shadows(scene, mesh)) continue;
         for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
             Triangle t;
             bool valid = true;

@@ -228,53 +228,47 @@ Status Renderer::upload_lights(const LightTree* tree) {
         classic.size() > UINT32_MAX)
         return make_error("too many lights for 32-bit counts");
 
-    const vk::Device& device = context_.device();
-    const vk::CommandPool& pool = context_.command_pool();
-    auto upload = [&](vk::Buffer& out, std::span<const std::byte> bytes) -> Status {
-        Result<vk::Buffer> buffer =
-            vk::Buffer::create_with_data(device, pool, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        if (!buffer) return make_error(buffer.error());
-        out = std::move(buffer).value();
-        return Ok{};
-    };
-    LC_RETURN_IF_ERROR(upload(leaf_lights_, std::as_bytes(std::span(leaves))));
-    LC_RETURN_IF_ERROR(upload(classic_lights_, std::as_bytes(std::span(classic))));
-    LC_RETURN_IF_ERROR(upload(tree_nodes_, std::as_bytes(std::span(nodes))));
-    LC_RETURN_IF_ERROR(upload(node_bounds_, std::as_bytes(std::span(bounds))));
+    LC_RETURN_IF_ERROR(upload_storage(leaf_lights_, std::as_bytes(std::span(leaves))));
+    LC_RETURN_IF_ERROR(upload_storage(classic_lights_, std::as_bytes(std::span(classic))));
+    LC_RETURN_IF_ERROR(upload_storage(tree_nodes_, std::as_bytes(std::span(nodes))));
+    LC_RETURN_IF_ERROR(upload_storage(node_bounds_, std::as_bytes(std::span(bounds))));
     leaf_count_ = uint32_t(leaves.size());
     classic_count_ = uint32_t(classic.size());
     node_count_ = uint32_t(nodes.size());
+    return Ok{};
+}
+
+Status Renderer::upload_storage(vk::Buffer& out, std::span<const std::byte> bytes) {
+    Result<vk::Buffer> buffer = vk::Buffer::create_with_data(
+        context_.device(), context_.command_pool(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (!buffer) return make_error(buffer.error());
+    out = std::move(buffer).value();
     frame_set_dirty_ = true;
     return Ok{};
 }
 
 Status Renderer::upload_occluders() {
     shadow_bvh_ = ShadowBvh::build(effects_.occluders);
-    shadow_bias_ = shadow_ray_bias(scene_);
     const ShadowBvhStats& s = shadow_bvh_.stats();
     spdlog::debug("shadow BVH: {} triangles ({} degenerate, {} not casting) in {} nodes, depth {}",
                   s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.nodes, s.depth);
-    auto upload = [&](vk::Buffer& out, std::span<const std::byte> bytes) -> Status {
-        Result<vk::Buffer> buffer = vk::Buffer::create_with_data(
-            context_.device(), context_.command_pool(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-        if (!buffer) return make_error("shadow BVH: " + buffer.error());
-        out = std::move(buffer).value();
-        return Ok{};
-    };
-    LC_RETURN_IF_ERROR(upload(bvh_nodes_, std::as_bytes(std::span(shadow_bvh_.gpu_nodes()))));
     LC_RETURN_IF_ERROR(
-        upload(shadow_triangles_, std::as_bytes(std::span(shadow_bvh_.gpu_triangles()))));
-    frame_set_dirty_ = true;
-    return Ok{};
+        upload_storage(bvh_nodes_, std::as_bytes(std::span(shadow_bvh_.gpu_nodes()))));
+    return upload_storage(shadow_triangles_,
+                          std::as_bytes(std::span(shadow_bvh_.gpu_triangles())));
 }
 
 Status Renderer::set_tree(const LightTree* tree) {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     LC_RETURN_IF_ERROR(upload_lights(tree));
     has_tree_ = tree != nullptr;
-    effects_ = analyse_scene_effects(scene_, tree, options_.shadows);
-    // Which surfaces can hide a light depends on where the lights are.
-    LC_RETURN_IF_ERROR(upload_occluders());
+    SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows);
+    // Which surfaces can hide a light depends on where the lights are; most
+    // light edits leave them as they were, and the BVH stays.
+    const bool same_occluders = bvh_nodes_ && effects.occluders == effects_.occluders;
+    effects_ = std::move(effects);
+    if (!same_occluders) LC_RETURN_IF_ERROR(upload_occluders());
+    shadow_bias_ = shadow_ray_bias(scene_);  // the scene's bounds hold its lights
     for (const EffectDecision& d : effects_.decisions)
         spdlog::debug("effect {}: {} ({})", d.name, d.simulated ? "simulated" : "skipped",
                       d.reason);
@@ -319,24 +313,29 @@ namespace {
 constexpr uint64_t kLoopBudget = 65535;
 // As in loop_limits.glsl and shadow_rays.glsl.
 constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8, kShadowUnroll = 1;
-}  // namespace
 
 // Worst-case loop iterations of one shadow ray: every BVH node once.
-static uint64_t shadow_ray_iterations(bool shadows, const ShadowBvh& bvh) {
+uint64_t shadow_ray_iterations(bool shadows, const ShadowBvh& bvh) {
     if (!shadows || bvh.empty()) return 0;
     return (uint64_t(bvh.gpu_nodes().size()) + kShadowUnroll - 1) / kShadowUnroll + 1;
 }
 
-static bool has_loop_limit(const vk::Context& context) {
+// The classic lights' loop, with a ray per light (`ray` iterations each).
+uint64_t classic_iterations(uint32_t classic_count, uint64_t ray) {
+    return (uint64_t(classic_count) + kLightUnroll - 1) / kLightUnroll + 1 +
+           uint64_t(classic_count) * ray;
+}
+
+bool has_loop_limit(const vk::Context& context) {
     return context.physical().name().find("llvmpipe") != std::string::npos;
 }
+}  // namespace
 
 uint32_t Renderer::reference_chunk() const {
     const uint32_t all = std::max(leaf_count_, 1u);
     if (!has_loop_limit(context_)) return all;
     const uint64_t ray = shadow_ray_iterations(effects_.shadows, shadow_bvh_);
-    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1 +
-                             uint64_t(classic_count_) * ray;
+    const uint64_t classic = classic_iterations(classic_count_, ray);
     // Per group of kLightUnroll leaves: one iteration and their rays; the
     // remainder loop may add kLightUnroll - 1 single leaves.
     const uint64_t per_group = 1 + kLightUnroll * ray;
@@ -355,9 +354,7 @@ uint32_t Renderer::reference_chunk() const {
 Status Renderer::check_loop_budget(const RenderSettings& settings) const {
     if (!has_loop_limit(context_)) return Ok{};
     const uint64_t ray = shadow_ray_iterations(effects_.shadows, shadow_bvh_);
-    const uint64_t classic = (uint64_t(classic_count_) + kLightUnroll - 1) / kLightUnroll + 1 +
-                             uint64_t(classic_count_) * ray;
-    uint64_t iterations = classic;
+    uint64_t iterations = classic_iterations(classic_count_, ray);
     std::string what;
     if (settings.mode == RenderMode::kReference) {
         iterations += 1 + kLightUnroll * ray + (kLightUnroll - 1) * (1 + ray) + 2;
@@ -733,8 +730,10 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.shadow_rays = (uint64_t(counters->shadow_rays_high) << 32) | counters->shadow_rays;
     stats.shadow_triangles = shadow_bvh_.stats().triangles;
     stats.shadow_bvh_nodes = shadow_bvh_.stats().nodes;
-    if (settings.mode == RenderMode::kReference)
-        stats.reference_dispatches = (std::max(leaf_count_, 1u) + reference_chunk() - 1) / reference_chunk();
+    if (settings.mode == RenderMode::kReference) {
+        const uint32_t chunk = reference_chunk();
+        stats.reference_dispatches = (std::max(leaf_count_, 1u) + chunk - 1) / chunk;
+    }
     if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;

@@ -6,9 +6,11 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "editor_client/render/gpu_layout.h"
@@ -116,6 +118,8 @@ private:
 
     Status create_frame_resources();
     Status upload_occluders();
+    // A device-local storage buffer holding `bytes` (the frame set is rewritten).
+    Status upload_storage(vk::Buffer& out, std::span<const std::byte> bytes);
     Status upload_lights(const LightTree* tree);
     Status ensure_targets(uint32_t width, uint32_t height);
     void update_frame_descriptors();

@@ -251,11 +251,7 @@ ShadowBvh ShadowBvh::build(const Scene& scene) {
         const size_t full_triples = mesh.indices.size() / 3;
         // A trailing partial triple is no triangle: count it as a degenerate one.
         if (mesh.indices.size() % 3 != 0) ++skipped_degenerate;
-        // Out-of-range materials fall back to glTF's default material, which casts.
-        const bool casts = mesh.material < 0 ||
-                           static_cast<size_t>(mesh.material) >= scene.materials.size() ||
-                           scene.materials[static_cast<size_t>(mesh.material)].casts_shadows;
-        if (!casts) {
+        if (!casts_shadows(scene, mesh)) {
             skipped_non_casting += full_triples;
             continue;
         }

@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -60,5 +61,12 @@ struct Scene {
     glm::vec3 bounds_min{0.0f};  // of geometry and lights
     glm::vec3 bounds_max{0.0f};
 };
+
+// Whether a mesh blocks light: its material's casts_shadows. A mesh without a
+// valid material is drawn with glTF's default material, which does.
+inline bool casts_shadows(const Scene& scene, const Mesh& mesh) {
+    return mesh.material < 0 || size_t(mesh.material) >= scene.materials.size() ||
+           scene.materials[size_t(mesh.material)].casts_shadows;
+}
 
 }  // namespace lc::client
