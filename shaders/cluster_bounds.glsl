@@ -6,6 +6,7 @@
 
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
+#include "material_model.glsl"
 
 // Upper bound of cos(angle(axis, v)) over every v in the box [lo, hi] (paper
 // Eq. 4): rotate the box into a frame whose z is `axis` and take the rotated
@@ -85,6 +86,26 @@ float geometric_bound_of(GpuTreeNode node, GpuNodeBounds nb, vec3 x, vec3 n) {
 
 float geometric_bound(int i, vec3 x, vec3 n) {
     return geometric_bound_of(tree_nodes[i], node_bounds[i], x, n);
+}
+
+// Upper bound of f_r at p over every light of a node whose representative has
+// type `type`: the diffuse term plus the lobe at the largest cosine between the
+// mirror direction and a direction into the node's box (cpu_evaluator's
+// material_bound).
+vec3 material_bound_of(uint type, GpuNodeBounds nb, SurfacePoint p) {
+    vec3 f = p.albedo * (1.0 / kPi);
+    if (!has_lobe(p)) return f;
+    bool directional = kDirectionalLights && type == kLightDirectional;
+    float c = directional ? max_cos_to_box(p.mirror, -nb.bbox_max, -nb.bbox_min)
+                          : max_cos_to_box(p.mirror, nb.bbox_min - p.position, nb.bbox_max - p.position);
+    return f + p.specular * glossy_lobe(c, p.exponent);
+}
+
+// Upper bound of f_r x G (visibility 1) per unit intensity over a node's lights.
+vec3 response_bound_of(GpuTreeNode node, GpuNodeBounds nb, SurfacePoint p) {
+    float g = geometric_bound_of(node, nb, p.position, p.normal);
+    if (!(g > 0.0)) return vec3(0.0);
+    return material_bound_of(node.light.type, nb, p) * g;
 }
 
 #endif

@@ -4,6 +4,7 @@
 
 const uint kDrawBaseColorTexture = 1u;
 const uint kDrawEmissiveTexture = 2u;
+const uint kDrawMetallicRoughnessTexture = 4u;
 
 layout(push_constant) uniform DrawConstants {
     mat4 view_proj;

@@ -45,6 +45,8 @@ layout(push_constant) uniform FrameConstants {
     uint light_end;
     uint bvh_node_count;
     uint pad;
+    vec3 eye;
+    float pad2;
 } frame;
 
 #endif

@@ -10,6 +10,7 @@ layout(constant_id = 10) const bool kTextures = true;
 
 layout(set = 0, binding = 0) uniform sampler2D base_color_texture;
 layout(set = 0, binding = 1) uniform sampler2D emissive_texture;
+layout(set = 0, binding = 2) uniform sampler2D metallic_roughness_texture;  // linear: G, B
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
@@ -30,13 +31,20 @@ void main() {
 
     vec4 base = draw.base_color_factor;
     vec3 emissive = draw.emissive_metallic.rgb;
+    float metallic = draw.emissive_metallic.a;
+    float roughness = draw.eye_roughness.w;
     if (kTextures) {
         if ((draw.flags & kDrawBaseColorTexture) != 0u) base *= texture(base_color_texture, in_uv);
         if ((draw.flags & kDrawEmissiveTexture) != 0u)
             emissive *= texture(emissive_texture, in_uv).rgb;
+        if ((draw.flags & kDrawMetallicRoughnessTexture) != 0u) {
+            vec4 mr = texture(metallic_roughness_texture, in_uv);
+            roughness *= mr.g;
+            metallic *= mr.b;
+        }
     }
     out_position = vec4(in_position, 1.0);
-    out_normal = vec4(n, draw.eye_roughness.w);
-    out_albedo = vec4(base.rgb, draw.emissive_metallic.a);
+    out_normal = vec4(n, roughness);
+    out_albedo = vec4(base.rgb, metallic);
     out_emissive = vec4(emissive, 1.0);
 }

@@ -51,13 +51,13 @@ layout(constant_id = 17) const float kWalkMargin = 0.8;
 layout(constant_id = 18) const uint kWalkBisections = 6u;
 
 struct Cut {
-    vec3 irradiance;  // sum over cut nodes of I_C * color * G
+    vec3 radiance;  // sum over cut nodes of f_r * I_C * color * G * V
     uint size;
     uint hash;
 };
 
 void add_to_cut(inout Cut cut, uint node_index, GpuLight cluster, SurfacePoint p) {
-    cut.irradiance += visible_irradiance(cluster, p.position, p.normal);
+    cut.radiance += light_radiance(cluster, p);
     cut.size += 1u;
     cut.hash += cut_hash_term(node_index);
 }
@@ -173,18 +173,18 @@ void heap_pop(inout int size) {
 }
 
 // Error bound of node i (largest channel): 0 for a leaf (exact), +inf for a
-// mixed-type junction (always refined), else f_r x G bound x I_C.
-float node_key(int i, SurfacePoint p, vec3 brdf) {
-    if (tree_nodes[i].first_child == kEndOfWalk) return 0.0;
-    if ((tree_nodes[i].flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
-    vec3 intensity = tree_nodes[i].light.intensity;
-    return max_channel(brdf * geometric_bound(i, p.position, p.normal) * intensity);
+// mixed-type junction (always refined), else f_r bound x G bound x I_C.
+float node_key(int i, SurfacePoint p) {
+    GpuTreeNode node = tree_nodes[i];
+    if (node.first_child == kEndOfWalk) return 0.0;
+    if ((node.flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
+    return max_channel(response_bound_of(node, node_bounds[i], p) * node.light.intensity);
 }
 
-vec3 unit_response(int i, SurfacePoint p, vec3 brdf) {
+vec3 unit_response(int i, SurfacePoint p) {
     GpuLight unit_light = tree_nodes[i].light;
     unit_light.intensity = vec3(1.0);
-    return brdf * visible_irradiance(unit_light, p.position, p.normal);
+    return light_radiance(unit_light, p);
 }
 
 // A child whose representative has the parent's parameters has the parent's
@@ -197,14 +197,13 @@ bool same_emitter(GpuLight a, GpuLight b) {
 
 // Returns the outgoing radiance of the cut (f_r already applied) in `radiance`.
 Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
-    vec3 brdf = p.albedo * (1.0 / kPi);
     max_cut_hit = false;
     radiance = vec3(0.0);
     Cut cut = Cut(vec3(0.0), 0u, 0u);
     if (frame.node_count == 0u) return cut;
     int size = 0;
-    vec3 root_unit = unit_response(0, p, brdf);
-    heap_push(size, node_key(0, p, brdf), 0, root_unit);
+    vec3 root_unit = unit_response(0, p);
+    heap_push(size, node_key(0, p), 0, root_unit);
     vec3 total = root_unit * tree_nodes[0].light.intensity;
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
@@ -233,9 +232,9 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             int child = c == 0 ? c0 : c1;
             GpuLight light = tree_nodes[child].light;
             vec3 unit = same_emitter(light, parent_light) ? parent_unit
-                                                          : unit_response(child, p, brdf);
+                                                          : unit_response(child, p);
             total += unit * light.intensity;
-            heap_push(size, node_key(child, p, brdf), child, unit);
+            heap_push(size, node_key(child, p), child, unit);
         }
     }
     // The running total drifts; sum afresh.
@@ -263,7 +262,7 @@ struct WalkPass {
 // subtree. A lane sitting the pass out (done, or over max-cut) waits for
 // kEndOfWalk, which no node index equals.
 void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout WalkPass pass,
-                     float tau, bool limit_size, SurfacePoint p, vec3 brdf) {
+                     float tau, bool limit_size, SurfacePoint p) {
     if (i == kEndOfWalk) return;
     if (waiting && i == resume) waiting = false;
     // One load of the node per step: llvmpipe gathers every field per lane,
@@ -275,8 +274,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
         bool mixed = (node.flags & kNodeMixedTypes) != 0u;
         float key = 0.0;
         if (!leaf && !mixed)
-            key = max_channel(brdf * geometric_bound_of(node, node_bounds[i], p.position, p.normal) *
-                              node.light.intensity);
+            key = max_channel(response_bound_of(node, node_bounds[i], p) * node.light.intensity);
         refine = !leaf && (mixed || key > tau);
         if (!refine) {
             waiting = true;
@@ -284,7 +282,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                pass.radiance += brdf * visible_irradiance(node.light, p.position, p.normal);
+                pass.radiance += light_radiance(node.light, p);
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);
@@ -297,7 +295,6 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
 
 Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hit,
                           out bool loop_limit_stop) {
-    vec3 brdf = p.albedo * (1.0 / kPi);
     max_cut_hit = false;
     loop_limit_stop = false;
     radiance = vec3(0.0);
@@ -322,8 +319,8 @@ Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hi
         // the walk was stopped by the device's loop limit (or a corrupt tree):
         // it is discarded like one over max-cut, and counted apart.
         for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
-            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
-            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p, brdf);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p);
+            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p);
         }
         if (done) continue;
         if (i != kEndOfWalk) {
@@ -379,12 +376,12 @@ void main() {
                       ? select_cut_bound_walk(p, radiance, max_cut_hit, loop_limit_stop)
                       : select_cut_bound(p, radiance, max_cut_hit);
         if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
-        radiance += outgoing_radiance(p, classic_irradiance(p));
+        radiance += classic_and_emitted_radiance(p);
         store_pixel(pixel, radiance, cut.size, cut.hash, loop_limit_stop);
         return;
     }
     bool walk_cut_short;
     Cut cut = select_cut_radius(p, walk_cut_short);
-    vec3 irradiance = cut.irradiance + classic_irradiance(p);
-    store_pixel(pixel, outgoing_radiance(p, irradiance), cut.size, cut.hash, walk_cut_short);
+    store_pixel(pixel, cut.radiance + classic_and_emitted_radiance(p), cut.size, cut.hash,
+                walk_cut_short);
 }

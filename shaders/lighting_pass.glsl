@@ -6,44 +6,48 @@
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 #include "loop_limits.glsl"
+#include "material_model.glsl"
 #include "shadow_rays.glsl"
 
-struct SurfacePoint {
-    vec3 position;
-    vec3 normal;
-    vec3 albedo;
-    vec3 emissive;
-};
-
-// False for background pixels (no geometry).
+// False for background pixels (no geometry). The G-buffer holds the base
+// colour with metallic in albedo.w and roughness in normal.w.
 bool load_surface(ivec2 pixel, out SurfacePoint p) {
     vec4 position = imageLoad(gbuffer_position, pixel);
+    vec4 normal = imageLoad(gbuffer_normal, pixel);
+    vec4 base = imageLoad(gbuffer_albedo, pixel);
     p.position = position.xyz;
-    p.normal = imageLoad(gbuffer_normal, pixel).xyz;
-    p.albedo = imageLoad(gbuffer_albedo, pixel).rgb;
+    p.normal = normal.xyz;
     p.emissive = imageLoad(gbuffer_emissive, pixel).rgb;
+    set_material(p, base.rgb, base.w, normal.w, frame.eye);
     return position.w != 0.0;
 }
 
-vec3 classic_irradiance(SurfacePoint p) {
-    vec3 e = vec3(0.0);
+// f_r * I * color * G * V: what one light (or a cluster through its
+// representative) adds to the radiance leaving p towards the camera.
+vec3 light_radiance(GpuLight light, SurfacePoint p) {
+    vec3 e = visible_irradiance(light, p.position, p.normal);
+    if (!kSpecular) return p.albedo * (1.0 / kPi) * e;
+    return brdf_toward(p, light_direction(light, p.position)) * e;
+}
+
+vec3 classic_radiance(SurfacePoint p) {
+    vec3 radiance = vec3(0.0);
     if (kClassicLights) {
         uint i = 0u;
         for (; i + kLoopUnroll <= frame.classic_count; i += kLoopUnroll) {
-            e += visible_irradiance(classic_lights[i], p.position, p.normal);
-            e += visible_irradiance(classic_lights[i + 1u], p.position, p.normal);
-            e += visible_irradiance(classic_lights[i + 2u], p.position, p.normal);
-            e += visible_irradiance(classic_lights[i + 3u], p.position, p.normal);
+            radiance += light_radiance(classic_lights[i], p);
+            radiance += light_radiance(classic_lights[i + 1u], p);
+            radiance += light_radiance(classic_lights[i + 2u], p);
+            radiance += light_radiance(classic_lights[i + 3u], p);
         }
-        for (; i < frame.classic_count; ++i)
-            e += visible_irradiance(classic_lights[i], p.position, p.normal);
+        for (; i < frame.classic_count; ++i) radiance += light_radiance(classic_lights[i], p);
     }
-    return e;
+    return radiance;
 }
 
-// L = f_r * sum(E) + emissive, with f_r = albedo / pi (Lambert).
-vec3 outgoing_radiance(SurfacePoint p, vec3 irradiance) {
-    vec3 radiance = p.albedo * (1.0 / kPi) * irradiance;
+// What p adds besides the tree: its classic lights and its own emission.
+vec3 classic_and_emitted_radiance(SurfacePoint p) {
+    vec3 radiance = classic_radiance(p);
     if (kEmissive) radiance += p.emissive;
     return radiance;
 }

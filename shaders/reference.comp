@@ -23,22 +23,17 @@ void main() {
     }
     const bool first = frame.light_begin == 0u;
     const bool last = frame.light_end >= frame.leaf_count;
-    vec3 irradiance = vec3(0.0);
+    vec3 radiance = vec3(0.0);
     uint i = frame.light_begin;
     uint end = min(frame.light_end, frame.leaf_count);
     for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
-        irradiance += visible_irradiance(leaf_lights[i], p.position, p.normal);
-        irradiance += visible_irradiance(leaf_lights[i + 1u], p.position, p.normal);
-        irradiance += visible_irradiance(leaf_lights[i + 2u], p.position, p.normal);
-        irradiance += visible_irradiance(leaf_lights[i + 3u], p.position, p.normal);
+        radiance += light_radiance(leaf_lights[i], p);
+        radiance += light_radiance(leaf_lights[i + 1u], p);
+        radiance += light_radiance(leaf_lights[i + 2u], p);
+        radiance += light_radiance(leaf_lights[i + 3u], p);
     }
-    for (; i < end; ++i) irradiance += visible_irradiance(leaf_lights[i], p.position, p.normal);
-    vec3 radiance;
-    if (first) {
-        radiance = outgoing_radiance(p, irradiance + classic_irradiance(p));
-    } else {
-        radiance = p.albedo * (1.0 / kPi) * irradiance + imageLoad(hdr_image, pixel).rgb;
-    }
+    for (; i < end; ++i) radiance += light_radiance(leaf_lights[i], p);
+    radiance += first ? classic_and_emitted_radiance(p) : imageLoad(hdr_image, pixel).rgb;
     if (last) {
         // Every leaf is in the "cut"; the hash is not needed for reference pixels.
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "editor_client/render/bound_walk.h"
+#include "editor_client/render/material_model.h"
 #include "editor_client/render/cpu_evaluator.h"
 #include "editor_client/render/shading_model.h"
 #include "lightmass_server/tree_builder.h"
@@ -717,8 +718,8 @@ TEST(BoundCriterion, DirectionalOnlyScenesConverge) {
 
 // --- Bounds are conservative --------------------------------------------------------
 
-// For a random cluster (one type, 1 to 8 lights) and a random shading point
-// and normal, the bound must be >= the exact sum over the cluster's lights and
+// For a random cluster (one type, 1 to 8 lights) and a random shading point,
+// normal and material (Lambert, or glossy seen from a random eye), the bound must be >= the exact sum over the cluster's lights and
 // >= the cluster estimate, channel by channel.
 TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
     constexpr int kPointsPerCluster = 10;
@@ -755,7 +756,17 @@ TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
             if (glm::length(to) > 1e-6) normal = glm::cross(to, glm::dvec3(0.3, 0.7, 0.1));
             if (glm::length(normal) < 1e-9) normal = {0, 0, 1};
         }
-        const SurfacePoint p = surface(position, normal, {u(rng), u(rng), u(rng)});
+        SurfacePoint p = surface(position, normal, {u(rng), u(rng), u(rng)});
+        if ((config + point) % 2 == 0) {
+            // Half the points are glossy (material_model.h), seen from a random eye.
+            const shading::SurfaceMaterial m = shading::surface_material(
+                {u(rng), u(rng), u(rng)}, u(rng), 0.1 + 0.9 * double(u(rng)));
+            p.albedo = m.diffuse;
+            p.specular = m.specular;
+            p.exponent = m.exponent;
+            const glm::dvec3 eye(10 * u(rng) - 5, 10 * u(rng) - 5, 6 * u(rng) - 2);
+            p.mirror = shading::mirror_direction(p.normal, p.position, eye);
+        }
 
         const glm::dvec3 bound = node_contribution_bound(root, p);
         const glm::dvec3 exact = shade_reference(lights, p);

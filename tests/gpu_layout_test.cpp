@@ -38,7 +38,8 @@ TEST(GpuLayout, SizesAndOffsetsMatchTheGlslMirror) {
     EXPECT_EQ(offsetof(GpuFrameCounters, loop_limit_stops), 16u);
     EXPECT_EQ(offsetof(GpuFrameCounters, shadow_rays), 20u);
     EXPECT_EQ(offsetof(GpuFrameCounters, shadow_rays_high), 24u);
-    EXPECT_EQ(sizeof(GpuFrameConstants), 48u);
+    EXPECT_EQ(sizeof(GpuFrameConstants), 64u);
+    EXPECT_EQ(offsetof(GpuFrameConstants, eye), 48u);
     EXPECT_EQ(offsetof(GpuFrameConstants, shadow_bias), 28u);
     EXPECT_EQ(offsetof(GpuFrameConstants, light_begin), 32u);
     EXPECT_EQ(offsetof(GpuFrameConstants, light_end), 36u);

@@ -259,6 +259,11 @@ TEST(AutoExposure, MapsTheLogAverageTo018) {
     EXPECT_NEAR(auto_exposure(hdr), 0.18f / 4.0f, 1e-6f);
     std::vector<float> black(16, 0.0f);
     EXPECT_EQ(auto_exposure(black), 1.0f);
+    // Unlit geometry (a ceiling above downward lights, a shadow) does not
+    // wash the lit part out: same exposure with a third of the pixels black.
+    std::vector<float> with_dark = hdr;
+    for (int i = 0; i < 4; ++i) with_dark.insert(with_dark.end(), {0.0f, 0.0f, 0.0f, 1.0f});
+    EXPECT_NEAR(auto_exposure(with_dark), 0.18f / 4.0f, 1e-6f);
 }
 
 TEST_F(BoundCriterion, ErrorHeatmapOfARealFrameIsFinite) {

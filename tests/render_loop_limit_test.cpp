@@ -63,10 +63,7 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     for (size_t px = 0; px < 64; ++px) {
         const auto& g = *gbuffer;
         if (g.position[4 * px + 3] == 0.0f) continue;
-        client::SurfacePoint p;
-        p.position = {g.position[4 * px], g.position[4 * px + 1], g.position[4 * px + 2]};
-        p.normal = {g.normal[4 * px], g.normal[4 * px + 1], g.normal[4 * px + 2]};
-        p.albedo = {g.albedo[4 * px], g.albedo[4 * px + 1], g.albedo[4 * px + 2]};
+        const client::SurfacePoint p = test::gbuffer_point(g, px);
         double exact = client::shade_reference(scene.lights, p).x;
         EXPECT_NEAR((*reference)[4 * px], exact, 1e-3 * exact) << "pixel " << px;
         EXPECT_NEAR((*walked)[4 * px], exact, 1e-3 * exact) << "pixel " << px;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "editor_client/render/cpu_evaluator.h"
+#include "editor_client/render/material_model.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene.h"
 #include "editor_client/scene/scene_generator.h"
@@ -29,7 +30,13 @@ inline client::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size
     client::SurfacePoint p;
     p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
     p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
-    p.albedo = {g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]};
+    const glm::dvec3 base(g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]);
+    const shading::SurfaceMaterial m =
+        shading::surface_material(base, g.albedo[4 * i + 3], g.normal[4 * i + 3]);
+    p.albedo = m.diffuse;
+    p.specular = m.specular;
+    p.exponent = m.exponent;
+    p.mirror = shading::mirror_direction(p.normal, p.position, glm::dvec3(g.eye));
     return p;
 }
 

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -332,6 +333,391 @@ TEST(LightLayouts, SaltSeparatesGuidsOfTwoAdditions) {
         EXPECT_EQ((*first)[i].position, (*second)[i].position);
         EXPECT_NE((*first)[i].guid, (*second)[i].guid);
     }
+}
+
+
+// --- Surface layout ----------------------------------------------------------------
+
+LightLayoutOptions surface_options(const Scene& scene, uint32_t count, LightTypeChoice type,
+                                   uint64_t seed = 0) {
+    LightLayoutOptions o;
+    o.count = count;
+    o.layout = LightLayout::kSurface;
+    o.type = type;
+    o.seed = seed;
+    o.box_min = scene.bounds_min;
+    o.box_max = scene.bounds_max;
+    o.surfaces = &scene;
+    return o;
+}
+
+// A triangle as the test sees it: its front is the first vertex's stored
+// normal, or the winding's normal when the mesh has none.
+struct TestTriangle {
+    glm::dvec3 a, b, c;
+    glm::dvec3 front;
+};
+
+std::vector<TestTriangle> test_triangles(const Scene& scene) {
+    std::vector<TestTriangle> out;
+    for (const Mesh& mesh : scene.meshes) {
+        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            TestTriangle tri;
+            tri.a = mesh.positions[mesh.indices[t]];
+            tri.b = mesh.positions[mesh.indices[t + 1]];
+            tri.c = mesh.positions[mesh.indices[t + 2]];
+            const glm::dvec3 cross = glm::cross(tri.b - tri.a, tri.c - tri.a);
+            if (glm::length(cross) == 0.0) continue;
+            tri.front = mesh.normals.empty() ? glm::normalize(cross)
+                                             : glm::dvec3(mesh.normals[mesh.indices[t]]);
+            out.push_back(tri);
+        }
+    }
+    return out;
+}
+
+// 1e-3 of the diagonal of the scene's geometry.
+double expected_offset(const Scene& scene) {
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const Mesh& mesh : scene.meshes) {
+        for (const glm::vec3& p : mesh.positions) {
+            lo = glm::min(lo, glm::dvec3(p));
+            hi = glm::max(hi, glm::dvec3(p));
+        }
+    }
+    return 1e-3 * glm::length(hi - lo);
+}
+
+// The triangle `p` stands in front of at height `offset` (1% tolerance),
+// its foot inside the triangle; -1 if none.
+int triangle_under(const std::vector<TestTriangle>& tris, const glm::dvec3& p, double offset) {
+    for (size_t i = 0; i < tris.size(); ++i) {
+        const TestTriangle& t = tris[i];
+        const double height = glm::dot(p - t.a, t.front);
+        if (std::abs(height - offset) > 0.01 * offset) continue;
+        // Barycentric coordinates of the foot of p.
+        const glm::dvec3 foot = p - height * t.front;
+        const glm::dvec3 n = glm::cross(t.b - t.a, t.c - t.a);
+        const double area2 = glm::dot(n, n);
+        const double beta = glm::dot(glm::cross(foot - t.a, t.c - t.a), n) / area2;
+        const double gamma = glm::dot(glm::cross(t.b - t.a, foot - t.a), n) / area2;
+        const double eps = 1e-6;
+        if (beta >= -eps && gamma >= -eps && beta + gamma <= 1.0 + eps) return int(i);
+    }
+    return -1;
+}
+
+TEST(SurfaceLayout, LightsStandJustInFrontOfTheRoomsSurfaces) {
+    const Scene room = make_room_scene();
+    const std::vector<TestTriangle> tris = test_triangles(room);
+    ASSERT_EQ(tris.size(), 12u);
+    const double offset = expected_offset(room);
+    EXPECT_NEAR(offset, 1e-3 * std::sqrt(209.0), 1e-9);
+    const uint32_t count = 3200;
+    Result<std::vector<SceneLight>> lights =
+        generate_lights(surface_options(room, count, LightTypeChoice::kMixed, 3));
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    ASSERT_EQ(lights->size(), count);
+    std::vector<int> per_quad(6, 0);
+    std::set<Guid> guids;
+    for (size_t i = 0; i < count; ++i) {
+        const SceneLight& l = (*lights)[i];
+        const int t = triangle_under(tris, glm::dvec3(l.position), offset);
+        ASSERT_GE(t, 0) << "light " << i << " at (" << l.position.x << ", " << l.position.y
+                        << ", " << l.position.z << ") is on no surface's front";
+        ++per_quad[size_t(t / 2)];
+        // Inside the room: the front of every wall faces in.
+        EXPECT_TRUE(inside(l.position, kRoomMin, kRoomMax));
+        EXPECT_EQ(l.type, i % 2 == 0 ? LightType::kPoint : LightType::kSpot);  // mixed
+        EXPECT_EQ(l.intensity, kDefaultPointIntensity);
+        if (l.type == LightType::kSpot) {
+            const glm::dvec3 front = tris[size_t(t)].front;
+            EXPECT_NEAR(l.direction.x, front.x, 1e-6);
+            EXPECT_NEAR(l.direction.y, front.y, 1e-6);
+            EXPECT_NEAR(l.direction.z, front.z, 1e-6);
+            EXPECT_EQ(l.inner_cone_angle, 0.0f);
+            EXPECT_EQ(l.outer_cone_angle, kHemisphereSpotOuter);
+        }
+        guids.insert(l.guid);
+    }
+    EXPECT_EQ(guids.size(), size_t(count));
+    // Areas: floor and ceiling 100 each, every wall 30 (of 320 in all):
+    // expected 1000, 1000 and 300 per wall; binomial sd <= 26.
+    const int expected[6] = {1000, 1000, 300, 300, 300, 300};
+    for (int q = 0; q < 6; ++q) EXPECT_NEAR(per_quad[size_t(q)], expected[q], 150) << "quad " << q;
+}
+
+TEST(SurfaceLayout, HemisphericalSpotsLightOnlyTheSideTheyFace) {
+    const Scene room = make_room_scene();
+    LightLayoutOptions o = surface_options(room, 1, LightTypeChoice::kSpot);
+    o.box_min = {-5.0f, 2.9f, -5.0f};
+    o.box_max = {5.0f, 3.1f, 5.0f};
+    Result<std::vector<SceneLight>> spot = generate_lights(o);
+    o.type = LightTypeChoice::kPoint;
+    Result<std::vector<SceneLight>> point = generate_lights(o);
+    ASSERT_TRUE(spot.ok() && point.ok());
+    const glm::dvec3 at((*spot)[0].position);
+    SurfacePoint ceiling;  // beside the light, on the ceiling it hangs from
+    ceiling.position = glm::dvec3(at.x + 0.5, 3.0, at.z);
+    ceiling.normal = {0.0, -1.0, 0.0};
+    SurfacePoint floor;
+    floor.position = glm::dvec3(at.x, 0.0, at.z);
+    floor.normal = {0.0, 1.0, 0.0};
+    EXPECT_EQ(shade_light((*spot)[0], ceiling), glm::dvec3(0.0));
+    EXPECT_GT(shade_light((*point)[0], ceiling).x, 0.0);  // grazing, but lit
+    // Straight below, the hemisphere's centre: as bright as the point light.
+    const glm::dvec3 below_spot = shade_light((*spot)[0], floor);
+    const glm::dvec3 below_point = shade_light((*point)[0], floor);
+    EXPECT_GT(below_spot.x, 0.0);
+    EXPECT_NEAR(below_spot.x, below_point.x, 1e-6 * below_point.x);
+}
+
+TEST(SurfaceLayout, PicksTrianglesByAreaAndPointsUniformly) {
+    // Triangle A (area 1) has vertex normals against its winding, so its
+    // front is -Y; triangle B (area 3) has no normals, so its front is the
+    // winding's +Y. They sit side by side at y = 0.
+    Scene scene;
+    Mesh a;
+    a.positions = {{0, 0, 0}, {0, 0, 2}, {1, 0, 0}};  // winding normal +Y
+    a.normals.assign(3, glm::vec3(0, -1, 0));
+    a.indices = {0, 1, 2};
+    Mesh b;
+    b.positions = {{3, 0, 0}, {3, 0, 2}, {6, 0, 0}};
+    b.indices = {0, 1, 2};
+    scene.meshes = {a, b};
+    update_scene_bounds(scene);
+    const double offset = expected_offset(scene);
+    EXPECT_NEAR(offset, 1e-3 * std::sqrt(40.0), 1e-12);
+
+    const uint32_t count = 40000;
+    Result<std::vector<SceneLight>> lights =
+        generate_lights(surface_options(scene, count, LightTypeChoice::kSpot, 11));
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    int on_a = 0;
+    // The medial subdivision of B into four triangles of equal area: corner
+    // at (3,0), corner at (3,2), corner at (6,0), and the middle one.
+    std::array<int, 4> quarters{};
+    glm::dvec3 mean_b(0.0);
+    for (const SceneLight& l : *lights) {
+        const glm::dvec3 p(l.position);
+        if (p.x < 2.0) {
+            ++on_a;
+            EXPECT_NEAR(p.y, -offset, 1e-9);
+            EXPECT_EQ(l.direction, glm::vec3(0, -1, 0));
+            EXPECT_GE(p.x, 0.0);
+            EXPECT_GE(p.z, 0.0);
+            EXPECT_LE(p.x + p.z / 2.0, 1.0 + 1e-6);
+            continue;
+        }
+        EXPECT_NEAR(p.y, offset, 1e-9);
+        EXPECT_EQ(l.direction, glm::vec3(0, 1, 0));
+        // B in its own coordinates: u along x (0..3), v along z (0..2).
+        const double u = (p.x - 3.0) / 3.0, v = p.z / 2.0;
+        ASSERT_GE(u, -1e-6);
+        ASSERT_GE(v, -1e-6);
+        ASSERT_LE(u + v, 1.0 + 1e-6);
+        const int quarter = u > 0.5 ? 2 : v > 0.5 ? 1 : u + v < 0.5 ? 0 : 3;
+        ++quarters[size_t(quarter)];
+        mean_b += p;
+    }
+    // Expected 10,000 on A (sd 87); uniform picking would give 20,000.
+    EXPECT_NEAR(on_a, 10000, 500);
+    const int on_b = int(count) - on_a;
+    for (int q = 0; q < 4; ++q) {
+        // Expected 7,500 each (sd 75).
+        EXPECT_NEAR(quarters[size_t(q)], on_b / 4, 450) << "quarter " << q;
+    }
+    mean_b /= double(on_b);
+    EXPECT_NEAR(mean_b.x, 4.0, 0.02);  // B's centroid (4, 0, 2/3)
+    EXPECT_NEAR(mean_b.z, 2.0 / 3.0, 0.02);
+}
+
+TEST(SurfaceLayout, TheBoxSelectsTrianglesByCentroid) {
+    const Scene room = make_room_scene();
+    const double offset = expected_offset(room);
+    LightLayoutOptions o = surface_options(room, 2000, LightTypeChoice::kSpot, 5);
+    o.box_min = {-5.0f, 2.9f, -5.0f};  // the ceiling's centroids only
+    o.box_max = {5.0f, 3.1f, 5.0f};
+    Result<std::vector<SceneLight>> lights = generate_lights(o);
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    glm::dvec3 mean(0.0);
+    for (const SceneLight& l : *lights) {
+        EXPECT_NEAR(l.position.y, 3.0 - offset, 1e-6);
+        EXPECT_EQ(l.direction, glm::vec3(0, -1, 0));
+        EXPECT_TRUE(inside(l.position, {-5, 0, -5}, {5, 3, 5}));
+        mean += glm::dvec3(l.position) / 2000.0;
+    }
+    // Both triangles of the ceiling, over all of it (sd of the mean 0.065).
+    EXPECT_NEAR(mean.x, 0.0, 0.3);
+    EXPECT_NEAR(mean.z, 0.0, 0.3);
+
+    // Half a floor: one of its two triangles has its centroid at x = 5/3.
+    o.box_min = {0.0f, -0.1f, -5.0f};
+    o.box_max = {5.0f, 0.1f, 5.0f};
+    lights = generate_lights(o);
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    for (const SceneLight& l : *lights) {
+        EXPECT_NEAR(l.position.y, offset, 1e-6);
+        EXPECT_GE(l.position.x - l.position.z, -1e-5) << "in the triangle below the diagonal";
+    }
+}
+
+TEST(SurfaceLayout, DeterministicForASeedAndPositionsIndependentOfTheType) {
+    const Scene room = make_furnished_room_scene();
+    const auto a = generate_lights(surface_options(room, 300, LightTypeChoice::kSpot, 21));
+    const auto b = generate_lights(surface_options(room, 300, LightTypeChoice::kSpot, 21));
+    const auto c = generate_lights(surface_options(room, 300, LightTypeChoice::kSpot, 22));
+    const auto d = generate_lights(surface_options(room, 300, LightTypeChoice::kPoint, 21));
+    ASSERT_TRUE(a.ok() && b.ok() && c.ok() && d.ok());
+    int same_as_other_seed = 0;
+    for (size_t i = 0; i < 300; ++i) {
+        EXPECT_EQ((*a)[i].position, (*b)[i].position);
+        EXPECT_EQ((*a)[i].direction, (*b)[i].direction);
+        EXPECT_EQ((*a)[i].guid, (*b)[i].guid);
+        EXPECT_EQ((*a)[i].position, (*d)[i].position);
+        if ((*a)[i].position == (*c)[i].position) ++same_as_other_seed;
+    }
+    EXPECT_EQ(same_as_other_seed, 0);
+}
+
+TEST(SurfaceLayout, HemisphericalSpotsSurviveAGltfRoundTrip) {
+    Scene room = make_room_scene();
+    LightLayoutOptions o = surface_options(room, 64, LightTypeChoice::kSpot, 1);
+    o.range = 2.0f;
+    o.intensity = 0.5f;
+    o.classic = true;
+    Result<std::vector<SceneLight>> lights = generate_lights(o);
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    room.lights = *lights;
+    const auto dir = lc::test::make_temp_dir("surface-lights");
+    ASSERT_TRUE(write_scene_gltf(room, dir / "room.gltf").ok());
+    Result<Scene> loaded = load_scene(dir / "room.gltf");
+    ASSERT_TRUE(loaded.ok()) << loaded.error();  // the loader refuses outer > pi/2
+    ASSERT_EQ(loaded->lights.size(), 64u);
+    for (size_t i = 0; i < 64; ++i) {
+        const SceneLight& l = loaded->lights[i];
+        EXPECT_EQ(l.outer_cone_angle, kHemisphereSpotOuter);
+        EXPECT_EQ(l.position, (*lights)[i].position);
+        EXPECT_NEAR(glm::length(l.direction - (*lights)[i].direction), 0.0f, 1e-6f);
+        EXPECT_EQ(l.range, 2.0f);
+        EXPECT_EQ(l.intensity, 0.5f);
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(SurfaceLayout, RefusesWhatItCannotPlace) {
+    const Scene room = make_room_scene();
+    auto error_of = [](const LightLayoutOptions& o) {
+        Result<std::vector<SceneLight>> r = generate_lights(o);
+        return r.ok() ? std::string("(no error)") : r.error();
+    };
+    EXPECT_THAT(error_of(surface_options(room, 4, LightTypeChoice::kDirectional)),
+                HasSubstr("directional lights have no position"));
+    LightLayoutOptions middle = surface_options(room, 4, LightTypeChoice::kPoint);
+    middle.box_min = {-1, 1, -1};
+    middle.box_max = {1, 2, 1};
+    EXPECT_THAT(error_of(middle), HasSubstr("no surface of the scene lies inside the box"));
+    LightLayoutOptions no_scene = surface_options(room, 4, LightTypeChoice::kPoint);
+    no_scene.surfaces = nullptr;
+    EXPECT_THAT(error_of(no_scene), HasSubstr("needs the scene's triangles"));
+    // The usual option checks come first.
+    LightLayoutOptions inverted = surface_options(room, 4, LightTypeChoice::kPoint);
+    inverted.box_min.x = 6.0f;
+    EXPECT_THAT(error_of(inverted), HasSubstr("inverted on axis x"));
+
+    // Only degenerate triangles: collinear and repeated vertices.
+    Scene flat;
+    Mesh line;
+    line.positions = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};
+    line.indices = {0, 1, 2, 0, 0, 1};
+    flat.meshes.push_back(line);
+    update_scene_bounds(flat);
+    EXPECT_THAT(error_of(surface_options(flat, 4, LightTypeChoice::kPoint)),
+                HasSubstr("no triangle with a non-zero area"));
+    // A bad index names its mesh and triangle.
+    Scene broken = flat;
+    broken.meshes[0].indices = {0, 1, 7};
+    EXPECT_THAT(error_of(surface_options(broken, 4, LightTypeChoice::kPoint)),
+                HasSubstr("mesh 0, triangle 0 has vertex index 7 out of range"));
+    broken.meshes[0].indices = {0, 1, 2};
+    broken.meshes[0].positions[1].y = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_THAT(error_of(surface_options(broken, 4, LightTypeChoice::kPoint)),
+                HasSubstr("mesh 0, triangle 0 has a non-finite vertex position"));
+
+    EXPECT_EQ(*parse_light_layout("surface"), LightLayout::kSurface);
+    EXPECT_THAT(parse_light_layout("walls").error(), HasSubstr("random, grid or surface"));
+}
+
+TEST(SurfaceLayout, SkipsDegenerateTrianglesInTheBox) {
+    Scene scene;
+    Mesh mesh;
+    // A sliver of zero area (its centroid in the box) and one real triangle.
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 0, 1}, {0, 1, 1}, {1, 0, 1}};
+    mesh.normals.assign(6, glm::vec3(0, 0, 1));
+    mesh.indices = {0, 1, 2, 3, 5, 4};
+    scene.meshes.push_back(mesh);
+    update_scene_bounds(scene);
+    Result<std::vector<SceneLight>> lights =
+        generate_lights(surface_options(scene, 500, LightTypeChoice::kPoint));
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    const double offset = expected_offset(scene);
+    for (const SceneLight& l : *lights) {
+        EXPECT_NEAR(l.position.z, 1.0 + offset, 1e-6);  // on the real one, its +Z side
+        EXPECT_FALSE(std::isnan(l.position.x));
+    }
+}
+
+// A million units from the origin a float step (0.0625) exceeds the offset
+// (0.0145): lights still stand in front of their surface, never on or behind it.
+TEST(SurfaceLayout, StaysInFrontOfItsSurfaceFarFromTheOrigin) {
+    Scene room = make_room_scene();
+    const glm::vec3 shift(1e6f, 0.0f, -1e6f);
+    for (Mesh& mesh : room.meshes) {
+        for (glm::vec3& p : mesh.positions) p += shift;
+    }
+    update_scene_bounds(room);
+    const double offset = expected_offset(room);
+    Result<std::vector<SceneLight>> lights =
+        generate_lights(surface_options(room, 2000, LightTypeChoice::kSpot, 4));
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    const std::vector<TestTriangle> tris = test_triangles(room);
+    for (const SceneLight& l : *lights) {
+        // Its surface: the triangle whose normal it shines along, in whose plane's front it is.
+        const glm::dvec3 p(l.position);
+        double height = -1.0;
+        for (const TestTriangle& t : tris) {
+            if (glm::length(glm::dvec3(l.direction) - t.front) < 1e-6) {
+                height = glm::dot(p - t.a, t.front);
+                break;
+            }
+        }
+        EXPECT_GE(height, 0.5 * offset);
+        EXPECT_LE(height, 0.2);  // a few float steps at most
+        EXPECT_TRUE(inside(l.position, kRoomMin + shift, kRoomMax + shift));
+    }
+}
+
+// The random and grid layouts are as they were before the surface layout
+// (values recorded from the earlier implementation, seed 7).
+TEST(LightLayouts, RandomAndGridAreUnchanged) {
+    const auto random =
+        generate_lights(options(3, LightLayout::kRandom, LightTypeChoice::kMixed, 7));
+    ASSERT_TRUE(random.ok()) << random.error();
+    const glm::vec3 positions[3] = {{0x1.6c22a6p+0f, 0x1.b7171ap-3f, 0x1.c8afc6p+0f},
+                                    {0x1.03390ep+0f, 0x1.286ef4p-1f, 0x1.96b616p+0f},
+                                    {-0x1.145622p+0f, 0x1.33336ap-1f, -0x1.ea689ep+0f}};
+    const glm::vec3 directions[3] = {{0.0f, -1.0f, 0.0f},
+                                     {0x1.b7473ep-2f, -0x1.c23a1ap-1f, -0x1.a749eep-3f},
+                                     {-0x1.799474p-1f, -0x1.3eed24p-1f, 0x1.0b4eecp-2f}};
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ((*random)[i].position, positions[i]) << i;
+        EXPECT_EQ((*random)[i].direction, directions[i]) << i;
+    }
+    const auto grid = generate_lights(options(5, LightLayout::kGrid, LightTypeChoice::kSpot, 7));
+    ASSERT_TRUE(grid.ok()) << grid.error();
+    const glm::vec3 cells[5] = {{-1, 0.5f, -2}, {1, 0.5f, -2}, {-1, 0.5f, 0}, {1, 0.5f, 0},
+                                {-1, 0.5f, 2}};
+    for (size_t i = 0; i < 5; ++i) EXPECT_EQ((*grid)[i].position, cells[i]) << i;
 }
 
 }  // namespace

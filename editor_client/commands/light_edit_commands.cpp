@@ -91,11 +91,14 @@ void add_add_lights(CLI::App& app) {
         "add-lights", "Add generated lights to a glTF scene (or to the empty room)");
     cmd->add_option("scene", o->scene, "glTF scene to add to; absent: the generated empty room");
     cmd->add_option("--count", o->count, "How many lights to add")->required();
-    cmd->add_option("--layout", o->layout, "random | grid")->required();
+    cmd->add_option("--layout", o->layout,
+                    "random | grid | surface (surface: on the scene's triangles)")
+        ->required();
     cmd->add_option("--seed", o->seed, "Seed of the random layout (default 0)");
     cmd->add_option("--type", o->type, "point | spot | directional | mixed (default point)");
     cmd->add_option("--box", o->box,
-                    "minx,miny,minz,maxx,maxy,maxz (default: inside the room or the scene)");
+                    "minx,miny,minz,maxx,maxy,maxz (default: inside the room or the scene; "
+                    "surface layout: triangles whose centroid is in it, default all)");
     CLI::Option* intensity =
         cmd->add_option("--intensity", o->intensity,
                         "Candela (point, spot) or lux (directional); default 10 cd and 1 lux");
@@ -125,10 +128,14 @@ void add_add_lights(CLI::App& app) {
                      " has no geometry or positioned lights to place lights in; give --box");
             }
         }
+        // Surface lights: every triangle of the scene qualifies unless --box
+        // says otherwise (a box inset from the walls would hold no wall's centroid).
+        if (layout.layout == LightLayout::kSurface) box = {scene.bounds_min, scene.bounds_max};
         if (!o->box.empty()) box = check(parse_box(o->box));
         layout.box_min = box.first;
         layout.box_max = box.second;
         layout.guid_salt = scene.guid;
+        layout.surfaces = &scene;
 
         std::vector<SceneLight> lights = check(generate_lights(layout));
         check(add_lights(scene, lights));
@@ -188,7 +195,8 @@ void add_make_scene(CLI::App& app) {
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("make-scene", "Write a procedural scene to glTF");
-    cmd->add_option("name", o->name, "room | furnished-room | thesis-fig91 | thesis-test1 | thesis-test2")
+    cmd->add_option("name", o->name,
+                    "room | furnished-room | thesis-fig91 | thesis-test1 | thesis-test2")
         ->required();
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
     cmd->callback([o] {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "editor_client/render/bound_walk.h"
+#include "editor_client/render/material_model.h"
 #include "editor_client/render/shading_model.h"
 #include "editor_client/render/shadow_bvh.h"
 #include "editor_client/render/shadow_ray.h"
@@ -59,21 +60,26 @@ Emitter emitter_of(const LightTreeNode& node) {
     return e;
 }
 
-glm::dvec3 brdf(const SurfacePoint& p) {
-    return {shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
-            shading::lambert(p.albedo.z)};
+bool has_lobe(const SurfacePoint& p) {
+    return p.exponent > 0.0 && (p.specular.x > 0.0 || p.specular.y > 0.0 || p.specular.z > 0.0);
 }
+
 
 // Outgoing radiance per unit RGB intensity: f_r * G (shading_model.h).
 glm::dvec3 unit_response(const Emitter& e, const SurfacePoint& p) {
     double G = 0.0;
+    glm::dvec3 l = -e.direction;
     if (e.type == LightType::kDirectional) {
-        G = std::max(glm::dot(p.normal, -e.direction), 0.0);
+        G = std::max(glm::dot(p.normal, l), 0.0);
+        // Stored directions are unit to float precision; a sharp lobe notices.
+        const double len = glm::length(l);
+        if (len > 0.0) l /= len;
     } else {
         const glm::dvec3 L = e.position - p.position;
         const double d2 = glm::dot(L, L);
         if (!(d2 > 0.0)) return glm::dvec3(0.0);
         const double d = std::sqrt(d2);
+        l = L / d;
         const double cos_theta = glm::dot(p.normal, L) / d;
         if (!(cos_theta > 0.0)) return glm::dvec3(0.0);
         G = shading::range_window(d, e.range) * cos_theta * shading::inverse_square(d2);
@@ -85,7 +91,7 @@ glm::dvec3 unit_response(const Emitter& e, const SurfacePoint& p) {
     if (G > 0.0 && p.occluders != nullptr)
         G *= light_visibility(*p.occluders, p.shadow_bias, e.type, e.position, e.direction,
                               p.position, p.normal);
-    return brdf(p) * G;
+    return material_response(p, l) * G;
 }
 
 double max_channel(const glm::dvec3& v) {
@@ -344,7 +350,29 @@ glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint
     }
     // A relative 1e-9 of slack absorbs the rounding of the bound's own arithmetic.
     const double G = geometric_bound(node, p) * (1.0 + 1e-9);
-    return brdf(p) * G * glm::dvec3(node.intensity);
+    if (!(G > 0.0)) return glm::dvec3(0.0);
+    return material_bound(node, p) * G * glm::dvec3(node.intensity);
+}
+
+glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
+    glm::dvec3 f(shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
+                 shading::lambert(p.albedo.z));
+    if (has_lobe(p)) f += p.specular * shading::glossy_lobe(glm::dot(p.mirror, l), p.exponent);
+    return f;
+}
+
+glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
+    glm::dvec3 f(shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
+                 shading::lambert(p.albedo.z));
+    if (!has_lobe(p)) return f;
+    const glm::dvec3 bmin(node.bbox_min);
+    const glm::dvec3 bmax(node.bbox_max);
+    // Directions towards the lights: -d_i for directional boxes, y - x otherwise.
+    const double cos_max = node.type == LightType::kDirectional
+                               ? max_cos_to_box(p.mirror, -bmax, -bmin)
+                               : max_cos_to_box(p.mirror, bmin - p.position, bmax - p.position);
+    // The lobe's own rounding (pow of a number near 1) gets the same slack as G.
+    return f + p.specular * (shading::glossy_lobe(cos_max, p.exponent) * (1.0 + 1e-9));
 }
 
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,

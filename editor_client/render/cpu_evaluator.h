@@ -17,6 +17,11 @@ struct SurfacePoint {
     glm::dvec3 position{0.0};
     glm::dvec3 normal{0.0, 0.0, 1.0};  // unit
     glm::dvec3 albedo{1.0};           // linear diffuse albedo
+    // The glossy lobe (material_model.h): F0 (0: none), exponent n, and its
+    // axis, the view's mirror direction (unit).
+    glm::dvec3 specular{0.0};
+    double exponent = 0.0;
+    glm::dvec3 mirror{0.0, 0.0, 1.0};
     // What may hide a light from this point (null: nothing, V = 1), and how
     // far its shadow rays start along the normal (shadow_ray.h). A light, or
     // a cluster's representative, whose contribution is not zero is shaded
@@ -74,6 +79,13 @@ glm::dvec3 shade_tree_leaves(const LightTree& tree, const SurfacePoint& p);
 // bound x geometric bound (visibility = 1) x cluster RGB intensity. Used by the
 // bound criterion; +inf for mixed_types junctions, which are always refined.
 glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint& p);
+// f_r at p towards the unit direction l: albedo / pi plus the glossy lobe
+// (material_model.h).
+glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l);
+// Upper bound, per channel, of the material's f_r at p over every light of the
+// node: the diffuse term plus the lobe at the largest cosine between the
+// mirror direction and a direction to the node's box (paper Sec. 4.1).
+glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p);
 // Lightcuts over the tree, plus the classic lights shaded one by one.
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);

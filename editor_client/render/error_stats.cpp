@@ -119,14 +119,24 @@ std::vector<uint8_t> error_heatmap(const ErrorStats& stats, std::span<const floa
 }
 
 float auto_exposure(std::span<const float> hdr) {
+    // Lit pixels only: a black ceiling above downward lights, or a shadow,
+    // would otherwise drag the log-average towards log(0) and wash out the
+    // rest of the image.
+    double brightest = 0.0;
+    for (size_t i = 0; i * 4 + 3 < hdr.size(); ++i) {
+        if (!is_geometry(hdr, i)) continue;
+        const double y = luminance(hdr, i);
+        if (std::isfinite(y)) brightest = std::max(brightest, y);
+    }
+    const double lit = kLitFraction * brightest;
     // Deterministic: a fixed-order sum in double.
     double log_sum = 0.0;
     uint64_t count = 0;
     for (size_t i = 0; i * 4 + 3 < hdr.size(); ++i) {
         if (!is_geometry(hdr, i)) continue;
         const double y = luminance(hdr, i);
-        if (!std::isfinite(y)) continue;
-        log_sum += std::log(1e-6 + std::max(y, 0.0));
+        if (!std::isfinite(y) || !(y > lit)) continue;
+        log_sum += std::log(y);
         ++count;
     }
     if (count == 0) return 1.0f;

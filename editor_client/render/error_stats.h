@@ -43,8 +43,10 @@ double fraction_over(const ErrorStats& stats, double threshold);
 std::vector<uint8_t> error_heatmap(const ErrorStats& stats, std::span<const float> reference,
                                    uint32_t width, uint32_t height, double error_ratio);
 
-// Exposure that maps the log-average luminance of the geometry pixels to 0.18
-// (Reinhard's key value); 1 when there is no lit geometry.
+// Exposure that maps the log-average luminance of the lit geometry pixels
+// (luminance above kLitFraction x the brightest) to 0.18, Reinhard's key
+// value; 1 when there is no lit geometry.
+inline constexpr double kLitFraction = 1e-4;
 float auto_exposure(std::span<const float> hdr);
 
 // RGBA8 display values of an RGBA float image (tone_mapping.h).

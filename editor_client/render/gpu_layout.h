@@ -94,11 +94,14 @@ struct alignas(16) GpuFrameConstants {
     uint32_t light_end = 0;
     uint32_t bvh_node_count = 0;  // shadow BVH nodes (0: nothing occludes)
     uint32_t pad = 0;
+    glm::vec3 eye{0.0f};  // camera position: the glossy lobe's view direction
+    float pad2 = 0.0f;
 };
 
 // Push constants of one G-buffer draw (shaders/draw_constants.glsl).
 inline constexpr uint32_t kDrawBaseColorTexture = 1u << 0;
 inline constexpr uint32_t kDrawEmissiveTexture = 1u << 1;
+inline constexpr uint32_t kDrawMetallicRoughnessTexture = 1u << 2;
 struct alignas(16) GpuDrawConstants {
     glm::mat4 view_proj{1.0f};
     glm::vec4 base_color_factor{1.0f};
@@ -131,7 +134,8 @@ static_assert(offsetof(GpuNodeBounds, cone_axis) == 32);
 static_assert(sizeof(GpuFrameCounters) == 32);
 static_assert(offsetof(GpuFrameCounters, loop_limit_stops) == 16);
 static_assert(offsetof(GpuFrameCounters, shadow_rays) == 20);
-static_assert(sizeof(GpuFrameConstants) == 48);
+static_assert(sizeof(GpuFrameConstants) == 64);
+static_assert(offsetof(GpuFrameConstants, eye) == 48);
 static_assert(offsetof(GpuFrameConstants, shadow_bias) == 28);
 static_assert(offsetof(GpuFrameConstants, light_begin) == 32);
 static_assert(offsetof(GpuFrameConstants, bvh_node_count) == 40);

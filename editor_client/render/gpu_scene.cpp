@@ -43,7 +43,7 @@ Result<vk::Image> upload_texture(const vk::Context& context, const Texture& text
     desc.width = uint32_t(texture.width);
     desc.height = uint32_t(texture.height);
     // Base colour and emissive textures are sRGB-encoded: the format decodes them.
-    desc.format = VK_FORMAT_R8G8B8A8_SRGB;
+    desc.format = texture.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
     desc.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     Result<vk::Image> image = vk::Image::create(context.device(), desc);
     if (!image) return make_error(image.error());
@@ -116,8 +116,8 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     if (!sampler) return make_error(sampler.error());
     gpu.sampler_ = std::move(sampler).value();
 
-    std::array<VkDescriptorSetLayoutBinding, 2> bindings{};
-    for (uint32_t b = 0; b < 2; ++b) {
+    std::array<VkDescriptorSetLayoutBinding, 3> bindings{};
+    for (uint32_t b = 0; b < 3; ++b) {
         bindings[b].binding = b;
         bindings[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         bindings[b].descriptorCount = 1;
@@ -133,7 +133,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     materials.push_back(Material{});
     const uint32_t set_count = uint32_t(materials.size());
     std::array<VkDescriptorPoolSize, 1> sizes{
-        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 * set_count}};
+        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * set_count}};
     Result<vk::DescriptorPool> pool = vk::DescriptorPool::create(device.handle(), set_count, sizes);
     if (!pool) return make_error(pool.error());
     gpu.material_pool_ = std::move(pool).value();
@@ -153,12 +153,15 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         out.roughness = material.roughness;
         size_t base = texture_index(material.base_color_texture, kDrawBaseColorTexture, out.flags);
         size_t emissive = texture_index(material.emissive_texture, kDrawEmissiveTexture, out.flags);
+        size_t metallic_roughness = texture_index(material.metallic_roughness_texture,
+                                                  kDrawMetallicRoughnessTexture, out.flags);
         Result<VkDescriptorSet> set = gpu.material_pool_.allocate(gpu.material_layout_);
         if (!set) return make_error(set.error());
         out.set = *set;
         vk::DescriptorWriter(out.set)
             .sampled_image(0, gpu.textures_[base].view(), gpu.sampler_.handle())
             .sampled_image(1, gpu.textures_[emissive].view(), gpu.sampler_.handle())
+            .sampled_image(2, gpu.textures_[metallic_roughness].view(), gpu.sampler_.handle())
             .update(device.handle());
         gpu.materials_.push_back(out);
     }

@@ -1,7 +1,8 @@
 #pragma once
 // The scene's geometry and materials on the GPU: one vertex and one index
-// buffer for every mesh, sRGB textures, and one descriptor set per material
-// (base colour and emissive textures; a white texel stands in for none).
+// buffer for every mesh, textures, and one descriptor set per material (base
+// colour, emissive and metallic-roughness textures; a white texel stands in
+// for none).
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
@@ -39,7 +40,7 @@ struct GpuMaterial {
     glm::vec3 emissive_factor{0.0f};
     float metallic = 1.0f;
     float roughness = 1.0f;
-    uint32_t flags = 0;  // kDrawBaseColorTexture | kDrawEmissiveTexture
+    uint32_t flags = 0;  // kDraw*Texture bits (gpu_layout.h)
 };
 
 class GpuScene {

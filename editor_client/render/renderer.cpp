@@ -49,6 +49,7 @@ enum SpecId : uint32_t {
     kSpecWalkMargin = 17,  // float bits
     kSpecWalkBisections = 18,
     kSpecShadows = 19,  // shadow_rays.glsl
+    kSpecSpecular = 20,  // material_model.glsl
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -459,7 +460,8 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
             .set_bool(kSpecRangeWindow, effects_.range_window)
             .set_bool(kSpecClassicLights, effects_.classic_lights)
             .set_bool(kSpecEmissive, effects_.emissive)
-            .set_bool(kSpecShadows, effects_.shadows && !shadow_bvh_.empty());
+            .set_bool(kSpecShadows, effects_.shadows && !shadow_bvh_.empty())
+            .set_bool(kSpecSpecular, effects_.specular);
         if (mode != RenderMode::kReference) {
             // The heap needs room for one refinement (two children) even at
             // max-cut 1; the walk keeps no heap, so its array stays minimal.
@@ -631,6 +633,8 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     constants.bvh_node_count = shadows ? uint32_t(shadow_bvh_.gpu_nodes().size()) : 0u;
     constants.light_begin = 0;
     constants.light_end = leaf_count_;
+    constants.eye = settings.camera.eye;
+    last_eye_ = settings.camera.eye;
     const uint32_t groups_x =
         (targets_.width + options_.workgroup_size - 1) / options_.workgroup_size;
     const uint32_t groups_y =
@@ -809,6 +813,7 @@ Result<std::vector<uint32_t>> Renderer::read_cuts() const {
 
 Result<GBufferReadback> Renderer::read_gbuffer() const {
     GBufferReadback g;
+    g.eye = last_eye_;
     g.width = targets_.width;
     g.height = targets_.height;
     std::array<std::pair<const vk::Image*, std::vector<float>*>, 4> planes{

@@ -41,11 +41,12 @@ struct RendererOptions {
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
 struct GBufferReadback {
+    glm::vec3 eye{0.0f};  // the camera of the frame (the glossy lobe's view)
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<float> position;  // w = 1 on geometry
-    std::vector<float> normal;
-    std::vector<float> albedo;
+    std::vector<float> normal;    // w: roughness
+    std::vector<float> albedo;    // base colour, w: metallic
     std::vector<float> emissive;
 };
 
@@ -149,6 +150,7 @@ private:
     vk::Buffer node_bounds_;  // GpuNodeBounds per tree node (bound criterion)
     ShadowBvh shadow_bvh_;
     float shadow_bias_ = 0.0f;
+    glm::vec3 last_eye_{0.0f};  // camera of the last frame (read_gbuffer)
     vk::Buffer bvh_nodes_;         // GpuBvhNode, pre-order
     vk::Buffer shadow_triangles_;  // GpuShadowTriangle, in leaf order
     vk::TimestampQueryPool timestamps_;

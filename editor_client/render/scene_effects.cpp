@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "editor_client/render/material_model.h"
 #include "editor_client/render/occlusion_analysis.h"
 
 namespace lc::client {
@@ -50,11 +51,11 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> directions;
     if (tree != nullptr) {
-        // Clusters are evaluated through their representative, which shares
-        // its leaf's type and range; mixed-type junctions are never evaluated.
+        // Clusters are evaluated through their representative, a leaf with
+        // its type and range, so the leaves are every light that is shaded.
         for (const LightTreeNode& node : tree->nodes) {
-            if (!node.mixed_types) census.add(node.type, node.range);
             if (!node.is_leaf()) continue;
+            census.add(node.type, node.range);
             if (node.type == LightType::kDirectional) {
                 directions.push_back(node.direction);
             } else {
@@ -77,10 +78,14 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
             positions.push_back(light.position);
         }
     }
-    const char* source = tree != nullptr ? "the tree and the classic lights" : "the scene";
+    const std::string has =
+        tree != nullptr ? "the tree and the classic lights have " : "the scene has ";
 
     bool textured = false;
     bool emissive = false;
+    size_t glossy_materials = 0;
+    bool glossy_texture = false;
+    std::vector<bool> counted(scene.materials.size(), false);
     for (const Mesh& mesh : scene.meshes) {
         if (mesh.indices.empty()) continue;
         if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
@@ -92,6 +97,18 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         bool emits = glm::any(glm::greaterThan(m.emissive_factor, glm::vec3(0.0f)));
         if (emits) emissive = true;
         if (emits && valid_texture(m.emissive_texture)) textured = true;
+        // A lobe exists where roughness < 1 (n > 0) and F0 > 0; a texture can
+        // lower the roughness anywhere.
+        const bool textured_lobe = valid_texture(m.metallic_roughness_texture);
+        if (textured_lobe) textured = glossy_texture = true;
+        const shading::SurfaceMaterial lobe = shading::surface_material(
+            glm::dvec3(m.base_color_factor), m.metallic, m.roughness);
+        const bool lobe_present = lobe.exponent > 0.0 && glm::any(glm::greaterThan(
+                                                             lobe.specular, glm::dvec3(0.0)));
+        if ((lobe_present || textured_lobe) && !counted[size_t(mesh.material)]) {
+            counted[size_t(mesh.material)] = true;
+            ++glossy_materials;
+        }
     }
 
     SceneEffects effects;
@@ -103,24 +120,21 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     size_t points = census.of(LightType::kPoint), spots = census.of(LightType::kSpot),
            directionals = census.of(LightType::kDirectional);
     effects.point_lights = decide("point lights (inverse-square falloff)", points > 0,
-                                  std::string(source) + " has " + plural(points, "point light"),
-                                  std::string(source) + " has no point lights");
+                                  has + plural(points, "point light"), has + "no point lights");
     effects.spot_lights = decide("spot cone attenuation", spots > 0,
-                                 std::string(source) + " has " + plural(spots, "spot light"),
-                                 std::string(source) + " has no spot lights");
+                                 has + plural(spots, "spot light"), has + "no spot lights");
     effects.directional_lights =
-        decide("directional lights", directionals > 0,
-               std::string(source) + " has " + plural(directionals, "directional light"),
-               std::string(source) + " has no directional lights");
+        decide("directional lights", directionals > 0, has + plural(directionals, "directional light"),
+               has + "no directional lights");
     effects.range_window = decide("range windowing (KHR_lights_punctual)", census.with_range > 0,
                                   plural(census.with_range, "light") + " with a range",
                                   "no point or spot light has a range");
     effects.classic_lights =
         decide("classic lights (shaded one by one)", census.classic > 0,
                plural(census.classic, "light") + " marked classic", "no light is marked classic");
-    effects.textures =
-        decide("base colour and emissive textures", textured, "a drawn material samples a texture",
-               "no drawn material has a texture (with texture coordinates)");
+    effects.textures = decide("base colour, emissive and metallic-roughness textures", textured,
+                              "a drawn material samples a texture",
+                              "no drawn material has a texture (with texture coordinates)");
     effects.emissive =
         decide("emissive surfaces", emissive, "a drawn material has a non-zero emissive factor",
                "no drawn material emits light");
@@ -134,9 +148,13 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         effects.shadows = decide(shadows, occlusion.possible, why, why + "; V = 1");
         effects.occluders = std::move(occlusion.occluders);
     }
+    effects.specular = decide(
+        "glossy reflection (a lobe around the mirror direction, material_model.h)",
+        glossy_materials > 0,
+        plural(glossy_materials, "drawn material") + " with roughness below 1" +
+            (glossy_texture ? " or a metallic-roughness texture" : ""),
+        "every drawn material has roughness 1, where the lobe is constant and shades as Lambert");
     // Effects the renderer does not simulate yet, stated so nobody assumes them.
-    decide("specular reflection", false, "",
-           "not implemented yet: the shading model is Lambert on the base colour");
     decide("indirect lighting (virtual point lights)", false, "",
            "not implemented yet: direct lighting only");
     return effects;

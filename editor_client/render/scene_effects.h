@@ -29,6 +29,7 @@ struct SceneEffects {
     bool classic_lights = false;
     bool emissive = false;
     bool shadows = false;  // shadow rays (visibility) for tree and classic lights
+    bool specular = false;  // the glossy lobe (material_model.h)
     // What shadow rays test: three vertices per triangle (occlusion_analysis.h).
     std::vector<glm::vec3> occluders;
 

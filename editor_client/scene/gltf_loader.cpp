@@ -245,7 +245,10 @@ private:
     Status validate_node_graph();
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
-    Result<int> texture_for(const tg::TextureInfo& info, const std::string& what);
+    // `srgb`: colour data (base colour, emissive) rather than linear data
+    // (metallic-roughness); an image used both ways becomes two textures.
+    Result<int> texture_for(const tg::TextureInfo& info, const std::string& what,
+                            bool srgb = true);
     Status traverse(const std::vector<int>& roots);
     Result<glm::dmat4> local_transform(int node_index) const;
     Status add_mesh(int node_index, int mesh_index, const glm::dmat4& world);
@@ -269,7 +272,7 @@ private:
     std::vector<std::string>& warnings_;
     tg::Model model_;
     Scene scene_;
-    std::map<int, int> image_to_texture_;     // glTF image -> Scene::textures
+    std::map<std::pair<int, bool>, int> image_to_texture_;  // (glTF image, sRGB) -> Scene::textures
     std::vector<glm::dvec3> camera_forward_;  // per Scene::cameras entry, for finish_cameras()
 };
 
@@ -386,7 +389,7 @@ Result<std::vector<int>> Loader::scene_roots() {
     return roots;
 }
 
-Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& what) {
+Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& what, bool srgb) {
     if (info.index < 0) return -1;
     if (info.index >= static_cast<int>(model_.textures.size())) {
         return fail(what + " uses texture " + std::to_string(info.index) +
@@ -405,7 +408,8 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
         warn(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
              "; only TEXCOORD_0 is loaded, so it is sampled with TEXCOORD_0");
     }
-    auto found = image_to_texture_.find(texture.source);
+    const std::pair<int, bool> key{texture.source, srgb};
+    auto found = image_to_texture_.find(key);
     if (found != image_to_texture_.end()) return found->second;
 
     const tg::Image& image = model_.images[size_t(texture.source)];
@@ -416,10 +420,11 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
         image.component > 4 || bytes_per_channel == 0 || image.image.size() != expected) {
         warn(what + ": image " + std::to_string(texture.source) +
              " has no usable pixels; the texture is ignored");
-        image_to_texture_[texture.source] = -1;
+        image_to_texture_[key] = -1;
         return -1;
     }
     Texture out;
+    out.srgb = srgb;
     out.width = image.width;
     out.height = image.height;
     out.rgba8.resize(size_t(image.width) * size_t(image.height) * 4);
@@ -442,7 +447,7 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
     }
     const int index = static_cast<int>(scene_.textures.size());
     scene_.textures.push_back(std::move(out));
-    image_to_texture_[texture.source] = index;
+    image_to_texture_[key] = index;
     return index;
 }
 
@@ -492,6 +497,11 @@ Status Loader::convert_materials() {
         Result<int> emissive_texture = texture_for(in.emissiveTexture, what + " emissiveTexture");
         if (!emissive_texture) return Error{emissive_texture.error()};
         out.emissive_texture = *emissive_texture;
+        Result<int> metallic_roughness_texture =
+            texture_for(in.pbrMetallicRoughness.metallicRoughnessTexture,
+                        what + " metallicRoughnessTexture", /*srgb=*/false);
+        if (!metallic_roughness_texture) return Error{metallic_roughness_texture.error()};
+        out.metallic_roughness_texture = *metallic_roughness_texture;
         // Light passes through blended and transmissive surfaces (a lamp's
         // glass): they are drawn opaque but hide no light.
         double transmission = 0.0;

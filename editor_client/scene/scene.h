@@ -19,7 +19,10 @@ namespace lc::client {
 struct Texture {
     int width = 0;
     int height = 0;
-    std::vector<uint8_t> rgba8;  // base colour and emissive textures are sRGB-encoded
+    std::vector<uint8_t> rgba8;
+    // Base colour and emissive textures are sRGB-encoded; metallic-roughness
+    // textures hold linear data (G: roughness, B: metallic).
+    bool srgb = true;
 };
 
 struct Material {
@@ -27,6 +30,7 @@ struct Material {
     int base_color_texture = -1;  // index into Scene::textures
     float metallic = 1.0f;        // glTF defaults
     float roughness = 1.0f;
+    int metallic_roughness_texture = -1;  // scales roughness (G) and metallic (B)
     glm::vec3 emissive_factor{0.0f};
     int emissive_texture = -1;
     // False for surfaces light passes through (alphaMode BLEND, or a

@@ -1,10 +1,13 @@
 #include "editor_client/scene/scene_generator.h"
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <numbers>
 
 #include "editor_client/scene/gltf_loader.h"
@@ -193,7 +196,9 @@ void finish(Scene& scene) {
 Result<LightLayout> parse_light_layout(std::string_view text) {
     if (text == "random") return LightLayout::kRandom;
     if (text == "grid") return LightLayout::kGrid;
-    return make_error("unknown light layout '" + std::string(text) + "' (expected random or grid)");
+    if (text == "surface") return LightLayout::kSurface;
+    return make_error("unknown light layout '" + std::string(text) +
+                      "' (expected random, grid or surface)");
 }
 
 Result<LightTypeChoice> parse_light_type_choice(std::string_view text) {
@@ -205,7 +210,9 @@ Result<LightTypeChoice> parse_light_type_choice(std::string_view text) {
                       "' (expected point, spot, directional or mixed)");
 }
 
-Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& options) {
+namespace {
+
+Status check_layout_options(const LightLayoutOptions& options) {
     if (options.count == 0) return make_error("the light count must be at least 1");
     if (options.count > kMaxSceneLights) {
         return make_error("the light count " + std::to_string(options.count) +
@@ -227,6 +234,170 @@ Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& option
     if (!std::isfinite(options.range) || options.range < 0.0f) {
         return make_error("the range must be finite and >= 0 (0: unbounded)");
     }
+    return Ok{};
+}
+
+// A triangle the surface layout may place lights on, in double precision.
+struct SurfaceTriangle {
+    glm::dvec3 a, b, c;
+    glm::dvec3 front;  // unit geometric normal, turned to the side the shading normal faces
+};
+
+struct SurfaceSelection {
+    std::vector<SurfaceTriangle> triangles;
+    std::vector<double> cumulative_area;  // prefix sums of the areas, for area-weighted picks
+    double scene_diagonal = 0.0;          // of every mesh, inside the box or not
+    size_t usable_triangles = 0;          // non-degenerate ones anywhere in the scene
+};
+
+std::string box_text(const glm::vec3& lo, const glm::vec3& hi) {
+    char text[160];
+    std::snprintf(text, sizeof(text), "(%g, %g, %g) - (%g, %g, %g)", lo.x, lo.y, lo.z, hi.x, hi.y,
+                  hi.z);
+    return text;
+}
+
+// The non-degenerate triangles whose centroid lies in [lo, hi] (inclusive).
+Result<SurfaceSelection> select_surfaces(const Scene& scene, const glm::dvec3& lo,
+                                         const glm::dvec3& hi) {
+    SurfaceSelection selection;
+    glm::dvec3 scene_min(std::numeric_limits<double>::max());
+    glm::dvec3 scene_max(std::numeric_limits<double>::lowest());
+    double total_area = 0.0;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        const bool has_normals = mesh.normals.size() == mesh.positions.size();
+        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+            auto what = [&] {
+                return "mesh " + std::to_string(m) + ", triangle " + std::to_string(t / 3);
+            };
+            std::array<glm::dvec3, 3> v;
+            glm::dvec3 shading_sum(0.0);
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t index = mesh.indices[t + k];
+                if (index >= mesh.positions.size()) {
+                    return make_error(what() + " has vertex index " + std::to_string(index) +
+                                      " out of range (" + std::to_string(mesh.positions.size()) +
+                                      " positions)");
+                }
+                v[k] = glm::dvec3(mesh.positions[index]);
+                if (!std::isfinite(v[k].x) || !std::isfinite(v[k].y) || !std::isfinite(v[k].z)) {
+                    return make_error(what() + " has a non-finite vertex position");
+                }
+                if (has_normals) shading_sum += glm::dvec3(mesh.normals[index]);
+                scene_min = glm::min(scene_min, v[k]);
+                scene_max = glm::max(scene_max, v[k]);
+            }
+            const glm::dvec3 cross = glm::cross(v[1] - v[0], v[2] - v[0]);
+            const double twice_area = glm::length(cross);
+            if (!(twice_area > 0.0) || !std::isfinite(twice_area)) continue;  // degenerate
+            ++selection.usable_triangles;
+            const glm::dvec3 centroid = (v[0] + v[1] + v[2]) / 3.0;
+            if (glm::any(glm::lessThan(centroid, lo)) || glm::any(glm::greaterThan(centroid, hi))) {
+                continue;
+            }
+            glm::dvec3 front = cross / twice_area;
+            // Vertex normals say which side the surface shows; without any
+            // (or if they cancel out), the winding's side.
+            const double side = glm::dot(front, shading_sum);
+            if (std::isfinite(side) && side < 0.0) front = -front;
+            selection.triangles.push_back({v[0], v[1], v[2], front});
+            total_area += 0.5 * twice_area;
+            selection.cumulative_area.push_back(total_area);
+        }
+    }
+    if (selection.usable_triangles > 0) {
+        selection.scene_diagonal = glm::length(scene_max - scene_min);
+    }
+    return selection;
+}
+
+// Surface layout: see generate_lights in the header.
+Result<std::vector<SceneLight>> generate_surface_lights(const LightLayoutOptions& options) {
+    if (options.type == LightTypeChoice::kDirectional) {
+        return make_error("the surface layout places lights on surfaces; directional lights have "
+                          "no position there (use point, spot or mixed)");
+    }
+    if (options.surfaces == nullptr) {
+        return make_error("the surface layout needs the scene's triangles, and no scene was given");
+    }
+    const glm::dvec3 lo(options.box_min);
+    const glm::dvec3 hi(options.box_max);
+    Result<SurfaceSelection> selected = select_surfaces(*options.surfaces, lo, hi);
+    if (!selected) return make_error(selected.error());
+    const SurfaceSelection& selection = selected.value();
+    if (selection.usable_triangles == 0) {
+        return make_error("the scene has no triangle with a non-zero area to place lights on");
+    }
+    if (selection.triangles.empty()) {
+        return make_error("no surface of the scene lies inside the box " +
+                          box_text(options.box_min, options.box_max) + " (no centroid of its " +
+                          std::to_string(selection.usable_triangles) +
+                          " triangles is in it); give a --box around some surfaces");
+    }
+    // A light exactly on its surface would light that surface at cos = 0 and
+    // make the surface's own shading degenerate (0/0 direction at the light's
+    // foot), so it stands a little in front of it.
+    const double offset = kSurfaceLightOffset * selection.scene_diagonal;
+    const double total_area = selection.cumulative_area.back();
+    SplitMix64 rng(options.seed);
+
+    std::vector<SceneLight> lights;
+    lights.reserve(options.count);
+    for (uint32_t i = 0; i < options.count; ++i) {
+        // Three draws per light whatever its type, so positions do not depend on types.
+        const double pick = rng.uniform() * total_area;
+        const double u1 = rng.uniform();
+        const double u2 = rng.uniform();
+        const size_t t = std::min(
+            size_t(std::upper_bound(selection.cumulative_area.begin(),
+                                    selection.cumulative_area.end(), pick) -
+                   selection.cumulative_area.begin()),
+            selection.triangles.size() - 1);
+        const SurfaceTriangle& tri = selection.triangles[t];
+        // Uniform over the triangle: barycentrics (1 - sqrt(u1), sqrt(u1)(1 - u2), sqrt(u1) u2).
+        const double s = std::sqrt(u1);
+        const glm::dvec3 on_surface = (1.0 - s) * tri.a + s * (1.0 - u2) * tri.b + s * u2 * tri.c;
+        // Far from the origin a float step may exceed the offset and round the
+        // light onto or behind its surface: double the offset until it is in front.
+        glm::vec3 position(0.0f);
+        bool placed = false;
+        for (int attempt = 0; attempt < 64 && !placed; ++attempt) {
+            position = glm::vec3(on_surface + std::ldexp(offset, attempt) * tri.front);
+            const double height = glm::dot(glm::dvec3(position) - tri.a, tri.front);
+            placed = std::isfinite(height) && height >= 0.5 * offset;
+        }
+        if (!placed) {
+            return make_error("cannot place a light in front of a surface in float precision "
+                              "(is the scene finite?)");
+        }
+
+        SceneLight light;
+        light.guid = generated_light_guid(options.guid_salt, options.seed, i);
+        const bool spot = options.type == LightTypeChoice::kSpot ||
+                          (options.type == LightTypeChoice::kMixed && i % 2 == 1);
+        light.type = spot ? LightType::kSpot : LightType::kPoint;
+        light.position = position;
+        light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+        light.range = options.range;
+        light.classic = options.classic;
+        light.intensity = options.intensity.value_or(kDefaultPointIntensity);
+        if (spot) {
+            // A hemispherical emitter: it lights only the side its surface faces.
+            light.direction = glm::vec3(tri.front);
+            light.inner_cone_angle = 0.0f;
+            light.outer_cone_angle = kHemisphereSpotOuter;
+        }
+        lights.push_back(light);
+    }
+    return lights;
+}
+
+}  // namespace
+
+Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& options) {
+    if (Status valid = check_layout_options(options); !valid) return make_error(valid.error());
+    if (options.layout == LightLayout::kSurface) return generate_surface_lights(options);
 
     const glm::dvec3 lo(options.box_min);
     const glm::dvec3 extent = glm::dvec3(options.box_max) - lo;
@@ -337,6 +508,19 @@ Scene make_furnished_room_scene() {
     Scene scene = make_room_scene();
     scene.materials.push_back(diffuse(0.45f));
     const int furniture = int(scene.materials.size()) - 1;
+    // A varnished floor and a brushed-steel cabinet: glossy lobes
+    // (material_model.h) with highlights from the lights above them.
+    Material varnish = diffuse(0.0f);
+    varnish.base_color_factor = {0.45f, 0.36f, 0.28f, 1.0f};
+    varnish.roughness = 0.35f;
+    scene.materials.push_back(varnish);
+    scene.meshes.front().material = int(scene.materials.size()) - 1;  // the floor quad
+    Material steel = diffuse(0.0f);
+    steel.base_color_factor = {0.75f, 0.75f, 0.78f, 1.0f};
+    steel.metallic = 1.0f;
+    steel.roughness = 0.55f;
+    scene.materials.push_back(steel);
+    const int cabinet = int(scene.materials.size()) - 1;
     // A table (top and four legs) in the middle of the floor.
     add_box(scene, {-1.2f, 0.72f, -0.8f}, {1.2f, 0.78f, 0.8f}, furniture);
     for (float x : {-1.1f, 1.02f}) {
@@ -347,7 +531,7 @@ Scene make_furnished_room_scene() {
     add_box(scene, {-3.3f, 0.0f, -2.3f}, {-2.7f, 3.0f, -1.7f}, furniture);
     add_box(scene, {2.7f, 0.0f, -2.3f}, {3.3f, 3.0f, -1.7f}, furniture);
     add_box(scene, {-4.99f, 0.0f, 1.0f}, {-2.0f, 2.2f, 1.1f}, furniture);
-    add_box(scene, {2.5f, 0.0f, -4.99f}, {4.5f, 1.4f, -4.3f}, furniture);
+    add_box(scene, {2.5f, 0.0f, -4.99f}, {4.5f, 1.4f, -4.3f}, cabinet);
     finish(scene);
     return scene;
 }

@@ -6,6 +6,7 @@
 // point (x, y, z) to glTF (x, z, -y), a rotation, so distances, radii and the
 // trees built from them are the thesis's.
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,7 +18,7 @@
 
 namespace lc::client {
 
-enum class LightLayout : uint8_t { kRandom = 0, kGrid = 1 };
+enum class LightLayout : uint8_t { kRandom = 0, kGrid = 1, kSurface = 2 };
 enum class LightTypeChoice : uint8_t { kPoint = 0, kSpot = 1, kDirectional = 2, kMixed = 3 };
 
 Result<LightLayout> parse_light_layout(std::string_view text);
@@ -30,6 +31,14 @@ inline constexpr float kDefaultDirectionalIntensity = 1.0f;
 // Spot cones of generated spot lights (radians).
 inline constexpr float kGeneratedSpotInner = 0.25f;
 inline constexpr float kGeneratedSpotOuter = 0.7853982f;  // pi/4
+// Spots of the surface layout are hemispherical emitters: inner cone 0, outer
+// cone glTF's largest, pi/2. The largest float not above pi/2, because the
+// float nearest pi/2 is above it and the glTF loader (in double) refuses it.
+inline constexpr float kHemisphereSpotOuter = 1.57079625f;
+static_assert(double(kHemisphereSpotOuter) <= std::numbers::pi / 2.0 &&
+              std::numbers::pi / 2.0 - double(kHemisphereSpotOuter) < 1e-7);
+// Surface lights sit this fraction of the scene's diagonal in front of their surface.
+inline constexpr double kSurfaceLightOffset = 1e-3;
 
 struct LightLayoutOptions {
     uint32_t count = 16;
@@ -44,12 +53,21 @@ struct LightLayoutOptions {
     // Mixed into the generated GUIDs (add-lights passes the scene's GUID), so
     // adding to a scene twice with one seed still gives distinct GUIDs.
     Guid guid_salt;
+    // The scene whose triangles the surface layout samples (must outlive the
+    // call); unused by the random and grid layouts.
+    const Scene* surfaces = nullptr;
 };
 
 // Random: uniform in the box, spots aimed down within 30 degrees, directional
 // lights down within 60 degrees. Grid: cell centres of the most cubic grid of
 // at least `count` cells that fits the box, filled in x, then z, then y order;
 // spots and directional lights aim straight down (-Y).
+// Surface: on the triangles of `options.surfaces` whose centroid lies in the
+// box (zero-area ones skipped), area-weighted, each light moved
+// kSurfaceLightOffset x the scene's diagonal along the triangle's geometric
+// normal, to the side its shading normal faces. Spots are hemispherical
+// emitters aimed along that normal; mixed is point and spot in turn;
+// directional lights are refused (they have no position on a surface).
 Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& options);
 
 // The empty room: floor, ceiling and four walls as inward-facing quads,
@@ -61,8 +79,9 @@ inline constexpr glm::vec3 kRoomMax{5.0f, 3.0f, 5.0f};
 inline constexpr glm::vec3 kRoomLightBoxMin{-4.7f, 0.3f, -4.7f};
 inline constexpr glm::vec3 kRoomLightBoxMax{4.7f, 2.7f, 4.7f};
 Scene make_room_scene();
-// The room with furniture that casts shadows: a table, two pillars, a
-// partition wall and a cabinet (one darker diffuse material).
+// The room with furniture that casts shadows: a table, two pillars and a
+// partition wall (darker diffuse), a brushed-steel cabinet, and a varnished
+// floor (glossy, material_model.h).
 Scene make_furnished_room_scene();
 
 // Thesis Figure 9.1: five point lights of radius (range) 250 at height 150
