@@ -3,12 +3,12 @@
 // field for field in shaders/common_lighting.glsl (float). Tests compare them.
 //
 // Radiance leaving a surface point x with normal n towards the camera, from one
-// light:  L = f_r * E,  E = I * color * G * V, with V = 1 (no shadows yet).
+// light:  L = f_r * E,  E = I * color * G * V (V: shadow_ray.h; f_r: material_model.h).
 //   point/spot:  G = window(d, range) * max(cos_theta, 0) / max(d^2, kMinDistance^2)
 //                window(d, range) = clamp(1 - (d/range)^4, 0, 1)^2 (KHR_lights_punctual)
 //                spot: G *= clamp((cos_s - cos_outer) / max(cos_inner - cos_outer, 1e-4), 0, 1)^2
 //   directional: G = max(cos_theta, 0) (intensity in lux)
-//   f_r (Lambert) = albedo / pi
+//   f_r = diffuse albedo / pi + the glossy lobe (material_model.h)
 #include <algorithm>
 #include <cmath>
 #include <numbers>
