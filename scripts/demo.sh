@@ -37,9 +37,9 @@ for mode in reference lightcuts cuts cutsize; do
       -o "$out/room_$mode.png" --float "$out/room_$mode.pfm" --stats "$out/room_$mode.json"
 done
 
-# The same room furnished (a table, two pillars, a partition, a cabinet) with 1,024 unbounded
-# point lights: the scene analysis turns shadows on here (it found none to trace in the empty
-# room above) and the stats say why. `error` renders lightcuts and the reference, both with
+# The same room furnished (a table, two pillars, a partition, a steel cabinet, a varnished
+# floor) with 1,024 unbounded point lights: the scene analysis turns shadows and glossy
+# reflection on here (it found neither in the empty room above) and the stats say why. `error` renders lightcuts and the reference, both with
 # shadow rays, and writes the relative error as a heatmap.
 "$bin/editor_client" make-scene furnished-room -o "$out/furnished_empty.gltf"
 "$bin/editor_client" add-lights "$out/furnished_empty.gltf" --count 1024 --layout random --type point \
@@ -55,9 +55,10 @@ import json, sys
 for path in sys.argv[1:]:
     s = json.load(open(path))
     for d in s["effects_simulated"] + s["effects_skipped"]:
-        if d["name"].startswith("shadows"):
-            on = d in s["effects_simulated"]
-            print("demo: %s: shadows %s (%s)" % (path, "on" if on else "off", d["reason"]))
+        for effect in ("shadows", "glossy"):
+            if d["name"].startswith(effect):
+                on = d in s["effects_simulated"]
+                print("demo: %s: %s %s (%s)" % (path, effect, "on" if on else "off", d["reason"]))
 PY
 echo "demo: images and stats in $out/"
 ls -1 "$out"

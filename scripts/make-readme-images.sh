@@ -23,7 +23,7 @@ for mode in "${modes[@]}"; do
       -o "$img/room_$mode.png" --stats "$work/room_$mode.json" 2> /dev/null | tail -1
 done
 
-# The furnished room of demo.sh: 1,024 unbounded point lights, shadow rays on.
+# The furnished room of demo.sh: 1,024 unbounded point lights, shadow rays and glossy lobes on.
 "$bin/editor_client" make-scene furnished-room -o "$work/furnished_empty.gltf" > /dev/null
 "$bin/editor_client" add-lights "$work/furnished_empty.gltf" --count 1024 --layout random --type point \
     --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity 0.8 --range 0 --seed 9 -o "$work/furnished.gltf" > /dev/null
