@@ -31,10 +31,15 @@ float spot_attenuation(float cos_spot, float cos_outer, float spot_scale) {
 }
 
 // I * color * G for one light (or a cluster through its representative) at
-// point x with unit normal n. Effects the scene lacks compile away.
-vec3 light_irradiance(GpuLight light, vec3 x, vec3 n) {
+// point x with unit normal n, and `l`, the unit direction towards the light
+// (for the material; unused, it compiles away). Effects the scene lacks
+// compile away.
+vec3 light_irradiance(GpuLight light, vec3 x, vec3 n, out vec3 l) {
     bool positional_lights = kPointLights || kSpotLights;
     if (kDirectionalLights && (!positional_lights || light.type == kLightDirectional)) {
+        // Stored directions are unit to float precision only; a sharp lobe notices.
+        float len = length(light.direction);
+        l = len > 0.0 ? -light.direction / len : vec3(0.0);
         // Directional: G = max(cos_theta, 0), intensity in lux.
         return light.intensity * max(dot(n, -light.direction), 0.0);
     }
@@ -42,7 +47,7 @@ vec3 light_irradiance(GpuLight light, vec3 x, vec3 n) {
     float d2 = dot(to_light, to_light);
     float d = sqrt(d2);
     // On the light itself there is no direction: cos_theta counts as 0.
-    vec3 l = d > 0.0 ? to_light / d : vec3(0.0);
+    l = d > 0.0 ? to_light / d : vec3(0.0);
     float g = max(dot(n, l), 0.0) * inverse_square(d2);
     if (kRangeWindow) g *= range_window(d, light.range);
     if (kSpotLights && light.type == kLightSpot)

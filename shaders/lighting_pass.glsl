@@ -25,9 +25,9 @@ bool load_surface(ivec2 pixel, out SurfacePoint p) {
 // f_r * I * color * G * V: what one light (or a cluster through its
 // representative) adds to the radiance leaving p towards the camera.
 vec3 light_radiance(GpuLight light, SurfacePoint p) {
-    vec3 e = visible_irradiance(light, p.position, p.normal);
-    if (!kSpecular) return p.albedo * (1.0 / kPi) * e;
-    return brdf_toward(p, light_direction(light, p.position)) * e;
+    vec3 l;
+    vec3 e = visible_irradiance(light, p.position, p.normal, l);
+    return brdf_toward(p, l) * e;
 }
 
 vec3 classic_radiance(SurfacePoint p) {

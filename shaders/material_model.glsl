@@ -72,18 +72,4 @@ vec3 brdf_toward(SurfacePoint p, vec3 l) {
     return f;
 }
 
-// Unit direction from x towards the light (0 on the light itself, where the
-// shading model gives nothing anyway).
-vec3 light_direction(GpuLight light, vec3 x) {
-    bool positional_lights = kPointLights || kSpotLights;  // as light_irradiance decides
-    if (kDirectionalLights && (!positional_lights || light.type == kLightDirectional)) {
-        // Unit to float precision only; a sharp lobe notices.
-        float len = length(light.direction);
-        return len > 0.0 ? -light.direction / len : vec3(0.0);
-    }
-    vec3 to_light = light.position - x;
-    float d = length(to_light);
-    return d > 0.0 ? to_light / d : vec3(0.0);
-}
-
 #endif

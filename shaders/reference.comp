@@ -3,7 +3,7 @@
 // summed exactly in float at each pixel with geometry, each light with its
 // shadow ray when the scene has shadows. One dispatch sums the leaves
 // [light_begin, light_end) onto the previous dispatches' partial sum, so that
-// no invocation exceeds llvmpipe's loop budget (Renderer::reference_chunks):
+// no invocation exceeds llvmpipe's loop budget (Renderer::reference_chunk):
 // the first dispatch adds the classic lights and emission, the last one
 // stores the pixel with its checks and counters.
 #extension GL_GOOGLE_include_directive : require

@@ -129,10 +129,10 @@ void flush_shadow_ray_count() {
     g_shadow_rays = 0u;
 }
 
-// I * color * G * V: the shading model's irradiance with the light's visibility.
-// In uniform control flow, like light_visibility.
-vec3 visible_irradiance(GpuLight light, vec3 x, vec3 n) {
-    vec3 e = light_irradiance(light, x, n);
+// I * color * G * V: the shading model's irradiance with the light's visibility
+// (`l` as light_irradiance gives it). In uniform control flow, like light_visibility.
+vec3 visible_irradiance(GpuLight light, vec3 x, vec3 n, out vec3 l) {
+    vec3 e = light_irradiance(light, x, n, l);
     if (kShadows) e *= light_visibility(light, x, n, max(e.x, max(e.y, e.z)) > 0.0);
     return e;
 }

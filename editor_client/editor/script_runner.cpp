@@ -16,12 +16,14 @@ LightLayoutOptions layout_in_scene(const cmd::AddLights& c, const Scene& scene) 
     options.type = c.type;
     options.intensity = c.intensity;
     options.range = c.range;
-    // The surface layout samples the scene's triangles: every surface counts.
     options.surfaces = &scene;
-    if (scene.bounds_min == scene.bounds_max || c.layout == LightLayout::kSurface) {
-        const float pad = c.layout == LightLayout::kSurface ? 0.0f : 1.0f;
-        options.box_min = scene.bounds_min - glm::vec3(pad);
-        options.box_max = scene.bounds_max + glm::vec3(pad);
+    if (c.layout == LightLayout::kSurface) {
+        // The surface layout samples the scene's triangles: every surface counts.
+        options.box_min = scene.bounds_min;
+        options.box_max = scene.bounds_max;
+    } else if (scene.bounds_min == scene.bounds_max) {
+        options.box_min = scene.bounds_min - glm::vec3(1.0f);
+        options.box_max = scene.bounds_max + glm::vec3(1.0f);
     } else {
         const glm::vec3 inset = (scene.bounds_max - scene.bounds_min) * 0.05f;
         options.box_min = scene.bounds_min + inset;

@@ -60,10 +60,12 @@ Emitter emitter_of(const LightTreeNode& node) {
     return e;
 }
 
-bool has_lobe(const SurfacePoint& p) {
-    return p.exponent > 0.0 && (p.specular.x > 0.0 || p.specular.y > 0.0 || p.specular.z > 0.0);
-}
+bool has_lobe(const SurfacePoint& p) { return shading::has_lobe(p.specular, p.exponent); }
 
+glm::dvec3 diffuse_term(const SurfacePoint& p) {
+    return {shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
+            shading::lambert(p.albedo.z)};
+}
 
 // Outgoing radiance per unit RGB intensity: f_r * G (shading_model.h).
 glm::dvec3 unit_response(const Emitter& e, const SurfacePoint& p) {
@@ -203,7 +205,6 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
     if (a.key != b.key) return a.key < b.key;
     return a.node > b.node;
 }
-
 
 CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
                     const glm::dvec3* reuse_unit) {
@@ -355,16 +356,12 @@ glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint
 }
 
 glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
-    glm::dvec3 f(shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
-                 shading::lambert(p.albedo.z));
-    if (has_lobe(p)) f += p.specular * shading::glossy_lobe(glm::dot(p.mirror, l), p.exponent);
-    return f;
+    if (!has_lobe(p)) return diffuse_term(p);
+    return diffuse_term(p) + p.specular * shading::glossy_lobe(glm::dot(p.mirror, l), p.exponent);
 }
 
 glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
-    glm::dvec3 f(shading::lambert(p.albedo.x), shading::lambert(p.albedo.y),
-                 shading::lambert(p.albedo.z));
-    if (!has_lobe(p)) return f;
+    if (!has_lobe(p)) return diffuse_term(p);
     const glm::dvec3 bmin(node.bbox_min);
     const glm::dvec3 bmax(node.bbox_max);
     // Directions towards the lights: -d_i for directional boxes, y - x otherwise.
@@ -372,7 +369,8 @@ glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
                                ? max_cos_to_box(p.mirror, -bmax, -bmin)
                                : max_cos_to_box(p.mirror, bmin - p.position, bmax - p.position);
     // The lobe's own rounding (pow of a number near 1) gets the same slack as G.
-    return f + p.specular * (shading::glossy_lobe(cos_max, p.exponent) * (1.0 + 1e-9));
+    return diffuse_term(p) +
+           p.specular * (shading::glossy_lobe(cos_max, p.exponent) * (1.0 + 1e-9));
 }
 
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,

@@ -54,6 +54,12 @@ T glossy_lobe(T cos_to_mirror, T exponent) {
     return peak * std::pow(h, exponent);
 }
 
+// Whether a lobe contributes anything: n > 0 (n = 0 folds into the diffuse
+// term) and some F0 above 0 (a black metal reflects nothing).
+inline bool has_lobe(const glm::dvec3& specular, double exponent) {
+    return exponent > 0.0 && (specular.x > 0.0 || specular.y > 0.0 || specular.z > 0.0);
+}
+
 struct SurfaceMaterial {
     glm::dvec3 diffuse{1.0};   // linear diffuse albedo
     glm::dvec3 specular{0.0};  // F0 of the lobe; 0 when folded into diffuse

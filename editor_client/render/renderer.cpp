@@ -460,7 +460,7 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
             .set_bool(kSpecRangeWindow, effects_.range_window)
             .set_bool(kSpecClassicLights, effects_.classic_lights)
             .set_bool(kSpecEmissive, effects_.emissive)
-            .set_bool(kSpecShadows, effects_.shadows && !shadow_bvh_.empty())
+            .set_bool(kSpecShadows, traces_shadows())
             .set_bool(kSpecSpecular, effects_.specular);
         if (mode != RenderMode::kReference) {
             // The heap needs room for one refinement (two children) even at
@@ -628,7 +628,7 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     constants.exposure = settings.exposure;
     constants.scale_bar_rows =
         settings.mode == RenderMode::kCutSize ? std::min(kScaleBarRows, targets_.height / 4) : 0u;
-    const bool shadows = effects_.shadows && !shadow_bvh_.empty();
+    const bool shadows = traces_shadows();
     constants.shadow_bias = shadows ? shadow_bias_ : 0.0f;
     constants.bvh_node_count = shadows ? uint32_t(shadow_bvh_.gpu_nodes().size()) : 0u;
     constants.light_begin = 0;
@@ -730,7 +730,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.nonfinite_pixels = counters->nonfinite_pixels;
     stats.max_cut_hits = counters->max_cut_hits;
     stats.loop_limit_stops = counters->loop_limit_stops;
-    stats.shadows = effects_.shadows && !shadow_bvh_.empty();
+    stats.shadows = traces_shadows();
     stats.shadow_rays = (uint64_t(counters->shadow_rays_high) << 32) | counters->shadow_rays;
     stats.shadow_triangles = shadow_bvh_.stats().triangles;
     stats.shadow_bvh_nodes = shadow_bvh_.stats().nodes;

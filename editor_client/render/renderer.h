@@ -119,6 +119,8 @@ private:
 
     Status create_frame_resources();
     Status upload_occluders();
+    // Shadow rays are traced: the analysis asked for them and something occludes.
+    bool traces_shadows() const { return effects_.shadows && !shadow_bvh_.empty(); }
     // A device-local storage buffer holding `bytes` (the frame set is rewritten).
     Status upload_storage(vk::Buffer& out, std::span<const std::byte> bytes);
     Status upload_lights(const LightTree* tree);

@@ -83,9 +83,8 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
 
     bool textured = false;
     bool emissive = false;
-    size_t glossy_materials = 0;
     bool glossy_texture = false;
-    std::vector<bool> counted(scene.materials.size(), false);
+    std::vector<bool> glossy(scene.materials.size(), false);  // per drawn material
     for (const Mesh& mesh : scene.meshes) {
         if (mesh.indices.empty()) continue;
         if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
@@ -103,13 +102,10 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         if (textured_lobe) textured = glossy_texture = true;
         const shading::SurfaceMaterial lobe = shading::surface_material(
             glm::dvec3(m.base_color_factor), m.metallic, m.roughness);
-        const bool lobe_present = lobe.exponent > 0.0 && glm::any(glm::greaterThan(
-                                                             lobe.specular, glm::dvec3(0.0)));
-        if ((lobe_present || textured_lobe) && !counted[size_t(mesh.material)]) {
-            counted[size_t(mesh.material)] = true;
-            ++glossy_materials;
-        }
+        if (textured_lobe || shading::has_lobe(lobe.specular, lobe.exponent))
+            glossy[size_t(mesh.material)] = true;
     }
+    const size_t glossy_materials = size_t(std::count(glossy.begin(), glossy.end(), true));
 
     SceneEffects effects;
     auto decide = [&](const std::string& name, bool on, const std::string& why_on,
