@@ -31,6 +31,8 @@ layout(std430, set = 0, binding = 11) readonly buffer NodeBounds { GpuNodeBounds
 // The shadow-casting triangles and their BVH (editor_client/render/shadow_bvh.h).
 layout(std430, set = 0, binding = 12) readonly buffer BvhNodes { GpuBvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = 13) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };
+// The walk search's state per pixel between its passes (row-major pixels).
+layout(std430, set = 0, binding = 14) buffer WalkStates { GpuWalkState walk_states[]; };
 
 layout(push_constant) uniform FrameConstants {
     uint width;
@@ -44,7 +46,7 @@ layout(push_constant) uniform FrameConstants {
     uint light_begin;
     uint light_end;
     uint bvh_node_count;
-    uint pad;
+    uint walk_pass;
     vec3 eye;
     float pad2;
 } frame;

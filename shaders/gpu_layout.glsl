@@ -40,6 +40,26 @@ struct GpuNodeBounds {
     float pad1;
 };
 
+// GpuWalkState: one pixel's walk search between passes.
+const uint kWalkDone = 1u;
+const uint kWalkRuleMet = 2u;
+const uint kWalkBisecting = 4u;
+const uint kWalkLoopStop = 8u;
+const uint kWalkBisectionsShift = 8u;
+
+struct GpuWalkState {
+    vec3 radiance;
+    uint size;
+    uint hash;
+    float tau;
+    float fit_hi;
+    float over_lo;
+    uint flags;
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
 // editor_client/render/shadow_bvh.h
 const uint kBvhLeafCountBits = 3u;
 const uint kBvhLeafCountMask = 7u;

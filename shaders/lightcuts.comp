@@ -16,7 +16,8 @@
 //     threshold; passes stop once every bound on the cut is <= error x the
 //     cut's total, the cut would exceed max-cut (the pixel keeps the previous
 //     pass's cut and counts in counters.max_cut_hits) or the passes run out.
-//     Mirrors bound_walk_cut() in bound_walk.cpp.
+//     Each pass is a dispatch of its own, the search kept per pixel in
+//     walk_states between them. Mirrors bound_walk_cut() in bound_walk.cpp.
 //   bound, heap search (the paper's order, Sec. 4): a max-heap of (bound, node, unit response)
 //     entries in private memory, at most max-cut of them (a specialization
 //     constant, so the array is sized at pipeline creation). The node with the
@@ -293,76 +294,108 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
     i = subgroupAny(refine) ? node.first_child : node.escape;
 }
 
-Cut select_cut_bound_walk(SurfacePoint p, out vec3 radiance, out bool max_cut_hit,
-                          out bool loop_limit_stop) {
-    max_cut_hit = false;
-    loop_limit_stop = false;
-    radiance = vec3(0.0);
-    Cut cut = Cut(vec3(0.0), 0u, 0u);
-    if (frame.node_count == 0u) return cut;
-    float tau = uintBitsToFloat(0x7f800000u);  // +inf: pass 0 keeps the per-type roots
-    bool done = false;
-    bool rule_met = false;
-    bool bisecting = false;
-    float fit_hi = 0.0;   // largest bound on the last cut that fit
-    float over_lo = 0.0;  // a threshold whose cut exceeded max-cut
-    uint bisections_left = kWalkBisections;
-    for (uint pass_index = 0u; pass_index < kWalkMaxPasses; ++pass_index) {
-        if (!subgroupAny(!done)) break;
-        WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
-        int i = 0;
-        bool waiting = done;
-        int resume = kEndOfWalk;
-        bool limit_size = pass_index > 0u;
-        // Two steps per iteration: the step is large, and more copies spill
-        // (measured: 8 copies 1.4x slower). A pass that ends before the end of
-        // the walk was stopped by the device's loop limit (or a corrupt tree):
-        // it is discarded like one over max-cut, and counted apart.
-        for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
-            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p);
-            bound_walk_step(i, waiting, resume, pass, tau, limit_size, p);
-        }
-        if (done) continue;
-        if (i != kEndOfWalk) {
-            done = true;
-            loop_limit_stop = true;
-            continue;
-        }
-        if (pass.over) {
-            bisecting = true;
-            over_lo = tau;
-        } else {
-            radiance = pass.radiance;
-            cut.size = pass.size;
-            cut.hash = pass.hash;
-            float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
-            if (!(pass.worst > limit)) {
-                done = true;
-                rule_met = true;
-                continue;
-            }
-            fit_hi = pass.worst;
-            if (!bisecting) {
-                tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
-                continue;
-            }
-        }
-        // Over max-cut once: bisect between the last fit and the last over.
-        if (bisections_left == 0u) {
-            done = true;
-            continue;
-        }
-        --bisections_left;
-        tau = sqrt(fit_hi) * sqrt(max(over_lo, fit_hi * 1e-6));
+// Where pass 0 starts: tau = +inf keeps the per-type roots.
+GpuWalkState walk_start() {
+    return GpuWalkState(vec3(0.0), 0u, 0u, uintBitsToFloat(0x7f800000u), 0.0, 0.0,
+                        kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u);
+}
+
+// Pass `pass_index` of one lane's search (select_cut_bound_walk's loop body
+// before the passes became dispatches): walks with s.tau, then keeps the cut
+// if it fit and sets the next threshold, or marks the search done.
+void walk_pass(inout GpuWalkState s, uint pass_index, SurfacePoint p) {
+    WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
+    int i = 0;
+    bool waiting = false;
+    int resume = kEndOfWalk;
+    bool limit_size = pass_index > 0u;
+    // Two steps per iteration: the step is large, and more copies spill
+    // (measured: 8 copies 1.4x slower). A pass that ends before the end of
+    // the walk was stopped by the device's loop limit (or a corrupt tree):
+    // it is discarded like one over max-cut, and counted apart.
+    for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
+        bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
+        bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
     }
+    if (i != kEndOfWalk) {
+        s.flags |= kWalkDone | kWalkLoopStop;
+        return;
+    }
+    bool bisecting = (s.flags & kWalkBisecting) != 0u;
+    if (pass.over) {
+        s.flags |= kWalkBisecting;
+        s.over_lo = s.tau;
+    } else {
+        s.radiance = pass.radiance;
+        s.size = pass.size;
+        s.hash = pass.hash;
+        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+        if (!(pass.worst > limit)) {
+            s.flags |= kWalkDone | kWalkRuleMet;
+            return;
+        }
+        s.fit_hi = pass.worst;
+        if (!bisecting) {
+            s.tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
+            return;
+        }
+    }
+    // Over max-cut once: bisect between the last fit and the last over.
+    uint bisections_left = s.flags >> kWalkBisectionsShift;
+    if (bisections_left == 0u) {
+        s.flags |= kWalkDone;
+        return;
+    }
+    s.flags = (s.flags & ((1u << kWalkBisectionsShift) - 1u)) |
+              ((bisections_left - 1u) << kWalkBisectionsShift);
+    s.tau = sqrt(s.fit_hi) * sqrt(max(s.over_lo, s.fit_hi * 1e-6));
+}
+
+// The walk search, one pass per dispatch (Renderer::record dispatches
+// kWalkMaxPasses of them, frame.walk_pass numbering them): the pixel's search
+// lives in walk_states between passes, so llvmpipe's loop limit applies to a
+// pass rather than to the whole search. A pixel is stored in the pass that
+// finishes its search, or the last; the passes after return at once.
+void bound_walk_dispatch(ivec2 pixel) {
+    uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+    uint pass_index = frame.walk_pass;
+    GpuWalkState s;
+    if (pass_index == 0u) {
+        s = walk_start();
+    } else {
+        s = walk_states[index];
+        if ((s.flags & kWalkDone) != 0u) return;
+    }
+    SurfacePoint p;
+    if (!load_surface(pixel, p)) {
+        store_background(pixel);
+        walk_states[index].flags = kWalkDone;
+        return;
+    }
+    walk_pass(s, pass_index, p);
+    if (g_shadow_walk_cut_short) s.flags |= kWalkLoopStop;
+    g_shadow_walk_cut_short = false;  // counted once, from the flags, when the pixel is stored
+    if (pass_index + 1u >= kWalkMaxPasses) s.flags |= kWalkDone;
+    if ((s.flags & kWalkDone) == 0u) {
+        walk_states[index] = s;
+        flush_shadow_ray_count();
+        return;
+    }
+    walk_states[index].flags = kWalkDone;
+    bool loop_limit_stop = (s.flags & kWalkLoopStop) != 0u;
     // Stopped by max-cut, or still refining after the last pass.
-    max_cut_hit = !rule_met && !loop_limit_stop;
-    return cut;
+    if ((s.flags & kWalkRuleMet) == 0u && !loop_limit_stop) atomicAdd(counters.max_cut_hits, 1u);
+    store_pixel(pixel, s.radiance + classic_and_emitted_radiance(p), s.size, s.hash,
+                loop_limit_stop);
 }
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
+    if (kCriterion == kCriterionBound && kBoundSearch == kBoundSearchWalk) {
+        bound_walk_dispatch(pixel);
+        return;
+    }
     SurfacePoint p;
     if (!load_surface(pixel, p)) {
         store_background(pixel);
@@ -371,13 +404,10 @@ void main() {
     if (kCriterion == kCriterionBound) {
         vec3 radiance;
         bool max_cut_hit;
-        bool loop_limit_stop = false;
-        Cut cut = kBoundSearch == kBoundSearchWalk
-                      ? select_cut_bound_walk(p, radiance, max_cut_hit, loop_limit_stop)
-                      : select_cut_bound(p, radiance, max_cut_hit);
+        Cut cut = select_cut_bound(p, radiance, max_cut_hit);
         if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
         radiance += classic_and_emitted_radiance(p);
-        store_pixel(pixel, radiance, cut.size, cut.hash, loop_limit_stop);
+        store_pixel(pixel, radiance, cut.size, cut.hash, false);
         return;
     }
     bool walk_cut_short;

@@ -34,6 +34,9 @@ TEST(GpuLayout, SizesAndOffsetsMatchTheGlslMirror) {
     EXPECT_EQ(sizeof(GpuNodeBounds), 48u);
     EXPECT_EQ(offsetof(GpuNodeBounds, bbox_max), 16u);
     EXPECT_EQ(offsetof(GpuNodeBounds, cone_axis), 32u);
+    EXPECT_EQ(sizeof(GpuWalkState), 48u);
+    EXPECT_EQ(offsetof(GpuWalkState, tau), 20u);
+    EXPECT_EQ(offsetof(GpuWalkState, flags), 32u);
     EXPECT_EQ(sizeof(GpuFrameCounters), 32u);
     EXPECT_EQ(offsetof(GpuFrameCounters, loop_limit_stops), 16u);
     EXPECT_EQ(offsetof(GpuFrameCounters, shadow_rays), 20u);

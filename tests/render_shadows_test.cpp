@@ -184,6 +184,37 @@ TEST_F(Shadows, BoundWalkAndHeapMatchTheCpu) {
     }
 }
 
+TEST_F(Shadows, WalkSearchFinishesWhereOneInvocationWouldHitTheLoopLimit) {
+    // A fine error ratio over a few thousand lights: each pixel's search
+    // takes several passes of hundreds of cut nodes, each node a shadow ray
+    // through the furniture's BVH. Together those passes exceed llvmpipe's
+    // 65,535 loop iterations per invocation (with every pass in one dispatch,
+    // 135 of these 576 pixels stopped early); each pass alone fits, and each
+    // is its own dispatch, so every pixel finishes and matches the CPU.
+    scene_.lights = furnished_room_lights(4000, 17);
+    tree_ = test::agglomerative_tree(scene_.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    settings_.width = settings_.height = 24;
+    settings_.mode = RenderMode::kLightcuts;
+    settings_.criterion = CutCriterion::kBound;
+    settings_.error_ratio = 0.002f;
+    settings_.max_cut = 1000;
+    settings_.bound_search = BoundSearch::kWalk;
+    CutSettings cut;
+    cut.criterion = CutCriterion::kBound;
+    cut.error_ratio = settings_.error_ratio;
+    cut.max_cut = settings_.max_cut;
+    cut.search = BoundSearch::kWalk;
+    Agreement a = compare(
+        **renderer, settings_,
+        per_pixel(**renderer,
+                  [&](const SurfacePoint& p) { return shade_lightcuts(tree_, {}, p, cut); }),
+        true);
+    EXPECT_GE(a.agree, a.geometry * 98 / 100);
+    EXPECT_GT(a.shadow_rays, uint64_t(a.geometry) * 1000) << "the passes should trace many rays";
+}
+
 TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
     // Ranged lights so the radius criterion has finite radii, and two classic
     // lights that are shaded one by one, with shadows too.

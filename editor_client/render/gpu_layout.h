@@ -67,13 +67,33 @@ struct alignas(16) GpuFrameCounters {
     uint32_t nonfinite_pixels = 0;
     uint32_t geometry_pixels = 0;
     uint32_t max_cut_hits = 0;  // bound criterion: pixels whose cut stopped at max-cut
-    // Walk search: pixels whose pass was cut short by the device's loop limit
-    // (llvmpipe, loop_limits.glsl); they keep their last complete pass.
+    // Pixels whose walk or shadow ray the device's loop limit cut short
+    // (llvmpipe, loop_limits.glsl); the walk search keeps its last complete
+    // pass (only a pass that alone exceeds the limit: each is a dispatch).
     uint32_t loop_limit_stops = 0;
     // Shadow rays the lighting pass traced: a 64-bit count in two words.
     uint32_t shadow_rays = 0;
     uint32_t shadow_rays_high = 0;
     uint32_t pad = 0;
+};
+
+// One pixel's walk search between its threshold passes (shaders/lightcuts.comp):
+// each pass is its own dispatch, so llvmpipe's loop limit (loop_limits.glsl)
+// applies to one pass instead of the whole search. The GPU alone reads and
+// writes it; the CPU only sizes the buffer (RenderTargets::walk_states).
+struct alignas(16) GpuWalkState {
+    glm::vec3 radiance{0.0f};  // the last cut that fit, f_r applied
+    uint32_t size = 0;
+    uint32_t hash = 0;
+    float tau = 0.0f;      // the next pass's threshold
+    float fit_hi = 0.0f;   // largest bound on the last cut that fit
+    float over_lo = 0.0f;  // a threshold whose cut exceeded max-cut
+    // Bits (shaders/gpu_layout.glsl): done, rule met, bisecting, loop-limit
+    // stop; bits 8..15 the bisection passes left.
+    uint32_t flags = 0;
+    uint32_t pad0 = 0;
+    uint32_t pad1 = 0;
+    uint32_t pad2 = 0;
 };
 
 // Push constants shared by the compute passes.
@@ -93,7 +113,7 @@ struct alignas(16) GpuFrameConstants {
     uint32_t light_begin = 0;
     uint32_t light_end = 0;
     uint32_t bvh_node_count = 0;  // shadow BVH nodes (0: nothing occludes)
-    uint32_t pad = 0;
+    uint32_t walk_pass = 0;       // the bound criterion's walk search: this dispatch's pass
     glm::vec3 eye{0.0f};  // camera position: the glossy lobe's view direction
     float pad2 = 0.0f;
 };
@@ -134,7 +154,12 @@ static_assert(offsetof(GpuNodeBounds, cone_axis) == 32);
 static_assert(sizeof(GpuFrameCounters) == 32);
 static_assert(offsetof(GpuFrameCounters, loop_limit_stops) == 16);
 static_assert(offsetof(GpuFrameCounters, shadow_rays) == 20);
+static_assert(sizeof(GpuWalkState) == 48);
+static_assert(offsetof(GpuWalkState, size) == 12);
+static_assert(offsetof(GpuWalkState, tau) == 20);
+static_assert(offsetof(GpuWalkState, flags) == 32);
 static_assert(sizeof(GpuFrameConstants) == 64);
+static_assert(offsetof(GpuFrameConstants, walk_pass) == 44);
 static_assert(offsetof(GpuFrameConstants, eye) == 48);
 static_assert(offsetof(GpuFrameConstants, shadow_bias) == 28);
 static_assert(offsetof(GpuFrameConstants, light_begin) == 32);

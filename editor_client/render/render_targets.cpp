@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "editor_client/render/gpu_layout.h"
 #include "editor_client/vk/vk_result.h"
 
 namespace lc::client {
@@ -59,6 +60,11 @@ Result<RenderTargets> RenderTargets::create(const vk::Device& device, uint32_t w
           make(targets.display, kDisplayFormat, kStorageUsage)}) {
         if (!made) return make_error(made.error());
     }
+    Result<vk::Buffer> walk_states =
+        vk::Buffer::create(device, VkDeviceSize(width) * height * sizeof(GpuWalkState),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::kDeviceLocal);
+    if (!walk_states) return make_error(walk_states.error());
+    targets.walk_states = std::move(walk_states).value();
     return targets;
 }
 

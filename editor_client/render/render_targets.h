@@ -1,9 +1,10 @@
 #pragma once
 // The images one frame renders into, for one size: the G-buffer (float
-// attachments + depth), linear HDR radiance, the cut per pixel, and the
-// 8-bit display image.
+// attachments + depth), linear HDR radiance, the cut per pixel, the 8-bit
+// display image, and the walk search's state per pixel between its passes.
 #include <cstdint>
 
+#include "editor_client/vk/buffer.h"
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/image.h"
 #include "protocol/result.h"
@@ -32,6 +33,7 @@ struct RenderTargets {
     vk::Image hdr;      // linear radiance
     vk::Image cut;      // x cut size, y cut hash
     vk::Image display;  // tone-mapped (or visualised), sRGB-encoded
+    vk::Buffer walk_states;  // GpuWalkState per pixel (gpu_layout.h), GPU only
 };
 
 }  // namespace lc::client

@@ -68,7 +68,8 @@ enum FrameBinding : uint32_t {
     kBindNodeBounds = 11,
     kBindBvhNodes = 12,
     kBindShadowTriangles = 13,
-    kFrameBindingCount = 14,
+    kBindWalkStates = 14,
+    kFrameBindingCount = 15,
 };
 
 // Timestamp slots: start, then the end of each pass.
@@ -365,9 +366,10 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
         iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
         what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
     } else if (settings.bound_search == BoundSearch::kWalk) {
-        // The walk notices a pass the limit cut short (it did not reach the
-        // end of the tree), keeps the previous pass and counts the pixel in
-        // loop_limit_stops: nothing is truncated silently, so nothing to refuse.
+        // Each pass is a dispatch of its own. The walk notices a pass the
+        // limit cut short (it did not reach the end of the tree), keeps the
+        // previous pass and counts the pixel in loop_limit_stops: nothing is
+        // truncated silently, so nothing to refuse.
         return Ok{};
     } else {
         // Per refinement: a heap pop and two pushes (log2 K each), two children
@@ -412,6 +414,7 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindNodeBounds, node_bounds_.handle())
         .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
         .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
+        .storage_buffer(kBindWalkStates, targets_.walk_states.handle())
         .update(context_.device().handle());
     frame_set_dirty_ = false;
 }
@@ -656,6 +659,19 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
             vkCmdDispatch(cmd, groups_x, groups_y, 1);
             begin = constants.light_end;
         } while (begin < leaf_count_);
+    } else if (settings.criterion == CutCriterion::kBound &&
+               settings.bound_search == BoundSearch::kWalk) {
+        // One dispatch per threshold pass: a pixel keeps its search in
+        // walk_states between passes, so llvmpipe's loop limit applies to one
+        // pass. A pixel that is done returns at once in the passes after.
+        for (uint32_t pass = 0; pass < kWalkMaxPasses; ++pass) {
+            constants.walk_pass = pass;
+            if (pass > 0)
+                vk::memory_barrier(cmd, kCompute, kStorageReadWrite, kCompute, kStorageReadWrite);
+            vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                               sizeof(constants), &constants);
+            vkCmdDispatch(cmd, groups_x, groups_y, 1);
+        }
     } else {
         vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof(constants), &constants);
