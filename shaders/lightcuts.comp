@@ -50,9 +50,6 @@ layout(constant_id = 15) const uint kWalkMaxPasses = 12u;
 layout(constant_id = 16) const float kWalkShrink = 512.0;
 layout(constant_id = 17) const float kWalkMargin = 0.8;
 layout(constant_id = 18) const uint kWalkBisections = 6u;
-// The walk search with shadows queues a pass's cut nodes and traces their
-// rays after the walk (shade_walk_queue): max(max-cut, 4) entries, else 1.
-layout(constant_id = 21) const int kWalkQueueSize = 1;
 
 struct Cut {
     vec3 radiance;  // sum over cut nodes of f_r * I_C * color * G * V
@@ -252,9 +249,6 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
 
 // ---- bound criterion, walk search ------------------------------------------
 
-// The cut nodes of this lane's pass, in pre-order, waiting for their shadow rays.
-uint walk_queue[kWalkQueueSize];
-
 // One threshold pass of one lane.
 struct WalkPass {
     vec3 radiance;  // f_r already applied
@@ -289,13 +283,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                // With shadows the node is shaded after the walk; a queue that
-                // is full (only pass 0 of a tree of mixed-type junctions has
-                // no size limit) shades it here.
-                if (kShadows && pass.size < uint(kWalkQueueSize))
-                    walk_queue[pass.size] = i;
-                else
-                    pass.radiance += light_radiance(node.light, p);
+                pass.radiance += light_radiance(node.light, p);
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);
@@ -304,23 +292,6 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
         }
     }
     i = subgroupAny(refine) ? node.first_child : node.escape;
-}
-
-// Shades the first `queued` nodes of this lane's cut, queued by the walk in
-// pre-order. The subgroup's lanes trace their k-th shadow rays together: the
-// k-th nodes of neighbouring pixels' cuts are often the same or nearby
-// clusters, and every lane with a node left has a ray in each traversal,
-// where a ray traced during the walk served only the lanes that took a node
-// at that step. Returns false when the device's loop limit ended the loop.
-bool shade_walk_queue(uint queued, inout vec3 radiance, SurfacePoint p) {
-    uint k = 0u;
-    for (; subgroupAny(k < queued); ++k) {
-        bool mine = k < queued;
-        GpuLight light = tree_nodes[mine ? walk_queue[k] : 0].light;
-        if (!mine) light.intensity = vec3(0.0);  // no contribution, so no ray
-        radiance += light_radiance(light, p);
-    }
-    return k >= queued;
 }
 
 // Where pass 0 starts: tau = +inf keeps the per-type roots.
@@ -349,13 +320,6 @@ void walk_pass(inout GpuWalkState s, uint pass_index, SurfacePoint p) {
     if (i != kEndOfWalk) {
         s.flags |= kWalkDone | kWalkLoopStop;
         return;
-    }
-    if (kShadows) {
-        uint queued = pass.over ? 0u : min(pass.size, uint(kWalkQueueSize));
-        if (!shade_walk_queue(queued, pass.radiance, p)) {
-            s.flags |= kWalkDone | kWalkLoopStop;
-            return;
-        }
     }
     bool bisecting = (s.flags & kWalkBisecting) != 0u;
     if (pass.over) {

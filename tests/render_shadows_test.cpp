@@ -215,27 +215,6 @@ TEST_F(Shadows, WalkSearchFinishesWhereOneInvocationWouldHitTheLoopLimit) {
     EXPECT_GT(a.shadow_rays, uint64_t(a.geometry) * 1000) << "the passes should trace many rays";
 }
 
-TEST_F(Shadows, WalkQueueOverflowStillShadesEveryNode) {
-    // Every junction flagged mixed-type is always refined, so pass 0 (which
-    // has no size limit) takes all 600 leaves into its cut while the queue of
-    // nodes awaiting their shadow rays holds max-cut = 64: the nodes past it
-    // are shaded during the walk. The cut is every leaf: the exact sum.
-    scene_.lights = furnished_room_lights(600, 19);
-    tree_ = test::agglomerative_tree(scene_.lights);
-    for (LightTreeNode& node : tree_.nodes)
-        if (!node.is_leaf()) node.mixed_types = true;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
-    settings_.width = settings_.height = 24;
-    settings_.mode = RenderMode::kLightcuts;
-    settings_.criterion = CutCriterion::kBound;
-    settings_.max_cut = 64;
-    settings_.bound_search = BoundSearch::kWalk;
-    Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree_), false);
-    EXPECT_GE(a.agree, a.geometry * 99 / 100);
-    EXPECT_GT(a.shadowed, a.geometry / 10);
-}
-
 TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
     // Ranged lights so the radius criterion has finite radii, and two classic
     // lights that are shaded one by one, with shadows too.

@@ -50,7 +50,6 @@ enum SpecId : uint32_t {
     kSpecWalkBisections = 18,
     kSpecShadows = 19,  // shadow_rays.glsl
     kSpecSpecular = 20,  // material_model.glsl
-    kSpecWalkQueueSize = 21,  // lightcuts.comp: cut nodes queued for their shadow rays
 };
 
 // Bindings of the compute passes' set (shaders/frame_bindings.glsl).
@@ -478,11 +477,7 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
                 .set_uint(kSpecWalkMaxPasses, kWalkMaxPasses)
                 .set_uint(kSpecWalkShrink, std::bit_cast<uint32_t>(kWalkShrink))
                 .set_uint(kSpecWalkMargin, std::bit_cast<uint32_t>(kWalkMargin))
-                .set_uint(kSpecWalkBisections, kWalkBisections)
-                .set_uint(kSpecWalkQueueSize, settings.bound_search == BoundSearch::kWalk &&
-                                                      traces_shadows()
-                                                  ? std::max(settings.max_cut, 4u)
-                                                  : 1u);
+                .set_uint(kSpecWalkBisections, kWalkBisections);
             lightcuts_key_ = key;
         }
         auto code =
