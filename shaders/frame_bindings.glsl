@@ -46,7 +46,7 @@ layout(push_constant) uniform FrameConstants {
     uint light_begin;
     uint light_end;
     uint bvh_node_count;
-    uint walk_pass;
+    uint walk_dispatch;
     vec3 eye;
     float pad2;
 } frame;

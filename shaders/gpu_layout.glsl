@@ -45,6 +45,7 @@ const uint kWalkDone = 1u;
 const uint kWalkRuleMet = 2u;
 const uint kWalkBisecting = 4u;
 const uint kWalkLoopStop = 8u;
+const uint kWalkStorePending = 16u;  // done where the loop limit fired: stored next dispatch
 const uint kWalkBisectionsShift = 8u;
 
 struct GpuWalkState {
@@ -55,7 +56,7 @@ struct GpuWalkState {
     float fit_hi;
     float over_lo;
     uint flags;
-    uint pad0;
+    uint passes;  // passes completed
     uint pad1;
     uint pad2;
 };

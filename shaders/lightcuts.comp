@@ -16,8 +16,9 @@
 //     threshold; passes stop once every bound on the cut is <= error x the
 //     cut's total, the cut would exceed max-cut (the pixel keeps the previous
 //     pass's cut and counts in counters.max_cut_hits) or the passes run out.
-//     Each pass is a dispatch of its own, the search kept per pixel in
-//     walk_states between them. Mirrors bound_walk_cut() in bound_walk.cpp.
+//     A pass that llvmpipe's loop limit cuts short runs again in the next
+//     dispatch, the search kept per pixel in walk_states between them.
+//     Mirrors bound_walk_cut() in bound_walk.cpp.
 //   bound, heap search (the paper's order, Sec. 4): a max-heap of (bound, node, unit response)
 //     entries in private memory, at most max-cut of them (a specialization
 //     constant, so the array is sized at pipeline creation). The node with the
@@ -300,27 +301,26 @@ GpuWalkState walk_start() {
                         kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u);
 }
 
-// Pass `pass_index` of one lane's search (select_cut_bound_walk's loop body
-// before the passes became dispatches): walks with s.tau, then keeps the cut
-// if it fit and sets the next threshold, or marks the search done.
-void walk_pass(inout GpuWalkState s, uint pass_index, SurfacePoint p) {
+// One pass of one lane's search (s.passes numbers it): walks with s.tau,
+// then keeps the cut if it fit and sets the next threshold, or marks the
+// search done. Returns false, leaving s as it was, when the device's loop
+// limit (or a corrupt tree) ended the walk or one of its shadow rays early.
+bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
     WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
     int i = 0;
     bool waiting = false;
     int resume = kEndOfWalk;
-    bool limit_size = pass_index > 0u;
+    bool limit_size = s.passes > 0u;
+    g_shadow_walk_cut_short = false;
     // Two steps per iteration: the step is large, and more copies spill
-    // (measured: 8 copies 1.4x slower). A pass that ends before the end of
-    // the walk was stopped by the device's loop limit (or a corrupt tree):
-    // it is discarded like one over max-cut, and counted apart.
+    // (measured: 8 copies 1.4x slower).
     for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
         bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
         bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
     }
-    if (i != kEndOfWalk) {
-        s.flags |= kWalkDone | kWalkLoopStop;
-        return;
-    }
+    if (i != kEndOfWalk || g_shadow_walk_cut_short) return false;
+    ++s.passes;
+    if (s.passes >= kWalkMaxPasses) s.flags |= kWalkDone;  // unless the rule is met below
     bool bisecting = (s.flags & kWalkBisecting) != 0u;
     if (pass.over) {
         s.flags |= kWalkBisecting;
@@ -332,39 +332,43 @@ void walk_pass(inout GpuWalkState s, uint pass_index, SurfacePoint p) {
         float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
         if (!(pass.worst > limit)) {
             s.flags |= kWalkDone | kWalkRuleMet;
-            return;
+            return true;
         }
         s.fit_hi = pass.worst;
         if (!bisecting) {
             s.tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
-            return;
+            return true;
         }
     }
     // Over max-cut once: bisect between the last fit and the last over.
     uint bisections_left = s.flags >> kWalkBisectionsShift;
     if (bisections_left == 0u) {
         s.flags |= kWalkDone;
-        return;
+        return true;
     }
     s.flags = (s.flags & ((1u << kWalkBisectionsShift) - 1u)) |
               ((bisections_left - 1u) << kWalkBisectionsShift);
     s.tau = sqrt(s.fit_hi) * sqrt(max(s.over_lo, s.fit_hi * 1e-6));
+    return true;
 }
 
-// The walk search, one pass per dispatch (Renderer::record dispatches
-// kWalkMaxPasses of them, frame.walk_pass numbering them): the pixel's search
-// lives in walk_states between passes, so llvmpipe's loop limit applies to a
-// pass rather than to the whole search. A pixel is stored in the pass that
-// finishes its search, or the last; the passes after return at once.
+// The walk search over up to kWalkMaxPasses dispatches (Renderer::record;
+// frame.walk_dispatch numbers them). Each dispatch runs passes until the pixel's
+// search is done or llvmpipe's loop limit (loop_limits.glsl) cuts a pass
+// short; the search is then kept in walk_states and the cut-short pass runs
+// again, whole, in the next dispatch with a fresh budget. Most pixels finish
+// in the first dispatch, so the later ones are nearly empty. Only a pass that
+// exceeds the limit on its own (the first of its dispatch) ends the search:
+// the pixel keeps its last complete pass and counts in loop_limit_stops. A
+// pixel is stored once, when its search ends; later dispatches skip it.
 void bound_walk_dispatch(ivec2 pixel) {
     uint index = uint(pixel.y) * frame.width + uint(pixel.x);
-    uint pass_index = frame.walk_pass;
     GpuWalkState s;
-    if (pass_index == 0u) {
+    if (frame.walk_dispatch == 0u) {
         s = walk_start();
     } else {
         s = walk_states[index];
-        if ((s.flags & kWalkDone) != 0u) return;
+        if ((s.flags & (kWalkDone | kWalkStorePending)) == kWalkDone) return;
     }
     SurfacePoint p;
     if (!load_surface(pixel, p)) {
@@ -372,11 +376,23 @@ void bound_walk_dispatch(ivec2 pixel) {
         walk_states[index].flags = kWalkDone;
         return;
     }
-    walk_pass(s, pass_index, p);
-    if (g_shadow_walk_cut_short) s.flags |= kWalkLoopStop;
-    g_shadow_walk_cut_short = false;  // counted once, from the flags, when the pixel is stored
-    if (pass_index + 1u >= kWalkMaxPasses) s.flags |= kWalkDone;
-    if ((s.flags & kWalkDone) == 0u) {
+    // Every dispatch completes a pass or ends the search, so kWalkMaxPasses
+    // dispatches end every search; the last one stores whatever is left.
+    bool last_dispatch = frame.walk_dispatch + 1u >= kWalkMaxPasses;
+    bool limited = false;
+    for (uint run = 0u; (s.flags & kWalkDone) == 0u; ++run) {
+        if (!walk_pass(s, p)) {
+            limited = true;
+            if (run == 0u || last_dispatch) s.flags |= kWalkDone | kWalkLoopStop;
+            break;
+        }
+    }
+    if (last_dispatch) s.flags |= kWalkDone;
+    g_shadow_walk_cut_short = false;  // in the flags: counted once, when the pixel is stored
+    // Storing adds the classic lights, whose loop the spent budget would cut
+    // short too: a search that ended where the limit fired is stored next time.
+    if ((s.flags & kWalkDone) == 0u || (limited && !last_dispatch)) {
+        if (limited && (s.flags & kWalkDone) != 0u) s.flags |= kWalkStorePending;
         walk_states[index] = s;
         flush_shadow_ray_count();
         return;

@@ -69,7 +69,7 @@ struct alignas(16) GpuFrameCounters {
     uint32_t max_cut_hits = 0;  // bound criterion: pixels whose cut stopped at max-cut
     // Pixels whose walk or shadow ray the device's loop limit cut short
     // (llvmpipe, loop_limits.glsl); the walk search keeps its last complete
-    // pass (only a pass that alone exceeds the limit: each is a dispatch).
+    // pass (only when a pass alone exceeds the limit: others run again).
     uint32_t loop_limit_stops = 0;
     // Shadow rays the lighting pass traced: a 64-bit count in two words.
     uint32_t shadow_rays = 0;
@@ -77,10 +77,11 @@ struct alignas(16) GpuFrameCounters {
     uint32_t pad = 0;
 };
 
-// One pixel's walk search between its threshold passes (shaders/lightcuts.comp):
-// each pass is its own dispatch, so llvmpipe's loop limit (loop_limits.glsl)
-// applies to one pass instead of the whole search. The GPU alone reads and
-// writes it; the CPU only sizes the buffer (RenderTargets::walk_states).
+// One pixel's walk search between dispatches (shaders/lightcuts.comp): a pass
+// that llvmpipe's loop limit (loop_limits.glsl) cuts short runs again in the
+// next dispatch, so the limit applies to one pass instead of the whole search.
+// The GPU alone reads and writes it; the CPU only sizes the buffer
+// (RenderTargets::walk_states).
 struct alignas(16) GpuWalkState {
     glm::vec3 radiance{0.0f};  // the last cut that fit, f_r applied
     uint32_t size = 0;
@@ -91,7 +92,7 @@ struct alignas(16) GpuWalkState {
     // Bits (shaders/gpu_layout.glsl): done, rule met, bisecting, loop-limit
     // stop; bits 8..15 the bisection passes left.
     uint32_t flags = 0;
-    uint32_t pad0 = 0;
+    uint32_t passes = 0;  // passes completed
     uint32_t pad1 = 0;
     uint32_t pad2 = 0;
 };
@@ -113,7 +114,7 @@ struct alignas(16) GpuFrameConstants {
     uint32_t light_begin = 0;
     uint32_t light_end = 0;
     uint32_t bvh_node_count = 0;  // shadow BVH nodes (0: nothing occludes)
-    uint32_t walk_pass = 0;       // the bound criterion's walk search: this dispatch's pass
+    uint32_t walk_dispatch = 0;   // the bound criterion's walk search: this dispatch's number
     glm::vec3 eye{0.0f};  // camera position: the glossy lobe's view direction
     float pad2 = 0.0f;
 };
@@ -128,7 +129,7 @@ struct alignas(16) GpuDrawConstants {
     glm::vec4 emissive_metallic{0.0f};  // rgb: emissive factor, a: metallic
     glm::vec4 eye_roughness{0.0f};      // xyz: camera position, w: roughness
     uint32_t flags = 0;
-    uint32_t pad0 = 0;
+    uint32_t passes = 0;  // passes completed
     uint32_t pad1 = 0;
     uint32_t pad2 = 0;
 };
@@ -159,7 +160,7 @@ static_assert(offsetof(GpuWalkState, size) == 12);
 static_assert(offsetof(GpuWalkState, tau) == 20);
 static_assert(offsetof(GpuWalkState, flags) == 32);
 static_assert(sizeof(GpuFrameConstants) == 64);
-static_assert(offsetof(GpuFrameConstants, walk_pass) == 44);
+static_assert(offsetof(GpuFrameConstants, walk_dispatch) == 44);
 static_assert(offsetof(GpuFrameConstants, eye) == 48);
 static_assert(offsetof(GpuFrameConstants, shadow_bias) == 28);
 static_assert(offsetof(GpuFrameConstants, light_begin) == 32);

@@ -366,9 +366,10 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
         iterations += (uint64_t(node_count_) + kRadiusUnroll - 1) / kRadiusUnroll + 1;
         what = "a radius-criterion walk of " + std::to_string(node_count_) + " nodes";
     } else if (settings.bound_search == BoundSearch::kWalk) {
-        // Each pass is a dispatch of its own. The walk notices a pass the
-        // limit cut short (it did not reach the end of the tree), keeps the
-        // previous pass and counts the pixel in loop_limit_stops: nothing is
+        // A pass the limit cut short (its walk did not reach the end of the
+        // tree, or a ray did not finish) runs again in the next dispatch; one
+        // that alone exceeds the limit is discarded, the pixel keeping its
+        // last complete pass and counted in loop_limit_stops: nothing is
         // truncated silently, so nothing to refuse.
         return Ok{};
     } else {
@@ -661,11 +662,12 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
         } while (begin < leaf_count_);
     } else if (settings.criterion == CutCriterion::kBound &&
                settings.bound_search == BoundSearch::kWalk) {
-        // One dispatch per threshold pass: a pixel keeps its search in
-        // walk_states between passes, so llvmpipe's loop limit applies to one
-        // pass. A pixel that is done returns at once in the passes after.
+        // A pass that llvmpipe's loop limit cuts short runs again in the
+        // next dispatch (the search kept in walk_states); every dispatch
+        // completes a pass or ends the search, so kWalkMaxPasses of them end
+        // every search. Pixels that are done return at once.
         for (uint32_t pass = 0; pass < kWalkMaxPasses; ++pass) {
-            constants.walk_pass = pass;
+            constants.walk_dispatch = pass;
             if (pass > 0)
                 vk::memory_barrier(cmd, kCompute, kStorageReadWrite, kCompute, kStorageReadWrite);
             vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
