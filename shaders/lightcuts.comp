@@ -263,8 +263,9 @@ struct WalkPass {
 // a lane that takes a node as a cluster waits for the walk to leave its
 // subtree. A lane sitting the pass out (done, or over max-cut) waits for
 // kEndOfWalk, which no node index equals.
+// `shade` false: only sizes the cut (no light is evaluated, no ray traced).
 void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout WalkPass pass,
-                     float tau, bool limit_size, SurfacePoint p) {
+                     float tau, bool limit_size, bool shade, SurfacePoint p) {
     if (i == kEndOfWalk) return;
     if (waiting && i == resume) waiting = false;
     // One load of the node per step: llvmpipe gathers every field per lane,
@@ -284,7 +285,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                pass.radiance += light_radiance(node.light, p);
+                if (shade) pass.radiance += light_radiance(node.light, p);
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);
@@ -305,23 +306,37 @@ GpuWalkState walk_start() {
 // then keeps the cut if it fit and sets the next threshold, or marks the
 // search done. Returns false, leaving s as it was, when the device's loop
 // limit (or a corrupt tree) ended the walk or one of its shadow rays early.
-bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
-    WalkPass pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
+// The cut at threshold tau (`shade` false: its size, hash and worst bound
+// only). False when the walk or a ray of it was cut short.
+bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
+    pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
     int i = 0;
     bool waiting = false;
     int resume = kEndOfWalk;
-    bool limit_size = s.passes > 0u;
     g_shadow_walk_cut_short = false;
     // Two steps per iteration: the step is large, and more copies spill
     // (measured: 8 copies 1.4x slower).
     for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
-        bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
-        bound_walk_step(i, waiting, resume, pass, s.tau, limit_size, p);
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
     }
-    if (i != kEndOfWalk || g_shadow_walk_cut_short) return false;
+    return i == kEndOfWalk && !g_shadow_walk_cut_short;
+}
+
+bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
+    bool limit_size = s.passes > 0u;
+    bool bisecting = (s.flags & kWalkBisecting) != 0u;
+    WalkPass pass;
+    // With shadow rays, a pass that may well exceed max-cut (bisecting, or
+    // the last cut already a quarter of it) is sized first and shaded only
+    // if it fits: the same decisions, without tracing the rays of cuts that
+    // are thrown away. Sizing costs a walk of bounds; rays cost far more.
+    bool size_first =
+        kShadows && limit_size && (bisecting || s.size * 4u >= kWalkMaxCut);
+    if (size_first && !walk_cut(s.tau, limit_size, false, pass, p)) return false;
+    if (!(size_first && pass.over) && !walk_cut(s.tau, limit_size, true, pass, p)) return false;
     ++s.passes;
     if (s.passes >= kWalkMaxPasses) s.flags |= kWalkDone;  // unless the rule is met below
-    bool bisecting = (s.flags & kWalkBisecting) != 0u;
     if (pass.over) {
         s.flags |= kWalkBisecting;
         s.over_lo = s.tau;
