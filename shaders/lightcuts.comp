@@ -302,10 +302,6 @@ GpuWalkState walk_start() {
                         kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u);
 }
 
-// One pass of one lane's search (s.passes numbers it): walks with s.tau,
-// then keeps the cut if it fit and sets the next threshold, or marks the
-// search done. Returns false, leaving s as it was, when the device's loop
-// limit (or a corrupt tree) ended the walk or one of its shadow rays early.
 // The cut at threshold tau (`shade` false: its size, hash and worst bound
 // only). False when the walk or a ray of it was cut short.
 bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
@@ -323,6 +319,10 @@ bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, Surface
     return i == kEndOfWalk && !g_shadow_walk_cut_short;
 }
 
+// One pass of one lane's search (s.passes numbers it): walks with s.tau,
+// then keeps the cut if it fit and sets the next threshold, or marks the
+// search done. Returns false, leaving s as it was, when the device's loop
+// limit (or a corrupt tree) ended the walk or one of its shadow rays early.
 bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
     bool limit_size = s.passes > 0u;
     bool bisecting = (s.flags & kWalkBisecting) != 0u;

@@ -188,9 +188,10 @@ TEST_F(Shadows, WalkSearchFinishesWhereOneInvocationWouldHitTheLoopLimit) {
     // A fine error ratio over a few thousand lights: each pixel's search
     // takes several passes of hundreds of cut nodes, each node a shadow ray
     // through the furniture's BVH. Together those passes exceed llvmpipe's
-    // 65,535 loop iterations per invocation (with every pass in one dispatch,
-    // 135 of these 576 pixels stopped early); each pass alone fits, and each
-    // is its own dispatch, so every pixel finishes and matches the CPU.
+    // 65,535 loop iterations per invocation (before passes were resumed, 135
+    // of these 576 pixels stopped early); each pass alone fits, and a pass the
+    // limit cuts short runs again in the next dispatch, so every pixel
+    // finishes and matches the CPU.
     scene_.lights = furnished_room_lights(4000, 17);
     tree_ = test::agglomerative_tree(scene_.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);

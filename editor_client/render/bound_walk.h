@@ -23,8 +23,9 @@
 // a child to reuse; cut nodes are evaluated once per pass.
 //
 // shaders/lightcuts.comp implements the same passes (constants come from here
-// as specialization constants), shared by a subgroup, one dispatch per pass
-// (the search kept per pixel in GpuWalkState between them).
+// as specialization constants), shared by a subgroup; a pass the device's
+// loop limit cuts short runs again in the next dispatch (the search kept per
+// pixel in GpuWalkState between them).
 #include <cstdint>
 
 #include "editor_client/render/cpu_evaluator.h"
