@@ -208,6 +208,39 @@ TEST(EditorView, AFailingScriptLineStopsTheLoopWithItsLineNumber) {
     EXPECT_EQ(session.scene().lights.size(), 12u);
 }
 
+TEST(EditorView, AutoExposureIsSetFromTheFirstFullSizeFrameUnlessGiven) {
+    // The room's lights scaled 1000x: at exposure 1 the frame would be white.
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    Scene scene = lit_room();
+    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
+    auto run = [&](bool automatic, const std::string& script_text) {
+        Result<std::vector<ScriptLine>> lines = parse_editor_script(script_text, "exposure.txt");
+        EXPECT_TRUE(lines.ok()) << lines.error();
+        ScriptRunner script(std::move(lines).value(), "exposure.txt");
+        EditorSession session(scene);
+        EXPECT_TRUE(session.set_camera(camera));
+        HeadlessWindow window(48, 36);
+        EditorLoopOptions options;
+        options.width = 48;
+        options.height = 36;
+        options.frames = 3;
+        options.adaptive_resolution = false;
+        options.auto_exposure = automatic;
+        options.script = &script;
+        Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
+        EXPECT_TRUE(summary.ok()) << summary.error();
+        return session.view().exposure;
+    };
+    const float automatic = run(true, "mode reference\n");
+    EXPECT_GT(automatic, 0.0f);
+    EXPECT_LT(automatic, 0.01f) << "1000x brighter lights need a far smaller exposure";
+    EXPECT_EQ(run(false, "mode reference\n"), 1.0f);        // --exposure given
+    EXPECT_EQ(run(true, "exposure 2.5\n"), 2.5f);            // set by the script first
+    EXPECT_EQ(context->validation_message_count(), 0u);
+}
+
 TEST(EditorView, EditsReachTheRendererWithoutABake) {
     // Without a server the editor still shows edited lights (reference mode).
     std::unique_ptr<vk::Context> context;

@@ -40,7 +40,7 @@ struct ViewCommandOptions {
     std::string size = "800x600";
     std::string camera;
     std::optional<int> camera_index;
-    float exposure = 1.0f;
+    std::optional<float> exposure;  // none: automatic, from the first full-size shaded frame
     uint32_t frames = 0;
     std::string screenshot;
     bool validation = false;
@@ -72,7 +72,7 @@ void run_view(const ViewCommandOptions& options) {
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
     auto [width, height] = or_fail(parse_size(options.size));
-    if (!std::isfinite(options.exposure) || options.exposure < 0.0f)
+    if (options.exposure && (!std::isfinite(*options.exposure) || *options.exposure < 0.0f))
         fail("--exposure must be a finite number >= 0");
     if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
@@ -93,7 +93,7 @@ void run_view(const ViewCommandOptions& options) {
     if (options.bake.has_server()) session_options.bake = options.bake.to_options();
     EditorSession session(std::move(scene), session_options);
     or_fail(session.set_camera(camera));
-    or_fail(session.set_exposure(options.exposure));
+    or_fail(session.set_exposure(options.exposure.value_or(1.0f)));
     session.set_mode(*mode);
     if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
 
@@ -138,6 +138,7 @@ void run_view(const ViewCommandOptions& options) {
     loop.screenshot = options.screenshot;
     loop.script = script ? &*script : nullptr;
     loop.adaptive_resolution = !options.no_adaptive;
+    loop.auto_exposure = !options.exposure;
     if (!std::isfinite(options.orbit_drag)) fail("--orbit must be a finite number of pixels");
     loop.orbit_drag_per_frame = options.orbit_drag;
     loop.panels = !options.no_panels;
@@ -178,8 +179,9 @@ void add_view_command(CLI::App& app) {
         cmd->add_option("--camera", options->camera, "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
     cmd->add_option("--camera-index", options->camera_index, "Camera of the file to start from")
         ->excludes(camera);
-    cmd->add_option("--exposure", options->exposure, "Linear exposure before the tone curve")
-        ->capture_default_str();
+    cmd->add_option("--exposure", options->exposure,
+                    "Linear exposure before the tone curve (default: automatic, from the first "
+                    "full-size reference or lightcuts frame, as render does)");
     cmd->add_option("--frames", options->frames, "Render this many frames, then exit");
     cmd->add_option("--screenshot", options->screenshot, "Save the last frame as PNG (with --frames)");
     cmd->add_option("--script", options->script,

@@ -10,6 +10,7 @@
 #include <imgui.h>
 
 #include "editor_client/editor/editor_panels.h"
+#include "editor_client/render/error_stats.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/vk/vk_result.h"
@@ -148,6 +149,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
     RenderCamera orbit_camera = session.view().camera;
     AdaptiveResolution adaptive(options.adaptive);
     EditorLoopSummary summary;
+    bool auto_exposure_pending = options.auto_exposure;
+    const float initial_exposure = session.view().exposure;
     const auto started = std::chrono::steady_clock::now();
     std::optional<std::chrono::steady_clock::time_point> steady_since;
     if (options.script == nullptr) steady_since = started;
@@ -264,6 +267,16 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (*out_of_date) recreate = true;
 
         ++summary.frames;
+        if (auto_exposure_pending && divisor == 1 && settings.mode != RenderMode::kCuts &&
+            settings.mode != RenderMode::kCutSize) {
+            auto_exposure_pending = false;
+            // A script or the panel may have set one already: keep it.
+            if (session.view().exposure == initial_exposure) {
+                Result<std::vector<float>> hdr = renderer.read_hdr();
+                if (!hdr) return make_error(hdr.error());
+                LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
+            }
+        }
         FrameInfo& frame = summary.last_frame;
         frame.frame_ms = elapsed_ms(frame_start);
         frame.width = settings.width;

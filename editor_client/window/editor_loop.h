@@ -27,6 +27,9 @@ struct EditorLoopOptions {
     std::filesystem::path screenshot;  // when set, a full-size frame is saved at the end
     ScriptRunner* script = nullptr;    // stepped once per frame (may be null)
     bool adaptive_resolution = true;
+    // Set the exposure once from the first full-size reference or lightcuts
+    // frame (auto_exposure in error_stats.h), unless it was changed by then.
+    bool auto_exposure = false;
     // Added to the user's orbit drag every frame, in pixels: a camera that
     // keeps moving, for measuring the frame rate while it does (0: off).
     float orbit_drag_per_frame = 0.0f;
