@@ -306,7 +306,7 @@ GpuWalkState walk_start() {
 // only). False when the walk or a ray of it was cut short.
 bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
     pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
-    int i = 0;
+    int i = frame.node_count > 0u ? 0 : kEndOfWalk;  // an empty tree: an empty cut
     bool waiting = false;
     int resume = kEndOfWalk;
     g_shadow_walk_cut_short = false;

@@ -165,8 +165,7 @@ void run_render(const RenderOptions& options) {
     std::vector<float> hdr = or_fail(renderer->read_hdr());
     stats.exposure = settings.exposure;
     // Shaded modes without --exposure: tone-map the read-back at the automatic exposure.
-    const bool shaded = settings.mode == RenderMode::kReference ||
-                        (settings.mode == RenderMode::kLightcuts && !error_mode);
+    const bool shaded = mode_is_shaded(settings.mode) && !error_mode;
     if (shaded && !options.exposure) {
         stats.exposure = auto_exposure(hdr);
         stats.auto_exposure = true;

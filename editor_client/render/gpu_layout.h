@@ -89,8 +89,8 @@ struct alignas(16) GpuWalkState {
     float tau = 0.0f;      // the next pass's threshold
     float fit_hi = 0.0f;   // largest bound on the last cut that fit
     float over_lo = 0.0f;  // a threshold whose cut exceeded max-cut
-    // Bits (shaders/gpu_layout.glsl): done, rule met, bisecting, loop-limit
-    // stop; bits 8..15 the bisection passes left.
+    // Bits (kWalk* in shaders/gpu_layout.glsl): done, rule met, bisecting,
+    // loop-limit stop, store pending; bits 8..15 the bisection passes left.
     uint32_t flags = 0;
     uint32_t passes = 0;  // passes completed
     uint32_t pad1 = 0;
@@ -129,7 +129,7 @@ struct alignas(16) GpuDrawConstants {
     glm::vec4 emissive_metallic{0.0f};  // rgb: emissive factor, a: metallic
     glm::vec4 eye_roughness{0.0f};      // xyz: camera position, w: roughness
     uint32_t flags = 0;
-    uint32_t passes = 0;  // passes completed
+    uint32_t pad0 = 0;
     uint32_t pad1 = 0;
     uint32_t pad2 = 0;
 };

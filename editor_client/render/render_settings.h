@@ -25,6 +25,10 @@ const char* render_mode_name(RenderMode mode);
 std::optional<RenderMode> parse_render_mode(std::string_view text);
 // Modes that select a cut from the tree (and so need one).
 inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kReference; }
+// Modes whose display is tone-mapped radiance (the others visualise cuts).
+inline bool mode_is_shaded(RenderMode mode) {
+    return mode == RenderMode::kReference || mode == RenderMode::kLightcuts;
+}
 
 const char* criterion_name(CutCriterion criterion);
 std::optional<CutCriterion> parse_criterion(std::string_view text);

@@ -666,9 +666,9 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
         // next dispatch (the search kept in walk_states); every dispatch
         // completes a pass or ends the search, so kWalkMaxPasses of them end
         // every search. Pixels that are done return at once.
-        for (uint32_t pass = 0; pass < kWalkMaxPasses; ++pass) {
-            constants.walk_dispatch = pass;
-            if (pass > 0)
+        for (uint32_t dispatch = 0; dispatch < kWalkMaxPasses; ++dispatch) {
+            constants.walk_dispatch = dispatch;
+            if (dispatch > 0)
                 vk::memory_barrier(cmd, kCompute, kStorageReadWrite, kCompute, kStorageReadWrite);
             vkCmdPushConstants(cmd, compute_layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                                sizeof(constants), &constants);

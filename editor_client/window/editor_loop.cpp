@@ -267,8 +267,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (*out_of_date) recreate = true;
 
         ++summary.frames;
-        if (auto_exposure_pending && divisor == 1 && settings.mode != RenderMode::kCuts &&
-            settings.mode != RenderMode::kCutSize) {
+        if (auto_exposure_pending && divisor == 1 && mode_is_shaded(settings.mode)) {
             auto_exposure_pending = false;
             // A script or the panel may have set one already: keep it.
             if (session.view().exposure == initial_exposure) {
