@@ -11,10 +11,10 @@
 #include <cstdint>
 #include <span>
 
-#include "lightmass_server/build_tree.h"
+#include "lightcuts/build_tree.h"
 #include "lightmass_server/cluster_metric.h"
 #include "lightmass_server/tree_builder.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::bake {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <string_view>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::bake {
 

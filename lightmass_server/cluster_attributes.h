@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "lightmass_server/build_tree.h"
+#include "lightcuts/build_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {
@@ -53,5 +53,9 @@ BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, Repres
 // cluster, but unbounded, all directions, and flagged mixed_types so the
 // renderer always refines it.
 BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b);
+
+// The point a node is paired or clustered by: its representative light's
+// position, or its direction for directional lights (a point on the unit sphere).
+glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node);
 
 }  // namespace lc::bake

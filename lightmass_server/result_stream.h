@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "protocol/light_tree.h"
+#include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {

@@ -9,7 +9,7 @@
 #include "lightmass_server/connection.h"
 #include "lightmass_server/server_options.h"
 #include "protocol/channel_recorder.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 #include "protocol/transport.h"
 
 namespace lc::bake {

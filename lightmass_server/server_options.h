@@ -7,7 +7,7 @@
 #include <string>
 
 #include "protocol/frame_decoder.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::bake {
 

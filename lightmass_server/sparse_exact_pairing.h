@@ -10,7 +10,7 @@
 #include <span>
 
 #include "lightmass_server/level_pairing.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::bake {
 

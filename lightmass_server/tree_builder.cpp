@@ -6,11 +6,11 @@
 #include <string>
 
 #include "lightmass_server/agglomerative_builder.h"
-#include "lightmass_server/build_tree.h"
+#include "lightcuts/build_tree.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/lbvh_builder.h"
 #include "lightmass_server/optimal_pair_builder.h"
-#include "lightmass_server/tree_export.h"
+#include "lightcuts/tree_export.h"
 
 namespace lc::bake {
 namespace {

@@ -7,10 +7,10 @@
 #include <string_view>
 #include <vector>
 
-#include "protocol/light_tree.h"
+#include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::bake {
 

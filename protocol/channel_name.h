@@ -5,7 +5,7 @@
 #include <string>
 #include <string_view>
 
-#include "guid.h"
+#include "lightcuts/guid.h"
 
 namespace lc {
 

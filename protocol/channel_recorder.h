@@ -5,7 +5,7 @@
 #include <span>
 #include <string>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc {
 

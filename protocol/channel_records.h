@@ -10,9 +10,9 @@
 #include <span>
 #include <vector>
 
-#include "light_tree.h"
-#include "result.h"
-#include "scene_light.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "messages.h"
-#include "result.h"
+#include "lightcuts/result.h"
 
 namespace lc {
 

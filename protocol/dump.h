@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "result.h"
+#include "lightcuts/result.h"
 
 namespace lc {
 

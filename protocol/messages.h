@@ -6,7 +6,7 @@
 #include <variant>
 #include <vector>
 
-#include "guid.h"
+#include "lightcuts/guid.h"
 
 namespace lc {
 

@@ -2,18 +2,8 @@
 #include <type_traits>
 
 #include "messages.h"
-#include "scene_light.h"
 
 namespace lc {
-
-const char* light_type_name(LightType type) {
-    switch (type) {
-        case LightType::kPoint: return "point";
-        case LightType::kSpot: return "spot";
-        case LightType::kDirectional: return "directional";
-    }
-    return "unknown";
-}
 
 const char* builder_name(BuilderKind kind) {
     switch (kind) {

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 #include "protocol/transport.h"
 
 namespace lc {

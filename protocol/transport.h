@@ -10,7 +10,7 @@
 #include <variant>
 
 #include "protocol/asio.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 // After protocol/asio.h, which puts <utility> first as Boost 1.74 needs.
 #include <boost/asio/ssl.hpp>

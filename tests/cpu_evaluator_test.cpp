@@ -13,10 +13,10 @@
 #include <random>
 #include <vector>
 
-#include "editor_client/render/bound_walk.h"
-#include "editor_client/render/material_model.h"
-#include "editor_client/render/cpu_evaluator.h"
-#include "editor_client/render/shading_model.h"
+#include "lightcuts/bound_walk.h"
+#include "lightcuts/material_model.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/shading_model.h"
 #include "lightmass_server/tree_builder.h"
 
 namespace lc::client {

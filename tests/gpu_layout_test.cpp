@@ -7,9 +7,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "editor_client/render/gpu_layout.h"
-#include "editor_client/render/shadow_bvh.h"
-#include "editor_client/render/shading_model.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/shading_model.h"
 
 namespace lc::client {
 namespace {

@@ -1,5 +1,5 @@
 // Guid: text form, parsing, and the deterministic content hash.
-#include "protocol/guid.h"
+#include "lightcuts/guid.h"
 
 #include <gtest/gtest.h>
 

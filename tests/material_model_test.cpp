@@ -10,9 +10,9 @@
 #include <numbers>
 #include <random>
 
-#include "editor_client/render/cpu_evaluator.h"
-#include "editor_client/render/material_model.h"
-#include "protocol/light_tree.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/material_model.h"
+#include "lightcuts/light_tree.h"
 
 namespace lc::client {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "editor_client/render/occlusion_analysis.h"
 #include "editor_client/render/scene_effects.h"
-#include "editor_client/render/shadow_bvh.h"
-#include "editor_client/render/shadow_ray.h"
+#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"
 
 namespace lc::client {

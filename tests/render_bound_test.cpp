@@ -14,7 +14,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"

@@ -12,7 +12,7 @@
 #include <string>
 
 #include "editor_client/render/image_io.h"
-#include "editor_client/render/tone_mapping.h"
+#include "lightcuts/tone_mapping.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/tree_builder.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/scene_effects.h"

@@ -20,9 +20,9 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/render/tone_mapping.h"
+#include "lightcuts/tone_mapping.h"
 #include "lightmass_server/tree_builder.h"
 #include "render_test_support.h"
 

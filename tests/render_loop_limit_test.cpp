@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
 #include "render_test_support.h"
 
@@ -17,8 +17,8 @@ using client::Renderer;
 using client::RenderSettings;
 
 // The floor with `count` unbounded dim point lights scattered above it.
-client::Scene floor_with_scattered_lights(uint32_t count, uint32_t seed) {
-    client::Scene scene = test::make_floor_scene();
+lc::Scene floor_with_scattered_lights(uint32_t count, uint32_t seed) {
+    lc::Scene scene = test::make_floor_scene();
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> xz(-4.5f, 4.5f), y(0.5f, 4.5f);
     for (uint32_t i = 0; i < count; ++i) {
@@ -32,7 +32,7 @@ client::Scene floor_with_scattered_lights(uint32_t count, uint32_t seed) {
 TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    client::Scene scene = floor_with_scattered_lights(70000, 3);
+    lc::Scene scene = floor_with_scattered_lights(70000, 3);
     // All lights unbounded: the radius criterion refines to every leaf, so its
     // cut is the whole tree and its sum is the reference.
     LightTree tree = test::make_pairing_tree(scene.lights);
@@ -51,7 +51,7 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     ASSERT_TRUE(gbuffer.ok()) << gbuffer.error();
 
     settings.mode = RenderMode::kLightcuts;
-    settings.criterion = client::CutCriterion::kRadius;
+    settings.criterion = lc::CutCriterion::kRadius;
     auto stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
     EXPECT_EQ(stats->max_cut, 70000u);
@@ -63,8 +63,8 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     for (size_t px = 0; px < 64; ++px) {
         const auto& g = *gbuffer;
         if (g.position[4 * px + 3] == 0.0f) continue;
-        const client::SurfacePoint p = test::gbuffer_point(g, px);
-        double exact = client::shade_reference(scene.lights, p).x;
+        const lc::SurfacePoint p = test::gbuffer_point(g, px);
+        double exact = lc::shade_reference(scene.lights, p).x;
         EXPECT_NEAR((*reference)[4 * px], exact, 1e-3 * exact) << "pixel " << px;
         EXPECT_NEAR((*walked)[4 * px], exact, 1e-3 * exact) << "pixel " << px;
         ++checked;
@@ -78,7 +78,7 @@ TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
     LC_REQUIRE_VULKAN(context);
     if (context->physical().name().find("llvmpipe") == std::string::npos)
         GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
-    client::Scene scene = test::make_floor_scene();
+    lc::Scene scene = test::make_floor_scene();
     for (uint32_t i = 0; i < 8; ++i) {
         SceneLight light = test::point_light({float(i) - 4.0f, 2.0f, 0.0f}, glm::vec3(1.0f), 1.0f);
         test::set_unit_guid(light, i);
@@ -91,8 +91,8 @@ TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
     settings.width = settings.height = 8;
     settings.camera = test::floor_camera();
     settings.mode = RenderMode::kLightcuts;
-    settings.criterion = client::CutCriterion::kBound;
-    settings.bound_search = client::BoundSearch::kHeap;
+    settings.criterion = lc::CutCriterion::kBound;
+    settings.bound_search = lc::BoundSearch::kHeap;
     settings.max_cut = 4096;
     auto stats = (*renderer)->render(settings);
     ASSERT_FALSE(stats.ok());
@@ -104,7 +104,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     LC_REQUIRE_VULKAN(context);
     if (context->physical().name().find("llvmpipe") == std::string::npos)
         GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
-    client::Scene scene = floor_with_scattered_lights(70000, 5);
+    lc::Scene scene = floor_with_scattered_lights(70000, 5);
     // Every junction flagged mixed-type: always refined, so the first pass
     // walks all 139,999 nodes, two per iteration: past the 65,535 limit.
     LightTree tree = test::make_pairing_tree(scene.lights);
@@ -116,7 +116,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     settings.width = settings.height = 8;
     settings.camera = test::floor_camera();
     settings.mode = RenderMode::kLightcuts;
-    settings.criterion = client::CutCriterion::kBound;
+    settings.criterion = lc::CutCriterion::kBound;
     auto stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
     EXPECT_GT(stats->geometry_pixels, 0u);

@@ -15,9 +15,9 @@
 #include <random>
 #include <vector>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/render/shadow_ray.h"
+#include "lightcuts/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/tree_builder.h"
 #include "render_test_support.h"

@@ -14,20 +14,20 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/cpu_evaluator.h"
-#include "editor_client/render/material_model.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/material_model.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/scene.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/tree_builder.h"
 #include "editor_client/vk/context.h"
-#include "protocol/light_tree.h"
+#include "lightcuts/light_tree.h"
 
 namespace lc::test {
 
 // The surface point the lighting pass saw at pixel i of a G-buffer read-back.
-inline client::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i) {
-    client::SurfacePoint p;
+inline lc::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i) {
+    lc::SurfacePoint p;
     p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
     p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
     const glm::dvec3 base(g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]);
@@ -84,9 +84,9 @@ inline std::unique_ptr<vk::Context> make_headless_context(std::string& why) {
         if (!context) GTEST_SKIP() << "no Vulkan device: " << lc_vulkan_why_; \
     } while (0)
 
-inline client::Mesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
+inline lc::Mesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
                               const glm::vec3& edge_v, int material) {
-    client::Mesh mesh;
+    lc::Mesh mesh;
     glm::vec3 normal = glm::normalize(glm::cross(edge_u, edge_v));
     mesh.positions = {corner, corner + edge_u, corner + edge_u + edge_v, corner + edge_v};
     mesh.normals = {normal, normal, normal, normal};
@@ -127,12 +127,12 @@ inline SceneLight directional_light(glm::vec3 direction, glm::vec3 color, float 
 }
 
 // A 10 x 10 floor at y = 0 and a back wall at z = -5 with two materials; no lights.
-inline client::Scene make_floor_scene() {
-    client::Scene scene;
-    client::Material floor;
+inline lc::Scene make_floor_scene() {
+    lc::Scene scene;
+    lc::Material floor;
     floor.base_color_factor = {0.8f, 0.7f, 0.6f, 1.0f};
     floor.metallic = 0.0f;
-    client::Material wall;
+    lc::Material wall;
     wall.base_color_factor = {0.3f, 0.5f, 0.9f, 1.0f};
     wall.metallic = 0.0f;
     scene.materials = {floor, wall};

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <set>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"

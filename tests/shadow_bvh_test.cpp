@@ -2,7 +2,7 @@
 // a brute-force loop over every triangle, the stackless layout is a valid
 // pre-order tree with conservative float boxes, and the hard cases (empty,
 // identical, chained, far-away, axis-parallel, degenerate) stay correct.
-#include "editor_client/render/shadow_bvh.h"
+#include "lightcuts/shadow_bvh.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>

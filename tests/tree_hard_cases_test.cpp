@@ -14,7 +14,7 @@
 #include "lightmass_server/lbvh_builder.h"
 #include "lightmass_server/optimal_pair_builder.h"
 #include "lightmass_server/tree_builder.h"
-#include "lightmass_server/tree_export.h"
+#include "lightcuts/tree_export.h"
 #include "protocol/channel_records.h"
 #include "tree_invariants.h"
 

@@ -13,10 +13,10 @@
 #include <span>
 #include <vector>
 
-#include "lightmass_server/build_tree.h"
+#include "lightcuts/build_tree.h"
 #include "lightmass_server/cluster_attributes.h"
-#include "protocol/light_tree.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::test {
 
@@ -53,8 +53,8 @@ inline bool finite_vec(const glm::vec3& v) {
 }
 
 // The arena with one leaf per light, as build_light_tree makes it.
-inline bake::BuildArena leaf_arena(std::span<const SceneLight> lights) {
-    bake::BuildArena arena;
+inline lc::BuildArena leaf_arena(std::span<const SceneLight> lights) {
+    lc::BuildArena arena;
     arena.lights = lights;
     arena.nodes.reserve(2 * lights.size() + 3);
     for (uint32_t i = 0; i < lights.size(); ++i)
@@ -73,7 +73,7 @@ inline std::vector<uint32_t> all_indices(size_t count) {
 // cones hold their leaves' directions, radius encloses every leaf's sphere
 // (exhaustively when small, else by the local rule, which implies it), and the
 // representative is a leaf of the subtree.
-inline void expect_build_invariants(const bake::BuildArena& arena, int32_t root,
+inline void expect_build_invariants(const lc::BuildArena& arena, int32_t root,
                                     std::span<const uint32_t> leaves) {
     ASSERT_GE(root, 0);
     const auto& nodes = arena.nodes;
@@ -107,15 +107,15 @@ inline void expect_build_invariants(const bake::BuildArena& arena, int32_t root,
 
     const bool exhaustive = leaves.size() <= 1500;
     for (uint32_t id : post_order) {
-        const bake::BuildNode& node = nodes[id];
+        const lc::BuildNode& node = nodes[id];
         EXPECT_TRUE(std::isfinite(node.brightness) && std::isfinite(node.radius));
         const uint32_t rep = node.representative;
         ASSERT_TRUE(nodes[rep].is_leaf()) << "representative of " << id << " is no leaf";
         ASSERT_TRUE(tin[id] <= tin[rep] && tin[rep] < tout[id])
             << "representative of " << id << " outside its subtree";
         if (node.is_leaf() || node.mixed_types) continue;
-        const bake::BuildNode& l = nodes[size_t(node.left)];
-        const bake::BuildNode& r = nodes[size_t(node.right)];
+        const lc::BuildNode& l = nodes[size_t(node.left)];
+        const lc::BuildNode& r = nodes[size_t(node.right)];
         EXPECT_LT(l.min_light_index, r.min_light_index) << "left child must hold the first light";
         EXPECT_EQ(node.guid, Guid::combine(l.guid, r.guid));
         EXPECT_TRUE(rep == l.representative || rep == r.representative);
@@ -124,7 +124,7 @@ inline void expect_build_invariants(const bake::BuildArena& arena, int32_t root,
         if (l.unbounded() || r.unbounded()) {
             EXPECT_TRUE(node.unbounded());
         } else {
-            for (const bake::BuildNode* child : {&l, &r}) {
+            for (const lc::BuildNode* child : {&l, &r}) {
                 const glm::dvec3 c(arena.lights[child->representative].position);
                 EXPECT_GE(node.radius * (1 + 1e-12), glm::distance(p, c) + child->radius);
             }
@@ -139,10 +139,10 @@ inline void expect_build_invariants(const bake::BuildArena& arena, int32_t root,
         if (nodes[id].right >= 0) parent[size_t(nodes[id].right)] = int32_t(id);
     }
     for (uint32_t leaf : leaves) {
-        const bake::BuildNode& l = nodes[leaf];
+        const lc::BuildNode& l = nodes[leaf];
         const glm::dvec3 point = l.bbox_min;
         for (int32_t a = parent[leaf]; a >= 0; a = parent[size_t(a)]) {
-            const bake::BuildNode& node = nodes[size_t(a)];
+            const lc::BuildNode& node = nodes[size_t(a)];
             for (int c = 0; c < 3; ++c) {
                 EXPECT_LE(node.bbox_min[c], point[c]);
                 EXPECT_GE(node.bbox_max[c], point[c]);

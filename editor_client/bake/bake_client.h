@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "protocol/guid.h"
-#include "protocol/light_tree.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::client {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

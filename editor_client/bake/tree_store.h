@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "editor_client/bake/bake_client.h"
-#include "protocol/light_tree.h"
-#include "protocol/result.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

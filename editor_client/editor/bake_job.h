@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "editor_client/bake/bake_client.h"
-#include "protocol/guid.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::client {
 

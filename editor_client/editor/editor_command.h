@@ -19,8 +19,8 @@
 
 #include "editor_client/render/render_settings.h"
 #include "editor_client/scene/scene_generator.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::client {
 

@@ -19,9 +19,9 @@
 #include "editor_client/editor/bake_job.h"
 #include "editor_client/editor/undo_stack.h"
 #include "editor_client/editor/view_state.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/scene.h"
 #include "editor_client/scene/scene_generator.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

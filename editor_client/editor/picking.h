@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "editor_client/render/render_settings.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/scene.h"
 
 namespace lc::client {
 

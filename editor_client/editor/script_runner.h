@@ -9,7 +9,7 @@
 
 #include "editor_client/editor/editor_command.h"
 #include "editor_client/editor/editor_session.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

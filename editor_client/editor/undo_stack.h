@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/scene_light.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::client {
 

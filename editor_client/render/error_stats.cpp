@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "editor_client/render/tone_mapping.h"
+#include "lightcuts/tone_mapping.h"
 
 namespace lc::client {
 namespace {

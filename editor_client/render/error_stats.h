@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

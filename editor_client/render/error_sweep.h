@@ -9,7 +9,7 @@
 
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/renderer.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

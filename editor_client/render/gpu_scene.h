@@ -8,14 +8,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "editor_client/render/gpu_layout.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/scene.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/vk/descriptor_set.h"
 #include "editor_client/vk/image.h"
 #include "editor_client/vk/sampler.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

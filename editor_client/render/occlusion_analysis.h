@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/scene.h"
+#include "lightcuts/scene.h"
 
 namespace lc::client {
 

@@ -8,9 +8,9 @@
 
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/render/render_settings.h"
-#include "editor_client/scene/scene.h"
-#include "protocol/light_tree.h"
-#include "protocol/result.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

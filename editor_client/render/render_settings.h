@@ -7,9 +7,9 @@
 #include <string>
 #include <string_view>
 
-#include "editor_client/render/cpu_evaluator.h"
-#include "editor_client/scene/scene.h"
-#include "protocol/result.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "editor_client/render/scene_effects.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "editor_client/render/gpu_layout.h"
+#include "lightcuts/gpu_layout.h"
 #include "editor_client/vk/vk_result.h"
 
 namespace lc::client {

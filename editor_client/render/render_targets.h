@@ -7,7 +7,7 @@
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/image.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "editor_client/render/bound_walk.h"
+#include "lightcuts/bound_walk.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
 #include "protocol/channel_records.h"

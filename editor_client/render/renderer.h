@@ -13,15 +13,15 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/gpu_layout.h"
+#include "lightcuts/gpu_layout.h"
 #include "editor_client/render/gpu_scene.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
-#include "editor_client/render/shadow_bvh.h"
-#include "editor_client/render/shadow_ray.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/shadow_ray.h"
+#include "lightcuts/scene.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/compute_pipeline.h"
 #include "editor_client/vk/context.h"
@@ -29,8 +29,8 @@
 #include "editor_client/vk/graphics_pipeline.h"
 #include "editor_client/vk/pipeline_layout.h"
 #include "editor_client/vk/timestamp_query_pool.h"
-#include "protocol/light_tree.h"
-#include "protocol/result.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

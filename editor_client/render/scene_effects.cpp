@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "editor_client/render/material_model.h"
+#include "lightcuts/material_model.h"
 #include "editor_client/render/occlusion_analysis.h"
 
 namespace lc::client {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/shadow_ray.h"
-#include "editor_client/scene/scene.h"
-#include "protocol/light_tree.h"
+#include "lightcuts/shadow_ray.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/light_tree.h"
 
 namespace lc::client {
 

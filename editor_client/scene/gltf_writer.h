@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <span>
 
-#include "editor_client/scene/scene.h"
-#include "protocol/result.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

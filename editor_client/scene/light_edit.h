@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "editor_client/scene/scene.h"
-#include "protocol/result.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

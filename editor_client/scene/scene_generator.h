@@ -12,9 +12,9 @@
 #include <string_view>
 #include <vector>
 
-#include "editor_client/scene/scene.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc::client {
 

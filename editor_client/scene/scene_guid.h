@@ -4,8 +4,8 @@
 // (positions and indices), not the file path, materials or cameras.
 #include <cstdint>
 
-#include "editor_client/scene/scene.h"
-#include "protocol/guid.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/guid.h"
 
 namespace lc::client {
 

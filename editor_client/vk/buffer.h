@@ -11,7 +11,7 @@
 #include "editor_client/vk/command_pool.h"
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/device_handle.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

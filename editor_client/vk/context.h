@@ -13,7 +13,7 @@
 #include "editor_client/vk/instance.h"
 #include "editor_client/vk/physical_device.h"
 #include "editor_client/vk/surface.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "editor_client/vk/physical_device.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

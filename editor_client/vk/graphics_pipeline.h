@@ -9,7 +9,7 @@
 
 #include "editor_client/vk/device_handle.h"
 #include "editor_client/vk/specialization.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

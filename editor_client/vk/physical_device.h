@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -5,7 +5,7 @@
 #include <span>
 
 #include "editor_client/vk/device_handle.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -3,7 +3,7 @@
 #include <vulkan/vulkan.h>
 
 #include "editor_client/vk/device_handle.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -8,7 +8,7 @@
 
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/device_handle.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::vk {
 

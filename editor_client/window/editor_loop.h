@@ -13,10 +13,10 @@
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/script_runner.h"
-#include "editor_client/render/shadow_ray.h"
+#include "lightcuts/shadow_ray.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/window/window.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -11,7 +11,7 @@
 
 #include "editor_client/vk/context.h"
 #include "editor_client/vk/image.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 struct GLFWwindow;
 

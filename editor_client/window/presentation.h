@@ -11,7 +11,7 @@
 #include "editor_client/vk/image.h"
 #include "editor_client/vk/swapchain.h"
 #include "editor_client/vk/sync.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -9,7 +9,7 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/window/window.h"
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

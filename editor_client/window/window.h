@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/result.h"
+#include "lightcuts/result.h"
 
 namespace lc::client {
 

@@ -20,7 +20,7 @@
 #include <memory>
 #include <random>
 
-#include "editor_client/render/gpu_layout.h"
+#include "lightcuts/gpu_layout.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"

@@ -1,11 +1,11 @@
-#include "editor_client/render/bound_walk.h"
+#include "lightcuts/bound_walk.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-namespace lc::client {
+namespace lc {
 namespace {
 
 double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
@@ -95,4 +95,4 @@ CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     return result;
 }
 
-}  // namespace lc::client
+}  // namespace lc

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "guid.h"
-#include "scene_light.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/scene_light.h"
 
 namespace lc {
 

@@ -9,7 +9,7 @@
 //   mixed_types junction.
 // - Bound criterion: colours are compared through their largest channel:
 //   a node is refined while max_c(bound_c) > error_ratio * max_c(total_c).
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 
 #include <glm/geometric.hpp>
 
@@ -19,13 +19,13 @@
 #include <numbers>
 #include <vector>
 
-#include "editor_client/render/bound_walk.h"
-#include "editor_client/render/material_model.h"
-#include "editor_client/render/shading_model.h"
-#include "editor_client/render/shadow_bvh.h"
-#include "editor_client/render/shadow_ray.h"
+#include "lightcuts/bound_walk.h"
+#include "lightcuts/material_model.h"
+#include "lightcuts/shading_model.h"
+#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/shadow_ray.h"
 
-namespace lc::client {
+namespace lc {
 namespace {
 
 // What shading needs from a light or from a node's representative.
@@ -388,4 +388,4 @@ CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> cla
     return result;
 }
 
-}  // namespace lc::client
+}  // namespace lc

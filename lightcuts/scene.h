@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "protocol/guid.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/scene_light.h"
 
-namespace lc::client {
+namespace lc {
 
 struct Texture {
     int width = 0;
@@ -73,4 +73,4 @@ inline bool casts_shadows(const Scene& scene, const Mesh& mesh) {
            scene.materials[size_t(mesh.material)].casts_shadows;
 }
 
-}  // namespace lc::client
+}  // namespace lc

@@ -1,4 +1,4 @@
-#include "lightmass_server/tree_export.h"
+#include "lightcuts/tree_export.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <numbers>
 #include <vector>
 
-namespace lc::bake {
+namespace lc {
 namespace {
 
 constexpr float kFloatMax = std::numeric_limits<float>::max();
@@ -114,4 +114,4 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
     return result;
 }
 
-}  // namespace lc::bake
+}  // namespace lc

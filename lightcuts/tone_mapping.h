@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdint>
 
-namespace lc::client::tone {
+namespace lc::tone {
 
 // ACES filmic fit: x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14), clamped to [0, 1].
 inline float filmic(float x) {
@@ -34,4 +34,4 @@ inline uint8_t to_display_byte(float radiance, float exposure) {
     return static_cast<uint8_t>(std::lround(encoded * 255.0f));
 }
 
-}  // namespace lc::client::tone
+}  // namespace lc::tone

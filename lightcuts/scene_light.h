@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "guid.h"
+#include "lightcuts/guid.h"
 
 namespace lc {
 

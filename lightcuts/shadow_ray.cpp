@@ -1,4 +1,4 @@
-#include "editor_client/render/shadow_ray.h"
+#include "lightcuts/shadow_ray.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace lc::client {
+namespace lc {
 
 Result<ShadowMode> parse_shadow_mode(std::string_view text) {
     if (text == "auto") return ShadowMode::kAuto;
@@ -49,4 +49,4 @@ double light_visibility(const ShadowBvh& occluders, double bias, LightType type,
     return occluders.occluded(origin, to_light, 1.0 - bias / distance) ? 0.0 : 1.0;
 }
 
-}  // namespace lc::client
+}  // namespace lc

@@ -1,12 +1,12 @@
-#include "editor_client/render/gpu_layout.h"
+#include "lightcuts/gpu_layout.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "editor_client/render/shading_model.h"
+#include "lightcuts/shading_model.h"
 
-namespace lc::client {
+namespace lc {
 namespace {
 
 float spot_scale(double cos_inner, double cos_outer) {
@@ -139,4 +139,4 @@ std::vector<GpuNodeBounds> make_gpu_node_bounds(const LightTree& tree) {
     return bounds;
 }
 
-}  // namespace lc::client
+}  // namespace lc

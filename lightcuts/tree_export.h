@@ -7,10 +7,10 @@
 // to the largest float, radii that do become unbounded.
 #include <cstdint>
 
-#include "lightmass_server/build_tree.h"
-#include "protocol/light_tree.h"
+#include "lightcuts/build_tree.h"
+#include "lightcuts/light_tree.h"
 
-namespace lc::bake {
+namespace lc {
 
 struct ExportedTree {
     LightTree tree;
@@ -24,4 +24,4 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root);
 float round_down_to_float(double value);
 float round_up_to_float(double value);
 
-}  // namespace lc::bake
+}  // namespace lc

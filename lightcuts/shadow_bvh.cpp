@@ -1,6 +1,6 @@
 // The occluder BVH: binned SAH built top-down from an explicit work list (no
 // recursion), emitted in pre-order with escapes, walked without a stack.
-#include "editor_client/render/shadow_bvh.h"
+#include "lightcuts/shadow_bvh.h"
 
 #include <glm/geometric.hpp>
 
@@ -12,7 +12,7 @@
 #include <optional>
 #include <utility>
 
-namespace lc::client {
+namespace lc {
 namespace {
 
 // Binned SAH: this many bins per axis, on all three axes of the centroid bounds.
@@ -402,4 +402,4 @@ bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
     return false;
 }
 
-}  // namespace lc::client
+}  // namespace lc

@@ -6,10 +6,10 @@
 #include <cstdint>
 #include <span>
 
-#include "protocol/light_tree.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/scene_light.h"
 
-namespace lc::client {
+namespace lc {
 
 class ShadowBvh;
 
@@ -90,4 +90,4 @@ glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p);
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);
 
-}  // namespace lc::client
+}  // namespace lc

@@ -12,11 +12,11 @@
 #include <span>
 #include <vector>
 
-#include "protocol/light_tree.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
-namespace lc::client {
+namespace lc {
 
 // Pre-order "next node after my subtree": -1 past the last node.
 inline constexpr int32_t kGpuEndOfWalk = -1;
@@ -194,4 +194,4 @@ struct GpuTree {
 Result<GpuTree> make_gpu_tree(const LightTree& tree);
 std::vector<GpuNodeBounds> make_gpu_node_bounds(const LightTree& tree);
 
-}  // namespace lc::client
+}  // namespace lc

@@ -11,12 +11,12 @@
 #include <string>
 #include <string_view>
 
-#include "editor_client/render/shadow_bvh.h"
-#include "editor_client/scene/scene.h"
-#include "protocol/result.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/scene.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
 
-namespace lc::client {
+namespace lc {
 
 inline constexpr double kShadowRayFar = 1e30;
 
@@ -36,4 +36,4 @@ double light_visibility(const ShadowBvh& occluders, double bias, LightType type,
                         const glm::dvec3& position, const glm::dvec3& direction,
                         const glm::dvec3& x, const glm::dvec3& n);
 
-}  // namespace lc::client
+}  // namespace lc

@@ -12,10 +12,10 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/gpu_layout.h"
-#include "editor_client/scene/scene.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/scene.h"
 
-namespace lc::client {
+namespace lc {
 
 // One BVH node as the shaders read it (std430, mirrored in shaders/gpu_layout.glsl).
 struct alignas(16) GpuBvhNode {
@@ -77,4 +77,4 @@ private:
     ShadowBvhStats stats_;
 };
 
-}  // namespace lc::client
+}  // namespace lc

@@ -28,9 +28,9 @@
 // pixel in GpuWalkState between them).
 #include <cstdint>
 
-#include "editor_client/render/cpu_evaluator.h"
+#include "lightcuts/cpu_evaluator.h"
 
-namespace lc::client {
+namespace lc {
 
 inline constexpr uint32_t kWalkMaxPasses = 12;
 inline constexpr float kWalkShrink = 512.0f;
@@ -45,4 +45,4 @@ double bisection_threshold(double fit_hi, double over_lo);
 // The cut of the bound criterion by threshold passes (classic lights not included).
 CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings);
 
-}  // namespace lc::client
+}  // namespace lc

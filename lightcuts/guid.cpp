@@ -1,6 +1,6 @@
 // Guid text form (Unreal's FGuid::ToString(EGuidFormats::Digits)) and the
 // deterministic content hash used for scene and cluster GUIDs.
-#include "guid.h"
+#include "lightcuts/guid.h"
 
 #include <array>
 #include <cstdio>

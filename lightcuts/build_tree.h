@@ -10,10 +10,10 @@
 #include <span>
 #include <vector>
 
-#include "protocol/guid.h"
-#include "protocol/scene_light.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/scene_light.h"
 
-namespace lc::bake {
+namespace lc {
 
 inline constexpr int32_t kNoBuildChild = -1;
 // Influence radius of a node that reaches everywhere (no range, directional, or
@@ -60,8 +60,5 @@ struct BuildArena {
 // Progress of one per-type build as a fraction in [0, 1]; false cancels it.
 using BuildProgressFn = std::function<bool(double fraction)>;
 
-// The point a node is paired or clustered by: its representative light's
-// position, or its direction for directional lights (a point on the unit sphere).
-glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node);
 
-}  // namespace lc::bake
+}  // namespace lc
