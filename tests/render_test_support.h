@@ -117,6 +117,19 @@ inline std::unique_ptr<vk::Context> make_headless_context(std::string& why) {
         if (!context) GTEST_SKIP() << "no Vulkan device: " << lc_vulkan_why_; \
     } while (0)
 
+// A fixture for tests that render: a validating headless context (or the
+// test skips), which must have reported no validation message at the end.
+class VulkanTest : public ::testing::Test {
+protected:
+    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
+    void TearDown() override {
+        if (context_) {
+            EXPECT_EQ(context_->validation_message_count(), 0u);
+        }
+    }
+    std::unique_ptr<vk::Context> context_;
+};
+
 inline lc::Mesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
                               const glm::vec3& edge_v, int material) {
     lc::Mesh mesh;
