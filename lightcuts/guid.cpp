@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdio>
 
+#include "lightcuts/seeded_mixer.h"
+
 namespace lc {
 namespace {
 
@@ -13,17 +15,7 @@ namespace {
 constexpr uint64_t kFnvPrime = 0x00000100000001B3ull;
 constexpr uint64_t kFnvOffsetLane0 = 0xCBF29CE484222325ull;
 constexpr uint64_t kOffsetLane1 = 0x6A09E667F3BCC909ull;      // fractional bits of sqrt(2)
-constexpr uint64_t kLane1Multiplier = 0x9E3779B97F4A7C15ull;  // 2^64 / golden ratio
-
-// splitmix64's finaliser: spreads every input bit over the whole word.
-uint64_t mix64(uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ull;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBull;
-    x ^= x >> 31;
-    return x;
-}
+constexpr uint64_t kLane1Multiplier = kGoldenGamma;
 
 uint64_t rotate_left(uint64_t x, int bits) { return (x << bits) | (x >> (64 - bits)); }
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightcuts/seeded_mixer.h"
+
 namespace lc::bake {
 namespace {
 
@@ -23,16 +25,6 @@ glm::dvec3 any_perpendicular(const glm::dvec3& v) {
     return glm::normalize(glm::cross(v, helper));
 }
 
-// SplitMix64's finalizer: a bijective 64-bit mix, enough for a counter-based draw.
-uint64_t mix64(uint64_t x) {
-    x ^= x >> 30;
-    x *= 0xBF58476D1CE4E5B9ull;
-    x ^= x >> 27;
-    x *= 0x94D049BB133111EBull;
-    x ^= x >> 31;
-    return x;
-}
-
 uint64_t mix_guid(uint64_t h, const Guid& g) {
     h = mix64(h ^ ((uint64_t(g.a) << 32) | g.b));
     return mix64(h ^ ((uint64_t(g.c) << 32) | g.d));
@@ -40,10 +32,10 @@ uint64_t mix_guid(uint64_t h, const Guid& g) {
 
 // Uniform in [0, 1) from (seed, first GUID, second GUID).
 double counter_uniform(uint64_t seed, const Guid& first, const Guid& second) {
-    uint64_t h = mix64(seed ^ 0x9E3779B97F4A7C15ull);
+    uint64_t h = mix64(seed ^ kGoldenGamma);
     h = mix_guid(h, first);
     h = mix_guid(h, second);
-    return double(h >> 11) * 0x1.0p-53;
+    return unit_interval(h);
 }
 
 // Sums and bounds every cluster kind shares.

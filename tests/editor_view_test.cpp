@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <set>
 #include <sstream>
 #include <string>
 
@@ -30,20 +29,6 @@ namespace {
 
 std::string server_binary() {
     return (test::bin_dir() / "lightmass_server").string();
-}
-
-Scene lit_room() {
-    Scene scene = make_room_scene();
-    LightLayoutOptions layout;
-    layout.count = 12;
-    layout.seed = 5;
-    layout.box_min = kRoomLightBoxMin;
-    layout.box_max = kRoomLightBoxMax;
-    layout.range = 5.0f;
-    Result<std::vector<SceneLight>> lights = generate_lights(layout);
-    EXPECT_TRUE(lights.ok());
-    if (lights.ok()) scene.lights = *lights;
-    return scene;
 }
 
 // The script every test runs: a screenshot of the starting lights, two added
@@ -81,18 +66,6 @@ Rgba8Image read_image(const std::filesystem::path& path) {
     return image.ok() ? std::move(image).value() : Rgba8Image{};
 }
 
-// Shaded images have many colours; the cuts view one per distinct cut.
-void expect_not_blank(const Rgba8Image& image, const std::string& what, size_t min_colours = 16) {
-    std::set<uint32_t> colours;
-    size_t lit = 0;
-    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
-        colours.insert(image.rgba[i] | image.rgba[i + 1] << 8 | image.rgba[i + 2] << 16);
-        lit += (image.rgba[i] + image.rgba[i + 1] + image.rgba[i + 2]) > 30 ? 1 : 0;
-    }
-    EXPECT_GT(colours.size(), min_colours) << what << " is blank";
-    EXPECT_GT(lit, image.rgba.size() / 4 / 4) << what << " is mostly black";
-}
-
 // Mean absolute difference per RGB channel, in 8-bit levels.
 double mean_difference(const Rgba8Image& a, const Rgba8Image& b) {
     EXPECT_EQ(a.width, b.width);
@@ -118,10 +91,10 @@ void check_outputs(const std::filesystem::path& dir, uint32_t width, uint32_t he
         EXPECT_EQ(image->width, width);
         EXPECT_EQ(image->height, height);
     }
-    expect_not_blank(before, "before.png");
-    expect_not_blank(reference, "reference.png");
-    expect_not_blank(lightcuts, "lightcuts.png");
-    expect_not_blank(cuts, "cuts.png", 3);
+    test::expect_not_blank(before, "before.png");
+    test::expect_not_blank(reference, "reference.png");
+    test::expect_not_blank(lightcuts, "lightcuts.png");
+    test::expect_not_blank(cuts, "cuts.png", 3);
     // The two added lights are bright: the image must change visibly, far
     // more than lightcuts differs from the exact reference of the same lights.
     const double added = mean_difference(before, reference);
@@ -167,7 +140,7 @@ TEST(EditorView, HeadlessLoopRunsTheScriptAgainstALocalServer) {
     EditorSessionOptions session_options;
     session_options.bake.server = (*server)->address();
     session_options.bake.timeout_seconds = 120.0;
-    Scene scene = lit_room();
+    Scene scene = test::lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene), session_options);
     ASSERT_TRUE(session.set_camera(camera));
@@ -197,7 +170,7 @@ TEST(EditorView, AFailingScriptLineStopsTheLoopWithItsLineNumber) {
         parse_editor_script("mode reference\nremove-light 40\nquit\n", "bad.txt");
     ASSERT_TRUE(lines.ok()) << lines.error();
     ScriptRunner script(std::move(lines).value(), "bad.txt");
-    EditorSession session(lit_room());
+    EditorSession session(test::lit_room(5));
     HeadlessWindow window(32, 32);
     EditorLoopOptions options;
     options.width = options.height = 32;
@@ -212,7 +185,7 @@ TEST(EditorView, AutoExposureIsSetFromTheFirstFullSizeFrameUnlessGiven) {
     // The room's lights scaled 1000x: at exposure 1 the frame would be white.
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    Scene scene = lit_room();
+    Scene scene = test::lit_room(5);
     for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     auto run = [&](bool automatic, const std::string& script_text) {
@@ -259,7 +232,7 @@ TEST(EditorView, EditsReachTheRendererWithoutABake) {
     Result<std::vector<ScriptLine>> lines = parse_editor_script(text, "edits.txt");
     ASSERT_TRUE(lines.ok()) << lines.error();
     ScriptRunner script(std::move(lines).value(), "edits.txt");
-    Scene scene = lit_room();
+    Scene scene = test::lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene));
     ASSERT_TRUE(session.set_camera(camera));
@@ -286,7 +259,7 @@ TEST(EditorView, XvfbEditorCommandRunsTheScriptWithASpawnedServer) {
 
     const std::filesystem::path dir = test::make_temp_dir("editor-xvfb");
     const std::filesystem::path scene_path = dir / "room.gltf";
-    ASSERT_TRUE(write_scene_gltf(lit_room(), scene_path).ok());
+    ASSERT_TRUE(write_scene_gltf(test::lit_room(5), scene_path).ok());
     const std::filesystem::path script_path = dir / "script.txt";
     {
         std::ofstream out(script_path);

@@ -85,16 +85,7 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
     return a;
 }
 
-class BoundCriterion : public ::testing::Test {
-protected:
-    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
-    void TearDown() override {
-        if (context_) {
-            EXPECT_EQ(context_->validation_message_count(), 0u);
-        }
-    }
-    std::unique_ptr<vk::Context> context_;
-};
+using BoundCriterion = test::VulkanTest;
 
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     // Points with and without ranges, spots and directional lights: every bound

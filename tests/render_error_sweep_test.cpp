@@ -31,16 +31,7 @@ TEST(ErrorList, ParsesRatiosAndNamesTheBadOne) {
     }
 }
 
-class ErrorSweepRender : public ::testing::Test {
-protected:
-    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
-    void TearDown() override {
-        if (context_) {
-            EXPECT_EQ(context_->validation_message_count(), 0u);
-        }
-    }
-    std::unique_ptr<vk::Context> context_;
-};
+using ErrorSweepRender = test::VulkanTest;
 
 TEST_F(ErrorSweepRender, SmallerRatiosCostMoreAndErrLess) {
     Scene scene = make_room_scene();

@@ -1,7 +1,7 @@
 #pragma once
-// Helpers for the renderer's tests: a Vulkan context (or a clear skip when the
-// machine has no Vulkan device), small scenes built in code, and a hand-made
-// light tree.
+// Helpers for the renderer's and the editor's tests: a Vulkan context (or a
+// clear skip when the machine has no Vulkan device), small scenes built in
+// code and screenshot checks (hand-made trees: tree_fixtures.h).
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -11,17 +11,20 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/material_model.h"
+#include "editor_client/render/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/scene.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/tree_builder.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/light_tree.h"
+#include "tree_fixtures.h"
 
 namespace lc::test {
 
@@ -55,6 +58,36 @@ inline std::vector<SceneLight> room_lights(uint32_t count, uint64_t seed,
     return lights.ok() ? *lights : std::vector<SceneLight>{};
 }
 
+// The generated room with 12 point lights of range 5 from `seed`.
+inline Scene lit_room(uint64_t seed) {
+    Scene scene = client::make_room_scene();
+    client::LightLayoutOptions layout;
+    layout.count = 12;
+    layout.seed = seed;
+    layout.box_min = client::kRoomLightBoxMin;
+    layout.box_max = client::kRoomLightBoxMax;
+    layout.range = 5.0f;
+    Result<std::vector<SceneLight>> lights = client::generate_lights(layout);
+    EXPECT_TRUE(lights.ok()) << lights.error();
+    if (lights.ok()) scene.lights = *lights;
+    return scene;
+}
+
+// A screenshot shows something: more than `min_colours` colours (shaded
+// images have many, the cuts view one per distinct cut) and at least a
+// quarter of its pixels lit.
+inline void expect_not_blank(const client::Rgba8Image& image, const std::string& what,
+                             size_t min_colours = 16) {
+    std::set<uint32_t> colours;
+    size_t lit = 0;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+        colours.insert(image.rgba[i] | image.rgba[i + 1] << 8 | image.rgba[i + 2] << 16);
+        lit += (image.rgba[i] + image.rgba[i + 1] + image.rgba[i + 2]) > 30 ? 1 : 0;
+    }
+    EXPECT_GT(colours.size(), min_colours) << what << " is blank";
+    EXPECT_GT(lit, image.rgba.size() / 4 / 4) << what << " is mostly black";
+}
+
 // The paper's agglomerative tree over `lights` (empty, and a failure, if the build fails).
 inline LightTree agglomerative_tree(const std::vector<SceneLight>& lights) {
     bake::BuildOptions options;
@@ -83,6 +116,19 @@ inline std::unique_ptr<vk::Context> make_headless_context(std::string& why) {
         context = ::lc::test::make_headless_context(lc_vulkan_why_);          \
         if (!context) GTEST_SKIP() << "no Vulkan device: " << lc_vulkan_why_; \
     } while (0)
+
+// A fixture for tests that render: a validating headless context (or the
+// test skips), which must have reported no validation message at the end.
+class VulkanTest : public ::testing::Test {
+protected:
+    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
+    void TearDown() override {
+        if (context_) {
+            EXPECT_EQ(context_->validation_message_count(), 0u);
+        }
+    }
+    std::unique_ptr<vk::Context> context_;
+};
 
 inline lc::Mesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
                               const glm::vec3& edge_v, int material) {
@@ -153,93 +199,6 @@ inline client::RenderCamera floor_camera() {
 
 inline void set_unit_guid(SceneLight& light, uint32_t index) {
     light.guid = Guid{1, 2, 3, index + 1};
-}
-
-// Builds a tree over `lights` by hand: pairs neighbours level by level in index
-// order (an odd node is carried up), the representative is the left child's,
-// intensity sums, and the influence radius encloses the children's spheres
-// (unbounded when a child is). Lights of different types are joined only by
-// a mixed_types junction at the top.
-inline LightTree make_pairing_tree(const std::vector<SceneLight>& lights) {
-    struct Building {
-        LightTreeNode node;
-        int left = -1, right = -1;  // indices into `all`
-    };
-    std::vector<Building> all;
-    auto leaf = [](const SceneLight& l) {
-        LightTreeNode n;
-        n.guid = l.guid;
-        n.type = l.type;
-        n.position = l.position;
-        n.direction = l.direction;
-        n.range = l.range;
-        n.spot_cos_inner = std::cos(l.inner_cone_angle);
-        n.spot_cos_outer = std::cos(l.outer_cone_angle);
-        n.intensity = l.color * l.intensity;
-        n.brightness = l.intensity;
-        n.radius = l.range > 0.0f ? l.range : kUnboundedRadius;
-        n.bbox_min = n.bbox_max = l.position;
-        return n;
-    };
-    auto join = [&](int a, int b) {
-        Building parent;
-        const LightTreeNode& l = all[a].node;
-        const LightTreeNode& r = all[b].node;
-        parent.node = l;  // representative parameters: the left child's
-        parent.node.intensity = l.intensity + r.intensity;
-        parent.node.brightness = l.brightness + r.brightness;
-        parent.node.mixed_types = l.mixed_types || r.mixed_types || l.type != r.type;
-        if (l.radius < 0.0f || r.radius < 0.0f) {
-            parent.node.radius = kUnboundedRadius;
-        } else {
-            float reach = glm::length(r.position - l.position) + r.radius;
-            parent.node.radius = std::max(l.radius, reach);
-        }
-        parent.node.bbox_min = glm::min(l.bbox_min, r.bbox_min);
-        parent.node.bbox_max = glm::max(l.bbox_max, r.bbox_max);
-        parent.left = a;
-        parent.right = b;
-        all.push_back(parent);
-        return int(all.size()) - 1;
-    };
-    std::vector<int> level;
-    for (const SceneLight& l : lights) {
-        all.push_back({leaf(l)});
-        level.push_back(int(all.size()) - 1);
-    }
-    while (level.size() > 1) {
-        std::vector<int> next;
-        for (size_t i = 0; i + 1 < level.size(); i += 2)
-            next.push_back(join(level[i], level[i + 1]));
-        if (level.size() % 2 == 1) next.push_back(level.back());
-        level = next;
-    }
-    // Breadth-first renumbering from the root (iterative).
-    LightTree tree;
-    if (level.empty()) return tree;
-    std::vector<int> order{level[0]};
-    for (size_t i = 0; i < order.size(); ++i) {
-        if (all[order[i]].left >= 0) {
-            order.push_back(all[order[i]].left);
-            order.push_back(all[order[i]].right);
-        }
-    }
-    std::vector<int> new_index(all.size(), -1);
-    for (size_t i = 0; i < order.size(); ++i) new_index[order[i]] = int(i);
-    for (int old : order) {
-        LightTreeNode n = all[old].node;
-        n.left = all[old].left >= 0 ? new_index[all[old].left] : kNoChild;
-        n.right = all[old].right >= 0 ? new_index[all[old].right] : kNoChild;
-        tree.nodes.push_back(n);
-    }
-    // Representatives: follow left children down to a leaf (iteratively).
-    for (size_t i = 0; i < tree.nodes.size(); ++i) {
-        int32_t r = int32_t(i);
-        while (tree.nodes[r].left != kNoChild) r = tree.nodes[r].left;
-        tree.nodes[i].representative = r;
-        if (tree.nodes[i].is_leaf()) ++tree.leaf_count;
-    }
-    return tree;
 }
 
 }  // namespace lc::test

@@ -8,6 +8,7 @@
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/bake/tree_store.h"
 #include "editor_client/commands/bake_options.h"
+#include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
@@ -32,10 +33,7 @@ void add_bake_command(CLI::App& app) {
     cmd->callback([options] {
         std::vector<std::string> warnings;
         Result<Scene> scene = load_scene(options->scene, warnings);
-        if (!scene) {
-            std::cerr << "error: " << scene.error() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+        if (!scene) fail(scene.error());
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
@@ -47,27 +45,16 @@ void add_bake_command(CLI::App& app) {
         };
         Result<BakeOutcome> outcome = bake_lights(scene->lights, scene->guid, bake);
         progress.finish();
-        if (!outcome) {
-            std::cerr << "error: bake failed: " << outcome.error() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+        if (!outcome) fail("bake failed: " + outcome.error());
         const BakeDoneMsg done = outcome->done;
         size_t classic = 0;
         for (const SceneLight& l : scene->lights) classic += l.classic ? 1 : 0;
         double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
         std::string channel = outcome->result_channel_name;
-        if (!options->output.empty()) {
-            Status written = write_dump(options->output, ChannelDump{channel, outcome->result_channel});
-            if (!written) {
-                std::cerr << "error: " << written.error() << "\n";
-                throw CLI::RuntimeError(1);
-            }
-        }
+        if (!options->output.empty())
+            or_fail(write_dump(options->output, ChannelDump{channel, outcome->result_channel}));
         TreeStore store;
-        if (Status imported = store.import(std::move(outcome)); !imported) {
-            std::cerr << "error: " << imported.error() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+        or_fail(store.import(std::move(outcome)));
         if (options->json) {
             nlohmann::json j;
             j["scene"] = options->scene;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
@@ -69,22 +70,14 @@ void add_inspect_command(CLI::App& app) {
     cmd->add_flag("--json", options->json, "Print JSON (shape in docs/PROTOCOL.md)");
     cmd->callback([options] {
         Result<ChannelDump> dump = read_dump(options->path);
-        if (!dump) {
-            std::cerr << "error: " << options->path << ": " << dump.error() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+        if (!dump) fail(options->path + ": " + dump.error());
         auto name = ChannelName::parse(dump->channel_name);
-        if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension) {
-            std::cerr << "error: " << options->path << ": channel '" << dump->channel_name
-                      << "' is not a Lightcuts result channel (expected version "
-                      << kLightcutsVersionGuid.to_hex() << ", extension ." << kLightcutsExtension << ")\n";
-            throw CLI::RuntimeError(1);
-        }
+        if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
+            fail(options->path + ": channel '" + dump->channel_name +
+                 "' is not a Lightcuts result channel (expected version " + kLightcutsVersionGuid.to_hex() +
+                 ", extension ." + std::string(kLightcutsExtension) + ")");
         Result<LightTree> tree = decode_result_channel(dump->payload);
-        if (!tree) {
-            std::cerr << "error: " << options->path << ": " << tree.error() << "\n";
-            throw CLI::RuntimeError(1);
-        }
+        if (!tree) fail(options->path + ": " + tree.error());
         if (options->json) {
             nlohmann::json j;
             j["channel"] = dump->channel_name;

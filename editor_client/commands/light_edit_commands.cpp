@@ -2,11 +2,11 @@
 // procedural scenes written to glTF. Deterministic for a given seed.
 #include <charconv>
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
@@ -15,21 +15,6 @@
 
 namespace lc::client {
 namespace {
-
-[[noreturn]] void fail(const std::string& message) {
-    std::cerr << "error: " << message << "\n";
-    throw CLI::RuntimeError(1);
-}
-
-template <typename T>
-T check(Result<T> result) {
-    if (!result) fail(result.error());
-    return std::move(result).value();
-}
-
-void check(const Status& status) {
-    if (!status) fail(status.error());
-}
 
 // "minx,miny,minz,maxx,maxy,maxz" -> a box.
 Result<std::pair<glm::vec3, glm::vec3>> parse_box(const std::string& text) {
@@ -108,8 +93,8 @@ void add_add_lights(CLI::App& app) {
     cmd->callback([o, intensity] {
         LightLayoutOptions layout;
         layout.count = o->count;
-        layout.layout = check(parse_light_layout(o->layout));
-        layout.type = check(parse_light_type_choice(o->type));
+        layout.layout = or_fail(parse_light_layout(o->layout));
+        layout.type = or_fail(parse_light_type_choice(o->type));
         layout.seed = o->seed;
         layout.range = o->range;
         layout.classic = o->classic;
@@ -121,7 +106,7 @@ void add_add_lights(CLI::App& app) {
             scene = make_room_scene();
             box = {kRoomLightBoxMin, kRoomLightBoxMax};
         } else {
-            scene = check(load_scene(o->scene));
+            scene = or_fail(load_scene(o->scene));
             box = default_box(scene);
             if (o->box.empty() && scene.bounds_min == scene.bounds_max) {
                 fail(o->scene +
@@ -131,18 +116,18 @@ void add_add_lights(CLI::App& app) {
         // Surface lights: every triangle of the scene qualifies unless --box
         // says otherwise (a box inset from the walls would hold no wall's centroid).
         if (layout.layout == LightLayout::kSurface) box = {scene.bounds_min, scene.bounds_max};
-        if (!o->box.empty()) box = check(parse_box(o->box));
+        if (!o->box.empty()) box = or_fail(parse_box(o->box));
         layout.box_min = box.first;
         layout.box_max = box.second;
         layout.guid_salt = scene.guid;
         layout.surfaces = &scene;
 
-        std::vector<SceneLight> lights = check(generate_lights(layout));
-        check(add_lights(scene, lights));
+        std::vector<SceneLight> lights = or_fail(generate_lights(layout));
+        or_fail(add_lights(scene, lights));
         if (o->scene.empty()) {
-            check(write_scene_gltf(scene, o->out));
+            or_fail(write_scene_gltf(scene, o->out));
         } else {
-            check(write_lights_into_gltf(o->scene, scene.lights, o->out));
+            or_fail(write_lights_into_gltf(o->scene, scene.lights, o->out));
         }
         std::printf("added %u %s lights (%s layout, seed %llu) -> %s: %zu lights in total\n",
                     o->count, type_choice_name(layout.type), o->layout.c_str(),
@@ -171,18 +156,18 @@ void add_remove_lights(CLI::App& app) {
         if (index->count() + guid->count() + all->count() == 0) {
             fail("remove-lights needs one of --index, --guid or --all");
         }
-        Scene scene = check(load_scene(o->scene));
+        Scene scene = or_fail(load_scene(o->scene));
         const size_t before = scene.lights.size();
         if (o->all) {
             remove_all_lights(scene);
         } else if (index->count() > 0) {
-            std::vector<size_t> indices = check(parse_index_list(o->indices));
-            check(remove_lights_by_index(scene, indices));
+            std::vector<size_t> indices = or_fail(parse_index_list(o->indices));
+            or_fail(remove_lights_by_index(scene, indices));
         } else {
-            std::vector<Guid> guids = check(parse_guid_list(o->guids));
-            check(remove_lights_by_guid(scene, guids));
+            std::vector<Guid> guids = or_fail(parse_guid_list(o->guids));
+            or_fail(remove_lights_by_guid(scene, guids));
         }
-        check(write_lights_into_gltf(o->scene, scene.lights, o->out));
+        or_fail(write_lights_into_gltf(o->scene, scene.lights, o->out));
         std::printf("removed %zu of %zu lights -> %s: %zu lights left\n",
                     before - scene.lights.size(), before, o->out.c_str(), scene.lights.size());
     });
@@ -200,11 +185,11 @@ void add_make_scene(CLI::App& app) {
         ->required();
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
     cmd->callback([o] {
-        Scene scene = check(make_named_scene(o->name));
-        check(write_scene_gltf(scene, o->out));
+        Scene scene = or_fail(make_named_scene(o->name));
+        or_fail(write_scene_gltf(scene, o->out));
         // The GUID a bake will use is the written file's (directions pass
         // through quaternions and may differ in the last bit).
-        Scene written = check(load_scene(o->out));
+        Scene written = or_fail(load_scene(o->out));
         std::printf("%s -> %s: %zu meshes, %zu lights, %zu cameras, scene GUID %s\n",
                     o->name.c_str(), o->out.c_str(), written.meshes.size(), written.lights.size(),
                     written.cameras.size(), written.guid.to_hex().c_str());

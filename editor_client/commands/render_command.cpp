@@ -20,6 +20,7 @@
 #include <string>
 
 #include "editor_client/commands/bake_options.h"
+#include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
@@ -57,17 +58,6 @@ struct RenderOptions {
     std::string stats;
     bool validation = false;
 };
-
-[[noreturn]] void fail(const std::string& message) {
-    std::cerr << "error: " << message << "\n";
-    throw CLI::RuntimeError(1);
-}
-
-template <typename T>
-T or_fail(Result<T> result) {
-    if (!result) fail(result.error());
-    return std::move(result).value();
-}
 
 void run_render(const RenderOptions& options) {
     auto command_start = std::chrono::steady_clock::now();

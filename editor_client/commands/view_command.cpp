@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "editor_client/commands/bake_options.h"
+#include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/script_runner.h"
@@ -50,21 +51,6 @@ struct ViewCommandOptions {
     bool no_panels = false;
     std::string window_screenshot;
 };
-
-[[noreturn]] void fail(const std::string& message) {
-    std::cerr << "error: " << message << "\n";
-    throw CLI::RuntimeError(1);
-}
-
-template <typename T>
-T or_fail(Result<T> result) {
-    if (!result) fail(result.error());
-    return std::move(result).value();
-}
-
-void or_fail(const Status& status) {
-    if (!status) fail(status.error());
-}
 
 void run_view(const ViewCommandOptions& options) {
     std::vector<std::string> warnings;

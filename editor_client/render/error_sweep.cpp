@@ -5,7 +5,7 @@
 #include <string>
 
 #include "editor_client/render/error_stats.h"
-#include "editor_client/vk/vk_result.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 

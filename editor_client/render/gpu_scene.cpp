@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "editor_client/vk/vk_result.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 namespace {

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "lightcuts/gpu_layout.h"
-#include "editor_client/vk/vk_result.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 namespace {

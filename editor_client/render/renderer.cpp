@@ -13,7 +13,7 @@
 
 #include "lightcuts/bound_walk.h"
 #include "editor_client/vk/barriers.h"
-#include "editor_client/vk/vk_result.h"
+#include "lightcuts/status_macros.h"
 #include "protocol/channel_records.h"
 
 // SPIR-V generated from shaders/ at build time.

@@ -12,28 +12,15 @@
 
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_guid.h"
+#include "lightcuts/seeded_mixer.h"
 #include "protocol/channel_records.h"
 
 namespace lc::client {
 namespace {
 
-// SplitMix64: tiny, fast and identical on every platform (the standard
-// distributions are not), which keeps layouts reproducible across machines.
-class SplitMix64 {
-public:
-    explicit SplitMix64(uint64_t seed) : state_(seed ^ 0x6c696768746375ull) {}
-    uint64_t next() {
-        uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    // Uniform in [0, 1) with 53 random bits.
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-
-private:
-    uint64_t state_;
-};
+// XORed into every layout seed (the bytes spell "lightcu"); part of the
+// layouts' bytes: changing it changes every generated scene.
+constexpr uint64_t kLayoutSeedSalt = 0x6c696768746375ull;
 
 void append_u64(std::vector<uint8_t>& bytes, uint64_t v) {
     for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(v >> (8 * i)));
@@ -340,7 +327,7 @@ Result<std::vector<SceneLight>> generate_surface_lights(const LightLayoutOptions
     // foot), so it stands a little in front of it.
     const double offset = kSurfaceLightOffset * selection.scene_diagonal;
     const double total_area = selection.cumulative_area.back();
-    SplitMix64 rng(options.seed);
+    SplitMix64 rng(options.seed ^ kLayoutSeedSalt);
 
     std::vector<SceneLight> lights;
     lights.reserve(options.count);
@@ -401,7 +388,7 @@ Result<std::vector<SceneLight>> generate_lights(const LightLayoutOptions& option
 
     const glm::dvec3 lo(options.box_min);
     const glm::dvec3 extent = glm::dvec3(options.box_max) - lo;
-    SplitMix64 rng(options.seed);
+    SplitMix64 rng(options.seed ^ kLayoutSeedSalt);
     const std::array<uint32_t, 3> dims = grid_dimensions(extent, options.count);
 
     std::vector<SceneLight> lights;

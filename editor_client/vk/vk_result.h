@@ -5,6 +5,7 @@
 #include <string>
 
 #include "lightcuts/result.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::vk {
 
@@ -21,11 +22,4 @@ inline Error call_failed(VkResult result, const char* call) {
     do {                                                                                     \
         VkResult lc_vk_result_ = (call);                                                     \
         if (lc_vk_result_ != VK_SUCCESS) return ::lc::vk::call_failed(lc_vk_result_, #call); \
-    } while (0)
-
-// Propagates the error of an lc::Result / lc::Status expression.
-#define LC_RETURN_IF_ERROR(expr)                                      \
-    do {                                                              \
-        auto&& lc_status_ = (expr);                                   \
-        if (!lc_status_) return ::lc::make_error(lc_status_.error()); \
     } while (0)

@@ -1,0 +1,12 @@
+#pragma once
+// The project's one error-propagation helper for lc::Result / lc::Status
+// (result.h): returns the error of an expression from the enclosing function,
+// which must itself return a Result or a Status.
+#include "lightcuts/result.h"
+
+// Evaluates `expr` once; on error returns it (as an lc::Error) to the caller.
+#define LC_RETURN_IF_ERROR(expr)                                      \
+    do {                                                              \
+        auto&& lc_status_ = (expr);                                   \
+        if (!lc_status_) return ::lc::make_error(lc_status_.error()); \
+    } while (0)
