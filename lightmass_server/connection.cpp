@@ -27,13 +27,14 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 }  // namespace
 
 Connection::Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
-                       const ChannelRecorder& recorder, uint64_t id)
+                       const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
+                       std::string busy_reason)
     : transport_(std::move(transport)),
       options_(options),
       workers_(workers),
       recorder_(recorder),
       id_(id),
-      session_(ServerSessionOptions{id, options.token, recorder.enabled()}),
+      session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason), &memory_budget}),
       decoder_(options.max_frame_bytes),
       wake_(transport_.get_executor()),
       deadline_timer_(transport_.get_executor()) {
@@ -165,7 +166,10 @@ awaitable<void> Connection::read_loop() {
         }
         last_read_ = Clock::now();
         frames.clear();
+        const bool was_in_frame = decoder_.buffered_bytes() > 0;
         bool framing_ok = decoder_.consume({buffer.data(), n}, frames);
+        // A new partial frame began in this read: its whole-frame deadline starts now.
+        if (decoder_.buffered_bytes() > 0 && (!was_in_frame || !frames.empty())) frame_started_ = last_read_;
         for (auto& frame : frames) {
             Result<Message> message = decode_message(frame);
             if (!message) {
@@ -217,31 +221,50 @@ awaitable<void> Connection::write_loop() {
     }
 }
 
-Connection::Clock::time_point Connection::deadline() const {
-    if (!handshaken_) return accepted_at_ + options_.read_timeout;
-    if (closing_) return closing_since_ + kFlushGrace;
-    if (decoder_.buffered_bytes() > 0) return last_read_ + options_.read_timeout;
-    if (session_.idle() && !stream_) return last_read_ + options_.idle_timeout;
-    return Clock::time_point::max();
+Connection::Deadline Connection::next_deadline() const {
+    Deadline next;
+    auto consider = [&](Clock::time_point at, DeadlineKind kind) {
+        if (at < next.at) next = Deadline{at, kind};
+    };
+    if (closing_) {
+        consider(closing_since_ + kFlushGrace, DeadlineKind::kFlush);
+        return next;
+    }
+    if (!handshaken_) consider(accepted_at_ + options_.read_timeout, DeadlineKind::kTlsHandshake);
+    if (!session_.greeted()) consider(accepted_at_ + options_.connect_timeout, DeadlineKind::kHello);
+    if (!handshaken_) return next;
+    if (decoder_.buffered_bytes() > 0) {
+        consider(last_read_ + options_.read_timeout, DeadlineKind::kStalledFrame);
+        consider(frame_started_ + options_.frame_timeout, DeadlineKind::kSlowFrame);
+    } else if (session_.idle() && !stream_) {
+        consider(last_read_ + options_.idle_timeout, DeadlineKind::kIdle);
+    }
+    return next;
 }
 
-std::string Connection::deadline_reason() const {
-    if (!handshaken_)
-        return "TLS handshake not finished within " + std::to_string(options_.read_timeout.count()) + " ms";
-    if (closing_) return closing_reason_ + "; peer did not read the error in time";
-    if (decoder_.buffered_bytes() > 0)
-        return "stalled in the middle of a frame for " + std::to_string(options_.read_timeout.count()) + " ms";
-    return "idle for " + std::to_string(options_.idle_timeout.count()) + " ms";
+std::string Connection::deadline_reason(DeadlineKind kind) const {
+    auto ms = [](std::chrono::milliseconds limit) { return std::to_string(limit.count()) + " ms"; };
+    switch (kind) {
+        case DeadlineKind::kTlsHandshake: return "TLS handshake not finished within " + ms(options_.read_timeout);
+        case DeadlineKind::kHello: return "no Hello within " + ms(options_.connect_timeout) + " of connecting";
+        case DeadlineKind::kFlush: return closing_reason_ + "; peer did not read the error in time";
+        case DeadlineKind::kStalledFrame: return "stalled in the middle of a frame for " + ms(options_.read_timeout);
+        case DeadlineKind::kSlowFrame:
+            return "a frame did not arrive whole within " + ms(options_.frame_timeout) + " of its first byte";
+        case DeadlineKind::kIdle: return "idle for " + ms(options_.idle_timeout);
+        case DeadlineKind::kNone: break;
+    }
+    return "deadline passed";
 }
 
 awaitable<void> Connection::watch_deadline() {
     while (!closed_) {
-        const Clock::time_point at = deadline();
-        if (Clock::now() >= at) {
-            close(deadline_reason());
+        const Deadline deadline = next_deadline();
+        if (Clock::now() >= deadline.at) {
+            close(deadline_reason(deadline.kind));
             co_return;
         }
-        deadline_timer_.expires_at(at);
+        deadline_timer_.expires_at(deadline.at);
         boost::system::error_code ec;
         co_await deadline_timer_.async_wait(ec_token(ec));
     }

@@ -26,8 +26,10 @@ namespace lc::bake {
 
 class Connection : public std::enable_shared_from_this<Connection> {
 public:
+    // `busy_reason` non-empty: the server is full, this peer is told so after its Hello.
     Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
-               const ChannelRecorder& recorder, uint64_t id);
+               const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
+               std::string busy_reason);
 
     void start();
     void close(const std::string& reason);
@@ -44,9 +46,14 @@ private:
     // Sleeps until the deadline; closes the connection when it passes unmoved.
     awaitable<void> watch_deadline();
 
-    // When the peer must have done something by, and what closing then says.
-    Clock::time_point deadline() const;
-    std::string deadline_reason() const;
+    enum class DeadlineKind { kNone, kTlsHandshake, kHello, kFlush, kStalledFrame, kSlowFrame, kIdle };
+    struct Deadline {
+        Clock::time_point at = Clock::time_point::max();
+        DeadlineKind kind = DeadlineKind::kNone;
+    };
+    // The earliest time by which the peer must have done something, and what it must have done.
+    Deadline next_deadline() const;
+    std::string deadline_reason(DeadlineKind kind) const;
     // The deadline may have moved earlier: wake its coroutine to look again.
     void rearm_deadline() { deadline_timer_.cancel(); }
 
@@ -77,6 +84,7 @@ private:
     Clock::time_point accepted_at_;
     Clock::time_point closing_since_;
     Clock::time_point last_read_;
+    Clock::time_point frame_started_;  // first byte of the partial frame held by decoder_
 };
 
 }  // namespace lc::bake

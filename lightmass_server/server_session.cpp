@@ -44,30 +44,28 @@ ServerActions ServerSession::on_message(Message message) {
                    std::string("a client may not send ") + message_name(message) + " messages");
         keep = false;
     }
-    if (!keep) {
-        ServerActions cancel = on_closing();
-        actions_.insert(actions_.end(), cancel.begin(), cancel.end());
-        actions_.push_back(CloseAfterFlush{"protocol violation"});
-    }
+    if (!keep) close_after_flush("protocol violation");
     return take_actions();
 }
 
 ServerActions ServerSession::on_malformed_frame(const std::string& error) {
     if (closing_) return {};
     send_error(0, ErrorCode::kMalformedFrame, "malformed frame: " + error);
-    ServerActions cancel = on_closing();
-    actions_.insert(actions_.end(), cancel.begin(), cancel.end());
-    actions_.push_back(CloseAfterFlush{"malformed frame"});
+    close_after_flush("malformed frame");
     return take_actions();
 }
 
 ServerActions ServerSession::on_bad_frame_header(const std::string& error) {
     if (closing_) return {};
     send_error(0, ErrorCode::kTooLarge, "bad frame header: " + error);
+    close_after_flush("bad frame header");
+    return take_actions();
+}
+
+void ServerSession::close_after_flush(std::string reason) {
     ServerActions cancel = on_closing();
     actions_.insert(actions_.end(), cancel.begin(), cancel.end());
-    actions_.push_back(CloseAfterFlush{"bad frame header"});
-    return take_actions();
+    actions_.push_back(CloseAfterFlush{std::move(reason)});
 }
 
 ServerActions ServerSession::on_closing() {
@@ -89,6 +87,10 @@ bool ServerSession::on_hello(const HelloMsg& hello) {
         send_error(0, ErrorCode::kVersionMismatch,
                    "protocol version mismatch: client speaks " + hello.protocol_version.to_hex() +
                        ", server speaks " + kProtocolVersion.to_hex());
+        return false;
+    }
+    if (!options_.busy_reason.empty()) {
+        send_error(0, ErrorCode::kBusy, "server busy: " + options_.busy_reason);
         return false;
     }
     if (options_.token && !tokens_equal(*options_.token, hello.token)) {
@@ -131,9 +133,16 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     if (incoming_.size() >= kMaxOpenChannels)
         return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
                                             std::to_string(kMaxOpenChannels) + ")");
+    MemoryBudget* budget = options_.memory_budget;
+    if (budget && !budget->try_reserve(open.total_bytes))
+        return refuse(ErrorCode::kBusy, "server busy: " + std::to_string(open.total_bytes) +
+                                            " bytes do not fit in the memory budget (" +
+                                            std::to_string(budget->used()) + " of " +
+                                            std::to_string(budget->limit()) + " bytes in use; --memory-budget-mb)");
     IncomingScene& scene = incoming_[open.channel_id];
     scene.name = open.name;
     scene.total_bytes = open.total_bytes;
+    scene.reservation = BudgetReservation(budget, open.total_bytes);
     return true;
 }
 
@@ -193,7 +202,7 @@ bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
     spdlog::info("connection {}: scene '{}' received, {} lights", options_.connection_id, scene.name,
                  lights->size());
     if (scenes_.size() >= kMaxStoredScenes && !scenes_.count(scene.name)) scenes_.erase(scenes_.begin());
-    scenes_[scene.name] = std::move(lights.value());
+    scenes_[scene.name] = StoredScene{std::move(lights.value()), std::move(scene.reservation)};
     return true;
 }
 
@@ -212,7 +221,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     }
     auto lights = std::make_shared<std::vector<SceneLight>>();
     size_t classic = 0;
-    for (const SceneLight& light : scene->second) {
+    for (const SceneLight& light : scene->second.lights) {
         if (light.classic) ++classic;
         else lights->push_back(light);
     }

@@ -16,6 +16,7 @@
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/memory_budget.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "protocol/messages.h"
@@ -26,6 +27,10 @@ struct ServerSessionOptions {
     uint64_t connection_id = 0;        // for the log
     std::optional<std::string> token;  // when set, Hello must carry it
     bool record_channels = false;      // emit RecordChannel for every channel received or sent
+    // Non-empty: the server is full; Hello is answered kBusy with this text and the connection closes.
+    std::string busy_reason;
+    // Shared by every connection; null: unlimited.
+    MemoryBudget* memory_budget = nullptr;
 };
 
 // Send this message now (after those already queued).
@@ -97,6 +102,11 @@ private:
         uint64_t received = 0;
         SceneChannelReader reader;
         std::vector<uint8_t> recorded;  // kept only when recording
+        BudgetReservation reservation;
+    };
+    struct StoredScene {
+        std::vector<SceneLight> lights;
+        BudgetReservation reservation;
     };
     struct ActiveBake {
         uint32_t bake_id = 0;
@@ -115,6 +125,8 @@ private:
     void send(Message message);
     void send_error(uint32_t bake_id, ErrorCode code, const std::string& text);
     ServerActions take_actions();
+    // After the error explaining why: cancel a running build, then close once it is sent.
+    void close_after_flush(std::string reason);
 
     ServerSessionOptions options_;
     ServerActions actions_;
@@ -122,7 +134,7 @@ private:
     bool closing_ = false;
     std::map<uint32_t, IncomingScene> incoming_;
     std::set<uint32_t> refused_;  // channels already refused with an error: their writes are dropped
-    std::map<std::string, std::vector<SceneLight>> scenes_;
+    std::map<std::string, StoredScene> scenes_;
     std::optional<ActiveBake> bake_;
     uint32_t next_channel_id_ = 1u << 31;  // server-opened channels use the upper half
 };

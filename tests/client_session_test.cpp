@@ -26,8 +26,8 @@ std::vector<SceneLight> scene_lights() { return test::random_lights(40, 9, Light
 ClientSessionOptions session_options() {
     ClientSessionOptions options;
     options.token = "secret";
-    options.bake_id = kBake;
-    options.seed = 17;
+    options.request.bake_id = kBake;
+    options.request.seed = 17;
     options.chunk_bytes = 256;  // several WriteChannel messages for 40 lights
     return options;
 }

@@ -192,6 +192,42 @@ TEST(ServerSession, TooManyOpenChannelsIsBusy) {
     EXPECT_EQ(error_codes(busy), std::vector<ErrorCode>{ErrorCode::kBusy});
 }
 
+TEST(ServerSession, FullServerAnswersHelloBusy) {
+    ServerSessionOptions options;
+    options.busy_reason = "256 connections open";
+    ServerSession session(options);
+    ServerActions actions = hello(session);
+    EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kBusy});
+    EXPECT_TRUE(closes(actions));
+}
+
+TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const uint64_t scene_bytes = encode_scene_channel(lights).size();
+    MemoryBudget budget(scene_bytes + 10);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    {
+        ServerSession session(options);
+        hello(session);
+        open_and_write(session, lights);
+        EXPECT_EQ(budget.used(), scene_bytes);
+        // A second channel does not fit while the first is held: busy, and the connection stays.
+        ServerActions busy = session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), scene_bytes});
+        EXPECT_EQ(error_codes(busy), std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_FALSE(closes(busy));
+        // The stored scene keeps its bytes; another session cannot take them either.
+        session.on_message(CloseChannelMsg{kChannel});
+        EXPECT_EQ(budget.used(), scene_bytes);
+        ServerSession other(options);
+        hello(other);
+        EXPECT_EQ(error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), scene_bytes})),
+                  std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request())), 1u);
+    }
+    EXPECT_EQ(budget.used(), 0u);  // a session gives its bytes back when it ends
+}
+
 TEST(ServerSession, SecondBakeWhileOneRunsIsBusy) {
     ServerSession session = session_with_scene();
     ServerActions first = session.on_message(bake_request(1));

@@ -1,6 +1,7 @@
 #include "editor_client/bake/bake_client.h"
 
 #include <chrono>
+#include <sstream>
 
 #include "editor_client/bake/client_session.h"
 #include "editor_client/bake/server_process.h"
@@ -18,10 +19,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-// A server that never answers the TLS handshake (one that does not speak TLS
-// and waits for more bytes) is given up on after this long.
-constexpr auto kTlsHandshakeLimit = 10s;
 constexpr auto kShutdownLimit = 1000ms;
+
+// "0.5", "10": seconds as the user wrote them.
+std::string seconds_text(double seconds) {
+    std::ostringstream text;
+    text << seconds;
+    return text.str();
+}
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -57,13 +62,14 @@ class BakeConnection {
 public:
     // `tls`: null for plain TCP; otherwise the client context, which outlives the connection.
     BakeConnection(asio::io_context& io, const BakeClientOptions& options, asio::ssl::context* tls,
-                   ClientSession& session, Clock::time_point bake_deadline)
+                   ClientSession& session, Clock::time_point start)
         : io_(io),
           transport_(tls ? Transport::tls(tcp::socket(io), *tls) : Transport::plain(tcp::socket(io))),
           options_(options),
           session_(session),
           deadline_timer_(io),
-          bake_deadline_(bake_deadline) {}
+          bake_deadline_(start + seconds(options.timeout_seconds)),
+          connect_deadline_(start + seconds(options.connect_timeout_seconds)) {}
 
     awaitable<void> run(std::string host, std::string port);
     // Sleeps until the deadline; ends the bake when it passes.
@@ -80,7 +86,12 @@ private:
     // Ends the bake with `error` and closes the socket, cancelling pending I/O.
     void abort(Error error);
     std::string hello_failure(const std::string& what) const;
+    // Whichever comes first: the whole bake's, or (until HelloAck) the connection's.
     Clock::time_point deadline() const;
+    bool connecting() const;
+    static Clock::duration seconds(double value) {
+        return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(value));
+    }
 
     asio::io_context& io_;
     Transport transport_;
@@ -88,7 +99,8 @@ private:
     ClientSession& session_;
     asio::steady_timer deadline_timer_;
     Clock::time_point bake_deadline_;
-    std::optional<Clock::time_point> handshake_deadline_;  // set while a TLS handshake runs
+    Clock::time_point connect_deadline_;
+    bool tls_handshaking_ = false;
     std::string address_;               // "HOST:PORT" for messages
     std::vector<uint8_t> first_bytes_;  // the server's first bytes, to recognise a TLS answer
     FrameDecoder decoder_;
@@ -129,21 +141,31 @@ awaitable<void> BakeConnection::flush() {
     writing_ = false;
 }
 
+bool BakeConnection::connecting() const {
+    return session_.stage() == ClientSession::Stage::kConnecting ||
+           session_.stage() == ClientSession::Stage::kAwaitingHelloAck;
+}
+
 Clock::time_point BakeConnection::deadline() const {
-    return handshake_deadline_ ? std::min(*handshake_deadline_, bake_deadline_) : bake_deadline_;
+    return connecting() ? std::min(connect_deadline_, bake_deadline_) : bake_deadline_;
 }
 
 awaitable<void> BakeConnection::watch_deadline() {
     while (!session_.finished()) {
         const Clock::time_point at = deadline();
         if (Clock::now() >= at) {
-            if (handshake_deadline_ && at == *handshake_deadline_) {
-                auto limit_s = std::chrono::duration_cast<std::chrono::seconds>(kTlsHandshakeLimit).count();
-                abort(make_error("TLS handshake with " + address_ + " did not finish within " +
-                                 std::to_string(limit_s) + " s (is the server started with --tls-cert?)"));
-            } else {
+            const std::string limit = seconds_text(options_.connect_timeout_seconds) + " s";
+            if (at == bake_deadline_) {
                 abort(make_error("bake timed out after " +
                                  std::to_string(static_cast<int>(options_.timeout_seconds)) + " s"));
+            } else if (tls_handshaking_) {
+                abort(make_error("TLS handshake with " + address_ + " did not finish within " + limit +
+                                 " (is the server started with --tls-cert?)"));
+            } else if (session_.stage() == ClientSession::Stage::kConnecting) {
+                abort(make_error("cannot connect to " + address_ + " within " + limit));
+            } else {
+                abort(make_error("the server at " + address_ + " accepted the connection but did not answer Hello within " +
+                                 limit + " (--connect-timeout)"));
             }
             co_return;
         }
@@ -166,10 +188,9 @@ awaitable<Status> BakeConnection::connect(const std::string& host, const std::st
     if (!transport_.is_tls()) co_return Ok{};
 
     if (Status named = transport_.expect_peer_host(host); !named) co_return make_error(named.error());
-    handshake_deadline_ = Clock::now() + kTlsHandshakeLimit;
-    deadline_timer_.cancel();  // the deadline moved earlier
+    tls_handshaking_ = true;
     ec = co_await transport_.handshake(TransportRole::kClient);
-    handshake_deadline_.reset();
+    tls_handshaking_ = false;
     if (!ec) co_return Ok{};
     std::string text = "TLS handshake with " + address_ + " failed: " + transport_.handshake_error_text(ec);
     if (is_certificate_rejection(ec))
@@ -276,20 +297,20 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     ChannelRecorder recorder(options.record_dir);
     ClientSessionOptions session_options;
     session_options.token = token.value();
-    session_options.builder = options.builder;
-    session_options.representative_rule = options.representative_rule;
-    session_options.pairing = options.pairing;
-    session_options.exact_pairing_limit = options.exact_pairing_limit;
-    session_options.seed = options.seed;
+    session_options.request = BakeRequestMsg{.bake_id = 1,
+                                             .builder = options.builder,
+                                             .seed = options.seed,
+                                             .representative_rule = options.representative_rule,
+                                             .pairing = options.pairing,
+                                             .exact_pairing_limit = options.exact_pairing_limit};
     session_options.on_progress = options.on_progress;
     session_options.on_warning = options.on_warning;
     session_options.recorder = &recorder;
     ClientSession session(std::move(tree_lights), scene_guid, std::move(session_options));
 
     auto start = Clock::now();
-    auto deadline = start + std::chrono::milliseconds(static_cast<int64_t>(options.timeout_seconds * 1000.0));
     asio::io_context io;
-    BakeConnection connection(io, options, tls.get(), session, deadline);
+    BakeConnection connection(io, options, tls.get(), session, start);
     if (options.waker) options.waker->attach([&] { asio::post(io, [&] { connection.check_cancel(); }); });
     asio::co_spawn(io, connection.run(host, port), [&](std::exception_ptr error) {
         if (error) session.fail(make_error("internal error in the bake client"));

@@ -50,6 +50,9 @@ struct BakeClientOptions {
     uint32_t exact_pairing_limit = 0;  // 0: server default
     uint64_t seed = 0;
     double timeout_seconds = 600.0;    // whole bake, transfer included
+    // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
+    // accepts and never answers is given up on after this long.
+    double connect_timeout_seconds = 10.0;
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
     const std::atomic<bool>* cancel = nullptr;  // set to true to cancel the bake

@@ -76,14 +76,8 @@ std::optional<Message> ClientSession::next_upload_message() {
             upload_step_ = UploadStep::kDone;
             stage_ = Stage::kBaking;
             outcome_.upload_ms = ms_since(upload_start_);
-            BakeRequestMsg request;
-            request.bake_id = options_.bake_id;
+            BakeRequestMsg request = options_.request;
             request.scene_channel = scene_channel_;
-            request.builder = options_.builder;
-            request.seed = options_.seed;
-            request.representative_rule = options_.representative_rule;
-            request.pairing = options_.pairing;
-            request.exact_pairing_limit = options_.exact_pairing_limit;
             return request;
         }
         case UploadStep::kDone: break;
@@ -147,7 +141,7 @@ void ClientSession::on_bake_message(const Message& m) {
         if (options_.on_progress && reader_.nodes_expected() > 0) {
             float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
                         static_cast<float>(reader_.nodes_expected());
-            options_.on_progress(ProgressMsg{options_.bake_id, "receiving", pct});
+            options_.on_progress(ProgressMsg{options_.request.bake_id, "receiving", pct});
         }
     } else if (auto* close = std::get_if<CloseChannelMsg>(&m)) {
         if (!result_channel_id_ || close->channel_id != *result_channel_id_)
@@ -181,7 +175,7 @@ void ClientSession::cancel() {
         return;
     }
     cancel_sent_ = true;
-    outbox_.push_back(CancelMsg{options_.bake_id});
+    outbox_.push_back(CancelMsg{options_.request.bake_id});
 }
 
 void ClientSession::fail(Error error) {

@@ -25,12 +25,8 @@ namespace lc::client {
 
 struct ClientSessionOptions {
     std::string token;
-    uint32_t bake_id = 1;
-    BuilderKind builder = BuilderKind::kOptimalPair;
-    RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
-    PairingMode pairing = PairingMode::kAuto;
-    uint32_t exact_pairing_limit = 0;
-    uint64_t seed = 0;
+    // The bake to ask for; the session names its scene channel.
+    BakeRequestMsg request{.bake_id = 1};
     size_t chunk_bytes = kDefaultChunkBytes;
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
