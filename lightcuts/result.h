@@ -1,14 +1,20 @@
 #pragma once
 // A value or an error message naming the problem. C++20 has no std::expected;
 // this is the small subset we need on network and file paths.
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <variant>
 
 namespace lc {
 
+// Why an operation ended without a value, for callers to test: outcomes are
+// codes, never matched from the message (which is for people).
+enum class ErrorKind : uint8_t { kFailed = 0, kCancelled = 1, kBusy = 2, kRefused = 3 };
+
 struct Error {
     std::string message;
+    ErrorKind kind = ErrorKind::kFailed;
 };
 
 template <typename T>
@@ -32,6 +38,9 @@ public:
     const T& operator*() const& { return value(); }
 
     const std::string& error() const { return std::get<Error>(state_).message; }
+    ErrorKind error_kind() const { return std::get<Error>(state_).kind; }
+    // The whole error, to pass on with its kind.
+    const Error& failure() const { return std::get<Error>(state_); }
 
 private:
     std::variant<T, Error> state_;
@@ -41,6 +50,8 @@ private:
 struct Ok {};
 using Status = Result<Ok>;
 
-inline Error make_error(std::string message) { return Error{std::move(message)}; }
+inline Error make_error(std::string message, ErrorKind kind = ErrorKind::kFailed) {
+    return Error{std::move(message), kind};
+}
 
 }  // namespace lc

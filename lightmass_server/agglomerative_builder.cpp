@@ -171,7 +171,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
                                   }
                               });
             if (progress && !progress(double(merges) / double(total_merges))) {
-                return make_error(cancelled_message(merges, total_merges));
+                return make_error(cancelled_message(merges, total_merges), ErrorKind::kCancelled);
             }
         }
         for (const uint32_t x : pending) {
@@ -236,7 +236,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
             if (progress && merges >= next_progress) {
                 next_progress = merges + progress_step;
                 if (!progress(double(merges) / double(total_merges))) {
-                    return make_error(cancelled_message(merges, total_merges));
+                    return make_error(cancelled_message(merges, total_merges), ErrorKind::kCancelled);
                 }
             }
         }

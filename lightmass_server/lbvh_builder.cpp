@@ -128,7 +128,8 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
         if (++merges % progress_step == 0 && progress &&
             !progress(double(merges) / double(total_merges))) {
             return make_error("cancelled during the lbvh build (" + std::to_string(merges) +
-                              " of " + std::to_string(total_merges) + " merges done)");
+                              " of " + std::to_string(total_merges) + " merges done)",
+                              ErrorKind::kCancelled);
         }
     }
     return int32_t(arena_of[0]);

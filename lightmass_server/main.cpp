@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
     unsigned threads = 1;
     int read_timeout_ms = 30000;
     int idle_timeout_ms = 600000;
+    int frame_timeout_ms = 60000;
+    int connect_timeout_ms = 10000;
+    uint32_t max_connections = 256;
+    uint64_t memory_budget_mb = 4096;
     bool quiet = false;
     app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
         ->capture_default_str();
@@ -74,6 +78,21 @@ int main(int argc, char** argv) {
         ->capture_default_str()->check(CLI::PositiveNumber);
     app.add_option("--idle-timeout-ms", idle_timeout_ms, "Drop a peer silent this long with nothing running")
         ->capture_default_str()->check(CLI::PositiveNumber);
+    app.add_option("--frame-timeout-ms", frame_timeout_ms,
+                   "Drop a peer whose frame has not arrived whole this long after its first byte")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--connect-timeout-ms", connect_timeout_ms,
+                   "Drop a peer that has not finished the TLS handshake and Hello this long after connecting")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--max-connections", max_connections, "Answer connections beyond this many 'server busy'")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    app.add_option("--memory-budget-mb", memory_budget_mb,
+                   "MiB of scene channels and stored scenes over all connections; beyond: 'server busy'")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
     app.add_flag("--quiet", quiet, "Log warnings and errors only");
     CLI11_PARSE(app, argc, argv);
 
@@ -89,6 +108,10 @@ int main(int argc, char** argv) {
     options.record_dir = record_dir;
     options.read_timeout = std::chrono::milliseconds(read_timeout_ms);
     options.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
+    options.frame_timeout = std::chrono::milliseconds(frame_timeout_ms);
+    options.connect_timeout = std::chrono::milliseconds(connect_timeout_ms);
+    options.max_connections = max_connections;
+    options.memory_budget_bytes = memory_budget_mb << 20;
     options.tls_certificate = tls_cert;
     options.tls_private_key = tls_key;
     if (!token_file.empty()) {

@@ -94,7 +94,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
         ++level_number;
         if (progress && !progress(std::min(1.0, done_work / total_work))) {
             return make_error("cancelled during optimal-pair level " +
-                              std::to_string(level_number - 1));
+                              std::to_string(level_number - 1), ErrorKind::kCancelled);
         }
         level.swap(next);
     }

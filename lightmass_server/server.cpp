@@ -2,12 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include "lightmass_server/accept_backoff.h"
 #include "protocol/tls_context.h"
 
 namespace lc::bake {
 
 Server::Server(ServerOptions options)
     : options_(std::move(options)),
+      memory_budget_(options_.memory_budget_bytes),
       workers_(std::max(1u, options_.bake_threads)),
       acceptor_(io_),
       recorder_(options_.record_dir) {}
@@ -57,20 +59,33 @@ void Server::stop() {
 }
 
 awaitable<void> Server::accept_loop() {
+    AcceptBackoff backoff;
+    asio::steady_timer retry_timer(io_);
     while (acceptor_.is_open()) {
         boost::system::error_code ec;
         tcp::socket socket = co_await acceptor_.async_accept(asio::redirect_error(asio::use_awaitable, ec));
         if (ec) {
             if (!acceptor_.is_open()) co_return;
-            spdlog::warn("accept failed: {}", ec.message());
+            AcceptRetry retry = backoff.on_failure(ec.message(), AcceptBackoff::Clock::now());
+            if (retry.log_line) spdlog::warn("{}", *retry.log_line);
+            retry_timer.expires_after(retry.delay);
+            co_await retry_timer.async_wait(asio::redirect_error(asio::use_awaitable, ec));
             continue;
         }
+        if (std::optional<std::string> recovered = backoff.on_success()) spdlog::info("{}", *recovered);
         socket.set_option(tcp::no_delay(true), ec);
         std::erase_if(connections_, [](const std::weak_ptr<Connection>& w) { return w.expired(); });
+        size_t open = 0;
+        for (auto& weak : connections_)
+            if (auto connection = weak.lock(); connection && !connection->closed()) ++open;
+        std::string busy_reason;
+        if (open >= options_.max_connections)
+            busy_reason = std::to_string(open) + " connections open, the limit (--max-connections)";
         Transport transport = tls_context_ ? Transport::tls(std::move(socket), *tls_context_)
                                            : Transport::plain(std::move(socket));
         auto connection = std::make_shared<Connection>(std::move(transport), options_, workers_, recorder_,
-                                                       next_connection_id_++);
+                                                       next_connection_id_++, memory_budget_,
+                                                       std::move(busy_reason));
         connections_.push_back(connection);
         connection->start();
     }

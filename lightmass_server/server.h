@@ -7,6 +7,7 @@
 
 #include "protocol/asio.h"
 #include "lightmass_server/connection.h"
+#include "lightmass_server/memory_budget.h"
 #include "lightmass_server/server_options.h"
 #include "protocol/channel_recorder.h"
 #include "lightcuts/result.h"
@@ -35,6 +36,8 @@ private:
     ServerOptions options_;
     // Declared before io_: connections still queued on io_ at destruction use it.
     std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
+    // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.
+    MemoryBudget memory_budget_;
     asio::io_context io_;
     asio::thread_pool workers_;
     tcp::acceptor acceptor_;

@@ -25,6 +25,16 @@ struct ServerOptions {
     std::chrono::milliseconds read_timeout{30000};
     // A peer with no bake running that sends nothing for this long is dropped.
     std::chrono::milliseconds idle_timeout{600000};
+    // A frame must arrive whole within this long of its first byte, however
+    // steadily it trickles in (16 MiB at 1 MiB/s takes 16 s).
+    std::chrono::milliseconds frame_timeout{60000};
+    // A peer must finish the TLS handshake and say Hello within this long of connecting.
+    std::chrono::milliseconds connect_timeout{10000};
+    // Connections beyond this many are answered "server busy" after their Hello.
+    uint32_t max_connections = 256;
+    // Announced bytes of every connection's scene channels and stored scenes together;
+    // a channel that does not fit is refused as "server busy".
+    uint64_t memory_budget_bytes = uint64_t{4096} << 20;
 };
 
 // True for 127.0.0.0/8, ::1 and "localhost".

@@ -129,7 +129,7 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
                 root = build_lbvh_tree(arena, leaves, effective, type_progress);
                 break;
         }
-        if (!root) return make_error(root.error());
+        if (!root) return root.failure();
         roots.push_back(uint32_t(*root));
         lights_done += leaves.size();
     }
@@ -147,7 +147,8 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
     result.tree = std::move(exported.tree);
     report.depth = exported.depth;
     report.build_ms = elapsed_ms(start);
-    if (progress && !progress("done", 100.0)) return make_error("cancelled after the build");
+    if (progress && !progress("done", 100.0))
+        return make_error("cancelled after the build", ErrorKind::kCancelled);
     return result;
 }
 

@@ -49,7 +49,7 @@ struct BuildResult {
 
 // Lights must already be validated (protocol/channel_records.h); every light
 // given becomes a leaf. Deterministic for equal lights, options and seed.
-// A cancelled build returns an error whose message starts with "cancelled".
+// A cancelled build returns an error of kind ErrorKind::kCancelled.
 Result<BuildResult> build_light_tree(std::span<const SceneLight> lights, const BuildOptions& options,
                                      const ProgressFn& progress);
 

@@ -50,7 +50,7 @@ public:
     // An orderly end: TLS sends close_notify and waits up to `limit` for the
     // peer's; then the socket is shut down and closed. Errors are of no use here.
     awaitable<void> shutdown(std::chrono::milliseconds limit);
-    // Closes at once, cancelling pending operations: for aborts and watchdogs.
+    // Closes at once, cancelling pending operations: for aborts and deadline timers.
     void close();
 
     // The reason a handshake failed, with the certificate verification result

@@ -171,8 +171,7 @@ TEST(EditorBake, CancelStopsTheBakeAndKeepsTheOldTree) {
     session.cancel_bake();
     BakeReport report = poll_until_done(session);
     EXPECT_FALSE(report.succeeded);
-    EXPECT_TRUE(report.cancelled);
-    EXPECT_NE(report.error.find("cancel"), std::string::npos) << report.error;
+    EXPECT_TRUE(report.cancelled) << report.error;  // the outcome's code, not its text
     EXPECT_EQ(session.tree(), before);
 
     // The server still serves: a new bake after the cancel succeeds.

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <mutex>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,22 @@
 #include "lightcuts/scene_light.h"
 
 namespace lc::client {
+
+// Lets another thread (the editor's Cancel button) wake a running bake's I/O at
+// once to look at BakeClientOptions::cancel; without it the bake looks at the
+// flag with each message from the server.
+class BakeWaker {
+public:
+    // Thread-safe; nothing happens while no bake is attached.
+    void wake();
+    // bake_lights attaches its I/O for the length of the bake.
+    void attach(std::function<void()> wake);
+    void detach();
+
+private:
+    std::mutex mutex_;
+    std::function<void()> wake_;
+};
 
 struct BakeClientOptions {
     std::string server;            // "HOST:PORT"; ignored when spawn_server
@@ -33,9 +50,13 @@ struct BakeClientOptions {
     uint32_t exact_pairing_limit = 0;  // 0: server default
     uint64_t seed = 0;
     double timeout_seconds = 600.0;    // whole bake, transfer included
+    // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
+    // accepts and never answers is given up on after this long.
+    double connect_timeout_seconds = 10.0;
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
     const std::atomic<bool>* cancel = nullptr;  // set to true to cancel the bake
+    BakeWaker* waker = nullptr;                 // wake() after setting `cancel` from another thread
 };
 
 struct BakeOutcome {
@@ -49,7 +70,9 @@ struct BakeOutcome {
     double download_ms = 0.0;
 };
 
-// Lights marked classic are not sent: they stay with the client.
+// Lights marked classic are not sent: they stay with the client. A failure's
+// kind says whether the bake was cancelled, the server busy or the connection
+// refused (version, token).
 Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& scene_guid,
                                 const BakeClientOptions& options);
 

@@ -25,6 +25,7 @@ public:
     ServerProcess& operator=(const ServerProcess&) = delete;
 
     const std::string& address() const { return address_; }  // "127.0.0.1:PORT"
+    pid_t pid() const { return pid_; }
 
 private:
     ServerProcess(pid_t pid, std::string address) : pid_(pid), address_(std::move(address)) {}

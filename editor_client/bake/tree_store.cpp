@@ -7,7 +7,7 @@
 namespace lc::client {
 
 Status TreeStore::import(Result<BakeOutcome> outcome) {
-    if (!outcome) return make_error(outcome.error());
+    if (!outcome) return outcome.failure();
     Status valid = validate_tree(outcome->tree);
     if (!valid) return make_error("received tree is invalid: " + valid.error());
     tree_ = std::make_shared<const LightTree>(std::move(outcome->tree));

@@ -12,12 +12,18 @@ BakeJob::BakeJob(std::span<const SceneLight> lights, const Guid& scene_guid,
 }
 
 BakeJob::~BakeJob() {
-    cancel_.store(true);
+    cancel();
     if (thread_.joinable()) thread_.join();
+}
+
+void BakeJob::cancel() {
+    cancel_.store(true);
+    waker_.wake();
 }
 
 void BakeJob::run(std::vector<SceneLight> lights, BakeClientOptions options) {
     options.cancel = &cancel_;
+    options.waker = &waker_;
     options.on_progress = [this](const ProgressMsg& message) {
         std::lock_guard lock(mutex_);
         progress_.stage = message.stage;
@@ -28,8 +34,9 @@ void BakeJob::run(std::vector<SceneLight> lights, BakeClientOptions options) {
         warnings_.push_back(text);
     };
     Result<BakeOutcome> outcome = bake_lights(lights, scene_guid_, options);
-    if (!outcome && cancel_.load() && outcome.error().find("cancel") == std::string::npos)
-        outcome = make_error("bake cancelled (" + outcome.error() + ")");
+    // A bake cancelled while, say, the connection failed still reports as cancelled.
+    if (!outcome && cancel_.load() && outcome.error_kind() != ErrorKind::kCancelled)
+        outcome = make_error("bake cancelled (" + outcome.error() + ")", ErrorKind::kCancelled);
     {
         std::lock_guard lock(mutex_);
         outcome_ = std::move(outcome);

@@ -42,7 +42,8 @@ public:
     BakeProgress progress() const;
     // Warnings received so far, in order.
     std::vector<std::string> warnings() const;
-    void cancel() { cancel_.store(true); }
+    // Thread-safe: the bake's I/O is woken to send Cancel at once.
+    void cancel();
     bool cancel_requested() const { return cancel_.load(); }
     bool finished() const { return finished_.load(std::memory_order_acquire); }
     // Blocks until the thread is done (tests and scripts without a window).
@@ -58,6 +59,7 @@ private:
     Guid scene_guid_;
     size_t light_count_ = 0;
     std::atomic<bool> cancel_{false};
+    BakeWaker waker_;
     std::atomic<bool> finished_{false};
     mutable std::mutex mutex_;  // guards progress_, warnings_, outcome_, taken_
     BakeProgress progress_;

@@ -315,7 +315,6 @@ std::optional<BakeReport> EditorSession::poll_bake() {
     report.light_count = job_->light_count();
     report.warnings = job_->warnings();
     const Guid baked_scene = job_->scene_guid();
-    const bool cancelled = job_->cancel_requested();
     Result<BakeOutcome> outcome = job_->take_outcome();
     job_.reset();
 
@@ -332,7 +331,7 @@ std::optional<BakeReport> EditorSession::poll_bake() {
         tree_scene_guid_ = baked_scene;
     } else {
         report.error = imported.error();
-        report.cancelled = cancelled;
+        report.cancelled = imported.error_kind() == ErrorKind::kCancelled;
     }
     last_bake_ = report;
     return report;

@@ -1,0 +1,95 @@
+#pragma once
+// The bake client's side of the channel protocol as a state machine with no
+// socket: Hello, the scene channel, BakeRequest, then progress and warnings,
+// the result channel into a ResultChannelReader, and BakeDone, an error or a
+// cancel. The I/O layer (bake_client.cpp) moves the bytes: it pulls messages
+// to send with next_message() and pushes what arrives into on_message(), so
+// every rule here is tested without a socket (tests/client_session_test.cpp).
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "editor_client/bake/bake_client.h"
+#include "lightcuts/guid.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_light.h"
+#include "protocol/channel_recorder.h"
+#include "protocol/channel_records.h"
+#include "protocol/messages.h"
+
+namespace lc::client {
+
+struct ClientSessionOptions {
+    std::string token;
+    // The bake to ask for; the session names its scene channel.
+    BakeRequestMsg request{.bake_id = 1};
+    size_t chunk_bytes = kDefaultChunkBytes;
+    std::function<void(const ProgressMsg&)> on_progress;
+    std::function<void(const std::string&)> on_warning;
+    const ChannelRecorder* recorder = nullptr;  // null or disabled: nothing is recorded
+};
+
+class ClientSession {
+public:
+    enum class Stage { kConnecting, kAwaitingHelloAck, kUploading, kBaking, kFinished };
+
+    // `lights`: the tree lights only (classic lights stay with the client).
+    ClientSession(std::vector<SceneLight> lights, const Guid& scene_guid, ClientSessionOptions options);
+
+    // The transport is connected: Hello is due.
+    void start();
+    // The next message to send, or nothing when none is due until more arrives.
+    std::optional<Message> next_message();
+    void on_message(const Message& message);
+    // The user cancelled: before BakeRequest is sent the bake ends here (the I/O
+    // layer closes the connection); after it, Cancel is sent once and the
+    // server's answer ends the bake.
+    void cancel();
+    // The transport failed or timed out; ignored once finished.
+    void fail(Error error);
+
+    Stage stage() const { return stage_; }
+    bool finished() const { return stage_ == Stage::kFinished; }
+    bool succeeded() const { return result_ && result_->ok(); }
+    // Once finished: the outcome, moved out.
+    Result<BakeOutcome> take_result();
+
+private:
+    using Clock = std::chrono::steady_clock;
+    enum class UploadStep { kOpen, kData, kClose, kRequest, kDone };
+
+    std::optional<Message> next_upload_message();
+    void on_hello_reply(const Message& message);
+    void on_bake_message(const Message& message);
+    void finish(Result<BakeOutcome> result);
+
+    std::vector<SceneLight> lights_;
+    std::string scene_channel_;
+    ClientSessionOptions options_;
+    Stage stage_ = Stage::kConnecting;
+    std::deque<Message> outbox_;
+    bool cancel_sent_ = false;
+    std::optional<Result<BakeOutcome>> result_;
+
+    // Upload.
+    static constexpr uint32_t kSceneChannelId = 1;
+    UploadStep upload_step_ = UploadStep::kOpen;
+    std::vector<uint8_t> scene_bytes_;
+    uint64_t upload_offset_ = 0;
+    Clock::time_point upload_start_;
+
+    // Result channel.
+    BakeOutcome outcome_;
+    ResultChannelReader reader_;
+    std::vector<uint8_t> result_bytes_;
+    std::optional<uint32_t> result_channel_id_;
+    uint64_t expected_bytes_ = 0;
+    bool channel_closed_ = false;
+    Clock::time_point download_start_;
+};
+
+}  // namespace lc::client

@@ -1,0 +1,309 @@
+#include "lightmass_server/server_session.h"
+
+#include <spdlog/spdlog.h>
+
+#include <utility>
+
+#include "lightmass_server/auth_token.h"
+#include "protocol/channel_name.h"
+
+namespace lc::bake {
+
+ServerSession::ServerSession(ServerSessionOptions options) : options_(std::move(options)) {}
+
+ServerActions ServerSession::take_actions() { return std::exchange(actions_, {}); }
+
+void ServerSession::send(Message message) { actions_.push_back(SendMessage{std::move(message)}); }
+
+void ServerSession::send_error(uint32_t bake_id, ErrorCode code, const std::string& text) {
+    spdlog::warn("connection {}: error sent: {}", options_.connection_id, text);
+    send(ErrorMsg{bake_id, code, text});
+}
+
+ServerActions ServerSession::on_message(Message message) {
+    if (closing_) return {};
+    bool keep = true;
+    if (!greeted_ && !std::holds_alternative<HelloMsg>(message)) {
+        send_error(0, ErrorCode::kMalformedFrame,
+                   std::string("expected Hello as the first message, got ") + message_name(message));
+        keep = false;
+    } else if (auto* hello = std::get_if<HelloMsg>(&message)) {
+        keep = on_hello(*hello);
+    } else if (auto* open = std::get_if<OpenChannelMsg>(&message)) {
+        keep = on_open_channel(*open);
+    } else if (auto* write = std::get_if<WriteChannelMsg>(&message)) {
+        keep = on_write_channel(*write);
+    } else if (auto* close = std::get_if<CloseChannelMsg>(&message)) {
+        keep = on_close_channel(*close);
+    } else if (auto* request = std::get_if<BakeRequestMsg>(&message)) {
+        keep = on_bake_request(*request);
+    } else if (auto* cancel = std::get_if<CancelMsg>(&message)) {
+        on_cancel(*cancel);
+    } else {
+        send_error(0, ErrorCode::kMalformedFrame,
+                   std::string("a client may not send ") + message_name(message) + " messages");
+        keep = false;
+    }
+    if (!keep) close_after_flush("protocol violation");
+    return take_actions();
+}
+
+ServerActions ServerSession::on_malformed_frame(const std::string& error) {
+    if (closing_) return {};
+    send_error(0, ErrorCode::kMalformedFrame, "malformed frame: " + error);
+    close_after_flush("malformed frame");
+    return take_actions();
+}
+
+ServerActions ServerSession::on_bad_frame_header(const std::string& error) {
+    if (closing_) return {};
+    send_error(0, ErrorCode::kTooLarge, "bad frame header: " + error);
+    close_after_flush("bad frame header");
+    return take_actions();
+}
+
+void ServerSession::close_after_flush(std::string reason) {
+    ServerActions cancel = on_closing();
+    actions_.insert(actions_.end(), cancel.begin(), cancel.end());
+    actions_.push_back(CloseAfterFlush{std::move(reason)});
+}
+
+ServerActions ServerSession::on_closing() {
+    if (closing_) return {};
+    closing_ = true;
+    if (bake_ && !bake_->streaming && !bake_->cancel_requested) {
+        bake_->cancel_requested = true;
+        return {CancelBake{bake_->bake_id}};
+    }
+    return {};
+}
+
+bool ServerSession::on_hello(const HelloMsg& hello) {
+    if (greeted_) {
+        send_error(0, ErrorCode::kMalformedFrame, "Hello sent twice");
+        return false;
+    }
+    if (hello.protocol_version != kProtocolVersion) {
+        send_error(0, ErrorCode::kVersionMismatch,
+                   "protocol version mismatch: client speaks " + hello.protocol_version.to_hex() +
+                       ", server speaks " + kProtocolVersion.to_hex());
+        return false;
+    }
+    if (!options_.busy_reason.empty()) {
+        send_error(0, ErrorCode::kBusy, "server busy: " + options_.busy_reason);
+        return false;
+    }
+    if (options_.token && !tokens_equal(*options_.token, hello.token)) {
+        send_error(0, ErrorCode::kAuthentication,
+                   hello.token.empty() ? "this server requires a token (client: --token-file FILE)"
+                                       : "authentication failed: the token does not match");
+        return false;
+    }
+    greeted_ = true;
+    spdlog::info("connection {}: hello from '{}'", options_.connection_id, hello.peer_name);
+    send(HelloAckMsg{kProtocolVersion, "lightmass_server 0.1.0"});
+    return true;
+}
+
+bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
+    if (incoming_.count(open.channel_id) || refused_.count(open.channel_id)) {
+        send_error(0, ErrorCode::kMalformedFrame,
+                   "channel id " + std::to_string(open.channel_id) + " is already open");
+        return false;
+    }
+    auto refuse = [&](ErrorCode code, const std::string& text) {
+        refused_.insert(open.channel_id);
+        send_error(0, code, "channel '" + open.name + "' refused: " + text);
+        return true;
+    };
+    auto name = ChannelName::parse(open.name);
+    if (!name) return refuse(ErrorCode::kUnknownChannel, "not a VERSION.GUID.ext channel name");
+    if (name->extension != kSceneExtension)
+        return refuse(ErrorCode::kUnknownChannel, "this server accepts only ." + std::string(kSceneExtension) +
+                                                      " channels, got ." + name->extension);
+    if (name->version != kSceneFormatVersionGuid)
+        return refuse(ErrorCode::kVersionMismatch, "scene format version " + name->version.to_hex() +
+                                                       " is not supported; this server reads " +
+                                                       kSceneFormatVersionGuid.to_hex());
+    const uint64_t max_bytes = 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
+    if (open.total_bytes > max_bytes)
+        return refuse(ErrorCode::kTooLarge, "announces " + std::to_string(open.total_bytes) +
+                                                " bytes; the limit is " + std::to_string(max_bytes) + " (" +
+                                                std::to_string(kMaxSceneLights) + " lights)");
+    if (incoming_.size() >= kMaxOpenChannels)
+        return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
+                                            std::to_string(kMaxOpenChannels) + ")");
+    MemoryBudget* budget = options_.memory_budget;
+    if (budget && !budget->try_reserve(open.total_bytes))
+        return refuse(ErrorCode::kBusy, "server busy: " + std::to_string(open.total_bytes) +
+                                            " bytes do not fit in the memory budget (" +
+                                            std::to_string(budget->used()) + " of " +
+                                            std::to_string(budget->limit()) + " bytes in use; --memory-budget-mb)");
+    IncomingScene& scene = incoming_[open.channel_id];
+    scene.name = open.name;
+    scene.total_bytes = open.total_bytes;
+    scene.reservation = BudgetReservation(budget, open.total_bytes);
+    return true;
+}
+
+bool ServerSession::on_write_channel(WriteChannelMsg& write) {
+    if (refused_.count(write.channel_id)) return true;  // already answered with an error
+    auto it = incoming_.find(write.channel_id);
+    if (it == incoming_.end()) {
+        send_error(0, ErrorCode::kUnknownChannel,
+                   "write to channel id " + std::to_string(write.channel_id) + " which is not open");
+        return false;
+    }
+    IncomingScene& scene = it->second;
+    if (write.offset != scene.received) {
+        send_error(0, ErrorCode::kMalformedFrame,
+                   "channel '" + scene.name + "': write at offset " + std::to_string(write.offset) +
+                       ", expected " + std::to_string(scene.received));
+        return false;
+    }
+    auto refuse = [&](const std::string& text) {
+        send_error(0, ErrorCode::kInvalidScene, "scene channel '" + scene.name + "': " + text);
+        refused_.insert(write.channel_id);
+        incoming_.erase(it);
+        return true;
+    };
+    if (scene.received + write.data.size() > scene.total_bytes)
+        return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
+    Status consumed = scene.reader.consume(write.data);
+    if (!consumed) return refuse(consumed.error());
+    scene.received += write.data.size();
+    if (options_.record_channels)
+        scene.recorded.insert(scene.recorded.end(), write.data.begin(), write.data.end());
+    return true;
+}
+
+bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
+    if (refused_.erase(close.channel_id)) return true;
+    auto it = incoming_.find(close.channel_id);
+    if (it == incoming_.end()) {
+        send_error(0, ErrorCode::kUnknownChannel,
+                   "close of channel id " + std::to_string(close.channel_id) + " which is not open");
+        return false;
+    }
+    IncomingScene scene = std::move(it->second);
+    incoming_.erase(it);
+    if (scene.received != scene.total_bytes) {
+        send_error(0, ErrorCode::kInvalidScene,
+                   "scene channel '" + scene.name + "' closed after " + std::to_string(scene.received) +
+                       " of " + std::to_string(scene.total_bytes) + " bytes");
+        return true;
+    }
+    Result<std::vector<SceneLight>> lights = scene.reader.finish();
+    if (!lights) {
+        send_error(0, ErrorCode::kInvalidScene, "scene channel '" + scene.name + "': " + lights.error());
+        return true;
+    }
+    if (options_.record_channels) actions_.push_back(RecordChannel{scene.name, std::move(scene.recorded)});
+    spdlog::info("connection {}: scene '{}' received, {} lights", options_.connection_id, scene.name,
+                 lights->size());
+    if (scenes_.size() >= kMaxStoredScenes && !scenes_.count(scene.name)) scenes_.erase(scenes_.begin());
+    scenes_[scene.name] = StoredScene{std::move(lights.value()), std::move(scene.reservation)};
+    return true;
+}
+
+bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
+    if (bake_) {
+        send_error(request.bake_id, ErrorCode::kBusy,
+                   "bake " + std::to_string(bake_->bake_id) + " is still running on this connection");
+        return true;
+    }
+    auto scene = scenes_.find(request.scene_channel);
+    if (scene == scenes_.end()) {
+        send_error(request.bake_id, ErrorCode::kUnknownChannel,
+                   "no complete scene channel named '" + request.scene_channel +
+                       "' (open, write and close it before BakeRequest)");
+        return true;
+    }
+    auto lights = std::make_shared<std::vector<SceneLight>>();
+    size_t classic = 0;
+    for (const SceneLight& light : scene->second.lights) {
+        if (light.classic) ++classic;
+        else lights->push_back(light);
+    }
+    if (classic > 0)
+        send(WarningMsg{request.bake_id,
+                        std::to_string(classic) + " classic lights in the scene channel were left out of the tree"});
+
+    StartBake start;
+    start.bake_id = request.bake_id;
+    start.build.builder = request.builder;
+    start.build.representative_rule = request.representative_rule;
+    start.build.pairing = request.pairing;
+    start.build.seed = request.seed;
+    if (request.exact_pairing_limit != 0) start.build.exact_pairing_limit = request.exact_pairing_limit;
+    spdlog::info("connection {}: bake {} of {} lights with {} (seed {})", options_.connection_id,
+                 request.bake_id, lights->size(), builder_name(start.build.builder), start.build.seed);
+    start.lights = std::move(lights);
+
+    bake_ = ActiveBake{request.bake_id};
+    send(ProgressMsg{request.bake_id, "queued", 0.0f});
+    actions_.push_back(std::move(start));
+    return true;
+}
+
+void ServerSession::on_cancel(const CancelMsg& cancel) {
+    if (!bake_ || bake_->bake_id != cancel.bake_id) return;  // finished already, or never started
+    if (bake_->streaming) {
+        // Already built: stop streaming, the client discards the partial channel.
+        bake_.reset();
+        actions_.push_back(StopStream{});
+        send_error(cancel.bake_id, ErrorCode::kCancelled,
+                   "bake " + std::to_string(cancel.bake_id) + " cancelled during transfer");
+        return;
+    }
+    if (bake_->cancel_requested) return;
+    bake_->cancel_requested = true;
+    actions_.push_back(CancelBake{cancel.bake_id});
+}
+
+ServerActions ServerSession::on_bake_progress(const ProgressMsg& progress) {
+    if (closing_ || !bake_ || bake_->bake_id != progress.bake_id || bake_->streaming) return {};
+    send(progress);
+    return take_actions();
+}
+
+ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResult> result) {
+    if (closing_ || !bake_ || bake_->bake_id != bake_id || bake_->streaming) return {};
+    if (!result) {
+        if (result.error_kind() == ErrorKind::kCancelled || bake_->cancel_requested)
+            send_error(bake_id, ErrorCode::kCancelled, "bake " + std::to_string(bake_id) + " cancelled");
+        else
+            send_error(bake_id, ErrorCode::kBakeFailed,
+                       "bake " + std::to_string(bake_id) + " failed: " + result.error());
+        bake_.reset();
+        return take_actions();
+    }
+    BuildResult built = std::move(result.value());
+    for (const std::string& warning : built.report.warnings) send(WarningMsg{bake_id, warning});
+    auto tree = std::make_shared<const LightTree>(std::move(built.tree));
+    BakeDoneMsg done;
+    done.bake_id = bake_id;
+    done.result_channel = lightcuts_result_channel_name();
+    done.node_count = static_cast<uint32_t>(tree->nodes.size());
+    done.leaf_count = tree->leaf_count;
+    done.build_ms = built.report.build_ms;
+    done.pairing_cost = built.report.pairing_cost;
+    done.pairing_lower_bound = built.report.pairing_lower_bound;
+    done.exact = built.report.exact;
+    spdlog::info("connection {}: bake {} built {} nodes in {:.1f} ms", options_.connection_id, bake_id,
+                 done.node_count, done.build_ms);
+    if (options_.record_channels)
+        actions_.push_back(RecordChannel{done.result_channel, encode_result_channel(*tree)});
+    send(ProgressMsg{bake_id, "streaming", 100.0f});
+    bake_->streaming = true;
+    actions_.push_back(StreamResult{std::move(tree), next_channel_id_++, std::move(done)});
+    return take_actions();
+}
+
+void ServerSession::on_result_delivered() {
+    if (!bake_ || !bake_->streaming) return;
+    spdlog::info("connection {}: bake {} delivered", options_.connection_id, bake_->bake_id);
+    bake_.reset();
+}
+
+}  // namespace lc::bake

@@ -1,0 +1,258 @@
+// The bake client's protocol state machine with no socket: what it sends is
+// pulled with next_message(), the server's answers are pushed in. Outcomes are
+// checked by their ErrorKind, never their text.
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "editor_client/bake/client_session.h"
+#include "lightmass_server/result_stream.h"
+#include "lightmass_server/tree_builder.h"
+#include "protocol/channel_name.h"
+#include "protocol/channel_records.h"
+#include "protocol/codec.h"
+#include "protocol/frame_decoder.h"
+#include "tree_invariants.h"
+
+namespace lc::client {
+namespace {
+
+constexpr Guid kSceneGuid{0x11111111u, 0x22222222u, 0x33333333u, 0x44444444u};
+constexpr uint32_t kBake = 5;
+
+std::vector<SceneLight> scene_lights() { return test::random_lights(40, 9, LightType::kPoint); }
+
+ClientSessionOptions session_options() {
+    ClientSessionOptions options;
+    options.token = "secret";
+    options.request.bake_id = kBake;
+    options.request.seed = 17;
+    options.chunk_bytes = 256;  // several WriteChannel messages for 40 lights
+    return options;
+}
+
+std::vector<Message> drain(ClientSession& session) {
+    std::vector<Message> messages;
+    while (std::optional<Message> message = session.next_message()) messages.push_back(std::move(*message));
+    return messages;
+}
+
+// A session whose Hello was answered and whose upload and BakeRequest were sent.
+void upload(ClientSession& session) {
+    session.start();
+    ASSERT_EQ(drain(session).size(), 1u);
+    session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+    std::vector<Message> upload = drain(session);
+    ASSERT_FALSE(upload.empty());
+    ASSERT_TRUE(std::holds_alternative<BakeRequestMsg>(upload.back()));
+    ASSERT_EQ(session.stage(), ClientSession::Stage::kBaking);
+}
+
+// What a server sends for a finished bake of `lights`: the result channel and BakeDone.
+std::vector<Message> result_messages(const std::vector<SceneLight>& lights) {
+    Result<bake::BuildResult> built = bake::build_light_tree(lights, bake::BuildOptions{}, nullptr);
+    EXPECT_TRUE(built);
+    auto tree = std::make_shared<const LightTree>(std::move(built->tree));
+    BakeDoneMsg done;
+    done.bake_id = kBake;
+    done.result_channel = lightcuts_result_channel_name();
+    done.node_count = static_cast<uint32_t>(tree->nodes.size());
+    done.leaf_count = tree->leaf_count;
+    bake::ResultStream stream(tree, 1u << 31, done, 512);
+    std::vector<Message> messages;
+    while (auto frame = stream.next_frame()) {
+        Result<Message> message = decode_message(std::span<const uint8_t>(*frame).subspan(kFrameHeaderBytes));
+        EXPECT_TRUE(message) << message.error();
+        messages.push_back(std::move(message.value()));
+    }
+    return messages;
+}
+
+TEST(ClientSession, SendsHelloThenTheSceneChannelThenTheRequest) {
+    const std::vector<SceneLight> lights = scene_lights();
+    ClientSession session(lights, kSceneGuid, session_options());
+    EXPECT_FALSE(session.next_message());  // nothing before the connection is up
+    session.start();
+    std::vector<Message> hello = drain(session);
+    ASSERT_EQ(hello.size(), 1u);
+    EXPECT_EQ(std::get<HelloMsg>(hello[0]).token, "secret");
+    EXPECT_EQ(std::get<HelloMsg>(hello[0]).protocol_version, kProtocolVersion);
+    EXPECT_EQ(session.stage(), ClientSession::Stage::kAwaitingHelloAck);
+    EXPECT_FALSE(session.next_message());  // the upload waits for HelloAck
+
+    session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+    std::vector<Message> upload = drain(session);
+    ASSERT_GE(upload.size(), 5u);
+    const std::vector<uint8_t> expected = encode_scene_channel(lights);
+    const auto& open = std::get<OpenChannelMsg>(upload.front());
+    EXPECT_EQ(open.name, scene_channel_name(kSceneGuid));
+    EXPECT_EQ(open.total_bytes, expected.size());
+    std::vector<uint8_t> written;
+    for (size_t i = 1; i + 2 < upload.size(); ++i) {
+        const auto& write = std::get<WriteChannelMsg>(upload[i]);
+        EXPECT_EQ(write.channel_id, open.channel_id);
+        EXPECT_EQ(write.offset, written.size());
+        EXPECT_LE(write.data.size(), 256u);
+        written.insert(written.end(), write.data.begin(), write.data.end());
+    }
+    EXPECT_EQ(written, expected);
+    EXPECT_EQ(std::get<CloseChannelMsg>(upload[upload.size() - 2]).channel_id, open.channel_id);
+    const auto& request = std::get<BakeRequestMsg>(upload.back());
+    EXPECT_EQ(request.bake_id, kBake);
+    EXPECT_EQ(request.scene_channel, open.name);
+    EXPECT_EQ(request.seed, 17u);
+    EXPECT_EQ(session.stage(), ClientSession::Stage::kBaking);
+}
+
+TEST(ClientSession, ReceivesProgressWarningsAndTheTree) {
+    const std::vector<SceneLight> lights = scene_lights();
+    std::vector<std::string> stages;
+    std::vector<std::string> warnings;
+    ClientSessionOptions options = session_options();
+    options.on_progress = [&](const ProgressMsg& progress) { stages.push_back(progress.stage); };
+    options.on_warning = [&](const std::string& text) { warnings.push_back(text); };
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+
+    session.on_message(ProgressMsg{kBake, "queued", 0.0f});
+    session.on_message(WarningMsg{kBake, "2 classic lights left out"});
+    for (const Message& message : result_messages(lights)) {
+        ASSERT_FALSE(session.finished());
+        session.on_message(message);
+    }
+    ASSERT_TRUE(session.finished());
+    EXPECT_TRUE(session.succeeded());
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_TRUE(outcome) << outcome.error();
+    EXPECT_EQ(outcome->tree.nodes.size(), 2 * lights.size() - 1);
+    EXPECT_EQ(outcome->result_channel_name, lightcuts_result_channel_name());
+    EXPECT_EQ(outcome->warnings, std::vector<std::string>{"2 classic lights left out"});
+    EXPECT_EQ(warnings, outcome->warnings);
+    ASSERT_GE(stages.size(), 2u);
+    EXPECT_EQ(stages.front(), "queued");
+    EXPECT_EQ(stages.back(), "receiving");
+}
+
+TEST(ClientSession, VersionMismatchIsRefused) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    session.start();
+    drain(session);
+    Guid other = kProtocolVersion;
+    other.d += 1;
+    session.on_message(HelloAckMsg{other, "future server"});
+    ASSERT_TRUE(session.finished());
+    EXPECT_FALSE(session.next_message());  // nothing is uploaded
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kRefused);
+}
+
+TEST(ClientSession, TokenRefusedByTheServer) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    session.start();
+    drain(session);
+    session.on_message(ErrorMsg{0, ErrorCode::kAuthentication, "authentication failed"});
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kRefused);
+}
+
+TEST(ClientSession, BusyServerIsBusy) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    upload(session);
+    session.on_message(ErrorMsg{kBake, ErrorCode::kBusy, "bake 1 is still running on this connection"});
+    Result<BakeOutcome> outcome = session.take_result();
+    EXPECT_EQ(outcome.error_kind(), ErrorKind::kBusy) << outcome.error();
+}
+
+TEST(ClientSession, FailedBakeIsAFailure) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    upload(session);
+    session.on_message(ErrorMsg{kBake, ErrorCode::kBakeFailed, "bake 5 failed"});
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kFailed);
+}
+
+TEST(ClientSession, CancelBeforeBakeRequestEndsTheBakeAtOnce) {
+    // Before connecting, while waiting for HelloAck, and in the middle of the upload.
+    for (int stage = 0; stage < 3; ++stage) {
+        ClientSession session(scene_lights(), kSceneGuid, session_options());
+        if (stage >= 1) {
+            session.start();
+            drain(session);
+        }
+        if (stage == 2) {
+            session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+            ASSERT_TRUE(session.next_message());  // OpenChannel
+            ASSERT_TRUE(session.next_message());  // the first WriteChannel
+        }
+        session.cancel();
+        ASSERT_TRUE(session.finished()) << stage;
+        EXPECT_FALSE(session.next_message()) << stage;
+        EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kCancelled) << stage;
+    }
+}
+
+TEST(ClientSession, CancelWhileBakingSendsCancelOnce) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    upload(session);
+    session.on_message(ProgressMsg{kBake, "level 0", 5.0f});
+    session.cancel();
+    session.cancel();
+    std::vector<Message> sent = drain(session);
+    ASSERT_EQ(sent.size(), 1u);
+    EXPECT_EQ(std::get<CancelMsg>(sent[0]).bake_id, kBake);
+    EXPECT_FALSE(session.finished());  // the server's answer ends it
+    session.on_message(ErrorMsg{kBake, ErrorCode::kCancelled, "bake 5 cancelled"});
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kCancelled);
+}
+
+TEST(ClientSession, CancelWhileReceivingTheResult) {
+    const std::vector<SceneLight> lights = scene_lights();
+    ClientSession session(lights, kSceneGuid, session_options());
+    upload(session);
+    std::vector<Message> result = result_messages(lights);
+    session.on_message(result[0]);  // OpenChannel
+    session.on_message(result[1]);  // the first WriteChannel
+    session.cancel();
+    std::vector<Message> sent = drain(session);
+    ASSERT_EQ(sent.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<CancelMsg>(sent[0]));
+    session.on_message(ErrorMsg{kBake, ErrorCode::kCancelled, "bake 5 cancelled during transfer"});
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kCancelled);
+}
+
+TEST(ClientSession, UnknownResultChannelIsRejected) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    upload(session);
+    session.on_message(OpenChannelMsg{1u << 31, scene_channel_name(kSceneGuid), 100});
+    ASSERT_TRUE(session.finished());
+    EXPECT_EQ(session.take_result().error_kind(), ErrorKind::kFailed);
+
+    ClientSession stray(scene_lights(), kSceneGuid, session_options());
+    upload(stray);
+    stray.on_message(WriteChannelMsg{3, 0, {1, 2, 3}});
+    EXPECT_TRUE(stray.finished());
+    EXPECT_FALSE(stray.succeeded());
+}
+
+TEST(ClientSession, BakeDoneBeforeTheChannelClosesIsRejected) {
+    const std::vector<SceneLight> lights = scene_lights();
+    ClientSession session(lights, kSceneGuid, session_options());
+    upload(session);
+    std::vector<Message> result = result_messages(lights);
+    session.on_message(result[0]);
+    session.on_message(result.back());  // BakeDone
+    ASSERT_TRUE(session.finished());
+    EXPECT_FALSE(session.succeeded());
+}
+
+TEST(ClientSession, TransportFailureEndsTheBakeOnce) {
+    ClientSession session(scene_lights(), kSceneGuid, session_options());
+    upload(session);
+    session.fail(make_error("connection lost"));
+    session.fail(make_error("a later error"));
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_FALSE(outcome);
+    EXPECT_EQ(outcome.error(), "connection lost");
+    EXPECT_EQ(outcome.error_kind(), ErrorKind::kFailed);
+}
+
+}  // namespace
+}  // namespace lc::client

@@ -1,0 +1,385 @@
+// The server's protocol state machine with no socket: messages in, messages
+// and actions out. Every outcome is checked by its ErrorCode, never its text.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "lightmass_server/server_session.h"
+#include "protocol/channel_name.h"
+#include "protocol/channel_records.h"
+#include "tree_invariants.h"
+
+namespace lc::bake {
+namespace {
+
+constexpr Guid kSceneGuid{0x11111111u, 0x22222222u, 0x33333333u, 0x44444444u};
+constexpr uint32_t kChannel = 1;
+constexpr uint32_t kBake = 7;
+
+std::vector<SceneLight> scene_lights() { return test::random_lights(8, 3, LightType::kPoint); }
+
+std::vector<Message> sent(const ServerActions& actions) {
+    std::vector<Message> messages;
+    for (const ServerAction& action : actions)
+        if (auto* send = std::get_if<SendMessage>(&action)) messages.push_back(send->message);
+    return messages;
+}
+
+template <typename T>
+size_t count_of(const ServerActions& actions) {
+    size_t n = 0;
+    for (const ServerAction& action : actions) n += std::holds_alternative<T>(action) ? 1 : 0;
+    return n;
+}
+
+template <typename T>
+const T* first_of(const ServerActions& actions) {
+    for (const ServerAction& action : actions)
+        if (auto* found = std::get_if<T>(&action)) return found;
+    return nullptr;
+}
+
+// The codes of the errors sent, in order.
+std::vector<ErrorCode> error_codes(const ServerActions& actions) {
+    std::vector<ErrorCode> codes;
+    for (const Message& message : sent(actions))
+        if (auto* error = std::get_if<ErrorMsg>(&message)) codes.push_back(error->code);
+    return codes;
+}
+
+bool closes(const ServerActions& actions) { return count_of<CloseAfterFlush>(actions) == 1; }
+
+ServerActions hello(ServerSession& session, const std::string& token = "", Guid version = kProtocolVersion) {
+    return session.on_message(HelloMsg{version, "test client", token});
+}
+
+BakeRequestMsg bake_request(uint32_t bake_id = kBake) {
+    BakeRequestMsg request;
+    request.bake_id = bake_id;
+    request.scene_channel = scene_channel_name(kSceneGuid);
+    return request;
+}
+
+// Opens and writes the scene channel (without closing it); returns every action.
+ServerActions open_and_write(ServerSession& session, const std::vector<SceneLight>& lights) {
+    const std::vector<uint8_t> bytes = encode_scene_channel(lights);
+    ServerActions all = session.on_message(OpenChannelMsg{kChannel, scene_channel_name(kSceneGuid), bytes.size()});
+    ServerActions written = session.on_message(WriteChannelMsg{kChannel, 0, bytes});
+    all.insert(all.end(), written.begin(), written.end());
+    return all;
+}
+
+// A greeted session holding the complete scene channel.
+ServerSession session_with_scene(ServerSessionOptions options = {}) {
+    ServerSession session(std::move(options));
+    EXPECT_EQ(sent(hello(session)).size(), 1u);
+    EXPECT_TRUE(error_codes(open_and_write(session, scene_lights())).empty());
+    EXPECT_TRUE(error_codes(session.on_message(CloseChannelMsg{kChannel})).empty());
+    return session;
+}
+
+Result<BuildResult> built_tree() { return build_light_tree(scene_lights(), BuildOptions{}, nullptr); }
+
+TEST(ServerSession, AnswersHelloOnceAndClosesOnADuplicate) {
+    ServerSession session({});
+    ServerActions first = hello(session);
+    ASSERT_EQ(sent(first).size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<HelloAckMsg>(sent(first)[0]));
+    EXPECT_TRUE(session.greeted());
+
+    ServerActions second = hello(session);
+    EXPECT_EQ(error_codes(second), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+    EXPECT_TRUE(closes(second));
+    // Closing: nothing more is answered.
+    EXPECT_TRUE(session.on_message(bake_request()).empty());
+}
+
+TEST(ServerSession, FirstMessageMustBeHello) {
+    ServerSession session({});
+    ServerActions actions = session.on_message(bake_request());
+    EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+    EXPECT_TRUE(closes(actions));
+    EXPECT_EQ(count_of<StartBake>(actions), 0u);
+}
+
+TEST(ServerSession, VersionMismatchIsRefusedWithItsCode) {
+    ServerSession session({});
+    Guid other = kProtocolVersion;
+    other.d += 1;
+    ServerActions actions = hello(session, "", other);
+    EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kVersionMismatch});
+    EXPECT_TRUE(closes(actions));
+    EXPECT_FALSE(session.greeted());
+}
+
+TEST(ServerSession, TokenIsRequiredAndMustMatch) {
+    ServerSessionOptions options;
+    options.token = "secret";
+    for (const std::string& token : {std::string(), std::string("wrong")}) {
+        ServerSession session(options);
+        ServerActions actions = hello(session, token);
+        EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kAuthentication}) << token;
+        EXPECT_TRUE(closes(actions));
+    }
+    ServerSession session(options);
+    ServerActions accepted = hello(session, "secret");
+    ASSERT_EQ(sent(accepted).size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<HelloAckMsg>(sent(accepted)[0]));
+}
+
+TEST(ServerSession, BakeBeforeTheSceneChannelIsClosedNamesTheChannel) {
+    ServerSession session({});
+    hello(session);
+    open_and_write(session, scene_lights());
+    EXPECT_FALSE(session.idle());  // a channel is half-received
+    ServerActions early = session.on_message(bake_request());
+    EXPECT_EQ(error_codes(early), std::vector<ErrorCode>{ErrorCode::kUnknownChannel});
+    EXPECT_EQ(std::get<ErrorMsg>(sent(early)[0]).bake_id, kBake);
+    EXPECT_EQ(count_of<StartBake>(early), 0u);
+    EXPECT_FALSE(closes(early));
+
+    session.on_message(CloseChannelMsg{kChannel});
+    ServerActions started = session.on_message(bake_request());
+    EXPECT_TRUE(error_codes(started).empty());
+    const StartBake* start = first_of<StartBake>(started);
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->bake_id, kBake);
+    EXPECT_EQ(start->lights->size(), 8u);
+}
+
+TEST(ServerSession, UnknownChannels) {
+    ServerSession session({});
+    hello(session);
+    // A channel of another kind is refused; its writes are dropped and its close accepted.
+    const std::string image = create_channel_name(kSceneGuid, kSceneFormatVersionGuid, "png");
+    ServerActions refused = session.on_message(OpenChannelMsg{2, image, 16});
+    EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kUnknownChannel});
+    EXPECT_FALSE(closes(refused));
+    EXPECT_TRUE(session.on_message(WriteChannelMsg{2, 0, std::vector<uint8_t>(16)}).empty());
+    EXPECT_TRUE(session.on_message(CloseChannelMsg{2}).empty());
+    // A name that is not a channel name at all.
+    EXPECT_EQ(error_codes(session.on_message(OpenChannelMsg{3, "scene.bin", 16})),
+              std::vector<ErrorCode>{ErrorCode::kUnknownChannel});
+    // A write to a channel id never opened breaks the protocol.
+    ServerActions stray = session.on_message(WriteChannelMsg{9, 0, {1, 2, 3}});
+    EXPECT_EQ(error_codes(stray), std::vector<ErrorCode>{ErrorCode::kUnknownChannel});
+    EXPECT_TRUE(closes(stray));
+}
+
+TEST(ServerSession, OversizedChannelIsRefusedAndTheConnectionStays) {
+    ServerSession session({});
+    hello(session);
+    const uint64_t limit = 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
+    ServerActions oversized = session.on_message(OpenChannelMsg{kChannel, scene_channel_name(kSceneGuid), limit + 1});
+    EXPECT_EQ(error_codes(oversized), std::vector<ErrorCode>{ErrorCode::kTooLarge});
+    EXPECT_FALSE(closes(oversized));
+
+    // More bytes than announced: the scene is invalid, the connection stays.
+    ServerActions opened = session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), 4});
+    EXPECT_TRUE(opened.empty());
+    ServerActions longer = session.on_message(WriteChannelMsg{2, 0, std::vector<uint8_t>(8)});
+    EXPECT_EQ(error_codes(longer), std::vector<ErrorCode>{ErrorCode::kInvalidScene});
+    EXPECT_FALSE(closes(longer));
+    EXPECT_TRUE(session.idle());
+}
+
+TEST(ServerSession, TooManyOpenChannelsIsBusy) {
+    ServerSession session({});
+    hello(session);
+    for (uint32_t id = 1; id <= kMaxOpenChannels; ++id)
+        EXPECT_TRUE(session.on_message(OpenChannelMsg{id, scene_channel_name(kSceneGuid), 100}).empty());
+    ServerActions busy = session.on_message(OpenChannelMsg{99, scene_channel_name(kSceneGuid), 100});
+    EXPECT_EQ(error_codes(busy), std::vector<ErrorCode>{ErrorCode::kBusy});
+}
+
+TEST(ServerSession, FullServerAnswersHelloBusy) {
+    ServerSessionOptions options;
+    options.busy_reason = "256 connections open";
+    ServerSession session(options);
+    ServerActions actions = hello(session);
+    EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kBusy});
+    EXPECT_TRUE(closes(actions));
+}
+
+TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const uint64_t scene_bytes = encode_scene_channel(lights).size();
+    MemoryBudget budget(scene_bytes + 10);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    {
+        ServerSession session(options);
+        hello(session);
+        open_and_write(session, lights);
+        EXPECT_EQ(budget.used(), scene_bytes);
+        // A second channel does not fit while the first is held: busy, and the connection stays.
+        ServerActions busy = session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), scene_bytes});
+        EXPECT_EQ(error_codes(busy), std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_FALSE(closes(busy));
+        // The stored scene keeps its bytes; another session cannot take them either.
+        session.on_message(CloseChannelMsg{kChannel});
+        EXPECT_EQ(budget.used(), scene_bytes);
+        ServerSession other(options);
+        hello(other);
+        EXPECT_EQ(error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), scene_bytes})),
+                  std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request())), 1u);
+    }
+    EXPECT_EQ(budget.used(), 0u);  // a session gives its bytes back when it ends
+}
+
+TEST(ServerSession, SecondBakeWhileOneRunsIsBusy) {
+    ServerSession session = session_with_scene();
+    ServerActions first = session.on_message(bake_request(1));
+    ASSERT_EQ(count_of<StartBake>(first), 1u);
+    ServerActions second = session.on_message(bake_request(2));
+    EXPECT_EQ(error_codes(second), std::vector<ErrorCode>{ErrorCode::kBusy});
+    EXPECT_EQ(std::get<ErrorMsg>(sent(second)[0]).bake_id, 2u);
+    EXPECT_EQ(count_of<StartBake>(second), 0u);
+    EXPECT_TRUE(session.bake_running());
+
+    // The first bake goes on; once delivered, a new one is accepted.
+    ServerActions finished = session.on_bake_finished(1, built_tree());
+    ASSERT_EQ(count_of<StreamResult>(finished), 1u);
+    EXPECT_EQ(error_codes(session.on_message(bake_request(3))), std::vector<ErrorCode>{ErrorCode::kBusy});
+    session.on_result_delivered();
+    EXPECT_TRUE(session.idle());
+    EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request(3))), 1u);
+}
+
+TEST(ServerSession, ResultIsStreamedWithBakeDone) {
+    ServerSession session = session_with_scene();
+    ServerActions queued = session.on_message(bake_request());
+    ASSERT_EQ(sent(queued).size(), 1u);
+    EXPECT_EQ(std::get<ProgressMsg>(sent(queued)[0]).stage, "queued");
+
+    ServerActions progress = session.on_bake_progress(ProgressMsg{kBake, "level 1", 50.0f});
+    ASSERT_EQ(sent(progress).size(), 1u);
+    EXPECT_TRUE(session.on_bake_progress(ProgressMsg{kBake + 1, "stale", 1.0f}).empty());
+
+    Result<BuildResult> built = built_tree();
+    ASSERT_TRUE(built);
+    const size_t nodes = built->tree.nodes.size();
+    ServerActions finished = session.on_bake_finished(kBake, std::move(built));
+    const StreamResult* stream = first_of<StreamResult>(finished);
+    ASSERT_NE(stream, nullptr);
+    EXPECT_EQ(stream->done.bake_id, kBake);
+    EXPECT_EQ(stream->done.node_count, nodes);
+    EXPECT_EQ(stream->tree->nodes.size(), nodes);
+    EXPECT_GE(stream->channel_id, 1u << 31);  // server-opened channels use the upper half
+    EXPECT_TRUE(session.streaming());
+    EXPECT_FALSE(session.idle());
+    session.on_result_delivered();
+    EXPECT_TRUE(session.idle());
+}
+
+TEST(ServerSession, FailedBuildIsBakeFailed) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    ServerActions failed = session.on_bake_finished(kBake, make_error("no memory"));
+    EXPECT_EQ(error_codes(failed), std::vector<ErrorCode>{ErrorCode::kBakeFailed});
+    EXPECT_TRUE(session.idle());
+}
+
+TEST(ServerSession, CancelBeforeTheChannelClosesIsIgnored) {
+    ServerSession session({});
+    hello(session);
+    open_and_write(session, scene_lights());
+    EXPECT_TRUE(session.on_message(CancelMsg{kBake}).empty());
+    session.on_message(CloseChannelMsg{kChannel});
+    EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request())), 1u);
+}
+
+TEST(ServerSession, CancelWhileQueued) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    ServerActions cancel = session.on_message(CancelMsg{kBake});
+    ASSERT_EQ(count_of<CancelBake>(cancel), 1u);
+    EXPECT_EQ(first_of<CancelBake>(cancel)->bake_id, kBake);
+    EXPECT_TRUE(session.on_message(CancelMsg{kBake}).empty());  // asked once
+    // The worker sees the flag before it starts.
+    ServerActions finished =
+        session.on_bake_finished(kBake, make_error("cancelled before start", ErrorKind::kCancelled));
+    EXPECT_EQ(error_codes(finished), std::vector<ErrorCode>{ErrorCode::kCancelled});
+    EXPECT_TRUE(session.idle());
+}
+
+TEST(ServerSession, CancelWhileBuilding) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    session.on_bake_progress(ProgressMsg{kBake, "level 0", 10.0f});
+    EXPECT_EQ(count_of<CancelBake>(session.on_message(CancelMsg{kBake})), 1u);
+    // However the build ends once cancel was asked, the outcome is the cancel's code.
+    ServerActions finished = session.on_bake_finished(kBake, make_error("interrupted"));
+    EXPECT_EQ(error_codes(finished), std::vector<ErrorCode>{ErrorCode::kCancelled});
+    EXPECT_EQ(count_of<StreamResult>(finished), 0u);
+}
+
+TEST(ServerSession, CancelWhileStreamingStopsTheStream) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    ASSERT_EQ(count_of<StreamResult>(session.on_bake_finished(kBake, built_tree())), 1u);
+    ServerActions cancel = session.on_message(CancelMsg{kBake});
+    EXPECT_EQ(count_of<StopStream>(cancel), 1u);
+    EXPECT_EQ(count_of<CancelBake>(cancel), 0u);  // nothing left to build
+    EXPECT_EQ(error_codes(cancel), std::vector<ErrorCode>{ErrorCode::kCancelled});
+    EXPECT_TRUE(session.idle());
+}
+
+TEST(ServerSession, CancelOfAnotherBakeIsIgnored) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    EXPECT_TRUE(session.on_message(CancelMsg{kBake + 1}).empty());
+    EXPECT_EQ(count_of<StreamResult>(session.on_bake_finished(kBake, built_tree())), 1u);
+}
+
+TEST(ServerSession, ClosingCancelsTheBuildAndAnswersNothingMore) {
+    ServerSession session = session_with_scene();
+    session.on_message(bake_request());
+    ServerActions closing = session.on_closing();
+    EXPECT_EQ(count_of<CancelBake>(closing), 1u);
+    EXPECT_TRUE(session.on_bake_progress(ProgressMsg{kBake, "level 0", 10.0f}).empty());
+    EXPECT_TRUE(session.on_bake_finished(kBake, built_tree()).empty());
+}
+
+TEST(ServerSession, BadFramesCloseWithTheirCodes) {
+    ServerSession malformed({});
+    ServerActions a = malformed.on_malformed_frame("verifier failed");
+    EXPECT_EQ(error_codes(a), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+    EXPECT_TRUE(closes(a));
+    ServerSession oversized({});
+    ServerActions b = oversized.on_bad_frame_header("frame of 20000000 bytes");
+    EXPECT_EQ(error_codes(b), std::vector<ErrorCode>{ErrorCode::kTooLarge});
+    EXPECT_TRUE(closes(b));
+}
+
+TEST(ServerSession, ClientMayNotSendServerMessages) {
+    ServerSession session({});
+    hello(session);
+    ServerActions actions = session.on_message(BakeDoneMsg{});
+    EXPECT_EQ(error_codes(actions), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+    EXPECT_TRUE(closes(actions));
+}
+
+TEST(ServerSession, RecordsTheSceneAndTheResultWhenAsked) {
+    ServerSessionOptions options;
+    options.record_channels = true;
+    ServerSession session({options});
+    hello(session);
+    const std::vector<SceneLight> lights = scene_lights();
+    open_and_write(session, lights);
+    ServerActions closed = session.on_message(CloseChannelMsg{kChannel});
+    const RecordChannel* scene = first_of<RecordChannel>(closed);
+    ASSERT_NE(scene, nullptr);
+    EXPECT_EQ(scene->name, scene_channel_name(kSceneGuid));
+    EXPECT_EQ(scene->bytes, encode_scene_channel(lights));
+
+    session.on_message(bake_request());
+    ServerActions finished = session.on_bake_finished(kBake, built_tree());
+    const RecordChannel* result = first_of<RecordChannel>(finished);
+    ASSERT_NE(result, nullptr);
+    EXPECT_EQ(result->name, lightcuts_result_channel_name());
+}
+
+}  // namespace
+}  // namespace lc::bake
