@@ -33,7 +33,7 @@ struct FileDescriptor {
 }  // namespace
 
 GltfResourceAccess::GltfResourceAccess(std::filesystem::path folder, bool allow_external)
-    : allow_external_(allow_external) {
+    : base_dir_(folder.string()), allow_external_(allow_external) {
     if (folder.empty()) return;
     std::error_code ec;
     folder_ = std::filesystem::canonical(folder, ec);
@@ -102,8 +102,20 @@ bool GltfResourceAccess::exists(const std::string& path, void* self) {
     return static_cast<GltfResourceAccess*>(self)->admits(path);
 }
 
-// No expansion of '~' or variables: a URI names a file, nothing more.
-std::string GltfResourceAccess::expand(const std::string& path, void*) { return path; }
+// No expansion of '~' or variables: a URI names a file, nothing more. tinygltf
+// prefixes every URI with the base folder (or "./"), which turns an absolute
+// URI into a path that names nothing; take the URI back so that it is refused
+// by name, or read where --allow-external-resources allows it.
+std::string GltfResourceAccess::expand(const std::string& path, void* self) {
+    const std::string& base = static_cast<GltfResourceAccess*>(self)->base_dir_;
+    for (const std::string& prefix : {base.ends_with('/') ? base : base + "/", std::string("./")}) {
+        if (prefix.size() > 1 && path.size() > prefix.size() && path.starts_with(prefix) &&
+            path[prefix.size()] == '/') {
+            return path.substr(prefix.size());
+        }
+    }
+    return path;
+}
 
 bool GltfResourceAccess::read(std::vector<unsigned char>* out, std::string* err,
                               const std::string& path, void* self) {

@@ -40,6 +40,7 @@ private:
     static bool write(std::string* err, const std::string& path,
                       const std::vector<unsigned char>& contents, void* self);
 
+    std::string base_dir_;          // the folder as tinygltf joins it to URIs
     std::filesystem::path folder_;  // canonical; empty when nothing may be read
     bool allow_external_ = false;
     std::vector<std::string> refusals_;
