@@ -238,14 +238,13 @@ public:
         : path_(path), warnings_(warnings), options_(options) {}
 
     Result<Scene> load_file();
-    Result<Scene> load_memory(std::span<const uint8_t> bytes,
-                              const std::filesystem::path& resource_folder);
+    // `resource_folder` stands for the scene's folder (gltf_loader.h).
+    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
 
 private:
     Error fail(const std::string& message) const { return Error{path_.string() + ": " + message}; }
     void warn(const std::string& message) { warnings_.push_back(path_.string() + ": " + message); }
 
-    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
     Status read_file(std::vector<uint8_t>& bytes) const;
     Status parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
     Status validate_node_graph();
@@ -1122,11 +1121,6 @@ Result<Scene> Loader::load_file() {
     return load(bytes, folder);
 }
 
-Result<Scene> Loader::load_memory(std::span<const uint8_t> bytes,
-                                  const std::filesystem::path& resource_folder) {
-    return load(bytes, resource_folder);
-}
-
 Result<Scene> Loader::load(std::span<const uint8_t> bytes,
                            const std::filesystem::path& resource_folder) {
     Status status = parse(bytes, resource_folder);
@@ -1182,7 +1176,7 @@ Result<Scene> load_scene_from_memory(std::span<const uint8_t> bytes,
                                      std::vector<std::string>& warnings,
                                      const GltfLoadOptions& options) {
     Loader loader("(memory)", warnings, options);
-    return loader.load_memory(bytes, resource_folder);
+    return loader.load(bytes, resource_folder);
 }
 
 Result<Scene> load_scene(const std::filesystem::path& path, const GltfLoadOptions& options) {
