@@ -80,6 +80,11 @@ end=$(date +%s.%N)
 
 alive=yes
 kill -0 "$server_pid" 2>/dev/null || alive=no
+# A clean stop, so that a sanitizer build also reports leaks into the log.
+kill -TERM "$server_pid" 2>/dev/null || true
+wait "$server_pid" 2>/dev/null || true
+server_pid=""
+reports=$(grep -cE "ERROR: (Address|Leak)Sanitizer|runtime error:" "$work/server.log" || true)
 failures=0
 for ((c = 0; c < clients; c++)); do failures=$((failures + $(cat "$work/failures_$c" 2>/dev/null || echo "$bakes"))); done
 kill "$sampler_pid" 2>/dev/null || true
@@ -93,10 +98,12 @@ total=$((clients * bakes))
 seconds=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }')
 rate=$(awk -v n=$((total - failures)) -v s="$seconds" 'BEGIN { printf "%.2f", n / s }')
 echo "load: $clients clients x $bakes bakes ($lights lights): $failures of $total failed," \
-    "$seconds s, $rate bakes/s; server $([ "$alive" = yes ] && echo alive || echo DIED);" \
+    "$seconds s, $rate bakes/s; server $([ "$alive" = yes ] && echo alive || echo DIED)," \
+    "$reports sanitizer reports;" \
     "RSS first $first_kib KiB, peak $peak_kib KiB, last $last_kib KiB ($samples samples in $csv)"
 for f in "$work"/failed_*.log; do
     [ -e "$f" ] || break
     echo "first failure ($f):"; tail -3 "$f"; break
 done
-[ "$failures" -eq 0 ] && [ "$alive" = yes ]
+if [ "$reports" -gt 0 ]; then grep -m 5 -E "ERROR: |runtime error:" "$work/server.log"; fi
+[ "$failures" -eq 0 ] && [ "$alive" = yes ] && [ "$reports" -eq 0 ]
