@@ -147,12 +147,18 @@ struct ResultRecord {
     fb::LightcutsNodeRecord node;
 };
 
+// FLightData.Color is the normalised colour; the exact RGB travels in the node
+// record. A tiny brightness can make the quotient overflow, so the reader
+// refuses the nodes whose colour this cannot write finitely.
+glm::vec3 normalised_color(const LightTreeNode& n) {
+    return n.brightness > 0.0f ? n.intensity / n.brightness : glm::vec3(0.0f);
+}
+
 ResultRecord to_record(const LightTreeNode& n) {
     const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
                            (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
-    // FLightData.Color is the normalised colour; the exact RGB travels in the node record.
-    const glm::vec3 color = n.brightness > 0.0f ? n.intensity / n.brightness : glm::vec3(0.0f);
+    const glm::vec3 color = normalised_color(n);
     const fb::FLightData light(
         to_fb(n.guid), flags, fb::Vec4(n.position.x, n.position.y, n.position.z, w),
         fb::Vec4(n.direction.x, n.direction.y, n.direction.z, 0.0f),
@@ -202,6 +208,10 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     }
     if (!std::isfinite(n.brightness) || n.brightness < 0.0f) {
         return fail("brightness " + number(n.brightness) + " is not a finite value >= 0");
+    }
+    if (!finite3(normalised_color(n))) {
+        return fail("intensity " + vec_text(n.intensity) + " over brightness " +
+                    number(n.brightness) + " overflows the normalised colour");
     }
     if (!std::isfinite(n.radius)) return fail("radius " + number(n.radius) + " is not finite");
     if (!std::isfinite(n.falloff_exponent) || n.falloff_exponent < 0.0f) {

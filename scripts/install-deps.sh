@@ -6,6 +6,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build pkg-config git
+  # fuzzing (preset "fuzz"): clang with its libFuzzer runtime
+  clang libclang-rt-14-dev
   # libraries
   libglm-dev libboost-dev libssl-dev
   libflatbuffers-dev flatbuffers-compiler

@@ -508,6 +508,31 @@ TEST(ChannelRecords, BadResultRecordsAreRefusedNamingNodeAndField) {
     EXPECT_NE(result_error(bytes).find("negative"), std::string::npos);
 }
 
+// Issue 14, item 5: a node whose normalised colour (intensity / brightness)
+// overflows was accepted, then written with an infinite FLightData colour that
+// the reader itself refuses. Whatever decodes must encode and decode again to
+// the same tree.
+TEST(ChannelRecords, NodeWhoseColourWouldOverflowIsRefusedAtDecode) {
+    const auto good = encode_result_channel(mixed_tree());
+    const size_t node3 = 4 + 3 * 180;
+    auto bytes = good;
+    put_float(bytes, node3 + 68, 7.7e-41f);  // FLightData.brightness, subnormal
+    put_float(bytes, node3 + 112, 1.1e4f);   // LightcutsNodeRecord.intensity.x
+    const std::string error = result_error(bytes);
+    EXPECT_NE(error.find("node 3:"), std::string::npos) << error;
+    EXPECT_NE(error.find("normalised colour"), std::string::npos) << error;
+
+    // A small but representable quotient still decodes, and survives a round trip.
+    bytes = good;
+    put_float(bytes, node3 + 68, 1e-30f);
+    put_float(bytes, node3 + 112, 1e-28f);
+    Result<LightTree> once = decode_result_channel(bytes);
+    ASSERT_TRUE(once.ok()) << once.error();
+    Result<LightTree> twice = decode_result_channel(encode_result_channel(*once));
+    ASSERT_TRUE(twice.ok()) << twice.error();
+    expect_same_tree(*once, *twice);
+}
+
 // ---- tree structure -------------------------------------------------------------
 
 std::string tree_error(const LightTree& tree) {

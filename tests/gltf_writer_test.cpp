@@ -252,7 +252,12 @@ TEST_F(GltfWriter, ExternalFilesAreFoundFromAnotherFolder) {
     std::vector<SceneLight> lights = original->lights;
     lights.push_back(light(LightType::kPoint, {0, 2, 0}, {0, 0, -1}, 99));
     ASSERT_TRUE(write_lights_into_gltf(source, lights, dir_ / "lamp.gltf").ok());
-    Result<Scene> edited = load_scene(dir_ / "lamp.gltf");
+    // Its URIs lead out of its own folder: read only when allowed.
+    Result<Scene> refused = load_scene(dir_ / "lamp.gltf");
+    ASSERT_FALSE(refused.ok());
+    EXPECT_THAT(refused.error(), HasSubstr("--allow-external-resources"));
+    Result<Scene> edited =
+        load_scene(dir_ / "lamp.gltf", GltfLoadOptions{.allow_external_resources = true});
     ASSERT_TRUE(edited.ok()) << edited.error();
     ASSERT_EQ(edited->lights.size(), 6u);
     expect_same_lights(lights, edited->lights);

@@ -133,5 +133,77 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     EXPECT_EQ(context->validation_message_count(), 0u);
 }
 
+// A floor of `n` x `n` quads (2 n^2 triangles): a shadow BVH far above the
+// loop budget for one shadow ray.
+lc::Mesh tessellated_floor(int n, int material) {
+    lc::Mesh mesh;
+    const float step = 10.0f / float(n);
+    for (int z = 0; z <= n; ++z) {
+        for (int x = 0; x <= n; ++x) {
+            mesh.positions.push_back({-5.0f + step * float(x), 0.001f, 5.0f - step * float(z)});
+            mesh.normals.push_back({0.0f, 1.0f, 0.0f});
+            mesh.uvs.push_back({float(x) / float(n), float(z) / float(n)});
+        }
+    }
+    for (int z = 0; z < n; ++z) {
+        for (int x = 0; x < n; ++x) {
+            const uint32_t a = uint32_t(z * (n + 1) + x), b = a + 1, c = a + uint32_t(n + 1) + 1,
+                           d = a + uint32_t(n + 1);
+            mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+        }
+    }
+    mesh.material = material;
+    return mesh;
+}
+
+// Issue 14, item 4: a scene with no lights in reference mode was refused for
+// the shadow-ray loop iterations of lights it does not have; it renders its
+// emission (black elsewhere).
+TEST(LoopLimit, ReferenceModeWithoutLightsRendersItsEmissionWhateverTheBvh) {
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    lc::Scene scene = test::make_floor_scene();
+    scene.materials[0].emissive_factor = {0.25f, 0.5f, 1.0f};
+    scene.meshes.push_back(tessellated_floor(160, 0));  // 51,200 triangles
+    client::RendererOptions options;
+    options.shadows = ShadowMode::kOn;
+    auto renderer = Renderer::create(*context, scene, nullptr, options);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    ASSERT_TRUE((*renderer)->effects().shadows);
+
+    RenderSettings settings;
+    settings.width = settings.height = 8;
+    settings.camera = test::floor_camera();
+    settings.exposure = 1.0f;
+    settings.mode = RenderMode::kReference;
+    auto stats = (*renderer)->render(settings);
+    ASSERT_TRUE(stats.ok()) << stats.error();
+    EXPECT_EQ(stats->nonfinite_pixels, 0u);
+    auto hdr = (*renderer)->read_hdr();
+    ASSERT_TRUE(hdr.ok()) << hdr.error();
+    auto gbuffer = (*renderer)->read_gbuffer();
+    ASSERT_TRUE(gbuffer.ok()) << gbuffer.error();
+    size_t emitting = 0;
+    for (size_t px = 0; px < 64; ++px) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR((*hdr)[4 * px + c], gbuffer->emissive[4 * px + c], 1e-5f)
+                << "pixel " << px << " channel " << c;
+        }
+        emitting += gbuffer->emissive[4 * px + 2] > 0.0f ? 1u : 0u;
+    }
+    EXPECT_GT(emitting, 10u);
+
+    // With one light the same BVH is over llvmpipe's budget: the case is real.
+    if (context->physical().name().find("llvmpipe") == std::string::npos) return;
+    SceneLight light = test::point_light({0.0f, 2.0f, 0.0f}, glm::vec3(1.0f), 1.0f);
+    test::set_unit_guid(light, 0);
+    scene.lights.push_back(light);
+    auto lit = Renderer::create(*context, scene, nullptr, options);
+    ASSERT_TRUE(lit.ok()) << lit.error();
+    auto refused = (*lit)->render(settings);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().find("65535"), std::string::npos) << refused.error();
+}
+
 }  // namespace
 }  // namespace lc

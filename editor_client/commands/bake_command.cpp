@@ -10,6 +10,7 @@
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_guid.h"
@@ -20,6 +21,7 @@ namespace lc::client {
 void add_bake_command(CLI::App& app) {
     struct Options {
         std::string scene;
+        GltfLoadOptions gltf;
         BakeFlags bake;
         std::string output;
         bool json = false;
@@ -27,12 +29,13 @@ void add_bake_command(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("bake", "Bake a scene's light tree on a lightmass_server");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")->required();
+    add_gltf_load_flags(*cmd, options->gltf);
     options->bake.add_to(*cmd, /*server_required=*/true);
     cmd->add_option("-o,--output", options->output, "Write the received result channel as a dump (.lcut)");
     cmd->add_flag("--json", options->json, "Print the summary as JSON");
     cmd->callback([options] {
         std::vector<std::string> warnings;
-        Result<Scene> scene = load_scene(options->scene, warnings);
+        Result<Scene> scene = load_scene(options->scene, warnings, options->gltf);
         if (!scene) fail(scene.error());
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 

@@ -8,6 +8,7 @@
 
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/light_edit.h"
@@ -70,6 +71,7 @@ void add_add_lights(CLI::App& app) {
         float range = 0.0f;
         bool classic = false;
         std::string out;
+        GltfLoadOptions gltf;
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand(
@@ -89,6 +91,7 @@ void add_add_lights(CLI::App& app) {
                         "Candela (point, spot) or lux (directional); default 10 cd and 1 lux");
     cmd->add_option("--range", o->range, "Range of point and spot lights; 0 = unbounded");
     cmd->add_flag("--classic", o->classic, "Mark the lights classic (shaded outside the tree)");
+    add_gltf_load_flags(*cmd, o->gltf);
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
     cmd->callback([o, intensity] {
         LightLayoutOptions layout;
@@ -106,7 +109,7 @@ void add_add_lights(CLI::App& app) {
             scene = make_room_scene();
             box = {kRoomLightBoxMin, kRoomLightBoxMax};
         } else {
-            scene = or_fail(load_scene(o->scene));
+            scene = or_fail(load_scene(o->scene, o->gltf));
             box = default_box(scene);
             if (o->box.empty() && scene.bounds_min == scene.bounds_max) {
                 fail(o->scene +
@@ -142,6 +145,7 @@ void add_remove_lights(CLI::App& app) {
         std::string guids;
         bool all = false;
         std::string out;
+        GltfLoadOptions gltf;
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("remove-lights", "Remove lights from a glTF scene");
@@ -151,12 +155,13 @@ void add_remove_lights(CLI::App& app) {
     CLI::Option* all = cmd->add_flag("--all", o->all, "Remove every light");
     index->excludes(guid)->excludes(all);
     guid->excludes(all);
+    add_gltf_load_flags(*cmd, o->gltf);
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
     cmd->callback([o, index, guid, all] {
         if (index->count() + guid->count() + all->count() == 0) {
             fail("remove-lights needs one of --index, --guid or --all");
         }
-        Scene scene = or_fail(load_scene(o->scene));
+        Scene scene = or_fail(load_scene(o->scene, o->gltf));
         const size_t before = scene.lights.size();
         if (o->all) {
             remove_all_lights(scene);

@@ -22,6 +22,7 @@
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
 #include "editor_client/render/image_io.h"
@@ -38,6 +39,7 @@ namespace {
 
 struct RenderOptions {
     std::string scene;
+    GltfLoadOptions gltf;
     std::string tree;
     BakeFlags bake;
     std::string mode;  // empty: lightcuts with a tree source, else reference
@@ -62,7 +64,7 @@ struct RenderOptions {
 void run_render(const RenderOptions& options) {
     auto command_start = std::chrono::steady_clock::now();
     std::vector<std::string> warnings;
-    Scene scene = or_fail(load_scene(options.scene, warnings));
+    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
     TreeSource source;
@@ -232,6 +234,7 @@ void add_render_command(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();
+    add_gltf_load_flags(*cmd, options->gltf);
     auto* tree =
         cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false);

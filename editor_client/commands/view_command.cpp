@@ -18,6 +18,7 @@
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/script_runner.h"
 #include "editor_client/render/render_inputs.h"
@@ -33,6 +34,7 @@ namespace {
 
 struct ViewCommandOptions {
     std::string scene;
+    GltfLoadOptions gltf;
     std::string tree;
     BakeFlags bake;
     std::string script;
@@ -54,7 +56,7 @@ struct ViewCommandOptions {
 
 void run_view(const ViewCommandOptions& options) {
     std::vector<std::string> warnings;
-    Scene scene = or_fail(load_scene(options.scene, warnings));
+    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
     auto [width, height] = or_fail(parse_size(options.size));
@@ -154,6 +156,7 @@ void add_view_command(CLI::App& app) {
                            "1-4: reference/lightcuts/cuts/cutsize, Esc: quit)");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();
+    add_gltf_load_flags(*cmd, options->gltf);
     auto* tree = cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));

@@ -359,7 +359,10 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
     uint64_t iterations = classic_iterations(classic_count_, ray);
     std::string what;
     if (settings.mode == RenderMode::kReference) {
-        iterations += 1 + kLightUnroll * ray + (kLightUnroll - 1) * (1 + ray) + 2;
+        // Without tree lights the leaf loops trace no ray: a scene without
+        // lights renders its emission (or black), however large its BVH.
+        const uint64_t leaf_ray = leaf_count_ > 0 ? ray : 0;
+        iterations += 1 + kLightUnroll * leaf_ray + (kLightUnroll - 1) * (1 + leaf_ray) + 2;
         what = std::to_string(classic_count_) + " classic lights" +
                (ray > 0 ? " with shadow rays" : "") + " in reference mode";
     } else if (settings.criterion == CutCriterion::kRadius) {

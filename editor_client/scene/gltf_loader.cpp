@@ -18,13 +18,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
 
+#include "editor_client/scene/gltf_resource_access.h"
 #include "editor_client/scene/scene_guid.h"
 
 namespace lc::client {
@@ -232,16 +232,21 @@ struct Traversal {
 
 class Loader {
 public:
-    Loader(const std::filesystem::path& path, std::vector<std::string>& warnings)
-        : path_(path), warnings_(warnings) {}
+    // `path` names the file in messages and in Scene::source.
+    Loader(const std::filesystem::path& path, std::vector<std::string>& warnings,
+           const GltfLoadOptions& options)
+        : path_(path), warnings_(warnings), options_(options) {}
 
-    Result<Scene> load();
+    Result<Scene> load_file();
+    // `resource_folder` stands for the scene's folder (gltf_loader.h).
+    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
 
 private:
     Error fail(const std::string& message) const { return Error{path_.string() + ": " + message}; }
     void warn(const std::string& message) { warnings_.push_back(path_.string() + ": " + message); }
 
-    Status parse_file();
+    Status read_file(std::vector<uint8_t>& bytes) const;
+    Status parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
     Status validate_node_graph();
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
@@ -270,35 +275,45 @@ private:
 
     std::filesystem::path path_;
     std::vector<std::string>& warnings_;
+    GltfLoadOptions options_;
     tg::Model model_;
     Scene scene_;
     std::map<std::pair<int, bool>, int> image_to_texture_;  // (glTF image, sRGB) -> Scene::textures
     std::vector<glm::dvec3> camera_forward_;  // per Scene::cameras entry, for finish_cameras()
 };
 
-Status Loader::parse_file() {
+Status Loader::read_file(std::vector<uint8_t>& bytes) const {
     std::error_code ec;
     if (!std::filesystem::exists(path_, ec)) return fail("file does not exist");
     if (!std::filesystem::is_regular_file(path_, ec)) return fail("not a regular file");
-    if (std::filesystem::file_size(path_, ec) == 0) return fail("the file is empty");
+    std::string error;
+    if (!GltfResourceAccess::read_regular_file(path_, bytes, error)) return fail(error);
+    return Ok{};
+}
 
-    char magic[4] = {0, 0, 0, 0};
-    {
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) return fail("cannot open the file for reading");
-        in.read(magic, 4);
+Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder) {
+    if (bytes.empty()) return fail("the file is empty");
+    if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
+        return fail("the file is larger than 4 GiB");
     }
-    const bool binary = std::memcmp(magic, "glTF", 4) == 0;
+    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+    const auto length = static_cast<unsigned int>(bytes.size());
 
     tg::TinyGLTF gltf;
     ImageLoadContext image_context{&model_};
     gltf.SetImageLoader(&load_image_checked, &image_context);
+    GltfResourceAccess access(resource_folder, options_.allow_external_resources);
+    gltf.SetFsCallbacks(access.callbacks());
+    const std::string base_dir = resource_folder.string();
     std::string err;
     std::string warn_text;
     bool ok = false;
     try {
-        ok = binary ? gltf.LoadBinaryFromFile(&model_, &err, &warn_text, path_.string())
-                    : gltf.LoadASCIIFromFile(&model_, &err, &warn_text, path_.string());
+        ok = binary ? gltf.LoadBinaryFromMemory(&model_, &err, &warn_text, bytes.data(), length,
+                                                base_dir)
+                    : gltf.LoadASCIIFromString(&model_, &err, &warn_text,
+                                               reinterpret_cast<const char*>(bytes.data()), length,
+                                               base_dir);
     } catch (const std::exception& e) {
         // tinygltf throws on some malformed inputs (e.g. .at() on an empty chunk).
         return fail(std::string("malformed glTF: ") + e.what());
@@ -310,8 +325,11 @@ Status Loader::parse_file() {
         if (message.find("Failed to decode 'uri'") != std::string::npos) {
             message += " (corrupt base64, or not as long as the buffer's byteLength)";
         }
+        for (const std::string& refusal : access.refusals()) message += "; refused: " + refusal;
         return fail(std::string(binary ? "invalid glTF binary: " : "invalid glTF: ") + message);
     }
+    // Refused images are dropped with tinygltf's warning; say why.
+    for (const std::string& refusal : access.refusals()) warn("refused: " + refusal);
     return Ok{};
 }
 
@@ -1094,8 +1112,18 @@ Status Loader::check_unique_light_guids() const {
     return Ok{};
 }
 
-Result<Scene> Loader::load() {
-    Status status = parse_file();
+Result<Scene> Loader::load_file() {
+    std::vector<uint8_t> bytes;
+    Status status = read_file(bytes);
+    if (!status) return Error{status.error()};
+    std::filesystem::path folder = path_.parent_path();
+    if (folder.empty()) folder = ".";
+    return load(bytes, folder);
+}
+
+Result<Scene> Loader::load(std::span<const uint8_t> bytes,
+                           const std::filesystem::path& resource_folder) {
+    Status status = parse(bytes, resource_folder);
     if (!status) return Error{status.error()};
     status = validate_node_graph();
     if (!status) return Error{status.error()};
@@ -1137,14 +1165,23 @@ void update_scene_bounds(Scene& scene) {
     scene.bounds_max = any ? hi : glm::vec3(0.0f);
 }
 
-Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings) {
-    Loader loader(path, warnings);
-    return loader.load();
+Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                         const GltfLoadOptions& options) {
+    Loader loader(path, warnings, options);
+    return loader.load_file();
 }
 
-Result<Scene> load_scene(const std::filesystem::path& path) {
+Result<Scene> load_scene_from_memory(std::span<const uint8_t> bytes,
+                                     const std::filesystem::path& resource_folder,
+                                     std::vector<std::string>& warnings,
+                                     const GltfLoadOptions& options) {
+    Loader loader("(memory)", warnings, options);
+    return loader.load(bytes, resource_folder);
+}
+
+Result<Scene> load_scene(const std::filesystem::path& path, const GltfLoadOptions& options) {
     std::vector<std::string> warnings;
-    Result<Scene> scene = load_scene(path, warnings);
+    Result<Scene> scene = load_scene(path, warnings, options);
     for (const std::string& w : warnings) spdlog::warn("{}", w);
     return scene;
 }

@@ -14,7 +14,9 @@
 //   and the node path. `extras: {"lightcuts_classic": true}` on the light or the
 //   node marks a classic light.
 // - Cameras (perspective only): eye at the node, looking down its -Z, up its +Y.
+#include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,10 +29,24 @@ namespace lc::client {
 inline constexpr const char* kClassicExtrasKey = "lightcuts_classic";
 inline constexpr const char* kGuidExtrasKey = "lightcuts_guid";
 
+struct GltfLoadOptions {
+    // Buffer and image URIs are data: URIs or regular files inside the scene's
+    // folder (gltf_resource_access.h); this also allows any other regular file
+    // (absolute paths, "../"). FIFOs and devices are never read.
+    bool allow_external_resources = false;
+};
+
 // Warnings (skipped primitives, unsupported features) go to the log.
-Result<Scene> load_scene(const std::filesystem::path& path);
+Result<Scene> load_scene(const std::filesystem::path& path, const GltfLoadOptions& options = {});
 // Same, collecting the warnings instead of logging them.
-Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings);
+Result<Scene> load_scene(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                         const GltfLoadOptions& options = {});
+// A .gltf or .glb held in memory (fuzzing, tests). `resource_folder` stands
+// for the scene's folder; empty: only data: URIs and GLB chunks, no file read.
+Result<Scene> load_scene_from_memory(std::span<const uint8_t> bytes,
+                                     const std::filesystem::path& resource_folder,
+                                     std::vector<std::string>& warnings,
+                                     const GltfLoadOptions& options = {});
 
 // Recomputes Scene::bounds_min/max from the meshes and the positioned lights
 // (directional lights have no position). An empty scene gets zero bounds.

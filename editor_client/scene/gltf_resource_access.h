@@ -1,0 +1,49 @@
+#pragma once
+// What a glTF file may make the loader read besides itself. Buffer and image
+// URIs come from the file, so a scene from elsewhere must not open arbitrary
+// paths ("/etc/...", "../../") or block on a FIFO: by default only regular
+// files inside the scene's folder are read (data: URIs never touch the disk).
+#include <tiny_gltf.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace lc::client {
+
+class GltfResourceAccess {
+public:
+    // `folder`: the scene's folder; empty: no file is read at all (a scene
+    // loaded from memory). `allow_external`: any regular file may be read.
+    GltfResourceAccess(std::filesystem::path folder, bool allow_external);
+
+    // Callbacks for tinygltf; they refer to this object, which must outlive the load.
+    tinygltf::FsCallbacks callbacks();
+
+    // Why each refused URI was refused, in order ("'../x.bin' lies outside ...").
+    const std::vector<std::string>& refusals() const { return refusals_; }
+
+    // Reads a regular file without blocking on a FIFO or a device: the file is
+    // opened non-blocking and checked with fstat before a byte is read.
+    static bool read_regular_file(const std::filesystem::path& path,
+                                  std::vector<unsigned char>& out, std::string& error);
+
+private:
+    // True when `path` may be read; otherwise records why in refusals_. A path
+    // that does not exist is not a refusal (tinygltf reports it as not found).
+    bool admits(const std::string& path);
+
+    static bool exists(const std::string& path, void* self);
+    static std::string expand(const std::string& path, void* self);
+    static bool read(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                     void* self);
+    static bool write(std::string* err, const std::string& path,
+                      const std::vector<unsigned char>& contents, void* self);
+
+    std::string base_dir_;          // the folder as tinygltf joins it to URIs
+    std::filesystem::path folder_;  // canonical; empty when nothing may be read
+    bool allow_external_ = false;
+    std::vector<std::string> refusals_;
+};
+
+}  // namespace lc::client

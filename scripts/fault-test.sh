@@ -1,0 +1,217 @@
+#!/usr/bin/env bash
+# Fault benchmarks (not CI tests) against a local lightmass_server on 127.0.0.1.
+#   scripts/fault-test.sh kill [--iterations 100] [--lights 16384]
+#       kill -9 the server mid-bake, ITERATIONS times; every time the client's
+#       previous tree (bake -o TREE.lcut) must be intact, byte for byte
+#   scripts/fault-test.sh stall [--peers 16] [--seconds 30]
+#       slow-byte peers (one byte every 0.5 s) and silent peers, while normal
+#       bakes run: when does the server drop them, and do the bakes still pass?
+#   scripts/fault-test.sh soak [--minutes 60] [--csv docs/bench/soak_rss.csv]
+#       4 clients bake without pause; the server's RSS is sampled every 2 s
+#   scripts/fault-test.sh all  (kill, stall, then a 10-minute soak)
+# Common: [--server-bin build/bin/lightmass_server] [--client-bin build/bin/editor_client]
+# Every loop is bounded in count and in time. Exits non-zero on a broken check.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+mode="${1:-}"
+shift || true
+iterations=100
+lights=16384
+peers=16
+seconds=30
+minutes=60
+server_bin=build/bin/lightmass_server
+client_bin=build/bin/editor_client
+csv=docs/bench/soak_rss.csv
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --iterations) iterations="$2"; shift 2 ;;
+        --lights) lights="$2"; shift 2 ;;
+        --peers) peers="$2"; shift 2 ;;
+        --seconds) seconds="$2"; shift 2 ;;
+        --minutes) minutes="$2"; shift 2 ;;
+        --csv) csv="$2"; shift 2 ;;
+        --server-bin) server_bin="$2"; shift 2 ;;
+        --client-bin) client_bin="$2"; shift 2 ;;
+        *) echo "unknown option $1" >&2; exit 2 ;;
+    esac
+done
+
+work=$(mktemp -d /tmp/lc-fault.XXXXXX)
+LC_SERVER_PID=""
+background=()
+cleanup() {
+    for pid in "${background[@]}" $LC_SERVER_PID; do kill -9 "$pid" 2>/dev/null || true; done
+    rm -rf "$work"
+}
+trap cleanup EXIT
+# shellcheck source=scripts/lib/local_server.sh
+source scripts/lib/local_server.sh
+
+stop_server() {
+    if [ -n "$LC_SERVER_PID" ]; then
+        kill "$LC_SERVER_PID" 2>/dev/null || true
+        wait "$LC_SERVER_PID" 2>/dev/null || true
+        LC_SERVER_PID=""
+    fi
+}
+
+make_scene() {  # make_scene LIGHTS OUT.gltf
+    "$client_bin" add-lights --count "$1" --layout random --seed 11 --type mixed -o "$2" >/dev/null
+}
+
+bake() {  # bake PORT SCENE OUT.lcut SEED [timeout s]
+    timeout "${5:-120}" "$client_bin" bake "$2" --server "127.0.0.1:$1" --seed "$4" -o "$3"
+}
+
+run_kill() {
+    make_scene "$lights" "$work/scene.gltf"
+    start_local_server "$server_bin" "$work" --quiet
+    bake "$LC_SERVER_PORT" "$work/scene.gltf" "$work/tree.lcut" 0 >/dev/null 2>&1
+    stop_server
+    # How long an undisturbed bake takes: the kills land inside it.
+    start_local_server "$server_bin" "$work" --quiet
+    local t0 t1
+    t0=$(date +%s%N)
+    bake "$LC_SERVER_PORT" "$work/scene.gltf" "$work/timing.lcut" 0 >/dev/null 2>&1
+    t1=$(date +%s%N)
+    stop_server
+    local bake_ms=$(( (t1 - t0) / 1000000 ))
+    local previous
+    previous=$(sha256sum "$work/tree.lcut" | cut -d' ' -f1)
+    local killed=0 finished=0 broken=0 leftovers=0
+    for ((i = 1; i <= iterations; i++)); do
+        start_local_server "$server_bin" "$work" --quiet
+        bake "$LC_SERVER_PORT" "$work/scene.gltf" "$work/tree.lcut" "$i" 60 >"$work/kill_client.log" 2>&1 &
+        local client=$!
+        background=("$client")
+        # Spread the kills over the whole bake: upload, build and download.
+        local delay_ms=$(( (RANDOM % 1000) * bake_ms / 1000 ))
+        sleep "$(awk -v ms="$delay_ms" 'BEGIN { printf "%.3f", ms / 1000 }')"
+        kill -9 "$LC_SERVER_PID" 2>/dev/null || true
+        wait "$LC_SERVER_PID" 2>/dev/null || true
+        LC_SERVER_PID=""
+        local rc=0
+        wait "$client" || rc=$?
+        background=()
+        local now
+        now=$(sha256sum "$work/tree.lcut" | cut -d' ' -f1)
+        if [ "$rc" -ne 0 ]; then
+            killed=$((killed + 1))
+            if [ "$now" != "$previous" ]; then
+                broken=$((broken + 1))
+                echo "iteration $i: the bake failed (rc $rc) and the previous tree changed" >&2
+            fi
+        else
+            finished=$((finished + 1))
+            if ! "$client_bin" inspect "$work/tree.lcut" >/dev/null 2>&1; then
+                broken=$((broken + 1))
+                echo "iteration $i: the bake succeeded but its tree does not read back" >&2
+            fi
+            previous=$now
+        fi
+        if ! "$client_bin" inspect "$work/tree.lcut" >/dev/null 2>&1; then
+            broken=$((broken + 1))
+            echo "iteration $i: the tree on disk does not read back" >&2
+        fi
+        leftovers=$(find "$work" -maxdepth 1 -name 'tree.lcut?*' | wc -l)
+    done
+    echo "kill: $iterations kill -9 of the server during a ${bake_ms} ms bake of $lights lights:" \
+        "$killed bakes failed (previous tree intact in $((killed - broken > 0 ? killed - broken : 0)))," \
+        "$finished finished before the kill, $broken broken trees, $leftovers stray temporary files"
+    [ "$broken" -eq 0 ] && [ "$leftovers" -eq 0 ]
+}
+
+run_stall() {
+    make_scene 1024 "$work/small.gltf"
+    # Short limits so the figures come within the run; the defaults are 30 s and 600 s.
+    start_local_server "$server_bin" "$work" --quiet --read-timeout-ms 2000 --idle-timeout-ms 3000
+    local port=$LC_SERVER_PORT failed=0 baked=0
+    for stall in slow silent; do
+        /usr/bin/python3 scripts/lib/stalling_peer.py --port "$port" --mode "$stall" \
+            --peers "$peers" --seconds "$seconds" >"$work/$stall.json" &
+        local peer=$!
+        background=("$peer")
+        sleep 0.5
+        local t_end=$(( $(date +%s) + seconds ))
+        local max_ms=0
+        for ((b = 0; b < 1000 && $(date +%s) < t_end; b++)); do
+            local t0 t1
+            t0=$(date +%s%N)
+            if bake "$port" "$work/small.gltf" "$work/stall.lcut" "$b" 60 >/dev/null 2>&1; then
+                baked=$((baked + 1))
+            else
+                failed=$((failed + 1))
+            fi
+            t1=$(date +%s%N)
+            max_ms=$(( (t1 - t0) / 1000000 > max_ms ? (t1 - t0) / 1000000 : max_ms ))
+        done
+        wait "$peer" || true
+        background=()
+        echo "stall ($stall): $(cat "$work/$stall.json"); bakes meanwhile: slowest ${max_ms} ms"
+    done
+    kill -0 "$LC_SERVER_PID" 2>/dev/null || { echo "stall: the server died" >&2; failed=$((failed + 1)); }
+    stop_server
+    echo "stall: $baked bakes of 1024 lights passed and $failed failed while stalling peers were attached"
+    [ "$failed" -eq 0 ]
+}
+
+run_soak() {
+    make_scene 4096 "$work/soak.gltf"
+    start_local_server "$server_bin" "$work" --threads 2 --quiet
+    local port=$LC_SERVER_PORT
+    mkdir -p "$(dirname "$csv")"
+    sample_rss "$LC_SERVER_PID" "$csv" 2 &
+    local sampler=$!
+    local t_end=$(( $(date +%s) + minutes * 60 ))
+    local loops=()
+    for c in 0 1 2 3; do
+        (
+            ok=0 bad=0
+            for ((b = 0; b < 1000000 && $(date +%s) < t_end; b++)); do
+                if bake "$port" "$work/soak.gltf" "$work/soak_$c.lcut" "$b" 120 >/dev/null 2>&1; then
+                    ok=$((ok + 1))
+                else
+                    bad=$((bad + 1))
+                fi
+            done
+            echo "$ok $bad" >"$work/soak_$c.count"
+        ) &
+        loops+=($!)
+    done
+    background=("${loops[@]}" "$sampler")
+    for pid in "${loops[@]}"; do wait "$pid" || true; done
+    kill "$sampler" 2>/dev/null || true
+    wait "$sampler" 2>/dev/null || true
+    background=()
+    local alive=yes
+    kill -0 "$LC_SERVER_PID" 2>/dev/null || alive=no
+    stop_server
+    local ok=0 bad=0
+    for c in 0 1 2 3; do
+        read -r o b <"$work/soak_$c.count"
+        ok=$((ok + o))
+        bad=$((bad + b))
+    done
+    # RSS after the first minute (allocator warm-up) against the last minute.
+    awk -F, -v ok="$ok" -v bad="$bad" -v alive="$alive" -v minutes="$minutes" -v csv="$csv" '
+        NR > 1 { t = $1; r = $2; if (r > peak) peak = r
+                 if (t >= 60 && t < 120) { early += r; ne++ }
+                 last_t = t; rows[NR] = t "," r }
+        END {
+            for (i in rows) { split(rows[i], f, ","); if (f[1] >= last_t - 60) { late += f[2]; nl++ } }
+            printf "soak: %d minutes, 4 clients, %d bakes of 4096 lights passed, %d failed, server %s; " \
+                   "RSS mean 1-2 min %.0f KiB, last minute %.0f KiB, peak %d KiB (%s)\n",
+                   minutes, ok, bad, alive == "yes" ? "alive" : "DIED",
+                   ne ? early / ne : 0, nl ? late / nl : 0, peak, csv }' "$csv"
+    [ "$bad" -eq 0 ] && [ "$alive" = yes ]
+}
+
+case "$mode" in
+    kill) run_kill ;;
+    stall) run_stall ;;
+    soak) run_soak ;;
+    all) run_kill; run_stall; minutes=10; run_soak ;;
+    *) sed -n '2,15p' "$0"; exit 2 ;;
+esac

@@ -1,0 +1,90 @@
+// Writes the seed corpora the recorded test data does not hold as they are:
+//   OUT/messages, OUT/frames: one encoded message of every kind, as a frame
+//       body and as a framed stream (the recorded channels carry no frames);
+//   OUT/scene, OUT/result: the payloads of the scene and result channel dumps
+//       under DATA/replay, behind the byte that picks the fuzzers' piece size.
+// The dumps and glTF files themselves are seeds as they are (scripts/fuzz.sh).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "protocol/codec.h"
+#include "protocol/dump.h"
+#include "protocol/frame_decoder.h"
+
+namespace {
+
+std::vector<lc::Message> sample_messages() {
+    return {
+        lc::HelloMsg{lc::kProtocolVersion, "editor_client", "token"},
+        lc::HelloAckMsg{lc::kProtocolVersion, "lightmass_server"},
+        lc::OpenChannelMsg{1, "scene.channel", 720},
+        lc::WriteChannelMsg{1, 0, std::vector<uint8_t>(40, 7)},
+        lc::CloseChannelMsg{1},
+        lc::BakeRequestMsg{3, "scene.channel", lc::BuilderKind::kAgglomerative, 42,
+                           lc::RepresentativeRule::kThesisFirst, lc::PairingMode::kExact, 64},
+        lc::ProgressMsg{3, "pairing", 37.5f},
+        lc::WarningMsg{3, "two lights share a position"},
+        lc::ErrorMsg{3, lc::ErrorCode::kInvalidScene, "light 4: intensity is negative"},
+        lc::CancelMsg{3},
+        lc::BakeDoneMsg{3, "result.channel", 7, 4, 1.5, 2.25, 2.0, false},
+    };
+}
+
+void write(const std::filesystem::path& path, const std::vector<uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+}
+
+}  // namespace
+
+// Channel payloads behind a piece-size byte: 37 and 255 (pieces of a few
+// hundred and a few thousand bytes; byte-sized pieces would make every
+// execution of a 20 KB channel thousands of pushes).
+int write_channel_seeds(const std::filesystem::path& data, const std::filesystem::path& out) {
+    std::filesystem::create_directories(out / "scene");
+    std::filesystem::create_directories(out / "result");
+    int index = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(data / "replay")) {
+        const std::string name = entry.path().filename().string();
+        const bool scene = name.ends_with(".scene.dump");
+        if (!scene && !name.ends_with(".lcut.dump")) continue;
+        lc::Result<lc::ChannelDump> dump = lc::read_dump(entry.path());
+        if (!dump) {
+            std::fprintf(stderr, "%s\n", dump.error().c_str());
+            return 1;
+        }
+        for (uint8_t piece : {uint8_t(37), uint8_t(255)}) {
+            std::vector<uint8_t> seed = {piece};
+            seed.insert(seed.end(), dump->payload.begin(), dump->payload.end());
+            write(out / (scene ? "scene" : "result") / (std::to_string(index++)), seed);
+        }
+    }
+    return 0;
+}
+
+int main(int argc, char** argv) {
+    if (argc != 3) {
+        std::fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
+        return 2;
+    }
+    const std::filesystem::path dir = argv[2];
+    if (write_channel_seeds(argv[1], dir) != 0) return 1;
+    std::filesystem::create_directories(dir / "messages");
+    std::filesystem::create_directories(dir / "frames");
+    std::vector<uint8_t> stream = {0};  // frame_decoder_fuzz: first byte is the piece size
+    int index = 0;
+    for (const lc::Message& message : sample_messages()) {
+        const std::string name = std::to_string(index++) + "_" + lc::message_name(message);
+        write(dir / "messages" / name, lc::encode_message(message));
+        std::vector<uint8_t> framed = {uint8_t(index)};
+        const std::vector<uint8_t> frame = lc::encode_frame(message);
+        framed.insert(framed.end(), frame.begin(), frame.end());
+        write(dir / "frames" / name, framed);
+        stream.insert(stream.end(), frame.begin(), frame.end());
+    }
+    write(dir / "frames" / "all_messages", stream);
+    return 0;
+}
