@@ -1,5 +1,6 @@
 // The CPU evaluator in double precision: the ground truth the shaders are
-// tested against. Every formula is shading_model.h's, evaluated the same way.
+// tested against. Its formulas are the shaders' own (lightcuts/device/*.glsl.h,
+// compiled here in double); its cut searches share cut_traversal.h.
 //
 // Conventions the GPU mirrors:
 // - A shading point exactly on a light (d = 0) gets nothing from it: the
@@ -30,17 +31,29 @@
 namespace lc {
 namespace {
 
+shading::Emitter make_emitter(LightType type, const glm::vec3& position, const glm::vec3& direction,
+                              double range, double cos_inner, double cos_outer) {
+    shading::Emitter e;
+    e.directional = type == LightType::kDirectional;
+    e.spot = type == LightType::kSpot;
+    e.position = glm::dvec3(position);
+    e.direction = glm::dvec3(direction);
+    e.range = range;
+    e.cos_outer = cos_outer;
+    e.spot_scale = shading::spot_scale(cos_inner, cos_outer);
+    return e;
+}
+
+shading::Emitter emitter_of(const SceneLight& light) {
+    return make_emitter(light.type, light.position, light.direction, light.range,
+                        std::cos(double(light.inner_cone_angle)),
+                        std::cos(double(light.outer_cone_angle)));
+}
+
 // The node layout is read here and in cluster_shape_of() only.
 shading::Emitter emitter_of(const LightTreeNode& node) {
-    shading::Emitter e;
-    e.directional = node.type == LightType::kDirectional;
-    e.spot = node.type == LightType::kSpot;
-    e.position = glm::dvec3(node.position);
-    e.direction = glm::dvec3(node.direction);
-    e.range = node.range;
-    e.cos_outer = node.spot_cos_outer;
-    e.spot_scale = shading::spot_scale(node.spot_cos_inner, node.spot_cos_outer);
-    return e;
+    return make_emitter(node.type, node.position, node.direction, node.range, node.spot_cos_inner,
+                        node.spot_cos_outer);
 }
 
 shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
@@ -56,20 +69,6 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     c.cone_axis = glm::dvec3(node.cone_axis);
     c.cone_cos = node.cone_cos;
     return c;
-}
-
-shading::Emitter emitter_of(const SceneLight& light) {
-    const double cos_inner = std::cos(double(light.inner_cone_angle));
-    const double cos_outer = std::cos(double(light.outer_cone_angle));
-    shading::Emitter e;
-    e.directional = light.type == LightType::kDirectional;
-    e.spot = light.type == LightType::kSpot;
-    e.position = glm::dvec3(light.position);
-    e.direction = glm::dvec3(light.direction);
-    e.range = light.range;
-    e.cos_outer = cos_outer;
-    e.spot_scale = shading::spot_scale(cos_inner, cos_outer);
-    return e;
 }
 
 // Outgoing radiance per unit RGB intensity: f_r * G * V (shading_model.h).
