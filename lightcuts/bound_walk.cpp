@@ -1,10 +1,10 @@
 #include "lightcuts/bound_walk.h"
 
 #include <algorithm>
-#include <cmath>
 #include <limits>
 
 #include "lightcuts/cut_traversal.h"
+#include "lightcuts/device/walk_schedule.glsl.h"
 
 namespace lc {
 namespace {
@@ -31,7 +31,7 @@ Pass walk_pass(const LightTree& tree, const SurfacePoint& p, double tau) {
 }  // namespace
 
 double bisection_threshold(double fit_hi, double over_lo) {
-    return std::sqrt(fit_hi) * std::sqrt(std::max(over_lo, fit_hi * 1e-6));
+    return device::bisection_threshold(fit_hi, over_lo);
 }
 
 CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
@@ -51,14 +51,12 @@ CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const Cut
             bisecting = true;
             over_lo = tau;
         } else {
-            result.radiance = pass.cut.radiance;
-            result.cut_size = pass.cut.size;
-            result.cut_hash = pass.cut.hash;
+            pass.cut.copy_to(result);
             const double limit = rule.limit(pass.cut.radiance);
             if (!(pass.worst > limit)) return result;  // the rule holds: not a max-cut hit
             fit_hi = pass.worst;
             if (!bisecting) {
-                tau = std::max(double(kWalkMargin) * limit, pass.worst / double(kWalkShrink));
+                tau = device::next_walk_threshold(limit, pass.worst, kWalkMargin, kWalkShrink);
                 continue;
             }
         }

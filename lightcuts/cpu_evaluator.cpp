@@ -117,9 +117,7 @@ CutResult radius_cut(const LightTree& tree, const SurfacePoint& p) {
         return glm::length(p.position - glm::dvec3(node.position)) < double(node.radius);
     });
     CutResult result;
-    result.radiance = cut.radiance;
-    result.cut_size = cut.size;
-    result.cut_hash = cut.hash;
+    cut.copy_to(result);
     return result;
 }
 
@@ -157,9 +155,7 @@ CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSetti
     // The running total drifts with 1e12 intensity ratios; sum afresh.
     CutTally cut;
     for (const CutEntry& entry : heap) cut.add(entry.node, entry.estimate);
-    result.radiance = cut.radiance;
-    result.cut_size = cut.size;
-    result.cut_hash = cut.hash;
+    cut.copy_to(result);
     return result;
 }
 

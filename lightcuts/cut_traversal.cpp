@@ -12,6 +12,12 @@ void CutTally::add(int32_t node_index, const glm::dvec3& node_radiance) {
     hash += cut_hash_term(uint32_t(node_index));
 }
 
+void CutTally::copy_to(CutResult& result) const {
+    result.radiance = radiance;
+    result.cut_size = size;
+    result.cut_hash = hash;
+}
+
 double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p) {
     if (child_count == 0) return 0.0;
     const LightTreeNode& node = tree.nodes[size_t(index)];

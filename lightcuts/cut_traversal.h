@@ -22,6 +22,8 @@ struct CutTally {
     uint32_t hash = 0;
 
     void add(int32_t node_index, const glm::dvec3& node_radiance);
+    // The cut's part of a CutResult (max_cut_hit and passes left as they are).
+    void copy_to(CutResult& result) const;
 };
 
 // The bound criterion's key of node `index` with `child_count` valid
