@@ -50,7 +50,7 @@ shading::Emitter emitter_of(const SceneLight& light) {
                         std::cos(double(light.outer_cone_angle)));
 }
 
-// The node layout is read here and in cluster_shape_of() only.
+// A node's representative is read here only, its bounds in cluster_shape_of().
 shading::Emitter emitter_of(const LightTreeNode& node) {
     return make_emitter(node.type, node.position, node.direction, node.range, node.spot_cos_inner,
                         node.spot_cos_outer);
@@ -71,9 +71,9 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     return c;
 }
 
-// Outgoing radiance per unit RGB intensity: f_r * G * V (shading_model.h).
+// Outgoing radiance per unit RGB intensity: f_r * G * V.
 glm::dvec3 unit_response(LightType type, const shading::Emitter& e, const SurfacePoint& p) {
-    glm::dvec3 l;
+    glm::dvec3 l(0.0);
     double G = shading::light_geometry(e, p.position, p.normal, l);
     if (G > 0.0 && p.occluders != nullptr)
         G *= light_visibility(*p.occluders, p.shadow_bias, type, e.position, e.direction,
