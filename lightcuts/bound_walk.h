@@ -37,9 +37,8 @@ inline constexpr float kWalkShrink = 512.0f;
 inline constexpr float kWalkMargin = 0.8f;
 inline constexpr uint32_t kWalkBisections = 6;
 
-// The next threshold between one whose cut fit (fit_hi: the largest bound on
-// that cut) and one whose cut exceeded max_cut (over_lo): their geometric
-// mean, with over_lo kept above fit_hi x 1e-6 so that a zero makes progress.
+// device::bisection_threshold (walk_schedule.glsl.h) in double: the next
+// threshold between one whose cut fit and one whose cut exceeded max_cut.
 double bisection_threshold(double fit_hi, double over_lo);
 
 // The cut of the bound criterion by threshold passes (classic lights not included).

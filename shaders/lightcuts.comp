@@ -32,6 +32,7 @@
 #include "cut_hash.glsl"
 #include "cluster_bounds.glsl"
 #include "lighting_pass.glsl"
+#include "lightcuts/device/walk_schedule.glsl.h"
 
 layout(local_size_x_id = 0, local_size_y_id = 1) in;
 
@@ -351,7 +352,7 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
         }
         s.fit_hi = pass.worst;
         if (!bisecting) {
-            s.tau = max(kWalkMargin * limit, pass.worst / kWalkShrink);
+            s.tau = next_walk_threshold(limit, pass.worst, kWalkMargin, kWalkShrink);
             return true;
         }
     }
@@ -363,7 +364,7 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
     }
     s.flags = (s.flags & ((1u << kWalkBisectionsShift) - 1u)) |
               ((bisections_left - 1u) << kWalkBisectionsShift);
-    s.tau = sqrt(s.fit_hi) * sqrt(max(s.over_lo, s.fit_hi * 1e-6));
+    s.tau = bisection_threshold(s.fit_hi, s.over_lo);
     return true;
 }
 

@@ -1,0 +1,36 @@
+#include "lightcuts/cut_traversal.h"
+
+#include <limits>
+
+namespace lc {
+
+double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
+
+void CutTally::add(int32_t node_index, const glm::dvec3& node_radiance) {
+    radiance += node_radiance;
+    size += 1;
+    hash += cut_hash_term(uint32_t(node_index));
+}
+
+void CutTally::copy_to(CutResult& result) const {
+    result.radiance = radiance;
+    result.cut_size = size;
+    result.cut_hash = hash;
+}
+
+double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p) {
+    if (child_count == 0) return 0.0;
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    if (node.mixed_types) return std::numeric_limits<double>::infinity();
+    return max_channel(node_contribution_bound(node, p));
+}
+
+BoundRule::BoundRule(const CutSettings& settings)
+    : error_ratio(settings.error_ratio >= 0.0 ? settings.error_ratio : 0.0),
+      max_cut(std::max<uint32_t>(settings.max_cut, 1)) {}
+
+double BoundRule::limit(const glm::dvec3& total) const {
+    return error_ratio * std::max(max_channel(total), 0.0);
+}
+
+}  // namespace lc

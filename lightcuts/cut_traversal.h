@@ -1,0 +1,68 @@
+#pragma once
+// What the CPU's cut searches share (the radius walk and the heap search in
+// cpu_evaluator.cpp, the threshold passes in bound_walk.cpp): a node's
+// children and error bound, the walk over a cut in pre-order, the tally of a
+// cut, and the bound criterion's stopping rule.
+#include <glm/vec3.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "lightcuts/cpu_evaluator.h"
+
+namespace lc {
+
+double max_channel(const glm::dvec3& v);
+
+// A cut's radiance (cut nodes evaluated as clusters), size and hash.
+struct CutTally {
+    glm::dvec3 radiance{0.0};
+    uint32_t size = 0;
+    uint32_t hash = 0;
+
+    void add(int32_t node_index, const glm::dvec3& node_radiance);
+    // The cut's part of a CutResult (max_cut_hit and passes left as they are).
+    void copy_to(CutResult& result) const;
+};
+
+// The bound criterion's key of node `index` with `child_count` valid
+// children: the largest channel of its error bound; 0 for a leaf (exact),
+// +inf for a mixed_types junction (always refined).
+double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p);
+
+// The bound criterion's rule, from the settings: a cut is done when every
+// node's key is <= limit(total), or when it reaches max_cut nodes.
+struct BoundRule {
+    explicit BoundRule(const CutSettings& settings);
+    // error_ratio x the largest channel of the cut's total estimate.
+    double limit(const glm::dvec3& total) const;
+
+    double error_ratio;
+    uint32_t max_cut;  // at least 1
+};
+
+// The cut that `refine(index, node, child_count)` selects, in pre-order: a
+// node is refined into its valid children or taken as a cluster (shaded at p
+// and tallied). An explicit stack, no recursion: a chain-shaped tree is as
+// deep as it has lights.
+template <typename Refine>
+CutTally walk_cut(const LightTree& tree, const SurfacePoint& p, Refine&& refine) {
+    CutTally tally;
+    std::vector<int32_t> stack{0};
+    while (!stack.empty()) {
+        const int32_t index = stack.back();
+        stack.pop_back();
+        const LightTreeNode& node = tree.nodes[size_t(index)];
+        int32_t children[2];
+        const int child_count = valid_children(tree, index, children);
+        if (refine(index, node, child_count)) {
+            for (int c = child_count - 1; c >= 0; --c) stack.push_back(children[c]);
+        } else {
+            tally.add(index, shade_node(node, p));
+        }
+    }
+    return tally;
+}
+
+}  // namespace lc
