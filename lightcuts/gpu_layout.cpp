@@ -7,6 +7,10 @@
 #include "lightcuts/shading_model.h"
 
 namespace lc {
+
+static_assert(kLightPoint == uint(LightType::kPoint) && kLightSpot == uint(LightType::kSpot) &&
+              kLightDirectional == uint(LightType::kDirectional));
+
 namespace {
 
 float spot_scale(double cos_inner, double cos_outer) {
@@ -67,7 +71,7 @@ GpuLight make_gpu_cluster_light(const LightTreeNode& node) {
 Result<std::vector<int32_t>> derive_escape_indices(const LightTree& tree) {
     const size_t n = tree.nodes.size();
     if (n > size_t(INT32_MAX)) return make_error("tree has too many nodes for 32-bit indices");
-    std::vector<int32_t> escape(n, kGpuEndOfWalk);
+    std::vector<int32_t> escape(n, kEndOfWalk);
     std::vector<uint8_t> has_parent(n, 0);
     // Every child index is checked before any escape is propagated through it.
     for (size_t i = 0; i < n; ++i) {
@@ -113,7 +117,7 @@ Result<GpuTree> make_gpu_tree(const LightTree& tree) {
         out.first_child = node.left != kNoChild ? node.left : node.right;
         out.escape = (*escape)[i];
         out.radius = node.radius;
-        out.flags = node.mixed_types ? kGpuNodeMixedTypes : 0u;
+        out.flags = node.mixed_types ? kNodeMixedTypes : 0u;
         for (int32_t child : {node.left, node.right})
             if (child != kNoChild) depth[child] = depth[i] + 1;
         gpu.depth = std::max(gpu.depth, depth[i]);

@@ -4,7 +4,7 @@
 #define LC_COMMON_LIGHTING_GLSL
 
 #include "effects.glsl"
-#include "gpu_layout.glsl"
+#include "lightcuts/device/gpu_structs.h"
 
 const float kPi = 3.14159265358979323846;
 const float kMinDistance = 1e-3;  // shading::kMinDistance
