@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lightcuts/bound_walk.h"
+#include "lightcuts/compact_node.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/shading_model.h"
 #include "lightcuts/shadow_bvh.h"
@@ -144,29 +145,28 @@ double max_cos_to_box(const glm::dvec3& axis, const glm::dvec3& lo, const glm::d
 // within pi/2 of its own direction (outer <= pi/2), and every direction lies
 // within beta of the cone axis, so a p seen from the box at more than
 // pi/2 + beta from the axis is dark. Per-light outer angles are not stored on
-// the node, so pi/2 is the only safe one.
-bool spot_cluster_excluded(const LightTreeNode& node, const SurfacePoint& p) {
-    const double cone_cos = node.cone_cos;
+// the node, so pi/2 is the only safe one. The cone is the compact node's (the
+// shaders' one, widened by its packing).
+bool spot_cluster_excluded(const CompactBounds& bounds, const SurfacePoint& p) {
+    const double cone_cos = bounds.cone_cos;
     if (!(cone_cos >= -1.0 && cone_cos <= 1.0)) return false;
-    const glm::dvec3 axis(node.cone_axis);
-    const double axis_len = glm::length(axis);
-    if (!(axis_len > 0.0)) return false;
     const double beta = std::acos(cone_cos);
     const double limit = std::numbers::pi / 2.0 + beta;
     if (limit >= std::numbers::pi) return false;
     // Vectors from the lights to p: p - y for y in the box.
-    const glm::dvec3 lo = p.position - glm::dvec3(node.bbox_max);
-    const glm::dvec3 hi = p.position - glm::dvec3(node.bbox_min);
-    const double cos_bound = max_cos_to_box(axis / axis_len, lo, hi);
+    const glm::dvec3 lo = p.position - bounds.bbox_max;
+    const glm::dvec3 hi = p.position - bounds.bbox_min;
+    const double cos_bound = max_cos_to_box(bounds.cone_axis, lo, hi);
     const double min_angle = std::acos(std::clamp(cos_bound, -1.0, 1.0));
     return min_angle > limit + 1e-9;
 }
 
 // Upper bound of G (shading_model.h, cosine with the normal included) over
-// every light of the node.
-double geometric_bound(const LightTreeNode& node, const SurfacePoint& p) {
-    const glm::dvec3 bmin(node.bbox_min);
-    const glm::dvec3 bmax(node.bbox_max);
+// every light of the node, whose box and cone come from its compact node.
+double geometric_bound(const LightTreeNode& node, const CompactBounds& bounds,
+                       const SurfacePoint& p) {
+    const glm::dvec3& bmin = bounds.bbox_min;
+    const glm::dvec3& bmax = bounds.bbox_max;
     if (node.type == LightType::kDirectional) {
         // The box holds the directions d_i; the light arrives along -d_i.
         return std::max(0.0, max_cos_to_box(p.normal, -bmax, -bmin));
@@ -187,7 +187,7 @@ double geometric_bound(const LightTreeNode& node, const SurfacePoint& p) {
     if (!(window > 0.0)) return 0.0;
     const double cos_bound = max_cos_to_box(p.normal, bmin - p.position, bmax - p.position);
     if (!(cos_bound > 0.0)) return 0.0;
-    if (node.type == LightType::kSpot && spot_cluster_excluded(node, p)) return 0.0;
+    if (node.type == LightType::kSpot && spot_cluster_excluded(bounds, p)) return 0.0;
     return cos_bound * window * shading::inverse_square(dmin2);
 }
 
@@ -350,7 +350,7 @@ glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint
         return glm::dvec3(std::numeric_limits<double>::infinity());
     }
     // A relative 1e-9 of slack absorbs the rounding of the bound's own arithmetic.
-    const double G = geometric_bound(node, p) * (1.0 + 1e-9);
+    const double G = geometric_bound(node, compact_bounds(node), p) * (1.0 + 1e-9);
     if (!(G > 0.0)) return glm::dvec3(0.0);
     return material_bound(node, p) * G * glm::dvec3(node.intensity);
 }
@@ -362,8 +362,9 @@ glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
 
 glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
     if (!has_lobe(p)) return diffuse_term(p);
-    const glm::dvec3 bmin(node.bbox_min);
-    const glm::dvec3 bmax(node.bbox_max);
+    const CompactBounds bounds = compact_bounds(node);
+    const glm::dvec3& bmin = bounds.bbox_min;
+    const glm::dvec3& bmax = bounds.bbox_max;
     // Directions towards the lights: -d_i for directional boxes, y - x otherwise.
     const double cos_max = node.type == LightType::kDirectional
                                ? max_cos_to_box(p.mirror, -bmax, -bmin)

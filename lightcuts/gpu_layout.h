@@ -13,8 +13,7 @@ namespace lc {
 
 // A scene light (glTF units) as the shader evaluates it.
 GpuLight make_gpu_light(const SceneLight& light);
-// A tree node evaluated as a cluster: its representative's parameters with
-// the cluster's RGB intensity.
+// A tree node's own light parameters (a leaf's light) with its RGB intensity.
 GpuLight make_gpu_cluster_light(const LightTreeNode& node);
 
 // Pre-order escape index of every node, computed iteratively in one pass over
@@ -24,12 +23,15 @@ Result<std::vector<int32_t>> derive_escape_indices(const LightTree& tree);
 
 // Everything the GPU reads about a tree.
 struct GpuTree {
-    std::vector<GpuTreeNode> nodes;
-    std::vector<GpuLight> leaves;  // the tree's leaves in index order (reference mode)
+    std::vector<GpuTreeNode> nodes;  // compact nodes (compact_node.h)
+    // The tree's leaves in index order: reference mode's lights, and the
+    // nodes' representatives.
+    std::vector<GpuLight> leaves;
     uint32_t depth = 0;            // longest root-to-leaf path, in edges
 };
 
+// Fails on malformed links, non-finite values, or a representative that is
+// not a leaf.
 Result<GpuTree> make_gpu_tree(const LightTree& tree);
-std::vector<GpuNodeBounds> make_gpu_node_bounds(const LightTree& tree);
 
 }  // namespace lc

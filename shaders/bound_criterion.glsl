@@ -13,8 +13,9 @@ layout(constant_id = kSpecErrorRatio) const float kErrorRatio = 0.02;
 float max_channel(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 // Largest channel of f_r bound x G bound x I_C over a cluster's lights.
-float cluster_error_bound(GpuTreeNode node, GpuNodeBounds nb, SurfacePoint p) {
-    return max_channel(response_bound_of(node, nb, p) * node.light.intensity);
+float cluster_error_bound(GpuTreeNode node, SurfacePoint p) {
+    GpuLight rep = leaf_lights[node.representative];
+    return max_channel(response_bound_of(node, rep, p) * node.intensity);
 }
 
 #endif

@@ -46,27 +46,37 @@ float max_cos_to_box(vec3 axis, vec3 lo, vec3 hi) {
     return max(-1.0, z_max / sqrt(denom2));
 }
 
+// lightcuts/compact_node.h's octahedral unit vector (2 x snorm16).
+vec3 decode_octahedral(uint bits) {
+    vec2 e = unpackSnorm2x16(bits);
+    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (v.z < 0.0) {
+        vec2 sign_not_zero = mix(vec2(1.0), vec2(-1.0), lessThan(e, vec2(0.0)));
+        v.xy = (1.0 - abs(e.yx)) * sign_not_zero;
+    }
+    return normalize(v);
+}
+
 // True when no spot of the cluster can reach x: each spot emits within pi/2 of
 // its direction, every direction lies within beta of the cone axis, so a point
 // seen from the box at more than pi/2 + beta from the axis is dark.
-bool spot_cluster_excluded(GpuNodeBounds nb, vec3 x) {
-    if (!(nb.cone_cos >= -1.0 && nb.cone_cos <= 1.0)) return false;
-    float axis_len = length(nb.cone_axis);
-    if (!(axis_len > 0.0)) return false;
-    float limit = 0.5 * kPi + acos(nb.cone_cos);
+bool spot_cluster_excluded(GpuTreeNode node, vec3 x) {
+    if (!(node.cone_cos >= -1.0 && node.cone_cos <= 1.0)) return false;
+    float limit = 0.5 * kPi + acos(node.cone_cos);
     if (limit >= kPi) return false;
-    float cos_bound = max_cos_to_box(nb.cone_axis / axis_len, x - nb.bbox_max, x - nb.bbox_min);
+    vec3 axis = decode_octahedral(node.cone_axis);
+    float cos_bound = max_cos_to_box(axis, x - node.bbox_max, x - node.bbox_min);
     return acos(clamp(cos_bound, -1.0, 1.0)) > limit + 1e-6;
 }
 
 // Upper bound of G (cosine with the normal included, visibility 1) over every
-// light of a tree node (its record and bounds, loaded once by the caller) at
-// point x with normal n.
-float geometric_bound_of(GpuTreeNode node, GpuNodeBounds nb, vec3 x, vec3 n) {
-    GpuLight rep = node.light;
-    if (kDirectionalLights && rep.type == kLightDirectional) {
+// light of a tree node (the node and its representative `rep`, loaded once by
+// the caller) at point x with normal n.
+float geometric_bound_of(GpuTreeNode node, GpuLight rep, vec3 x, vec3 n) {
+    uint type = node.flags >> kNodeTypeShift;
+    if (kDirectionalLights && type == kLightDirectional) {
         // The box holds the directions d_i; light arrives along -d_i.
-        return max(0.0, max_cos_to_box(n, -nb.bbox_max, -nb.bbox_min));
+        return max(0.0, max_cos_to_box(n, -node.bbox_max, -node.bbox_min));
     }
     // Every light's sphere of influence lies inside the node's radius around
     // the representative; a leaf uses its own range; unbounded stays unbounded.
@@ -74,38 +84,34 @@ float geometric_bound_of(GpuTreeNode node, GpuNodeBounds nb, vec3 x, vec3 n) {
     float radius = leaf ? (rep.range > 0.0 ? rep.range : -1.0) : node.radius;
     if (rep.range <= 0.0) radius = -1.0;
     if (radius >= 0.0 && length(x - rep.position) >= radius) return 0.0;
-    vec3 closest = clamp(x, nb.bbox_min, nb.bbox_max);
+    vec3 closest = clamp(x, node.bbox_min, node.bbox_max);
     float dmin2 = dot(x - closest, x - closest);
     float window = radius >= 0.0 ? range_window(sqrt(dmin2), radius) : 1.0;
     if (!(window > 0.0)) return 0.0;
-    float cos_bound = max_cos_to_box(n, nb.bbox_min - x, nb.bbox_max - x);
+    float cos_bound = max_cos_to_box(n, node.bbox_min - x, node.bbox_max - x);
     if (!(cos_bound > 0.0)) return 0.0;
-    if (kSpotLights && rep.type == kLightSpot && spot_cluster_excluded(nb, x)) return 0.0;
+    if (kSpotLights && type == kLightSpot && spot_cluster_excluded(node, x)) return 0.0;
     return cos_bound * window * inverse_square(dmin2);
-}
-
-float geometric_bound(int i, vec3 x, vec3 n) {
-    return geometric_bound_of(tree_nodes[i], node_bounds[i], x, n);
 }
 
 // Upper bound of f_r at p over every light of a node whose representative has
 // type `type`: the diffuse term plus the lobe at the largest cosine between the
 // mirror direction and a direction into the node's box (cpu_evaluator's
 // material_bound).
-vec3 material_bound_of(uint type, GpuNodeBounds nb, SurfacePoint p) {
+vec3 material_bound_of(uint type, GpuTreeNode node, SurfacePoint p) {
     vec3 f = p.albedo * (1.0 / kPi);
     if (!has_lobe(p)) return f;
     bool directional = kDirectionalLights && type == kLightDirectional;
-    float c = directional ? max_cos_to_box(p.mirror, -nb.bbox_max, -nb.bbox_min)
-                          : max_cos_to_box(p.mirror, nb.bbox_min - p.position, nb.bbox_max - p.position);
+    float c = directional ? max_cos_to_box(p.mirror, -node.bbox_max, -node.bbox_min)
+                          : max_cos_to_box(p.mirror, node.bbox_min - p.position, node.bbox_max - p.position);
     return f + p.specular * glossy_lobe(c, p.exponent);
 }
 
 // Upper bound of f_r x G (visibility 1) per unit intensity over a node's lights.
-vec3 response_bound_of(GpuTreeNode node, GpuNodeBounds nb, SurfacePoint p) {
-    float g = geometric_bound_of(node, nb, p.position, p.normal);
+vec3 response_bound_of(GpuTreeNode node, GpuLight rep, SurfacePoint p) {
+    float g = geometric_bound_of(node, rep, p.position, p.normal);
     if (!(g > 0.0)) return vec3(0.0);
-    return material_bound_of(node.light.type, nb, p) * g;
+    return material_bound_of(node.flags >> kNodeTypeShift, node, p) * g;
 }
 
 #endif

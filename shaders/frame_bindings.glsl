@@ -20,8 +20,6 @@ layout(std430, set = 0, binding = kBindLeafLights) readonly buffer LeafLights { 
 layout(std430, set = 0, binding = kBindTreeNodes) readonly buffer TreeNodes { GpuTreeNode tree_nodes[]; };
 layout(std430, set = 0, binding = kBindClassicLights) readonly buffer ClassicLights { GpuLight classic_lights[]; };
 layout(std430, set = 0, binding = kBindCounters) buffer FrameCounters { GpuFrameCounters counters; };
-// Per-node box and cone for the bound criterion (same order as tree_nodes).
-layout(std430, set = 0, binding = kBindNodeBounds) readonly buffer NodeBounds { GpuNodeBounds node_bounds[]; };
 // The shadow-casting triangles and their BVH (lightcuts/shadow_bvh.h).
 layout(std430, set = 0, binding = kBindBvhNodes) readonly buffer BvhNodes { GpuBvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = kBindShadowTriangles) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };

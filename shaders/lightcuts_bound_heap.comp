@@ -72,21 +72,13 @@ float node_key(int i, SurfacePoint p) {
     GpuTreeNode node = tree_nodes[i];
     if (node.first_child == kEndOfWalk) return 0.0;
     if ((node.flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
-    return cluster_error_bound(node, node_bounds[i], p);
+    return cluster_error_bound(node, p);
 }
 
 vec3 unit_response(int i, SurfacePoint p) {
-    GpuLight unit_light = tree_nodes[i].light;
+    GpuLight unit_light = leaf_lights[tree_nodes[i].representative];
     unit_light.intensity = vec3(1.0);
     return light_radiance(unit_light, p);
-}
-
-// A child whose representative has the parent's parameters has the parent's
-// response: the evaluation is reused (paper Sec. 4.1).
-bool same_emitter(GpuLight a, GpuLight b) {
-    return a.position == b.position && a.direction == b.direction && a.type == b.type &&
-           a.range == b.range && a.spot_cos_outer == b.spot_cos_outer &&
-           a.spot_scale == b.spot_scale;
 }
 
 // Returns the outgoing radiance of the cut (f_r already applied) in `radiance`.
@@ -98,7 +90,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     int size = 0;
     vec3 root_unit = unit_response(0, p);
     heap_push(size, node_key(0, p), 0, root_unit);
-    vec3 total = root_unit * tree_nodes[0].light.intensity;
+    vec3 total = root_unit * tree_nodes[0].intensity;
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
         float key = heap_key[0];
@@ -115,8 +107,8 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         int parent = heap_node[0];
         vec3 parent_unit = heap_unit[0];
         heap_pop(size);
-        GpuLight parent_light = tree_nodes[parent].light;
-        total -= parent_unit * parent_light.intensity;
+        uint parent_representative = tree_nodes[parent].representative;
+        total -= parent_unit * tree_nodes[parent].intensity;
         // Children: first_child, and its escape when that is not the parent's
         // escape (the right sibling of a left child).
         int c0 = tree_nodes[parent].first_child;
@@ -124,16 +116,18 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         bool two = c1 != kEndOfWalk && c1 != tree_nodes[parent].escape;
         for (int c = 0; c < (two ? 2 : 1); ++c) {
             int child = c == 0 ? c0 : c1;
-            GpuLight light = tree_nodes[child].light;
-            vec3 unit = same_emitter(light, parent_light) ? parent_unit
-                                                          : unit_response(child, p);
-            total += unit * light.intensity;
+            // A child with its parent's representative has its parent's
+            // response: the evaluation is reused (paper Sec. 4.1).
+            GpuTreeNode child_node = tree_nodes[child];
+            vec3 unit = child_node.representative == parent_representative ? parent_unit
+                                                                           : unit_response(child, p);
+            total += unit * child_node.intensity;
             heap_push(size, node_key(child, p), child, unit);
         }
     }
     // The running total drifts; sum afresh.
     for (int k = 0; k < size; ++k) {
-        radiance += heap_unit[k] * tree_nodes[heap_node[k]].light.intensity;
+        radiance += heap_unit[k] * tree_nodes[heap_node[k]].intensity;
         cut.hash += cut_hash_term(uint(heap_node[k]));
     }
     cut.size = uint(size);

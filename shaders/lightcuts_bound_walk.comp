@@ -46,7 +46,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
         bool mixed = (node.flags & kNodeMixedTypes) != 0u;
         float key = 0.0;
         if (!leaf && !mixed)
-            key = cluster_error_bound(node, node_bounds[i], p);
+            key = cluster_error_bound(node, p);
         refine = !leaf && (mixed || key > tau);
         if (!refine) {
             waiting = true;
@@ -54,7 +54,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                if (shade) pass.radiance += light_radiance(node.light, p);
+                if (shade) pass.radiance += light_radiance(cluster_light(node), p);
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);

@@ -19,6 +19,14 @@ struct Cut {
     uint hash;
 };
 
+// A node evaluated as a cluster: its representative leaf light with the
+// cluster's intensity.
+GpuLight cluster_light(GpuTreeNode node) {
+    GpuLight light = leaf_lights[node.representative];
+    light.intensity = node.intensity;
+    return light;
+}
+
 void add_to_cut(inout Cut cut, uint node_index, GpuLight cluster, SurfacePoint p) {
     cut.radiance += light_radiance(cluster, p);
     cut.size += 1u;

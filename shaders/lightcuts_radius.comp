@@ -17,7 +17,7 @@ bool refine_by_radius(int i, vec3 x) {
     if ((tree_nodes[i].flags & kNodeMixedTypes) != 0u) return true;
     float radius = tree_nodes[i].radius;
     if (radius < 0.0) return true;
-    vec3 d = x - tree_nodes[i].light.position;
+    vec3 d = x - leaf_lights[tree_nodes[i].representative].position;
     return dot(d, d) < radius * radius;
 }
 
@@ -36,7 +36,7 @@ void radius_walk_step(inout int i, inout bool waiting, inout int resume, inout C
     if (waiting && i == resume) waiting = false;
     bool refine = !waiting && refine_by_radius(i, p.position);
     if (!waiting && !refine) {
-        add_to_cut(cut, uint(i), tree_nodes[i].light, p);
+        add_to_cut(cut, uint(i), cluster_light(tree_nodes[i]), p);
         waiting = true;
         resume = tree_nodes[i].escape;
     }

@@ -45,6 +45,18 @@ LightTreeNode node(int32_t left, int32_t right) {
     return n;
 }
 
+// Each inner node represented by its first child's representative, as the
+// builders do (children follow their parents, so one backwards pass).
+LightTree with_representatives(LightTree tree) {
+    for (size_t i = tree.nodes.size(); i-- > 0;) {
+        LightTreeNode& n = tree.nodes[i];
+        n.representative = n.is_leaf() ? int32_t(i)
+                                       : tree.nodes[size_t(n.left != kNoChild ? n.left : n.right)]
+                                             .representative;
+    }
+    return tree;
+}
+
 TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
     //        0
     //      1   2
@@ -57,7 +69,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
     // Pre-order: 0 1 3 4 2 5 6.
     EXPECT_EQ(*escape, (std::vector<int32_t>{-1, 2, -1, 4, 2, 6, -1}));
 
-    Result<GpuTree> gpu = make_gpu_tree(tree);
+    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->nodes[0].first_child, 1);
     EXPECT_EQ(gpu->nodes[1].first_child, 3);
@@ -93,7 +105,7 @@ TEST(GpuLayout, WalkProducesTheExpectedCuts) {
     LightTree tree;
     tree.nodes = {node(1, 2),   node(3, 4),  node(5, -1), node(-1, -1),
                   node(-1, -1), node(6, -1), node(-1, -1)};
-    Result<GpuTree> gpu = make_gpu_tree(tree);
+    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     std::vector<bool> all(7, true), none(7, false);
     EXPECT_EQ(walk(*gpu, all), (std::vector<int32_t>{3, 4, 6}));
@@ -126,6 +138,12 @@ TEST(GpuLayout, RejectsMalformedTrees) {
     Result<GpuTree> g = make_gpu_tree(not_finite);
     ASSERT_FALSE(g.ok());
     EXPECT_NE(g.error().find("intensity"), std::string::npos) << g.error();
+    LightTree inner_representative;
+    inner_representative.nodes = {node(1, 2), node(-1, -1), node(-1, -1)};
+    inner_representative.nodes[0].representative = 0;  // itself, not a leaf
+    g = make_gpu_tree(inner_representative);
+    ASSERT_FALSE(g.ok());
+    EXPECT_NE(g.error().find("not a leaf"), std::string::npos) << g.error();
 }
 
 TEST(GpuLayout, MillionNodeChainNeedsNoRecursion) {
@@ -137,7 +155,7 @@ TEST(GpuLayout, MillionNodeChainNeedsNoRecursion) {
         chain.nodes[i].left = i + 1;
         chain.nodes[i].right = i + 2;
     }
-    Result<GpuTree> gpu = make_gpu_tree(chain);
+    Result<GpuTree> gpu = make_gpu_tree(with_representatives(chain));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->depth, uint32_t(kNodes / 2));
     EXPECT_EQ(gpu->leaves.size(), size_t(kNodes / 2 + 1));

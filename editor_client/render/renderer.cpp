@@ -167,7 +167,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
     std::vector<GpuLight> leaves;
     std::vector<GpuLight> classic;
     std::vector<GpuTreeNode> nodes;
-    std::vector<GpuNodeBounds> bounds;
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
         const SceneLight& light = scene_.lights[i];
         LC_RETURN_IF_ERROR(validate_scene_light(light, i));
@@ -184,7 +183,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
         leaves = std::move(gpu_tree->leaves);
         nodes = std::move(gpu_tree->nodes);
         tree_depth_ = gpu_tree->depth;
-        bounds = make_gpu_node_bounds(*tree);
     }
     if (leaves.size() > UINT32_MAX || nodes.size() > size_t(INT32_MAX) ||
         classic.size() > UINT32_MAX)
@@ -193,7 +191,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
     LC_RETURN_IF_ERROR(upload_storage(leaf_lights_, std::as_bytes(std::span(leaves))));
     LC_RETURN_IF_ERROR(upload_storage(classic_lights_, std::as_bytes(std::span(classic))));
     LC_RETURN_IF_ERROR(upload_storage(tree_nodes_, std::as_bytes(std::span(nodes))));
-    LC_RETURN_IF_ERROR(upload_storage(node_bounds_, std::as_bytes(std::span(bounds))));
     leaf_count_ = uint32_t(leaves.size());
     classic_count_ = uint32_t(classic.size());
     node_count_ = uint32_t(nodes.size());
@@ -370,7 +367,6 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindTreeNodes, tree_nodes_.handle())
         .storage_buffer(kBindClassicLights, classic_lights_.handle())
         .storage_buffer(kBindCounters, counters_.handle())
-        .storage_buffer(kBindNodeBounds, node_bounds_.handle())
         .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
         .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
         .storage_buffer(kBindWalkStates, targets_.walk_states.handle())

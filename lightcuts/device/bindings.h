@@ -20,11 +20,10 @@ LC_CONST uint kBindLeafLights = 7u;
 LC_CONST uint kBindTreeNodes = 8u;
 LC_CONST uint kBindClassicLights = 9u;
 LC_CONST uint kBindCounters = 10u;
-LC_CONST uint kBindNodeBounds = 11u;
-LC_CONST uint kBindBvhNodes = 12u;
-LC_CONST uint kBindShadowTriangles = 13u;
-LC_CONST uint kBindWalkStates = 14u;
-LC_CONST uint kFrameBindingCount = 15u;
+LC_CONST uint kBindBvhNodes = 11u;
+LC_CONST uint kBindShadowTriangles = 12u;
+LC_CONST uint kBindWalkStates = 13u;
+LC_CONST uint kFrameBindingCount = 14u;
 
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;

@@ -17,17 +17,19 @@ LC_CONST uint kLightDirectional = 2u;
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;
 
-// GpuTreeNode::flags
+// GpuTreeNode::flags: kNodeMixedTypes, and the node's LightType from bit
+// kNodeTypeShift on.
 LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
+LC_CONST uint kNodeTypeShift = 8u;
 
 // One light, as the shading model evaluates it (shading_model.h): the leaf
-// lights, the classic lights and the representative of every tree node.
+// lights (every tree node's representative among them) and the classic lights.
 struct LC_ALIGN16 GpuLight {
     vec3 position LC_DEFAULT(vec3(0.0f));
     float range LC_DEFAULT(0.0f);  // 0: unbounded
     vec3 direction LC_DEFAULT(vec3(0.0f, 0.0f, -1.0f));
     uint type LC_DEFAULT(0u);                    // LightType
-    vec3 intensity LC_DEFAULT(vec3(0.0f));  // RGB: color x intensity (candela or lux), or a cluster's sum
+    vec3 intensity LC_DEFAULT(vec3(0.0f));  // RGB: color x intensity (candela or lux)
     float spot_cos_outer LC_DEFAULT(0.0f);
     float spot_cos_inner LC_DEFAULT(1.0f);
     // 1 / max(cos_inner - cos_outer, kSpotMinCosDelta), precomputed (shading_model.h).
@@ -36,24 +38,24 @@ struct LC_ALIGN16 GpuLight {
     uint pad1 LC_DEFAULT(0u);
 };
 
-// A tree node for the stackless walk: the node evaluated as a cluster, plus its
-// first child and pre-order escape (the walk needs nothing else to move).
+// A light-tree node as the walks read it, 64 bytes (pbrt-v4's
+// CompactLightBounds is the model; made and decoded in lightcuts/compact_node.h).
+// A node evaluated as a cluster is its representative leaf light
+// (leaf_lights[representative]) with the cluster's intensity, so no light
+// parameter is quantised; the bound criterion reads the box and the cone,
+// whose axis is octahedral-packed and whose angle is widened to match.
 struct LC_ALIGN16 GpuTreeNode {
-    GpuLight light;
-    int first_child LC_DEFAULT(kEndOfWalk);  // left when present, else right; -1 for leaves
-    int escape LC_DEFAULT(kEndOfWalk);       // next node in pre-order after this subtree
-    float radius LC_DEFAULT(-1.0f);          // influence radius; < 0 unbounded
-    uint flags LC_DEFAULT(0u);
-};
-
-// Per-node bounds for the paper's error-bound criterion.
-struct LC_ALIGN16 GpuNodeBounds {
+    vec3 intensity LC_DEFAULT(vec3(0.0f));  // the cluster's RGB intensity
+    uint representative LC_DEFAULT(0u);     // index into the leaf lights
+    // The leaves' positions (their directions for directional lights).
     vec3 bbox_min LC_DEFAULT(vec3(0.0f));
-    float cone_cos LC_DEFAULT(1.0f);
+    int first_child LC_DEFAULT(kEndOfWalk);  // left when present, else right; -1 for leaves
     vec3 bbox_max LC_DEFAULT(vec3(0.0f));
-    float pad0 LC_DEFAULT(0.0f);
-    vec3 cone_axis LC_DEFAULT(vec3(0.0f, 0.0f, -1.0f));
-    float pad1 LC_DEFAULT(0.0f);
+    int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
+    float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
+    uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
+    float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
+    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | type << kNodeTypeShift
 };
 
 // Counters the lighting pass accumulates with atomics (reset every frame).
