@@ -22,7 +22,7 @@
 // far below it, up to kWalkShrink times coarser: found by the accuracy sweep.) Interior nodes are never evaluated, so there is nothing for
 // a child to reuse; cut nodes are evaluated once per pass.
 //
-// shaders/lightcuts.comp implements the same passes (constants come from here
+// shaders/lightcuts_bound_walk.comp implements the same passes (constants come from here
 // as specialization constants), shared by a subgroup; a pass the device's
 // loop limit cuts short runs again in the next dispatch (the search kept per
 // pixel in GpuWalkState between them).

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "lightcuts/bound_walk.h"
+#include "lightcuts/compact_node.h"
 #include "lightcuts/cut_traversal.h"
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "lightcuts/device/cut_hash.glsl.h"
@@ -61,13 +62,15 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     c.directional = node.type == LightType::kDirectional;
     c.spot = node.type == LightType::kSpot;
     c.leaf = node.is_leaf();
-    c.bbox_min = glm::dvec3(node.bbox_min);
-    c.bbox_max = glm::dvec3(node.bbox_max);
+    // The box and cone the shaders see: the compact node's (its cone widened by the packing).
+    const CompactBounds bounds = compact_bounds(node);
+    c.bbox_min = bounds.bbox_min;
+    c.bbox_max = bounds.bbox_max;
     c.position = glm::dvec3(node.position);
     c.range = node.range;
     c.radius = node.radius;
-    c.cone_axis = glm::dvec3(node.cone_axis);
-    c.cone_cos = node.cone_cos;
+    c.cone_axis = bounds.cone_axis;
+    c.cone_cos = bounds.cone_cos;
     return c;
 }
 

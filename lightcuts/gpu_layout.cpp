@@ -4,9 +4,14 @@
 #include <cmath>
 #include <string>
 
+#include "lightcuts/compact_node.h"
 #include "lightcuts/shading_model.h"
 
 namespace lc {
+
+static_assert(kLightPoint == uint(LightType::kPoint) && kLightSpot == uint(LightType::kSpot) &&
+              kLightDirectional == uint(LightType::kDirectional));
+
 namespace {
 
 float spot_scale(double cos_inner, double cos_outer) {
@@ -67,7 +72,7 @@ GpuLight make_gpu_cluster_light(const LightTreeNode& node) {
 Result<std::vector<int32_t>> derive_escape_indices(const LightTree& tree) {
     const size_t n = tree.nodes.size();
     if (n > size_t(INT32_MAX)) return make_error("tree has too many nodes for 32-bit indices");
-    std::vector<int32_t> escape(n, kGpuEndOfWalk);
+    std::vector<int32_t> escape(n, kEndOfWalk);
     std::vector<uint8_t> has_parent(n, 0);
     // Every child index is checked before any escape is propagated through it.
     for (size_t i = 0; i < n; ++i) {
@@ -102,18 +107,28 @@ Result<GpuTree> make_gpu_tree(const LightTree& tree) {
     if (!escape) return make_error(escape.error());
     GpuTree gpu;
     const size_t n = tree.nodes.size();
+    // Each leaf's index among the leaves (leaf_lights), where representatives point.
+    constexpr uint32_t kNotALeaf = UINT32_MAX;
+    std::vector<uint32_t> leaf_index(n, kNotALeaf);
+    uint32_t leaf_count = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (tree.nodes[i].is_leaf()) leaf_index[i] = leaf_count++;
     gpu.nodes.resize(n);
+    gpu.leaves.reserve(leaf_count);
     std::vector<uint32_t> depth(n, 0);
     for (size_t i = 0; i < n; ++i) {
         const LightTreeNode& node = tree.nodes[i];
         Status values = check_node_values(node, i);
         if (!values) return make_error(values.error());
-        GpuTreeNode& out = gpu.nodes[i];
-        out.light = make_gpu_cluster_light(node);
-        out.first_child = node.left != kNoChild ? node.left : node.right;
-        out.escape = (*escape)[i];
-        out.radius = node.radius;
-        out.flags = node.mixed_types ? kGpuNodeMixedTypes : 0u;
+        // A leaf represents itself.
+        const int32_t representative = node.is_leaf() ? int32_t(i) : node.representative;
+        if (representative < 0 || size_t(representative) >= n ||
+            leaf_index[size_t(representative)] == kNotALeaf)
+            return make_error("tree node " + std::to_string(i) + ": representative " +
+                              std::to_string(representative) + " is not a leaf");
+        const int32_t first_child = node.left != kNoChild ? node.left : node.right;
+        gpu.nodes[i] = make_compact_node(node, leaf_index[size_t(representative)], first_child,
+                                         (*escape)[i]);
         for (int32_t child : {node.left, node.right})
             if (child != kNoChild) depth[child] = depth[i] + 1;
         gpu.depth = std::max(gpu.depth, depth[i]);
@@ -121,22 +136,10 @@ Result<GpuTree> make_gpu_tree(const LightTree& tree) {
             if (node.mixed_types)
                 return make_error("tree node " + std::to_string(i) +
                                   " is a leaf marked as joining light types");
-            gpu.leaves.push_back(out.light);
+            gpu.leaves.push_back(make_gpu_cluster_light(node));
         }
     }
     return gpu;
-}
-
-std::vector<GpuNodeBounds> make_gpu_node_bounds(const LightTree& tree) {
-    std::vector<GpuNodeBounds> bounds(tree.nodes.size());
-    for (size_t i = 0; i < tree.nodes.size(); ++i) {
-        const LightTreeNode& node = tree.nodes[i];
-        bounds[i].bbox_min = node.bbox_min;
-        bounds[i].bbox_max = node.bbox_max;
-        bounds[i].cone_axis = node.cone_axis;
-        bounds[i].cone_cos = node.cone_cos;
-    }
-    return bounds;
 }
 
 }  // namespace lc

@@ -350,7 +350,7 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
     }
     for (size_t i = 0; i < node_count; ++i) {
         const size_t escape = i + subtree_size[i];
-        bvh.nodes_[i].escape = escape == node_count ? kGpuEndOfWalk : static_cast<int32_t>(escape);
+        bvh.nodes_[i].escape = escape == node_count ? kEndOfWalk : static_cast<int32_t>(escape);
     }
 
     // The triangles in leaf order: floats (vertex and edges) for the shaders,
@@ -381,7 +381,7 @@ bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
     int32_t i = 0;
     // Every step moves forward (to i + 1 or to an escape past the subtree), so the
     // walk visits each node at most once.
-    while (i != kGpuEndOfWalk) {
+    while (i != kEndOfWalk) {
         const GpuBvhNode& node = nodes_[static_cast<size_t>(i)];
         if (!segment_touches_box(origin, direction, inv_direction, t_max, node)) {
             i = node.escape;

@@ -5,42 +5,18 @@
 // its escape: the next node in pre-order after its subtree), so an any-hit
 // traversal needs no stack at all: hit an inner node -> go to index + 1 (its
 // first child), hit a leaf -> test its triangles then go to escape, miss ->
-// go to escape; the walk ends at kGpuEndOfWalk.
+// go to escape; the walk ends at kEndOfWalk. GpuBvhNode and GpuShadowTriangle
+// are in lightcuts/device/gpu_structs.h, shared with the shaders.
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/scene.h"
 
 namespace lc {
-
-// One BVH node as the shaders read it (std430, mirrored in shaders/gpu_layout.glsl).
-struct alignas(16) GpuBvhNode {
-    glm::vec3 bbox_min{0.0f};
-    int32_t escape = kGpuEndOfWalk;  // next node in pre-order after this subtree
-    glm::vec3 bbox_max{0.0f};
-    // Leaves: first triangle << kBvhLeafCountBits | triangle count (1..kBvhMaxLeafSize);
-    // inner nodes: 0 (a count of 0 means "inner": its first child is the next node).
-    uint32_t triangles = 0;
-};
-
-// One triangle as the shaders test it (Moller-Trumbore: a vertex and two edges).
-struct alignas(16) GpuShadowTriangle {
-    glm::vec3 v0{0.0f};
-    float pad0 = 0.0f;
-    glm::vec3 edge1{0.0f};  // v1 - v0
-    float pad1 = 0.0f;
-    glm::vec3 edge2{0.0f};  // v2 - v0
-    float pad2 = 0.0f;
-};
-
-inline constexpr uint32_t kBvhLeafCountBits = 3;
-inline constexpr uint32_t kBvhMaxLeafSize = 4;  // < 2^kBvhLeafCountBits
-static_assert(sizeof(GpuBvhNode) == 32);
-static_assert(sizeof(GpuShadowTriangle) == 48);
 
 // Statistics for logs and stats JSON.
 struct ShadowBvhStats {

@@ -16,7 +16,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # Vulkan on the CPU (lavapipe), shaders, window
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
-  glslang-tools spirv-tools libglfw3-dev libimgui-dev
+  glslang-tools spirv-tools spirv-cross libglfw3-dev libimgui-dev
   # headless window tests, plots, test certificates for TLS
   xvfb xauth python3-matplotlib python3-numpy openssl
 )

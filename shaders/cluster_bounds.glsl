@@ -9,26 +9,38 @@
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "material_model.glsl"
 
-// The GPU node as the bounds see it (its record and bounds, loaded once by the
-// caller); effects the scene lacks compile away.
-ClusterShape cluster_shape_of(GpuTreeNode node, GpuNodeBounds nb) {
+// lightcuts/compact_node.h's octahedral unit vector (2 x snorm16).
+vec3 decode_octahedral(uint bits) {
+    vec2 e = unpackSnorm2x16(bits);
+    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (v.z < 0.0) {
+        vec2 sign_not_zero = mix(vec2(1.0), vec2(-1.0), lessThan(e, vec2(0.0)));
+        v.xy = (1.0 - abs(e.yx)) * sign_not_zero;
+    }
+    return normalize(v);
+}
+
+// The compact node (and its representative leaf `rep`, both loaded once by the
+// caller) as the bounds see it; effects the scene lacks compile away.
+ClusterShape cluster_shape_of(GpuTreeNode node, GpuLight rep) {
+    uint type = node.flags >> kNodeTypeShift;
     ClusterShape c;
-    c.directional = kDirectionalLights && node.light.type == kLightDirectional;
-    c.spot = kSpotLights && node.light.type == kLightSpot;
+    c.directional = kDirectionalLights && type == kLightDirectional;
+    c.spot = kSpotLights && type == kLightSpot;
     c.leaf = node.first_child == kEndOfWalk;
-    c.bbox_min = nb.bbox_min;
-    c.bbox_max = nb.bbox_max;
-    c.position = node.light.position;
-    c.range = node.light.range;
+    c.bbox_min = node.bbox_min;
+    c.bbox_max = node.bbox_max;
+    c.position = rep.position;
+    c.range = rep.range;
     c.radius = node.radius;
-    c.cone_axis = nb.cone_axis;
-    c.cone_cos = nb.cone_cos;
+    c.cone_axis = decode_octahedral(node.cone_axis);
+    c.cone_cos = node.cone_cos;
     return c;
 }
 
 // Upper bound of f_r x G (visibility 1) per unit intensity over a node's lights.
-vec3 response_bound_of(GpuTreeNode node, GpuNodeBounds nb, SurfacePoint p) {
-    return response_bound(cluster_shape_of(node, nb), p.albedo, p.specular, p.exponent, p.mirror,
+vec3 response_bound_of(GpuTreeNode node, GpuLight rep, SurfacePoint p) {
+    return response_bound(cluster_shape_of(node, rep), p.albedo, p.specular, p.exponent, p.mirror,
                           p.position, p.normal);
 }
 

@@ -5,7 +5,7 @@
 #define LC_COMMON_LIGHTING_GLSL
 
 #include "effects.glsl"
-#include "gpu_layout.glsl"
+#include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/device/shading.glsl.h"
 
 // The GPU light as G sees it; effects the scene lacks compile away.

@@ -9,11 +9,9 @@
 
 #include "frame_bindings.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
+layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
 
-const uint kViewCuts = 0u;
-const uint kViewCutSize = 1u;
-layout(constant_id = 9) const uint kView = kViewCuts;
+layout(constant_id = kSpecCutView) const uint kView = kCutViewCuts;
 
 // Re-mixes the (additive) cut hash so similar sums get unrelated colours.
 uint mix_hash(uint h) {
@@ -52,14 +50,14 @@ void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
     vec3 colour = vec3(0.0);
-    if (kView == kViewCutSize && uint(pixel.y) + frame.scale_bar_rows >= frame.height) {
+    if (kView == kCutViewCutSize && uint(pixel.y) + frame.scale_bar_rows >= frame.height) {
         // The scale bar, with a one-pixel black line above it.
         bool separator = uint(pixel.y) + frame.scale_bar_rows == frame.height;
         float t = frame.width > 1u ? float(pixel.x) / float(frame.width - 1u) : 0.0;
         colour = separator ? vec3(0.0) : heat_colour(t);
     } else if (imageLoad(gbuffer_position, pixel).w != 0.0) {
         uvec2 cut = imageLoad(cut_image, pixel).xy;
-        if (kView == kViewCuts) {
+        if (kView == kCutViewCuts) {
             colour = cut_colour(cut.y);
         } else {
             colour = heat_colour(float(cut.x) / float(max(counters.max_cut, 1u)));

@@ -5,12 +5,14 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "draw_constants.glsl"
+#include "lightcuts/device/bindings.h"
+#include "lightcuts/device/spec_constants.h"
 
-layout(constant_id = 10) const bool kTextures = true;
+layout(constant_id = kSpecTextures) const bool kTextures = true;
 
-layout(set = 0, binding = 0) uniform sampler2D base_color_texture;
-layout(set = 0, binding = 1) uniform sampler2D emissive_texture;
-layout(set = 0, binding = 2) uniform sampler2D metallic_roughness_texture;  // linear: G, B
+layout(set = 0, binding = kBindBaseColorTexture) uniform sampler2D base_color_texture;
+layout(set = 0, binding = kBindEmissiveTexture) uniform sampler2D emissive_texture;
+layout(set = 0, binding = kBindMetallicRoughnessTexture) uniform sampler2D metallic_roughness_texture;  // linear: G, B
 
 layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;

@@ -5,7 +5,7 @@
 // compares reference mode's lighting pass with this kernel's rate.
 #extension GL_GOOGLE_include_directive : require
 
-#include "gpu_layout.glsl"
+#include "lightcuts/device/gpu_structs.h"
 
 layout(local_size_x_id = 0, local_size_y_id = 1) in;
 

@@ -5,7 +5,6 @@
 
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
-#include "loop_limits.glsl"
 #include "material_model.glsl"
 #include "shadow_rays.glsl"
 

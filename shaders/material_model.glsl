@@ -8,7 +8,7 @@
 
 // Off when no drawn material has a lobe (scene_effects.cpp): f_r is then the
 // constant diffuse / pi and the lobe's code compiles away.
-layout(constant_id = 20) const bool kSpecular = true;
+layout(constant_id = kSpecSpecular) const bool kSpecular = true;
 
 struct SurfacePoint {
     vec3 position;

@@ -9,9 +9,8 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
-#include "loop_limits.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
+layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

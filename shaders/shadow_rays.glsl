@@ -12,14 +12,8 @@
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 
-layout(constant_id = 19) const bool kShadows = false;
+layout(constant_id = kSpecShadows) const bool kShadows = false;
 
-// Node visits per loop iteration (llvmpipe's loop limiter counts iterations).
-// One: the walk is inlined wherever a light is shaded (four times in the
-// reference's loop body, eight in the radius walk's), and more copies made
-// lavapipe's shader compile take seconds and the bound walk 2x slower
-// (measured: 4 visits per iteration, 16,384 lights, 2.4 s against 1.1 s).
-const uint kShadowUnroll = 1u;
 // Beyond any scene: the far end of a ray towards a directional light.
 const float kShadowRayFar = 1e30;
 
@@ -74,7 +68,7 @@ void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
     // A constant trip count, so the compiler unrolls it: a loop here would
     // spend llvmpipe's loop budget (Renderer::reference_chunk counts node
     // visits only).
-    for (uint k = 0u; k < 4u; ++k) {
+    for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
         if (k < count) {
             GpuShadowTriangle tri = shadow_triangles[first + k];
             if (enter && ray_hits_triangle(origin, direction, t_max, tri)) hit = true;

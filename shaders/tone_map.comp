@@ -5,7 +5,7 @@
 #include "frame_bindings.glsl"
 #include "tone_mapping.glsl"
 
-layout(local_size_x_id = 0, local_size_y_id = 1) in;
+layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

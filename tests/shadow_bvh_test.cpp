@@ -300,7 +300,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
         EXPECT_TRUE(nodes.empty());
         return;
     }
-    ASSERT_EQ(nodes[0].escape, kGpuEndOfWalk);
+    ASSERT_EQ(nodes[0].escape, kEndOfWalk);
 
     // The same triangles, as a multiset; then each one's original vertices.
     std::vector<std::pair<TriangleKey, size_t>> expected;
@@ -326,7 +326,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
     };
     std::vector<uint8_t> node_seen(nodes.size(), 0);
     std::vector<uint8_t> triangle_seen(kept_count, 0);
-    std::vector<Visit> stack{{0, kGpuEndOfWalk, 0, -1}};
+    std::vector<Visit> stack{{0, kEndOfWalk, 0, -1}};
     uint32_t max_depth = 0;
     size_t visited = 0;
     while (!stack.empty()) {
@@ -338,7 +338,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
         ++visited;
         const GpuBvhNode& node = nodes[visit.node];
         ASSERT_EQ(node.escape, visit.expected_escape) << "node " << visit.node;
-        ASSERT_TRUE(node.escape == kGpuEndOfWalk || node.escape > static_cast<int64_t>(visit.node));
+        ASSERT_TRUE(node.escape == kEndOfWalk || node.escape > static_cast<int64_t>(visit.node));
         ASSERT_TRUE(node.bbox_min.x <= node.bbox_max.x && node.bbox_min.y <= node.bbox_max.y &&
                     node.bbox_min.z <= node.bbox_max.z);
         if (visit.parent >= 0) {
@@ -356,7 +356,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
             const int64_t right = nodes[left].escape;
             ASSERT_GT(right, static_cast<int64_t>(left)) << "inner node " << visit.node;
             ASSERT_LT(right, static_cast<int64_t>(nodes.size()));
-            if (node.escape != kGpuEndOfWalk) {
+            if (node.escape != kEndOfWalk) {
                 ASSERT_LT(right, node.escape);
             }
             const int64_t me = static_cast<int64_t>(visit.node);
@@ -492,7 +492,7 @@ TEST(ShadowBvhTest, OneTriangleIsOneLeaf) {
     const ShadowBvh bvh = ShadowBvh::build(tris);
     expect_valid_layout(bvh, tris);
     ASSERT_EQ(bvh.gpu_nodes().size(), 1u);
-    EXPECT_EQ(bvh.gpu_nodes()[0].escape, kGpuEndOfWalk);
+    EXPECT_EQ(bvh.gpu_nodes()[0].escape, kEndOfWalk);
     EXPECT_EQ(bvh.gpu_nodes()[0].triangles, (0u << kBvhLeafCountBits) | 1u);
     EXPECT_EQ(bvh.stats().depth, 0u);
     EXPECT_EQ(bvh.gpu_triangles()[0].v0, glm::vec3(0, 0, 1));
@@ -910,8 +910,8 @@ bool float_walk(const ShadowBvh& bvh, const glm::vec3& origin, const glm::vec3& 
         if (safe[a] == 0.0f) safe[a] = 1e-30f;
     const glm::vec3 inv = 1.0f / safe;
     const auto& nodes = bvh.gpu_nodes();
-    int32_t i = nodes.empty() ? kGpuEndOfWalk : 0;
-    while (i != kGpuEndOfWalk) {
+    int32_t i = nodes.empty() ? kEndOfWalk : 0;
+    while (i != kEndOfWalk) {
         const GpuBvhNode& node = nodes[static_cast<size_t>(i)];
         const glm::vec3 t0 = (node.bbox_min - origin) * inv;
         const glm::vec3 t1 = (node.bbox_max - origin) * inv;

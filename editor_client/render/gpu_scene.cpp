@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "lightcuts/device/bindings.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
@@ -116,8 +117,8 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     if (!sampler) return make_error(sampler.error());
     gpu.sampler_ = std::move(sampler).value();
 
-    std::array<VkDescriptorSetLayoutBinding, 3> bindings{};
-    for (uint32_t b = 0; b < 3; ++b) {
+    std::array<VkDescriptorSetLayoutBinding, kMaterialBindingCount> bindings{};
+    for (uint32_t b = 0; b < kMaterialBindingCount; ++b) {
         bindings[b].binding = b;
         bindings[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         bindings[b].descriptorCount = 1;
@@ -133,7 +134,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     materials.push_back(Material{});
     const uint32_t set_count = uint32_t(materials.size());
     std::array<VkDescriptorPoolSize, 1> sizes{
-        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 * set_count}};
+        VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaterialBindingCount * set_count}};
     Result<vk::DescriptorPool> pool = vk::DescriptorPool::create(device.handle(), set_count, sizes);
     if (!pool) return make_error(pool.error());
     gpu.material_pool_ = std::move(pool).value();
@@ -159,9 +160,11 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         if (!set) return make_error(set.error());
         out.set = *set;
         vk::DescriptorWriter(out.set)
-            .sampled_image(0, gpu.textures_[base].view(), gpu.sampler_.handle())
-            .sampled_image(1, gpu.textures_[emissive].view(), gpu.sampler_.handle())
-            .sampled_image(2, gpu.textures_[metallic_roughness].view(), gpu.sampler_.handle())
+            .sampled_image(kBindBaseColorTexture, gpu.textures_[base].view(), gpu.sampler_.handle())
+            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(),
+                           gpu.sampler_.handle())
+            .sampled_image(kBindMetallicRoughnessTexture, gpu.textures_[metallic_roughness].view(),
+                           gpu.sampler_.handle())
             .update(device.handle());
         gpu.materials_.push_back(out);
     }

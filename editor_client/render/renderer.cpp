@@ -12,6 +12,9 @@
 #include <cstring>
 
 #include "lightcuts/bound_walk.h"
+#include "lightcuts/device/bindings.h"
+#include "lightcuts/device/limits.h"
+#include "lightcuts/device/spec_constants.h"
 #include "editor_client/vk/barriers.h"
 #include "lightcuts/status_macros.h"
 #include "protocol/channel_records.h"
@@ -20,57 +23,14 @@
 #include "cut_view_comp.spv.h"
 #include "gbuffer_frag.spv.h"
 #include "gbuffer_vert.spv.h"
-#include "lightcuts_comp.spv.h"
+#include "lightcuts_bound_heap_comp.spv.h"
+#include "lightcuts_bound_walk_comp.spv.h"
+#include "lightcuts_radius_comp.spv.h"
 #include "reference_comp.spv.h"
 #include "tone_map_comp.spv.h"
 
 namespace lc::client {
 namespace {
-
-// Specialization constant ids (shaders/effects.glsl, lightcuts.comp, cut_view.comp, gbuffer.frag).
-enum SpecId : uint32_t {
-    kSpecWorkgroupX = 0,
-    kSpecWorkgroupY = 1,
-    kSpecPointLights = 2,
-    kSpecSpotLights = 3,
-    kSpecDirectionalLights = 4,
-    kSpecRangeWindow = 5,
-    kSpecClassicLights = 6,
-    kSpecEmissive = 7,
-    kSpecCriterion = 8,  // lightcuts.comp: radius or bound
-    kSpecCutView = 9,
-    kSpecTextures = 10,
-    kSpecErrorRatio = 11,  // lightcuts.comp, bound criterion (float bits)
-    kSpecMaxCut = 12,      // lightcuts.comp, bound criterion: heap capacity
-    kSpecBoundSearch = 13,  // lightcuts.comp: walk or heap (bound_walk.h)
-    kSpecWalkMaxCut = 14,
-    kSpecWalkMaxPasses = 15,
-    kSpecWalkShrink = 16,  // float bits
-    kSpecWalkMargin = 17,  // float bits
-    kSpecWalkBisections = 18,
-    kSpecShadows = 19,  // shadow_rays.glsl
-    kSpecSpecular = 20,  // material_model.glsl
-};
-
-// Bindings of the compute passes' set (shaders/frame_bindings.glsl).
-enum FrameBinding : uint32_t {
-    kBindPosition = 0,
-    kBindNormal = 1,
-    kBindAlbedo = 2,
-    kBindEmissive = 3,
-    kBindHdr = 4,
-    kBindCut = 5,
-    kBindDisplay = 6,
-    kBindLeafLights = 7,
-    kBindTreeNodes = 8,
-    kBindClassicLights = 9,
-    kBindCounters = 10,
-    kBindNodeBounds = 11,
-    kBindBvhNodes = 12,
-    kBindShadowTriangles = 13,
-    kBindWalkStates = 14,
-    kFrameBindingCount = 15,
-};
 
 // Timestamp slots: start, then the end of each pass.
 enum Timestamp : uint32_t {
@@ -207,7 +167,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
     std::vector<GpuLight> leaves;
     std::vector<GpuLight> classic;
     std::vector<GpuTreeNode> nodes;
-    std::vector<GpuNodeBounds> bounds;
     for (size_t i = 0; i < scene_.lights.size(); ++i) {
         const SceneLight& light = scene_.lights[i];
         LC_RETURN_IF_ERROR(validate_scene_light(light, i));
@@ -224,7 +183,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
         leaves = std::move(gpu_tree->leaves);
         nodes = std::move(gpu_tree->nodes);
         tree_depth_ = gpu_tree->depth;
-        bounds = make_gpu_node_bounds(*tree);
     }
     if (leaves.size() > UINT32_MAX || nodes.size() > size_t(INT32_MAX) ||
         classic.size() > UINT32_MAX)
@@ -233,7 +191,6 @@ Status Renderer::upload_lights(const LightTree* tree) {
     LC_RETURN_IF_ERROR(upload_storage(leaf_lights_, std::as_bytes(std::span(leaves))));
     LC_RETURN_IF_ERROR(upload_storage(classic_lights_, std::as_bytes(std::span(classic))));
     LC_RETURN_IF_ERROR(upload_storage(tree_nodes_, std::as_bytes(std::span(nodes))));
-    LC_RETURN_IF_ERROR(upload_storage(node_bounds_, std::as_bytes(std::span(bounds))));
     leaf_count_ = uint32_t(leaves.size());
     classic_count_ = uint32_t(classic.size());
     node_count_ = uint32_t(nodes.size());
@@ -313,8 +270,6 @@ Status Renderer::validate(const RenderSettings& settings) const {
 
 namespace {
 constexpr uint64_t kLoopBudget = 65535;
-// As in loop_limits.glsl and shadow_rays.glsl.
-constexpr uint64_t kLightUnroll = 4, kRadiusUnroll = 8, kShadowUnroll = 1;
 
 // Worst-case loop iterations of one shadow ray: every BVH node once.
 uint64_t shadow_ray_iterations(bool shadows, const ShadowBvh& bvh) {
@@ -324,7 +279,7 @@ uint64_t shadow_ray_iterations(bool shadows, const ShadowBvh& bvh) {
 
 // The classic lights' loop, with a ray per light (`ray` iterations each).
 uint64_t classic_iterations(uint32_t classic_count, uint64_t ray) {
-    return (uint64_t(classic_count) + kLightUnroll - 1) / kLightUnroll + 1 +
+    return (uint64_t(classic_count) + kLoopUnroll - 1) / kLoopUnroll + 1 +
            uint64_t(classic_count) * ray;
 }
 
@@ -338,17 +293,17 @@ uint32_t Renderer::reference_chunk() const {
     if (!has_loop_limit(context_)) return all;
     const uint64_t ray = shadow_ray_iterations(effects_.shadows, shadow_bvh_);
     const uint64_t classic = classic_iterations(classic_count_, ray);
-    // Per group of kLightUnroll leaves: one iteration and their rays; the
-    // remainder loop may add kLightUnroll - 1 single leaves.
-    const uint64_t per_group = 1 + kLightUnroll * ray;
-    const uint64_t tail = (kLightUnroll - 1) * (1 + ray) + 2;
-    if (classic + tail + per_group > kLoopBudget) return kLightUnroll;  // refused by the check
+    // Per group of kLoopUnroll leaves: one iteration and their rays; the
+    // remainder loop may add kLoopUnroll - 1 single leaves.
+    const uint64_t per_group = 1 + kLoopUnroll * ray;
+    const uint64_t tail = (kLoopUnroll - 1) * (1 + ray) + 2;
+    if (classic + tail + per_group > kLoopBudget) return kLoopUnroll;  // refused by the check
     const uint64_t groups = (kLoopBudget - classic - tail) / per_group;
-    return uint32_t(std::min<uint64_t>(all, groups * kLightUnroll));
+    return uint32_t(std::min<uint64_t>(all, groups * kLoopUnroll));
 }
 
 // llvmpipe stops an invocation's loops after 65,535 iterations in total, and
-// says nothing (shaders/loop_limits.glsl). Reference mode splits its leaves
+// says nothing (lightcuts/device/limits.h). Reference mode splits its leaves
 // over dispatches that each fit (reference_chunk); shadow rays and the bound
 // walk notice a walk the limit cut short and count it (loop_limit_stops);
 // other work that could exceed the budget is refused here with the reason,
@@ -362,7 +317,7 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
         // Without tree lights the leaf loops trace no ray: a scene without
         // lights renders its emission (or black), however large its BVH.
         const uint64_t leaf_ray = leaf_count_ > 0 ? ray : 0;
-        iterations += 1 + kLightUnroll * leaf_ray + (kLightUnroll - 1) * (1 + leaf_ray) + 2;
+        iterations += 1 + kLoopUnroll * leaf_ray + (kLoopUnroll - 1) * (1 + leaf_ray) + 2;
         what = std::to_string(classic_count_) + " classic lights" +
                (ray > 0 ? " with shadow rays" : "") + " in reference mode";
     } else if (settings.criterion == CutCriterion::kRadius) {
@@ -415,7 +370,6 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindTreeNodes, tree_nodes_.handle())
         .storage_buffer(kBindClassicLights, classic_lights_.handle())
         .storage_buffer(kBindCounters, counters_.handle())
-        .storage_buffer(kBindNodeBounds, node_bounds_.handle())
         .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
         .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
         .storage_buffer(kBindWalkStates, targets_.walk_states.handle())
@@ -473,10 +427,8 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
             // The heap needs room for one refinement (two children) even at
             // max-cut 1; the walk keeps no heap, so its array stays minimal.
             const bool heap = settings.bound_search == BoundSearch::kHeap;
-            spec.set_uint(kSpecCriterion, static_cast<uint32_t>(settings.criterion))
-                .set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(settings.error_ratio))
+            spec.set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(settings.error_ratio))
                 .set_uint(kSpecMaxCut, heap ? std::max(settings.max_cut, 2u) : 2u)
-                .set_uint(kSpecBoundSearch, static_cast<uint32_t>(settings.bound_search))
                 .set_uint(kSpecWalkMaxCut, settings.max_cut)
                 .set_uint(kSpecWalkMaxPasses, kWalkMaxPasses)
                 .set_uint(kSpecWalkShrink, std::bit_cast<uint32_t>(kWalkShrink))
@@ -484,8 +436,12 @@ Result<VkPipeline> Renderer::lighting_pipeline(const RenderSettings& settings) {
                 .set_uint(kSpecWalkBisections, kWalkBisections);
             lightcuts_key_ = key;
         }
-        auto code =
-            mode == RenderMode::kReference ? spirv(reference_comp_spv) : spirv(lightcuts_comp_spv);
+        // One module per cut search (shaders/lightcuts_*.comp).
+        std::span<const uint32_t> code = spirv(reference_comp_spv);
+        if (mode != RenderMode::kReference)
+            code = !bound                                       ? spirv(lightcuts_radius_comp_spv)
+                   : settings.bound_search == BoundSearch::kHeap ? spirv(lightcuts_bound_heap_comp_spv)
+                                                                 : spirv(lightcuts_bound_walk_comp_spv);
         Result<vk::ComputePipeline> pipeline = vk::ComputePipeline::create(
             context_.device().handle(), compute_layout_.handle(), code, spec);
         if (!pipeline) return make_error("lighting pipeline: " + pipeline.error());
@@ -505,7 +461,7 @@ Result<VkPipeline> Renderer::output_pipeline(RenderMode mode) {
             .set_uint(kSpecWorkgroupY, options_.workgroup_size);
         std::span<const uint32_t> code = spirv(tone_map_comp_spv);
         if (mode == RenderMode::kCuts || mode == RenderMode::kCutSize) {
-            spec.set_uint(kSpecCutView, mode == RenderMode::kCuts ? 0u : 1u);
+            spec.set_uint(kSpecCutView, mode == RenderMode::kCuts ? kCutViewCuts : kCutViewCutSize);
             code = spirv(cut_view_comp_spv);
         }
         Result<vk::ComputePipeline> pipeline = vk::ComputePipeline::create(

@@ -149,7 +149,6 @@ private:
     vk::Buffer tree_nodes_;
     vk::Buffer classic_lights_;
     vk::Buffer counters_;
-    vk::Buffer node_bounds_;  // GpuNodeBounds per tree node (bound criterion)
     ShadowBvh shadow_bvh_;
     float shadow_bias_ = 0.0f;
     glm::vec3 last_eye_{0.0f};  // camera of the last frame (read_gbuffer)

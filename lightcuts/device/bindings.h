@@ -1,0 +1,36 @@
+// Descriptor binding numbers, written once for the C++ that creates the
+// descriptor sets and the shaders that declare them.
+#ifndef LC_DEVICE_BINDINGS_H
+#define LC_DEVICE_BINDINGS_H
+
+#include "lightcuts/device/glsl_compat.h"
+
+LC_DEVICE_BEGIN
+
+// The compute passes' set (shaders/frame_bindings.glsl): storage images first,
+// then storage buffers from kBindLeafLights on.
+LC_CONST uint kBindPosition = 0u;  // G-buffer, w: 1 = geometry
+LC_CONST uint kBindNormal = 1u;    // G-buffer, w: roughness
+LC_CONST uint kBindAlbedo = 2u;    // G-buffer, w: metallic
+LC_CONST uint kBindEmissive = 3u;  // G-buffer
+LC_CONST uint kBindHdr = 4u;       // linear radiance
+LC_CONST uint kBindCut = 5u;       // x: cut size, y: cut hash
+LC_CONST uint kBindDisplay = 6u;   // sRGB-encoded
+LC_CONST uint kBindLeafLights = 7u;
+LC_CONST uint kBindTreeNodes = 8u;
+LC_CONST uint kBindClassicLights = 9u;
+LC_CONST uint kBindCounters = 10u;
+LC_CONST uint kBindBvhNodes = 11u;
+LC_CONST uint kBindShadowTriangles = 12u;
+LC_CONST uint kBindWalkStates = 13u;
+LC_CONST uint kFrameBindingCount = 14u;
+
+// The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
+LC_CONST uint kBindBaseColorTexture = 0u;
+LC_CONST uint kBindEmissiveTexture = 1u;
+LC_CONST uint kBindMetallicRoughnessTexture = 2u;  // linear: G, B
+LC_CONST uint kMaterialBindingCount = 3u;
+
+LC_DEVICE_END
+
+#endif

@@ -1,0 +1,170 @@
+// The structs the shaders read and write (std430 storage buffers and push
+// constants), with their flags, written once for C++ and GLSL. Padding is
+// explicit so that C++ (glm) and std430 lay them out alike;
+// tests/shader_interface_test.cpp checks every offset against the SPIR-V.
+#ifndef LC_DEVICE_GPU_STRUCTS_H
+#define LC_DEVICE_GPU_STRUCTS_H
+
+#include "lightcuts/device/glsl_compat.h"
+
+LC_DEVICE_BEGIN
+
+// LightType (scene_light.h) as the shaders compare it.
+LC_CONST uint kLightPoint = 0u;
+LC_CONST uint kLightSpot = 1u;
+LC_CONST uint kLightDirectional = 2u;
+
+// Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
+LC_CONST int kEndOfWalk = -1;
+
+// GpuTreeNode::flags: kNodeMixedTypes, and the node's LightType from bit
+// kNodeTypeShift on.
+LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
+LC_CONST uint kNodeTypeShift = 8u;
+
+// One light, as the shading model evaluates it (shading_model.h): the leaf
+// lights (every tree node's representative among them) and the classic lights.
+struct LC_ALIGN16 GpuLight {
+    vec3 position LC_DEFAULT(vec3(0.0f));
+    float range LC_DEFAULT(0.0f);  // 0: unbounded
+    vec3 direction LC_DEFAULT(vec3(0.0f, 0.0f, -1.0f));
+    uint type LC_DEFAULT(0u);                    // LightType
+    vec3 intensity LC_DEFAULT(vec3(0.0f));  // RGB: color x intensity (candela or lux)
+    float spot_cos_outer LC_DEFAULT(0.0f);
+    float spot_cos_inner LC_DEFAULT(1.0f);
+    // 1 / max(cos_inner - cos_outer, kSpotMinCosDelta), precomputed (shading_model.h).
+    float spot_scale LC_DEFAULT(1.0f);
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
+};
+
+// A light-tree node as the walks read it, 64 bytes (pbrt-v4's
+// CompactLightBounds is the model; made and decoded in lightcuts/compact_node.h).
+// A node evaluated as a cluster is its representative leaf light
+// (leaf_lights[representative]) with the cluster's intensity, so no light
+// parameter is quantised; the bound criterion reads the box and the cone,
+// whose axis is octahedral-packed and whose angle is widened to match.
+struct LC_ALIGN16 GpuTreeNode {
+    vec3 intensity LC_DEFAULT(vec3(0.0f));  // the cluster's RGB intensity
+    uint representative LC_DEFAULT(0u);     // index into the leaf lights
+    // The leaves' positions (their directions for directional lights).
+    vec3 bbox_min LC_DEFAULT(vec3(0.0f));
+    int first_child LC_DEFAULT(kEndOfWalk);  // left when present, else right; -1 for leaves
+    vec3 bbox_max LC_DEFAULT(vec3(0.0f));
+    int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
+    float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
+    uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
+    float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
+    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | type << kNodeTypeShift
+};
+
+// Counters the lighting pass accumulates with atomics (reset every frame).
+struct LC_ALIGN16 GpuFrameCounters {
+    uint max_cut LC_DEFAULT(0u);
+    uint nonfinite_pixels LC_DEFAULT(0u);
+    uint geometry_pixels LC_DEFAULT(0u);
+    uint max_cut_hits LC_DEFAULT(0u);  // bound criterion: pixels whose cut stopped at max-cut
+    // Pixels whose walk or shadow ray the device's loop limit cut short
+    // (llvmpipe, limits.h); the walk search keeps its last complete pass (only
+    // when a pass alone exceeds the limit: others run again).
+    uint loop_limit_stops LC_DEFAULT(0u);
+    // Shadow rays the lighting pass traced: a 64-bit count in two words.
+    uint shadow_rays LC_DEFAULT(0u);
+    uint shadow_rays_high LC_DEFAULT(0u);
+    uint pad LC_DEFAULT(0u);
+};
+
+// GpuWalkState::flags; bits kWalkBisectionsShift and up: the bisection passes left.
+LC_CONST uint kWalkDone = 1u;
+LC_CONST uint kWalkRuleMet = 2u;
+LC_CONST uint kWalkBisecting = 4u;
+LC_CONST uint kWalkLoopStop = 8u;
+LC_CONST uint kWalkStorePending = 16u;  // done where the loop limit fired: stored next dispatch
+LC_CONST uint kWalkBisectionsShift = 8u;
+
+// One pixel's walk search between dispatches (shaders/lightcuts_bound_walk.comp):
+// a pass that llvmpipe's loop limit (limits.h) cuts short runs again in the
+// next dispatch, so the limit applies to one pass instead of the whole search.
+// The GPU alone reads and writes it; the CPU only sizes the buffer
+// (RenderTargets::walk_states).
+struct LC_ALIGN16 GpuWalkState {
+    vec3 radiance LC_DEFAULT(vec3(0.0f));  // the last cut that fit, f_r applied
+    uint size LC_DEFAULT(0u);
+    uint hash LC_DEFAULT(0u);
+    float tau LC_DEFAULT(0.0f);      // the next pass's threshold
+    float fit_hi LC_DEFAULT(0.0f);   // largest bound on the last cut that fit
+    float over_lo LC_DEFAULT(0.0f);  // a threshold whose cut exceeded max-cut
+    uint flags LC_DEFAULT(0u);       // kWalk*
+    uint passes LC_DEFAULT(0u);      // passes completed
+    uint pad1 LC_DEFAULT(0u);
+    uint pad2 LC_DEFAULT(0u);
+};
+
+// Push constants shared by the compute passes.
+struct LC_ALIGN16 GpuFrameConstants {
+    uint width LC_DEFAULT(0u);
+    uint height LC_DEFAULT(0u);
+    uint leaf_count LC_DEFAULT(0u);
+    uint classic_count LC_DEFAULT(0u);
+    uint node_count LC_DEFAULT(0u);
+    float exposure LC_DEFAULT(1.0f);
+    uint scale_bar_rows LC_DEFAULT(0u);  // cutsize mode: rows at the bottom for the colour scale
+    // Shadow rays start this far along the normal (shadow_ray.h); 0 without shadows.
+    float shadow_bias LC_DEFAULT(0.0f);
+    // Reference mode sums the leaves [light_begin, light_end) per dispatch, so
+    // that no dispatch exceeds llvmpipe's loop budget; the first also adds the
+    // classic lights and emission, the last one stores the pixel.
+    uint light_begin LC_DEFAULT(0u);
+    uint light_end LC_DEFAULT(0u);
+    uint bvh_node_count LC_DEFAULT(0u);  // shadow BVH nodes (0: nothing occludes)
+    uint walk_dispatch LC_DEFAULT(0u);   // the bound criterion's walk search: this dispatch's number
+    vec3 eye LC_DEFAULT(vec3(0.0f));     // camera position: the glossy lobe's view direction
+    float pad2 LC_DEFAULT(0.0f);
+};
+
+// GpuDrawConstants::flags
+LC_CONST uint kDrawBaseColorTexture = 1u;
+LC_CONST uint kDrawEmissiveTexture = 2u;
+LC_CONST uint kDrawMetallicRoughnessTexture = 4u;
+
+// Push constants of one G-buffer draw: 128 bytes, Vulkan's guaranteed
+// push-constant space.
+struct LC_ALIGN16 GpuDrawConstants {
+    mat4 view_proj LC_DEFAULT(mat4(1.0f));
+    vec4 base_color_factor LC_DEFAULT(vec4(1.0f));
+    vec4 emissive_metallic LC_DEFAULT(vec4(0.0f));  // rgb: emissive factor, a: metallic
+    vec4 eye_roughness LC_DEFAULT(vec4(0.0f));      // xyz: camera position, w: roughness
+    uint flags LC_DEFAULT(0u);                      // kDraw*
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
+    uint pad2 LC_DEFAULT(0u);
+};
+
+// GpuBvhNode::triangles of a leaf: first triangle << kBvhLeafCountBits | count.
+LC_CONST uint kBvhLeafCountBits = 3u;
+LC_CONST uint kBvhLeafCountMask = (1u << kBvhLeafCountBits) - 1u;
+LC_CONST uint kBvhMaxLeafSize = 4u;  // <= kBvhLeafCountMask
+
+// One node of the occluders' BVH (shadow_bvh.h), pre-order with escapes.
+struct LC_ALIGN16 GpuBvhNode {
+    vec3 bbox_min LC_DEFAULT(vec3(0.0f));
+    int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
+    vec3 bbox_max LC_DEFAULT(vec3(0.0f));
+    // Leaves: first triangle << kBvhLeafCountBits | triangle count (1..kBvhMaxLeafSize);
+    // inner nodes: 0 (a count of 0 means "inner": its first child is the next node).
+    uint triangles LC_DEFAULT(0u);
+};
+
+// One triangle as the shaders test it (Moller-Trumbore: a vertex and two edges).
+struct LC_ALIGN16 GpuShadowTriangle {
+    vec3 v0 LC_DEFAULT(vec3(0.0f));
+    float pad0 LC_DEFAULT(0.0f);
+    vec3 edge1 LC_DEFAULT(vec3(0.0f));  // v1 - v0
+    float pad1 LC_DEFAULT(0.0f);
+    vec3 edge2 LC_DEFAULT(vec3(0.0f));  // v2 - v0
+    float pad2 LC_DEFAULT(0.0f);
+};
+
+LC_DEVICE_END
+
+#endif

@@ -1,0 +1,41 @@
+// Specialization-constant ids, written once for the C++ that sets them
+// (vk::Specialization) and the shaders that declare them
+// (layout(constant_id = kSpec...)). Values are chosen by scene_effects and
+// the render settings; float constants travel as their bits.
+#ifndef LC_DEVICE_SPEC_CONSTANTS_H
+#define LC_DEVICE_SPEC_CONSTANTS_H
+
+#include "lightcuts/device/glsl_compat.h"
+
+LC_DEVICE_BEGIN
+
+// Every compute pass: the workgroup size (local_size_x_id / local_size_y_id).
+LC_CONST uint kSpecWorkgroupX = 0u;
+LC_CONST uint kSpecWorkgroupY = 1u;
+// The lighting passes' effects (shaders/effects.glsl): what the scene holds.
+LC_CONST uint kSpecPointLights = 2u;
+LC_CONST uint kSpecSpotLights = 3u;
+LC_CONST uint kSpecDirectionalLights = 4u;
+LC_CONST uint kSpecRangeWindow = 5u;
+LC_CONST uint kSpecClassicLights = 6u;
+LC_CONST uint kSpecEmissive = 7u;
+LC_CONST uint kSpecShadows = 19u;   // shadow_rays.glsl
+LC_CONST uint kSpecSpecular = 20u;  // material_model.glsl
+// cut_view.comp: what it shows.
+LC_CONST uint kSpecCutView = 9u;
+LC_CONST uint kCutViewCuts = 0u;     // each distinct cut a colour
+LC_CONST uint kCutViewCutSize = 1u;  // heatmap of cut sizes
+// gbuffer.frag: sample the material's textures.
+LC_CONST uint kSpecTextures = 10u;
+// The bound criterion (lightcuts_bound_walk.comp, lightcuts_bound_heap.comp).
+LC_CONST uint kSpecErrorRatio = 11u;  // float bits
+LC_CONST uint kSpecMaxCut = 12u;      // the heap's capacity
+LC_CONST uint kSpecWalkMaxCut = 14u;
+LC_CONST uint kSpecWalkMaxPasses = 15u;
+LC_CONST uint kSpecWalkShrink = 16u;  // float bits
+LC_CONST uint kSpecWalkMargin = 17u;  // float bits
+LC_CONST uint kSpecWalkBisections = 18u;
+
+LC_DEVICE_END
+
+#endif

@@ -1,0 +1,197 @@
+#version 460
+// Lightcuts with the bound criterion, walk search (the default;
+// lightcuts/bound_walk.h): threshold passes, each a pre-order walk shared by
+// the subgroup like the radius walk, refining every node whose error bound
+// exceeds the pass's threshold; passes stop once every bound on the cut is
+// <= error x the cut's total, the cut would exceed max-cut (the pixel keeps
+// the previous pass's cut and counts in counters.max_cut_hits) or the passes
+// run out. A pass that llvmpipe's loop limit cuts short runs again in the
+// next dispatch, the search kept per pixel in walk_states between them.
+// Mirrors bound_walk_cut() in bound_walk.cpp.
+#extension GL_GOOGLE_include_directive : require
+
+#include "bound_criterion.glsl"
+#include "lightcuts/device/walk_schedule.glsl.h"
+
+// The walk search's max-cut and pass schedule (bound_walk.h).
+layout(constant_id = kSpecWalkMaxCut) const uint kWalkMaxCut = 1000u;
+layout(constant_id = kSpecWalkMaxPasses) const uint kWalkMaxPasses = 12u;
+layout(constant_id = kSpecWalkShrink) const float kWalkShrink = 512.0;
+layout(constant_id = kSpecWalkMargin) const float kWalkMargin = 0.8;
+layout(constant_id = kSpecWalkBisections) const uint kWalkBisections = 6u;
+
+// One threshold pass of one lane.
+struct WalkPass {
+    vec3 radiance;  // f_r already applied
+    uint size;
+    uint hash;
+    float worst;    // largest bound among the cut's non-leaf nodes
+    bool over;      // the cut would exceed max-cut: the pass is abandoned
+};
+
+// One step of a pass; like radius_walk_step, the subgroup shares the walk and
+// a lane that takes a node as a cluster waits for the walk to leave its
+// subtree. A lane sitting the pass out (done, or over max-cut) waits for
+// kEndOfWalk, which no node index equals.
+// `shade` false: only sizes the cut (no light is evaluated, no ray traced).
+void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout WalkPass pass,
+                     float tau, bool limit_size, bool shade, SurfacePoint p) {
+    if (i == kEndOfWalk) return;
+    if (waiting && i == resume) waiting = false;
+    // One load of the node per step: llvmpipe gathers every field per lane,
+    // and loads in different branches are not merged.
+    GpuTreeNode node = tree_nodes[i];
+    bool refine = false;
+    if (!waiting) {
+        bool leaf = node.first_child == kEndOfWalk;
+        bool mixed = (node.flags & kNodeMixedTypes) != 0u;
+        float key = 0.0;
+        if (!leaf && !mixed)
+            key = cluster_error_bound(node, p);
+        refine = !leaf && (mixed || key > tau);
+        if (!refine) {
+            waiting = true;
+            if (limit_size && pass.size >= kWalkMaxCut) {
+                pass.over = true;
+                resume = kEndOfWalk;
+            } else {
+                if (shade) pass.radiance += light_radiance(cluster_light(node), p);
+                pass.size += 1u;
+                pass.hash += cut_hash_term(uint(i));
+                pass.worst = max(pass.worst, key);
+                resume = node.escape;
+            }
+        }
+    }
+    i = subgroupAny(refine) ? node.first_child : node.escape;
+}
+
+// Where pass 0 starts: tau = +inf keeps the per-type roots.
+GpuWalkState walk_start() {
+    return GpuWalkState(vec3(0.0), 0u, 0u, uintBitsToFloat(0x7f800000u), 0.0, 0.0,
+                        kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u);
+}
+
+// The cut at threshold tau (`shade` false: its size, hash and worst bound
+// only). False when the walk or a ray of it was cut short.
+bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
+    pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
+    int i = frame.node_count > 0u ? 0 : kEndOfWalk;  // an empty tree: an empty cut
+    bool waiting = false;
+    int resume = kEndOfWalk;
+    g_shadow_walk_cut_short = false;
+    // Two steps per iteration: the step is large, and more copies spill
+    // (measured: 8 copies 1.4x slower).
+    for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
+    }
+    return i == kEndOfWalk && !g_shadow_walk_cut_short;
+}
+
+// One pass of one lane's search (s.passes numbers it): walks with s.tau,
+// then keeps the cut if it fit and sets the next threshold, or marks the
+// search done. Returns false, leaving s as it was, when the device's loop
+// limit (or a corrupt tree) ended the walk or one of its shadow rays early.
+bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
+    bool limit_size = s.passes > 0u;
+    bool bisecting = (s.flags & kWalkBisecting) != 0u;
+    WalkPass pass;
+    // With shadow rays, a pass that may well exceed max-cut (bisecting, or
+    // the last cut already a quarter of it) is sized first and shaded only
+    // if it fits: the same decisions, without tracing the rays of cuts that
+    // are thrown away. Sizing costs a walk of bounds; rays cost far more.
+    bool size_first =
+        kShadows && limit_size && (bisecting || s.size * 4u >= kWalkMaxCut);
+    if (size_first && !walk_cut(s.tau, limit_size, false, pass, p)) return false;
+    if (!(size_first && pass.over) && !walk_cut(s.tau, limit_size, true, pass, p)) return false;
+    ++s.passes;
+    if (s.passes >= kWalkMaxPasses) s.flags |= kWalkDone;  // unless the rule is met below
+    if (pass.over) {
+        s.flags |= kWalkBisecting;
+        s.over_lo = s.tau;
+    } else {
+        s.radiance = pass.radiance;
+        s.size = pass.size;
+        s.hash = pass.hash;
+        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+        if (!(pass.worst > limit)) {
+            s.flags |= kWalkDone | kWalkRuleMet;
+            return true;
+        }
+        s.fit_hi = pass.worst;
+        if (!bisecting) {
+            s.tau = next_walk_threshold(limit, pass.worst, kWalkMargin, kWalkShrink);
+            return true;
+        }
+    }
+    // Over max-cut once: bisect between the last fit and the last over.
+    uint bisections_left = s.flags >> kWalkBisectionsShift;
+    if (bisections_left == 0u) {
+        s.flags |= kWalkDone;
+        return true;
+    }
+    s.flags = (s.flags & ((1u << kWalkBisectionsShift) - 1u)) |
+              ((bisections_left - 1u) << kWalkBisectionsShift);
+    s.tau = bisection_threshold(s.fit_hi, s.over_lo);
+    return true;
+}
+
+// The walk search over up to kWalkMaxPasses dispatches (Renderer::record;
+// frame.walk_dispatch numbers them). Each dispatch runs passes until the pixel's
+// search is done or llvmpipe's loop limit (lightcuts/device/limits.h) cuts a pass
+// short; the search is then kept in walk_states and the cut-short pass runs
+// again, whole, in the next dispatch with a fresh budget. Most pixels finish
+// in the first dispatch, so the later ones are nearly empty. Only a pass that
+// exceeds the limit on its own (the first of its dispatch) ends the search:
+// the pixel keeps its last complete pass and counts in loop_limit_stops. A
+// pixel is stored once, when its search ends; later dispatches skip it.
+void bound_walk_dispatch(ivec2 pixel) {
+    uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+    GpuWalkState s;
+    if (frame.walk_dispatch == 0u) {
+        s = walk_start();
+    } else {
+        s = walk_states[index];
+        if ((s.flags & (kWalkDone | kWalkStorePending)) == kWalkDone) return;
+    }
+    SurfacePoint p;
+    if (!load_surface(pixel, p)) {
+        store_background(pixel);
+        walk_states[index].flags = kWalkDone;
+        return;
+    }
+    // Every dispatch completes a pass or ends the search, so kWalkMaxPasses
+    // dispatches end every search; the last one stores whatever is left.
+    bool last_dispatch = frame.walk_dispatch + 1u >= kWalkMaxPasses;
+    bool limited = false;
+    for (uint run = 0u; (s.flags & kWalkDone) == 0u; ++run) {
+        if (!walk_pass(s, p)) {
+            limited = true;
+            if (run == 0u || last_dispatch) s.flags |= kWalkDone | kWalkLoopStop;
+            break;
+        }
+    }
+    if (last_dispatch) s.flags |= kWalkDone;
+    g_shadow_walk_cut_short = false;  // in the flags: counted once, when the pixel is stored
+    // Storing adds the classic lights, whose loop the spent budget would cut
+    // short too: a search that ended where the limit fired is stored next time.
+    if ((s.flags & kWalkDone) == 0u || (limited && !last_dispatch)) {
+        if (limited && (s.flags & kWalkDone) != 0u) s.flags |= kWalkStorePending;
+        walk_states[index] = s;
+        flush_shadow_ray_count();
+        return;
+    }
+    walk_states[index].flags = kWalkDone;
+    bool loop_limit_stop = (s.flags & kWalkLoopStop) != 0u;
+    // Stopped by max-cut, or still refining after the last pass.
+    if ((s.flags & kWalkRuleMet) == 0u && !loop_limit_stop) atomicAdd(counters.max_cut_hits, 1u);
+    store_pixel(pixel, s.radiance + classic_and_emitted_radiance(p), s.size, s.hash,
+                loop_limit_stop);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
+    bound_walk_dispatch(pixel);
+}

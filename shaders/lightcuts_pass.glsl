@@ -1,0 +1,36 @@
+// What the three lightcuts passes share (lightcuts_radius.comp,
+// lightcuts_bound_walk.comp, lightcuts_bound_heap.comp): per pixel a cut of
+// the light tree, each cut node evaluated as a cluster (its representative's
+// position, direction, range and spot cone with the cluster's RGB intensity),
+// classic lights added one by one.
+#ifndef LC_LIGHTCUTS_PASS_GLSL
+#define LC_LIGHTCUTS_PASS_GLSL
+
+#extension GL_KHR_shader_subgroup_vote : require
+
+#include "cut_hash.glsl"
+#include "lighting_pass.glsl"
+
+layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
+
+struct Cut {
+    vec3 radiance;  // sum over cut nodes of f_r * I_C * color * G * V
+    uint size;
+    uint hash;
+};
+
+// A node evaluated as a cluster: its representative leaf light with the
+// cluster's intensity.
+GpuLight cluster_light(GpuTreeNode node) {
+    GpuLight light = leaf_lights[node.representative];
+    light.intensity = node.intensity;
+    return light;
+}
+
+void add_to_cut(inout Cut cut, uint node_index, GpuLight cluster, SurfacePoint p) {
+    cut.radiance += light_radiance(cluster, p);
+    cut.size += 1u;
+    cut.hash += cut_hash_term(node_index);
+}
+
+#endif
