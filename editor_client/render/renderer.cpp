@@ -58,10 +58,10 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, c
     Result<GpuScene> gpu_scene = GpuScene::upload(context, scene);
     if (!gpu_scene) return make_error(gpu_scene.error());
     renderer->gpu_scene_ = std::move(gpu_scene).value();
-    Result<std::unique_ptr<GBufferPass>> gbuffer =
-        GBufferPass::create(context.device().handle(), renderer->gpu_scene_, scene);
-    if (!gbuffer) return make_error(gbuffer.error());
-    renderer->gbuffer_pass_ = std::move(gbuffer).value();
+    Result<FramePasses> passes =
+        FramePasses::create(context.device().handle(), renderer->gpu_scene_, scene);
+    if (!passes) return make_error(passes.error());
+    renderer->passes_.emplace(std::move(passes).value());
     LC_RETURN_IF_ERROR(renderer->create_frame_resources());
     LC_RETURN_IF_ERROR(renderer->set_tree(tree));
     return renderer;
@@ -264,19 +264,7 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
 }
 
 Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
-    const RenderSettings& settings = *frame.settings;
-    FramePass* lighting = &reference_pass_;
-    if (mode_needs_tree(settings.mode)) {
-        if (settings.criterion == CutCriterion::kRadius)
-            lighting = &radius_walk_pass_;
-        else if (settings.bound_search == BoundSearch::kWalk)
-            lighting = &bound_walk_pass_;
-        else
-            lighting = &bound_heap_pass_;
-    }
-    FramePass* output = mode_is_shaded(settings.mode) ? static_cast<FramePass*>(&tone_map_pass_)
-                                                      : &cut_view_pass_;
-    std::array<FramePass*, 3> passes{gbuffer_pass_.get(), lighting, output};
+    std::array<FramePass*, 3> passes = passes_->for_settings(*frame.settings);
     for (FramePass* pass : passes) LC_RETURN_IF_ERROR(pass->prepare(pipelines_, frame));
     return passes;
 }

@@ -10,19 +10,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "lightcuts/gpu_layout.h"
 #include "editor_client/render/gpu_scene.h"
 #include "editor_client/render/loop_budget.h"
-#include "editor_client/render/passes/bound_heap_pass.h"
-#include "editor_client/render/passes/bound_walk_pass.h"
-#include "editor_client/render/passes/cut_view_pass.h"
-#include "editor_client/render/passes/gbuffer_pass.h"
-#include "editor_client/render/passes/radius_walk_pass.h"
-#include "editor_client/render/passes/reference_pass.h"
-#include "editor_client/render/passes/tone_map_pass.h"
+#include "editor_client/render/passes/frame_passes.h"
 #include "editor_client/render/pipeline_cache.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
@@ -170,13 +165,7 @@ private:
     vk::PipelineLayout compute_layout_;
 
     PipelineCache pipelines_;
-    std::unique_ptr<GBufferPass> gbuffer_pass_;
-    ReferencePass reference_pass_;
-    RadiusWalkPass radius_walk_pass_;
-    BoundWalkPass bound_walk_pass_;
-    BoundHeapPass bound_heap_pass_;
-    ToneMapPass tone_map_pass_;
-    CutViewPass cut_view_pass_;
+    std::optional<FramePasses> passes_;  // created once the scene is on the GPU
 };
 
 }  // namespace lc::client
