@@ -76,7 +76,7 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
 TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    if (context->physical().name().find("llvmpipe") == std::string::npos)
+    if (!context->physical().quirks.has_loop_limit())
         GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
     lc::Scene scene = test::make_floor_scene();
     for (uint32_t i = 0; i < 8; ++i) {
@@ -102,7 +102,7 @@ TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
 TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    if (context->physical().name().find("llvmpipe") == std::string::npos)
+    if (!context->physical().quirks.has_loop_limit())
         GTEST_SKIP() << "the loop limit is llvmpipe's; this device has none";
     lc::Scene scene = floor_with_scattered_lights(70000, 5);
     // Every junction flagged mixed-type: always refined, so the first pass

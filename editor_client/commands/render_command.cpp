@@ -92,10 +92,6 @@ void run_render(const RenderOptions& options) {
     if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
     settings.mode = *mode;
     settings.criterion = *criterion;
-    if (!std::isfinite(options.error_ratio) || options.error_ratio < 0.0f)
-        fail("--error must be a finite number >= 0");
-    if (options.max_cut < 1 || options.max_cut > kMaxGpuCut)
-        fail("--max-cut must be in 1 .. " + std::to_string(kMaxGpuCut));
     settings.error_ratio = options.error_ratio;
     settings.max_cut = options.max_cut;
     std::optional<BoundSearch> search = parse_bound_search(options.bound_search);
@@ -104,11 +100,11 @@ void run_render(const RenderOptions& options) {
     auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
-    if (options.exposure && (!std::isfinite(*options.exposure) || *options.exposure < 0.0f))
-        fail("--exposure must be a finite number >= 0");
     settings.exposure = options.exposure.value_or(1.0f);
     settings.camera = or_fail(
         choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    if (Status valid = validate(settings, {.has_tree = has_tree_source}); !valid)
+        fail(valid.error());
     const bool compare = error_mode || options.compare_reference;
     std::vector<float> sweep_ratios;
     if (!options.sweep_error.empty()) {
@@ -120,10 +116,6 @@ void run_render(const RenderOptions& options) {
     if (compare && !mode_needs_tree(settings.mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
 
-    if (mode_needs_tree(settings.mode) && source.empty())
-        fail("mode '" + mode_text +
-             "' needs a light tree: give --tree TREE.lcut, --server "
-             "HOST:PORT or --spawn-server");
     std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
     progress.finish();
 

@@ -60,18 +60,20 @@ void run_view(const ViewCommandOptions& options) {
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
 
     auto [width, height] = or_fail(parse_size(options.size));
-    if (options.exposure && (!std::isfinite(*options.exposure) || *options.exposure < 0.0f))
-        fail("--exposure must be a finite number >= 0");
     if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
     std::optional<RenderMode> mode = parse_render_mode(options.mode);
     if (!mode) fail("unknown --mode '" + options.mode + "' (reference, lightcuts, cuts, cutsize)");
     const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
-    if (mode_needs_tree(*mode) && !can_get_tree)
-        fail("mode '" + options.mode +
-             "' needs a light tree: give --tree TREE.lcut, --server HOST:PORT or --spawn-server");
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    RenderSettings requested;
+    requested.mode = *mode;
+    requested.width = width;
+    requested.height = height;
+    requested.camera = camera;
+    requested.exposure = options.exposure.value_or(1.0f);
+    or_fail(validate(requested, {.has_tree = can_get_tree}));
 
     std::optional<ScriptRunner> script;
     if (!options.script.empty()) script.emplace(or_fail(load_editor_script(options.script)), options.script);
@@ -81,7 +83,7 @@ void run_view(const ViewCommandOptions& options) {
     if (options.bake.has_server()) session_options.bake = options.bake.to_options();
     EditorSession session(std::move(scene), session_options);
     or_fail(session.set_camera(camera));
-    or_fail(session.set_exposure(options.exposure.value_or(1.0f)));
+    or_fail(session.set_exposure(requested.exposure));
     session.set_mode(*mode);
     if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
 

@@ -24,6 +24,20 @@ std::string vec_text(const glm::vec3& v) {
            ")";
 }
 
+// Applies `edit` to a copy of the view and keeps it if the renderer would
+// accept it (with the error ratio inside the editor control's range).
+template <typename Edit>
+Status edit_view(ViewState& view, Edit edit) {
+    ViewState next = view;
+    edit(next);
+    ValidationContext context;
+    context.min_error_ratio = float(kMinErrorRatio);
+    context.max_error_ratio = float(kMaxErrorRatio);
+    Status valid = validate(render_settings_for(next, 1, 1, true), context);
+    if (valid) view = next;
+    return valid;
+}
+
 }  // namespace
 
 Result<LightType> parse_light_type(std::string_view text) {
@@ -213,40 +227,19 @@ Status EditorSession::set_criterion(std::string_view name) {
 }
 
 Status EditorSession::set_error_ratio(double ratio) {
-    if (!std::isfinite(ratio) || ratio < kMinErrorRatio || ratio > kMaxErrorRatio)
-        return make_error("error ratio " + std::to_string(ratio) + " is outside [" +
-                          std::to_string(kMinErrorRatio) + ", " + std::to_string(kMaxErrorRatio) +
-                          "]");
-    view_.error_ratio = ratio;
-    return Ok{};
+    return edit_view(view_, [&](ViewState& v) { v.error_ratio = ratio; });
 }
 
 Status EditorSession::set_max_cut(uint32_t max_cut) {
-    if (max_cut < 1 || max_cut > kMaxMaxCut)
-        return make_error("max cut " + std::to_string(max_cut) + " is outside [1, " +
-                          std::to_string(kMaxMaxCut) + "]");
-    view_.max_cut = max_cut;
-    return Ok{};
+    return edit_view(view_, [&](ViewState& v) { v.max_cut = max_cut; });
 }
 
 Status EditorSession::set_camera(const RenderCamera& camera) {
-    if (!finite(camera.eye) || !finite(camera.target) || !finite(camera.up))
-        return make_error("camera has a non-finite coordinate");
-    if (!std::isfinite(camera.yfov) || camera.yfov <= 0.0f || camera.yfov >= 3.1f)
-        return make_error("camera field of view " + std::to_string(camera.yfov) +
-                          " rad is outside (0, 3.1)");
-    const glm::vec3 forward = camera.target - camera.eye;
-    if (glm::dot(forward, forward) <= 0.0f)
-        return make_error("camera eye and target coincide at " + vec_text(camera.eye));
-    view_.camera = camera;
-    return Ok{};
+    return edit_view(view_, [&](ViewState& v) { v.camera = camera; });
 }
 
 Status EditorSession::set_exposure(float exposure) {
-    if (!std::isfinite(exposure) || exposure < 0.0f)
-        return make_error("exposure must be a finite number >= 0");
-    view_.exposure = exposure;
-    return Ok{};
+    return edit_view(view_, [&](ViewState& v) { v.exposure = exposure; });
 }
 
 // --- Light tree ---

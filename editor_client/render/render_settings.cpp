@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 #include <string>
@@ -34,6 +35,17 @@ std::optional<float> parse_float(std::string_view text) {
     float value = std::strtof(copy.c_str(), &end);
     if (end != copy.c_str() + copy.size() || !std::isfinite(value)) return std::nullopt;
     return value;
+}
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+std::string number_text(float value) {
+    if (std::isinf(value)) return value > 0.0f ? "inf" : "-inf";
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", double(value));
+    return text;
 }
 
 }  // namespace
@@ -128,9 +140,46 @@ Result<std::pair<uint32_t, uint32_t>> parse_size(std::string_view text) {
     if (ew != std::errc() || eh != std::errc() || pw != ws.data() + ws.size() ||
         ph != hs.data() + hs.size())
         return make_error("--size expects WxH with whole numbers, got '" + std::string(text) + "'");
-    if (w == 0 || h == 0 || w > 16384 || h > 16384)
+    if (w == 0 || h == 0 || w > kMaxImageSide || h > kMaxImageSide)
         return make_error("--size " + std::string(text) + " is outside 1x1 .. 16384x16384");
     return std::pair{w, h};
+}
+
+Status validate(const RenderSettings& settings, const ValidationContext& context) {
+    if (settings.width == 0 || settings.height == 0 || settings.width > kMaxImageSide ||
+        settings.height > kMaxImageSide)
+        return make_error("image size " + std::to_string(settings.width) + "x" +
+                          std::to_string(settings.height) + " is outside 1x1 .. " +
+                          std::to_string(kMaxImageSide) + "x" + std::to_string(kMaxImageSide));
+    if (mode_needs_tree(settings.mode) && !context.has_tree)
+        return make_error(std::string("mode '") + render_mode_name(settings.mode) +
+                          "' needs a light tree (--tree, --server or --spawn-server)");
+    if (settings.criterion != CutCriterion::kRadius && settings.criterion != CutCriterion::kBound)
+        return make_error("unknown cut criterion " +
+                          std::to_string(static_cast<int>(settings.criterion)));
+    if (settings.bound_search != BoundSearch::kWalk && settings.bound_search != BoundSearch::kHeap)
+        return make_error("unknown bound search " +
+                          std::to_string(static_cast<int>(settings.bound_search)));
+    const float ratio = settings.error_ratio;
+    if (!std::isfinite(ratio) || ratio < context.min_error_ratio || ratio > context.max_error_ratio)
+        return make_error("error ratio " + number_text(ratio) + " is outside [" +
+                          number_text(context.min_error_ratio) + ", " +
+                          number_text(context.max_error_ratio) + "]");
+    if (settings.max_cut < 1 || settings.max_cut > kMaxGpuCut)
+        return make_error("max cut " + std::to_string(settings.max_cut) + " is outside 1 .. " +
+                          std::to_string(kMaxGpuCut));
+    const RenderCamera& c = settings.camera;
+    if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
+        return make_error("the camera has a non-finite coordinate");
+    if (!std::isfinite(c.yfov) || !(c.yfov > 0.0f && c.yfov < kMaxFieldOfView))
+        return make_error("the camera's field of view " + number_text(c.yfov) +
+                          " rad is outside (0, " + number_text(kMaxFieldOfView) + ")");
+    if (glm::length(c.target - c.eye) <= 0.0f)
+        return make_error("the camera's eye and target coincide");
+    if (!std::isfinite(settings.exposure) || settings.exposure < 0.0f)
+        return make_error("exposure " + number_text(settings.exposure) +
+                          " is not a finite number >= 0");
+    return Ok{};
 }
 
 RenderCamera frame_scene_bounds(const Scene& scene, float aspect) {

@@ -3,6 +3,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -63,6 +64,22 @@ struct RenderSettings {
 
 // Largest max-cut the GPU accepts (the heap search keeps it in private memory per invocation).
 inline constexpr uint32_t kMaxGpuCut = 4096;
+
+// Largest image side, and the field of view's upper end (just under 180 degrees).
+inline constexpr uint32_t kMaxImageSide = 16384;
+inline constexpr float kMaxFieldOfView = 3.14f;
+
+// What validate() needs to know besides the settings.
+struct ValidationContext {
+    bool has_tree = true;  // a light tree is held, or will be (cut modes need one)
+    // The accepted error ratios (the editor's control is narrower than what renders).
+    float min_error_ratio = 0.0f;
+    float max_error_ratio = std::numeric_limits<float>::infinity();
+};
+
+// Every check on render settings, in one place (the render and view commands,
+// the editor session and the renderer call it); the message names the field.
+Status validate(const RenderSettings& settings, const ValidationContext& context = {});
 
 // "ex,ey,ez,tx,ty,tz,fovy_degrees".
 Result<RenderCamera> parse_camera(std::string_view text);

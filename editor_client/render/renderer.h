@@ -1,8 +1,9 @@
 #pragma once
-// The Vulkan renderer: G-buffer raster pass, lighting compute pass (reference
-// or lightcuts), then tone mapping or cut visualisation, with GPU timestamps
-// around each pass. Headless (render() + read_*) or recorded into a window's
-// frame (record()).
+// The Vulkan renderer: the frame's plumbing (targets, uploads, the compute
+// passes' descriptor set, timestamps, read-backs) around three passes
+// (render/passes/): G-buffer raster, lighting (reference or a lightcuts
+// algorithm), then tone mapping or a cut view. Headless (render() + read_*)
+// or recorded into a window's frame (record()).
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -15,6 +16,9 @@
 
 #include "lightcuts/gpu_layout.h"
 #include "editor_client/render/gpu_scene.h"
+#include "editor_client/render/loop_budget.h"
+#include "editor_client/render/passes/frame_passes.h"
+#include "editor_client/render/pipeline_cache.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
@@ -23,10 +27,8 @@
 #include "lightcuts/shadow_ray.h"
 #include "lightcuts/scene.h"
 #include "editor_client/vk/buffer.h"
-#include "editor_client/vk/compute_pipeline.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/vk/descriptor_set.h"
-#include "editor_client/vk/graphics_pipeline.h"
 #include "editor_client/vk/pipeline_layout.h"
 #include "editor_client/vk/timestamp_query_pool.h"
 #include "lightcuts/light_tree.h"
@@ -74,8 +76,8 @@ public:
     bool has_tree() const { return has_tree_; }
     const SceneEffects& effects() const { return effects_; }
 
-    // Checks settings against what the renderer holds (a tree for cut modes,
-    // a known criterion, a finite camera).
+    // Checks settings (render_settings.h's validate, with whether a tree is
+    // held) and the device's loop budget.
     Status validate(const RenderSettings& settings) const;
     Status check_loop_budget(const RenderSettings& settings) const;
 
@@ -121,16 +123,15 @@ private:
     Status upload_occluders();
     // Shadow rays are traced: the analysis asked for them and something occludes.
     bool traces_shadows() const { return effects_.shadows && !shadow_bvh_.empty(); }
+    LoopWork loop_work() const;
     // A device-local storage buffer holding `bytes` (the frame set is rewritten).
     Status upload_storage(vk::Buffer& out, std::span<const std::byte> bytes);
     Status upload_lights(const LightTree* tree);
     Status ensure_targets(uint32_t width, uint32_t height);
     void update_frame_descriptors();
-    Result<VkPipeline> gbuffer_pipeline();
-    Result<VkPipeline> lighting_pipeline(const RenderSettings& settings);
-    Result<VkPipeline> output_pipeline(RenderMode mode);
-    void record_gbuffer_pass(VkCommandBuffer cmd, VkPipeline pipeline,
-                             const RenderSettings& settings);
+    Frame make_frame(const RenderSettings& settings) const;
+    // The passes of a frame with these settings, in order, their pipelines found.
+    Result<std::array<FramePass*, 3>> prepare_passes(const Frame& frame);
     Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
 
     const vk::Context& context_;
@@ -161,29 +162,9 @@ private:
     VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
     bool frame_set_dirty_ = true;
     vk::PipelineLayout compute_layout_;
-    vk::PipelineLayout gbuffer_layout_;
 
-    // Built on first use for the current effects; cleared when they change.
-    std::optional<vk::GraphicsPipeline> gbuffer_pipeline_;
-    std::optional<vk::ComputePipeline> reference_pipeline_;
-    std::optional<vk::ComputePipeline> lightcuts_pipeline_;
-    // The cut settings lightcuts_pipeline_ was specialised for.
-    struct LightcutsPipelineKey {
-        CutCriterion criterion = CutCriterion::kRadius;
-        float error_ratio = 0.0f;
-        uint32_t max_cut = 0;
-        BoundSearch search = BoundSearch::kWalk;
-        bool operator==(const LightcutsPipelineKey&) const = default;
-    };
-    LightcutsPipelineKey lightcuts_key_;
-    std::optional<vk::ComputePipeline> tone_map_pipeline_;
-    std::optional<vk::ComputePipeline> cuts_view_pipeline_;
-    std::optional<vk::ComputePipeline> cut_size_view_pipeline_;
+    PipelineCache pipelines_;
+    std::optional<FramePasses> passes_;  // created once the scene is on the GPU
 };
-
-// Projection * view for a camera (Vulkan clip space: y down, depth 0..1), with
-// near and far planes that enclose the scene bounds.
-glm::mat4 view_projection(const RenderCamera& camera, float aspect, const glm::vec3& bounds_min,
-                          const glm::vec3& bounds_max);
 
 }  // namespace lc::client

@@ -52,9 +52,13 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     // The lightcuts walk votes across a subgroup (shaders/lightcuts.comp).
     VkPhysicalDeviceSubgroupProperties subgroup{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    subgroup.pNext = &driver;
     VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     properties.pNext = &subgroup;
     vkGetPhysicalDeviceProperties2(device, &properties);
+    out.driver_id = driver.driverID;
+    out.quirks = quirks_for_driver(driver.driverID);
     if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0)
         return "subgroup vote operations in compute shaders are not supported";

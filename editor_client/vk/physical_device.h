@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "editor_client/vk/device_quirks.h"
 #include "lightcuts/result.h"
 
 namespace lc::vk {
@@ -18,6 +19,8 @@ struct PhysicalDevice {
     uint32_t queue_family = 0;
     uint32_t timestamp_valid_bits = 0;
     uint32_t subgroup_size = 1;  // lanes that share the lightcuts walk
+    VkDriverId driver_id{};      // VkPhysicalDeviceDriverProperties (Vulkan 1.2)
+    DeviceQuirks quirks;         // chosen from driver_id
 
     std::string name() const { return properties.deviceName; }
     bool is_software() const { return properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU; }

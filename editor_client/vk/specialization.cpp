@@ -1,5 +1,7 @@
 #include "editor_client/vk/specialization.h"
 
+#include <algorithm>
+
 namespace lc::vk {
 
 Specialization& Specialization::set_uint(uint32_t id, uint32_t value) {
@@ -13,6 +15,14 @@ Specialization& Specialization::set_uint(uint32_t id, uint32_t value) {
         {id, static_cast<uint32_t>(values_.size() * sizeof(uint32_t)), sizeof(uint32_t)});
     values_.push_back(value);
     return *this;
+}
+
+std::vector<std::pair<uint32_t, uint32_t>> Specialization::constants() const {
+    std::vector<std::pair<uint32_t, uint32_t>> out;
+    out.reserve(entries_.size());
+    for (size_t i = 0; i < entries_.size(); ++i) out.emplace_back(entries_[i].constantID, values_[i]);
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 const VkSpecializationInfo* Specialization::info() {

@@ -4,6 +4,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace lc::vk {
@@ -12,6 +13,9 @@ class Specialization {
 public:
     Specialization& set_uint(uint32_t id, uint32_t value);
     Specialization& set_bool(uint32_t id, bool value) { return set_uint(id, value ? 1u : 0u); }
+
+    // (id, value) pairs ordered by id: equal for equal specializations.
+    std::vector<std::pair<uint32_t, uint32_t>> constants() const;
 
     // Valid while this object lives and is not modified.
     const VkSpecializationInfo* info();

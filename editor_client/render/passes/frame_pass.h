@@ -1,0 +1,47 @@
+#pragma once
+// A pass of a frame (G-buffer, lighting, output) and what it records with.
+// The renderer owns the frame's resources (targets, buffers, the descriptor
+// set, timestamps); a pass finds its pipelines before recording and then
+// records its commands between the renderer's timestamps.
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+
+#include "editor_client/render/pipeline_cache.h"
+#include "editor_client/render/render_settings.h"
+#include "editor_client/render/render_targets.h"
+#include "editor_client/render/scene_effects.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/result.h"
+
+namespace lc::client {
+
+struct Frame {
+    const RenderSettings* settings = nullptr;
+    const RenderTargets* targets = nullptr;
+    const SceneEffects* effects = nullptr;
+    bool shadows = false;  // shadow rays are traced (asked for, and something occludes)
+    uint32_t workgroup_size = 8;
+    VkPipelineLayout compute_layout = VK_NULL_HANDLE;
+    VkDescriptorSet frame_set = VK_NULL_HANDLE;
+    GpuFrameConstants constants;  // what every compute dispatch pushes, before a pass adjusts it
+    uint32_t reference_chunk = 1;  // leaves per reference dispatch (the device's loop limit)
+
+    uint32_t groups_x() const { return (targets->width + workgroup_size - 1) / workgroup_size; }
+    uint32_t groups_y() const { return (targets->height + workgroup_size - 1) / workgroup_size; }
+};
+
+class FramePass {
+public:
+    virtual ~FramePass() = default;
+
+    // Finds or builds the pipelines `frame` needs; called before anything is
+    // recorded, so that a failure leaves the command buffer as it was.
+    virtual Status prepare(PipelineCache& pipelines, const Frame& frame) = 0;
+    // Records the pass with the pipelines prepare() found for the same frame.
+    virtual void record(VkCommandBuffer cmd, const Frame& frame) const = 0;
+    // The stage whose completion ends the pass (its end timestamp).
+    virtual VkPipelineStageFlags2 last_stage() const = 0;
+};
+
+}  // namespace lc::client

@@ -1,0 +1,36 @@
+#pragma once
+// Every pass a frame can use, and the three (G-buffer, lighting, output) that
+// render a given mode and cut criterion.
+#include <array>
+#include <memory>
+
+#include "editor_client/render/passes/bound_heap_pass.h"
+#include "editor_client/render/passes/bound_walk_pass.h"
+#include "editor_client/render/passes/cut_view_pass.h"
+#include "editor_client/render/passes/gbuffer_pass.h"
+#include "editor_client/render/passes/radius_walk_pass.h"
+#include "editor_client/render/passes/reference_pass.h"
+#include "editor_client/render/passes/tone_map_pass.h"
+
+namespace lc::client {
+
+class FramePasses {
+public:
+    // Both must outlive the passes.
+    static Result<FramePasses> create(VkDevice device, const GpuScene& gpu_scene,
+                                      const Scene& scene);
+
+    // The passes that render `settings`, in recording order.
+    std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
+
+private:
+    std::unique_ptr<GBufferPass> gbuffer_;
+    ReferencePass reference_;
+    RadiusWalkPass radius_walk_;
+    BoundWalkPass bound_walk_;
+    BoundHeapPass bound_heap_;
+    ToneMapPass tone_map_;
+    CutViewPass cut_view_;
+};
+
+}  // namespace lc::client
