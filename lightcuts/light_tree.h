@@ -1,7 +1,7 @@
 #pragma once
 // The light tree as it travels on the result channel and as the client holds
 // it after import. Float precision, conservatively rounded from the server's
-// double-precision build (see lightmass_server/tree_export.h).
+// double-precision build (see lightcuts/tree_export.h).
 #include <glm/vec3.hpp>
 
 #include <cstdint>

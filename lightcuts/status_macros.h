@@ -4,9 +4,9 @@
 // which must itself return a Result or a Status.
 #include "lightcuts/result.h"
 
-// Evaluates `expr` once; on error returns it (as an lc::Error) to the caller.
+// Evaluates `expr` once; on error returns its lc::Error, kind included, to the caller.
 #define LC_RETURN_IF_ERROR(expr)                                      \
     do {                                                              \
         auto&& lc_status_ = (expr);                                   \
-        if (!lc_status_) return ::lc::make_error(lc_status_.error()); \
+        if (!lc_status_) return lc_status_.failure();                 \
     } while (0)

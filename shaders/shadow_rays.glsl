@@ -1,5 +1,5 @@
 // Shadow rays: is a light visible from a shading point? Mirrors
-// editor_client/render/shadow_ray.h (the ray) and ShadowBvh::occluded (the
+// lightcuts/shadow_ray.h (the ray) and ShadowBvh::occluded (the
 // stackless any-hit walk over the pre-order BVH: hit an inner node -> next
 // index, its first child; hit a leaf -> its triangles, then its escape; miss
 // -> escape). kShadows is false when the scene analysis finds that nothing can

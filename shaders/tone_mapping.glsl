@@ -1,4 +1,4 @@
-// The tone curve of editor_client/render/tone_mapping.h, in GLSL.
+// The tone curve of lightcuts/tone_mapping.h, in GLSL.
 #ifndef LC_TONE_MAPPING_GLSL
 #define LC_TONE_MAPPING_GLSL
 

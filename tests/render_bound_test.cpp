@@ -1,5 +1,5 @@
-// The bound criterion on the GPU (lightcuts.comp) against the CPU evaluator's
-// kBound, its error against the reference on a room with ~2,000 lights, the
+// The bound criterion on the GPU (lightcuts_bound_walk.comp and
+// lightcuts_bound_heap.comp) against the CPU evaluator's kBound, its error against the reference on a room with ~2,000 lights, the
 // max-cut accounting, the error statistics and heatmap, and auto exposure.
 //
 // GPU vs CPU: the cut is decided in float on the GPU and in double on the CPU,

@@ -1,4 +1,4 @@
-// The shadow-ray BVH (editor_client/render/shadow_bvh.h): any-hit answers equal
+// The shadow-ray BVH (lightcuts/shadow_bvh.h): any-hit answers equal
 // a brute-force loop over every triangle, the stackless layout is a valid
 // pre-order tree with conservative float boxes, and the hard cases (empty,
 // identical, chained, far-away, axis-parallel, degenerate) stay correct.

@@ -2,7 +2,7 @@
 // Shader loop iterations a frame needs per invocation, against a device's
 // loop limit (vk::DeviceQuirks::loop_iteration_limit): llvmpipe stops an
 // invocation's loops after 65,535 iterations in total, and says nothing
-// (shaders/loop_limits.glsl). Reference mode splits its leaves over
+// (shaders/lightcuts/device/limits.h). Reference mode splits its leaves over
 // dispatches that each fit (reference_chunk); shadow rays and the bound walk
 // notice a walk the limit cut short and count it (loop_limit_stops); other
 // work that could exceed the budget is refused with the reason, never

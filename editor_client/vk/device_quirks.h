@@ -11,7 +11,7 @@ namespace lc::vk {
 struct DeviceQuirks {
     // Loop iterations (back edges of all loops together) after which the
     // driver stops an invocation's loops without a word; 0: no limit.
-    // llvmpipe's is 65,535 (shaders/loop_limits.glsl).
+    // llvmpipe's is 65,535 (shaders/lightcuts/device/limits.h).
     uint32_t loop_iteration_limit = 0;
 
     bool has_loop_limit() const { return loop_iteration_limit != 0; }

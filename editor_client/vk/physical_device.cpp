@@ -49,7 +49,7 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     features.pNext = &features13;
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!features13.dynamicRendering) return "dynamicRendering is not supported";
-    // The lightcuts walk votes across a subgroup (shaders/lightcuts.comp).
+    // The lightcuts walk votes across a subgroup (shaders/lightcuts_*.comp).
     VkPhysicalDeviceSubgroupProperties subgroup{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
