@@ -5,7 +5,7 @@
 #   case, build, round, metric, value
 # Cases: tree builds (tree_build_bench: agglomerative 65,536, optimal-pair
 # 4,096, lbvh 65,536), the result stream (stream_throughput_bench), reference
-# throughput (render_throughput_bench, 512x512), a bake end to end (spawned
+# throughput (render_throughput_bench, 512x512, 16,384 lights), a bake end to end (spawned
 # server), and the furnished room (shadow rays, glossy) with 4,096 lights at
 # 128x128 in every lighting mode: reference, bound walk, bound heap, radius.
 # Usage: scripts/bench-before-after.sh BEFORE_BIN_DIR AFTER_BIN_DIR [rounds]
@@ -32,7 +32,7 @@ row() { echo "$1,$2,$3,$4,$5" >>"$work/rows.csv"; }
 
 bench_json() {  # case build round binary filter
   local json="$work/b.json"
-  "$4" --benchmark_filter="$5" --benchmark_format=json >"$json" 2>/dev/null
+  "$4" --benchmark_filter="$5" --benchmark_out="$json" --benchmark_out_format=json >/dev/null 2>&1
   python3 - "$json" "$1" "$2" "$3" >>"$work/rows.csv" <<'PY'
 import json, sys
 path, case, build, rnd = sys.argv[1:5]
@@ -74,7 +74,7 @@ for r in csv.DictReader(open(path)):
     for key in ("protocol_ms", "protocol_mb_s", "raw_mb_s", "peak_rss_mb"):
         print(f"stream:{r['records']},{build},{rnd},{key},{r[key]}")
 PY
-    bench_json reference_throughput "$build" "$rnd" "$bin/render_throughput_bench" '.*'
+    bench_json reference_throughput "$build" "$rnd" "$bin/render_throughput_bench" 'ReferenceLightingPass/16384'
     start=$(date +%s.%N)
     "$bin/editor_client" bake "$work/lit.gltf" --spawn-server --builder agglomerative \
       -o "$work/again.lcut" >/dev/null

@@ -125,8 +125,10 @@ run_kill() {
 
 run_stall() {
     make_scene 1024 "$work/small.gltf"
-    # Short limits so the figures come within the run; the defaults are 30 s and 600 s.
-    start_local_server "$server_bin" "$work" --quiet --read-timeout-ms 2000 --idle-timeout-ms 3000
+    # Short limits so the figures come within the run; the defaults are 30 s, 600 s and 60 s
+    # (a whole frame, however its bytes trickle in).
+    start_local_server "$server_bin" "$work" --quiet --read-timeout-ms 2000 --idle-timeout-ms 3000 \
+        --frame-timeout-ms 5000
     local port=$LC_SERVER_PORT failed=0 baked=0
     for stall in slow silent; do
         /usr/bin/python3 scripts/lib/stalling_peer.py --port "$port" --mode "$stall" \
