@@ -245,6 +245,9 @@ class Scene:
     path: str
     lights: int
     camera: list = field(default_factory=lambda: ["--camera-index", "0"])
+    # glTF loading flags for bake and render (a scene written beside the shared
+    # one's buffers points back into ../shared: --allow-external-resources).
+    load: list = field(default_factory=list)
 
 
 def room_points(runner, count, seed=1):
@@ -289,7 +292,7 @@ def cornell_scene(runner, shared_dir, count):
         runner.run(["add-lights", source, "--count", count, "--layout", "random", "--seed", 3,
                     "--type", "point", "--intensity", "%.6g" % (30.0 * 1024 / count),
                     "--range", 0, "--box", "120,480,120,440,530,440", "-o", path])
-    return Scene(name, path, count, ["--camera", CORNELL_CAMERA])
+    return Scene(name, path, count, ["--camera", CORNELL_CAMERA], ["--allow-external-resources"])
 
 
 def lamp_scene(shared_dir):
@@ -335,7 +338,7 @@ class Sweep:
                # Only optimal-pair pairs; its default is auto (bake_options.cpp).
                "pairing": pairing or ("auto" if builder == "optimal-pair" else "")}
         args = ["bake", scene.path, "--spawn-server", "--builder", builder, "--seed", 1,
-                "--json", "-o", tree]
+                "--json", "-o", tree] + scene.load
         if pairing:
             args += ["--pairing", pairing]
         try:
@@ -367,7 +370,8 @@ class Sweep:
     # -- renders -------------------------------------------------------------
     def render_once(self, scene, tree, size, extra, tag, float_out=True, stats=True):
         png = self.runner.path(tag + ".png")
-        args = ["render", scene.path, "--size", "%dx%d" % (size, size), "-o", png] + scene.camera
+        args = (["render", scene.path, "--size", "%dx%d" % (size, size), "-o", png] + scene.camera +
+                scene.load)
         if tree:
             args += ["--tree", tree]
         pfm = self.runner.path(tag + ".pfm") if float_out else None
