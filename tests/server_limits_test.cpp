@@ -70,6 +70,12 @@ double cpu_seconds(pid_t pid) {
 
 TEST(ServerLimits, OutOfFileDescriptorsBacksOffAndRecovers) {
     if (::access("/usr/bin/prlimit", X_OK) != 0) GTEST_SKIP() << "prlimit (util-linux) is not installed";
+#if defined(__SANITIZE_ADDRESS__)
+    // The sanitizers probe memory through a pipe, which a process without a
+    // free descriptor cannot open: UBSan then reports every virtual call as an
+    // invalid vptr (seen in fmt) and stops the server. Not a finding of ours.
+    GTEST_SKIP() << "a sanitizer build cannot run out of file descriptors (its memory probes need one)";
+#endif
     auto server = start_server({"--idle-timeout-ms", "600000"}, "/usr/bin/prlimit");
     ASSERT_TRUE(server);
     // 100 idle connections against 64 descriptors: accept fails with EMFILE
