@@ -62,15 +62,21 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     c.directional = node.type == LightType::kDirectional;
     c.spot = node.type == LightType::kSpot;
     c.leaf = node.is_leaf();
-    // The box and cone the shaders see: the compact node's (its cone widened by the packing).
-    const CompactBounds bounds = compact_bounds(node);
-    c.bbox_min = bounds.bbox_min;
-    c.bbox_max = bounds.bbox_max;
+    // The box and cone the shaders see. The compact node keeps the float box
+    // as it is; its cone is widened by the packing and only spots read it, so
+    // only they pay for packing it here.
+    c.bbox_min = glm::dvec3(node.bbox_min);
+    c.bbox_max = glm::dvec3(node.bbox_max);
     c.position = glm::dvec3(node.position);
     c.range = node.range;
     c.radius = node.radius;
-    c.cone_axis = bounds.cone_axis;
-    c.cone_cos = bounds.cone_cos;
+    c.cone_axis = glm::dvec3(0.0, 0.0, 1.0);
+    c.cone_cos = -1.0;
+    if (c.spot) {
+        const CompactBounds bounds = compact_bounds(node);
+        c.cone_axis = bounds.cone_axis;
+        c.cone_cos = bounds.cone_cos;
+    }
     return c;
 }
 
