@@ -14,10 +14,6 @@ static_assert(kLightPoint == uint(LightType::kPoint) && kLightSpot == uint(Light
 
 namespace {
 
-float spot_scale(double cos_inner, double cos_outer) {
-    return float(1.0 / std::max(cos_inner - cos_outer, shading::kSpotMinCosDelta));
-}
-
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -52,11 +48,11 @@ GpuLight make_gpu_light(const SceneLight& light) {
     double cos_outer = std::cos(double(light.outer_cone_angle));
     gpu.spot_cos_inner = float(cos_inner);
     gpu.spot_cos_outer = float(cos_outer);
-    gpu.spot_scale = spot_scale(cos_inner, cos_outer);
+    gpu.spot_scale = float(shading::spot_scale(cos_inner, cos_outer));
     return gpu;
 }
 
-GpuLight make_gpu_cluster_light(const LightTreeNode& node) {
+GpuLight make_gpu_leaf_light(const LightTreeNode& node) {
     GpuLight gpu;
     gpu.position = node.position;
     gpu.range = node.range;
@@ -65,7 +61,7 @@ GpuLight make_gpu_cluster_light(const LightTreeNode& node) {
     gpu.intensity = node.intensity;
     gpu.spot_cos_inner = node.spot_cos_inner;
     gpu.spot_cos_outer = node.spot_cos_outer;
-    gpu.spot_scale = spot_scale(node.spot_cos_inner, node.spot_cos_outer);
+    gpu.spot_scale = float(shading::spot_scale(node.spot_cos_inner, node.spot_cos_outer));
     return gpu;
 }
 
@@ -136,7 +132,7 @@ Result<GpuTree> make_gpu_tree(const LightTree& tree) {
             if (node.mixed_types)
                 return make_error("tree node " + std::to_string(i) +
                                   " is a leaf marked as joining light types");
-            gpu.leaves.push_back(make_gpu_cluster_light(node));
+            gpu.leaves.push_back(make_gpu_leaf_light(node));
         }
     }
     return gpu;

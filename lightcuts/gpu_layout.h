@@ -13,8 +13,9 @@ namespace lc {
 
 // A scene light (glTF units) as the shader evaluates it.
 GpuLight make_gpu_light(const SceneLight& light);
-// A tree node's own light parameters (a leaf's light) with its RGB intensity.
-GpuLight make_gpu_cluster_light(const LightTreeNode& node);
+// A leaf of the tree as the shader evaluates it: its light's parameters and RGB
+// intensity (clusters are shaded through their representative leaf).
+GpuLight make_gpu_leaf_light(const LightTreeNode& node);
 
 // Pre-order escape index of every node, computed iteratively in one pass over
 // the breadth-first order (a parent always precedes its children). Fails on a
