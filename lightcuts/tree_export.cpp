@@ -10,6 +10,9 @@ namespace lc {
 namespace {
 
 constexpr float kFloatMax = std::numeric_limits<float>::max();
+// Breadth-first order visits the arena (10^6 nodes of 160 bytes) almost at
+// random: ask for nodes this many steps ahead so their cache misses overlap.
+constexpr size_t kPrefetchAhead = 16;
 
 float nearest_float(double value) {
     return float(std::clamp(value, -double(kFloatMax), double(kFloatMax)));
@@ -72,6 +75,9 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
     node_depth.push_back(0);
     exported_index[size_t(root)] = 0;
     for (size_t head = 0; head < order.size(); ++head) {
+        if (head + kPrefetchAhead < order.size()) {
+            __builtin_prefetch(&arena.nodes[order[head + kPrefetchAhead]]);
+        }
         const BuildNode& node = arena.nodes[order[head]];
         result.depth = std::max(result.depth, node_depth[head]);
         for (const int32_t child : {node.left, node.right}) {
@@ -85,6 +91,15 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
     LightTree& tree = result.tree;
     tree.nodes.resize(order.size());
     for (size_t i = 0; i < order.size(); ++i) {
+        // The node two strides ahead, then (once it has arrived) what it points at.
+        if (i + 2 * kPrefetchAhead < order.size()) {
+            __builtin_prefetch(&arena.nodes[order[i + 2 * kPrefetchAhead]]);
+        }
+        if (i + kPrefetchAhead < order.size()) {
+            const uint32_t representative = arena.nodes[order[i + kPrefetchAhead]].representative;
+            __builtin_prefetch(&arena.lights[representative]);
+            __builtin_prefetch(&exported_index[representative]);
+        }
         const BuildNode& node = arena.nodes[order[i]];
         const SceneLight& light = arena.representative_light(node);
         LightTreeNode& out = tree.nodes[i];

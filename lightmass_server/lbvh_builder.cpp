@@ -1,5 +1,7 @@
 #include "lightmass_server/lbvh_builder.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 #include <glm/common.hpp>
 
@@ -88,10 +90,14 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     const glm::dvec3 scale(extent > 0.0 ? cells / extent : 0.0);
 
     std::vector<Keyed> keys(leaves.size());
-    for (size_t i = 0; i < leaves.size(); ++i) {
-        keys[i] = Keyed{morton_code(representative_point(arena, arena.nodes[leaves[i]]), lo, scale),
-                        leaves[i]};
-    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 4096),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              const glm::dvec3 p =
+                                  representative_point(arena, arena.nodes[leaves[i]]);
+                              keys[i] = Keyed{morton_code(p, lo, scale), leaves[i]};
+                          }
+                      });
     tbb::parallel_sort(keys.begin(), keys.end());  // a strict total order: deterministic
 
     // Top-down splits with a work list (no recursion), parents before children.
@@ -109,26 +115,49 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
         nodes.push_back(SplitNode{split, end});
     }
 
-    // Bottom-up cluster attributes: children were appended after their parent.
+    // Bottom-up cluster attributes, one depth at a time from the deepest: the
+    // merges of one depth are independent, so they run in parallel into arena
+    // slots fixed in advance (the i-th split node from the end takes the i-th
+    // slot), which makes the arena the same at any thread count.
+    std::vector<uint32_t> depth(nodes.size(), 0);
+    uint32_t max_depth = 0;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        if (nodes[i].left < 0) continue;
+        depth[size_t(nodes[i].left)] = depth[size_t(nodes[i].right)] = depth[i] + 1;
+        max_depth = std::max(max_depth, depth[i] + 1);
+    }
     std::vector<uint32_t> arena_of(nodes.size());
-    const size_t total_merges = leaves.size() - 1;
-    const size_t progress_step = std::max<size_t>(1, total_merges / 100);
-    size_t merges = 0;
+    std::vector<std::vector<uint32_t>> inner_by_depth(max_depth + 1);
+    const size_t first_slot = arena.nodes.size();
+    size_t slot = first_slot;
     for (size_t i = nodes.size(); i-- > 0;) {
-        const SplitNode& node = nodes[i];
-        if (node.left < 0) {
-            arena_of[i] = keys[node.begin].leaf;
-            continue;
+        if (nodes[i].left < 0) {
+            arena_of[i] = keys[nodes[i].begin].leaf;
+        } else {
+            arena_of[i] = uint32_t(slot++);
+            inner_by_depth[depth[i]].push_back(uint32_t(i));
         }
-        const BuildNode cluster =
-            merge_clusters(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
-                           options.representative_rule, options.seed);
-        arena_of[i] = uint32_t(arena.nodes.size());
-        arena.nodes.push_back(cluster);
-        if (++merges % progress_step == 0 && progress &&
-            !progress(double(merges) / double(total_merges))) {
+    }
+    arena.nodes.resize(slot);
+
+    const size_t total_merges = leaves.size() - 1;
+    size_t merges = 0;
+    for (uint32_t d = max_depth + 1; d-- > 0;) {
+        const std::vector<uint32_t>& level = inner_by_depth[d];
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, level.size(), 512),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t k = range.begin(); k != range.end(); ++k) {
+                                  const SplitNode& node = nodes[level[k]];
+                                  arena.nodes[arena_of[level[k]]] = merge_clusters(
+                                      arena, arena_of[size_t(node.left)],
+                                      arena_of[size_t(node.right)], options.representative_rule,
+                                      options.seed);
+                              }
+                          });
+        merges += level.size();
+        if (progress && !progress(double(merges) / double(total_merges))) {
             return make_error("cancelled during the lbvh build (" + std::to_string(merges) +
-                              " of " + std::to_string(total_merges) + " merges done)",
+                                  " of " + std::to_string(total_merges) + " merges done)",
                               ErrorKind::kCancelled);
         }
     }

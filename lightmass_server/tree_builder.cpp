@@ -52,24 +52,27 @@ Status validate_lights(std::span<const SceneLight> lights) {
     }
     for (size_t i = 0; i < lights.size(); ++i) {
         const SceneLight& light = lights[i];
-        const std::string name = "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")";
+        // Named only on failure: a million lights must not cost a million strings.
+        const auto name = [&] {
+            return "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")";
+        };
         if (int(light.type) >= kLightTypeCount) {
-            return make_error(name + " has an unknown type " + std::to_string(int(light.type)));
+            return make_error(name() + " has an unknown type " + std::to_string(int(light.type)));
         }
         if (!finite3(light.position) || !finite3(light.direction) || !finite3(light.color)) {
-            return make_error(name + " has a non-finite position, direction or color");
+            return make_error(name() + " has a non-finite position, direction or color");
         }
         if (!std::isfinite(light.intensity) || light.intensity < 0.0f) {
-            return make_error(name + " has an invalid intensity (must be finite and >= 0)");
+            return make_error(name() + " has an invalid intensity (must be finite and >= 0)");
         }
         if (light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f) {
-            return make_error(name + " has a negative color component");
+            return make_error(name() + " has a negative color component");
         }
         if (!std::isfinite(light.range) || light.range < 0.0f) {
-            return make_error(name + " has an invalid range (must be finite and >= 0)");
+            return make_error(name() + " has an invalid range (must be finite and >= 0)");
         }
         if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
-            return make_error(name + " has non-finite spot cone angles");
+            return make_error(name() + " has non-finite spot cone angles");
         }
     }
     return Ok{};

@@ -27,8 +27,11 @@ constexpr size_t kCountBytes = sizeof(int32_t);
 constexpr size_t kSceneRecordBytes = sizeof(fb::SceneLightRecord);
 constexpr size_t kResultRecordBytes =
     sizeof(fb::FLightData) + sizeof(fb::FPointLightData) + sizeof(fb::LightcutsNodeRecord);
-// A lying count must not make us reserve memory for records that never come.
+// A lying count must not make us reserve memory for records that never come:
+// up front at most this many, then all of them once an eighth has arrived (so
+// a 10^6-record channel is not regrown and copied ten times).
 constexpr size_t kMaxUpFrontRecords = 1u << 16;
+constexpr size_t kReserveAllAfterFraction = 8;
 
 constexpr uint8_t kSceneFlagClassic = 1u << 0;
 constexpr uint32_t kLightFlagCluster = 1u << 0;
@@ -174,8 +177,10 @@ ResultRecord to_record(const LightTreeNode& n) {
 
 // Checks one node's own values; structure across nodes is validate_tree's job.
 Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
-    const std::string who = node_label(index);
-    auto fail = [&who](const std::string& what) -> Status { return make_error(who + ": " + what); };
+    // The label is built only on failure: every record of a channel passes through here.
+    auto fail = [index](const std::string& what) -> Status {
+        return make_error(node_label(index) + ": " + what);
+    };
     if (static_cast<int>(n.type) >= kLightTypeCount) {
         return fail("light_type " + std::to_string(static_cast<int>(n.type)) + " is unknown");
     }
@@ -253,23 +258,23 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
 
 Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t node_count) {
     LightTreeNode n;
-    const std::string who = node_label(index);
+    const auto who = [index] { return node_label(index); };
     const uint32_t flags = r.light.light_flags();
     const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kLightFlagTypeShift;
     if (r.node.light_type() >= kLightTypeCount) {
-        return make_error(who + ": light_type " + std::to_string(r.node.light_type()) +
+        return make_error(who() + ": light_type " + std::to_string(r.node.light_type()) +
                           " is unknown");
     }
     if (type_in_flags != r.node.light_type()) {
-        return make_error(who + ": FLightData.light_flags type " + std::to_string(type_in_flags) +
+        return make_error(who() + ": FLightData.light_flags type " + std::to_string(type_in_flags) +
                           " disagrees with the node record's light_type " +
                           std::to_string(r.node.light_type()));
     }
     if ((flags & ~(kLightFlagCluster | kLightFlagTypeMask)) != 0) {
-        return make_error(who + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
+        return make_error(who() + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
     }
     if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
-        return make_error(who + ": node record flags carry unknown bits");
+        return make_error(who() + ": node record flags carry unknown bits");
     }
     n.guid = from_fb(r.light.guid());
     n.type = static_cast<LightType>(r.node.light_type());
@@ -295,23 +300,34 @@ Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t no
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {
-        return make_error(who + ": FLightData.light_flags says " +
+        return make_error(who() + ": FLightData.light_flags says " +
                           (cluster_flag ? "cluster" : "leaf") + " but the node has " +
                           (n.is_leaf() ? "no children" : "children"));
     }
     const float expected_w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     if (p.w() != expected_w) {
-        return make_error(who + ": FLightData.position.w " + number(p.w()) + " should be " +
+        return make_error(who() + ": FLightData.position.w " + number(p.w()) + " should be " +
                           number(expected_w) + " for a " + light_type_name(n.type) + " light");
     }
     const fb::Vec4& c = r.light.color();
     if (!std::isfinite(c.x()) || !std::isfinite(c.y()) || !std::isfinite(c.z()) ||
         !std::isfinite(c.w()) || !std::isfinite(d.w())) {
-        return make_error(who + ": FLightData colour or direction.w is not finite");
+        return make_error(who() + ": FLightData colour or direction.w is not finite");
     }
     Status valid = validate_node(n, index, node_count);
     if (!valid) return make_error(valid.error());
     return n;
+}
+
+// Reserves room for all `expected` records once `arriving` (those received
+// plus those in the bytes at hand) make up an eighth of them.
+template <typename Record>
+void reserve_once_an_eighth_arrives(std::vector<Record>& records, int64_t expected,
+                                    size_t arriving) {
+    if (expected <= 0 || records.capacity() >= static_cast<size_t>(expected)) return;
+    if (arriving * kReserveAllAfterFraction >= static_cast<size_t>(expected)) {
+        records.reserve(static_cast<size_t>(expected));
+    }
 }
 
 // Shared push-parser plumbing: feeds whole records from `pending` and `bytes`
@@ -389,6 +405,85 @@ std::string short_channel(const char* what, int64_t expected, size_t received,
 void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
     if (count > limit) throw std::length_error("channel record count exceeds its limit");
     put_u32(out, static_cast<uint32_t>(count));
+}
+
+// The structure of a tree whose nodes each passed validate_node (child indices
+// in range and after their parent): one parent each, the leaf count, and
+// representatives that are leaves inside their subtree.
+Status validate_tree_structure(const LightTree& tree) {
+    const size_t n = tree.nodes.size();
+    if (n > kMaxTreeNodes) {
+        return make_error("tree has " + std::to_string(n) + " nodes, above the limit of " +
+                          std::to_string(kMaxTreeNodes));
+    }
+    // One pass over the (large) nodes: parent counts and leaves, and the links
+    // the later passes need, copied into compact arrays. Child ranges (children
+    // after their parent) are validate_node's, already checked.
+    struct Links {
+        int32_t left, right, representative;
+    };
+    std::vector<Links> links(n);
+    std::vector<uint8_t> parents(n, 0);
+    size_t leaves = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const LightTreeNode& node = tree.nodes[i];
+        links[i] = Links{node.left, node.right, node.representative};
+        if (node.is_leaf()) {
+            ++leaves;
+            if (node.representative != static_cast<int32_t>(i)) {
+                return make_error(node_label(i) + ": a leaf must represent itself, not node " +
+                                  std::to_string(node.representative));
+            }
+            continue;
+        }
+        for (int32_t child : {node.left, node.right}) {
+            if (++parents[static_cast<size_t>(child)] > 1) {
+                return make_error(node_label(static_cast<size_t>(child)) +
+                                  " has more than one parent");
+            }
+        }
+    }
+    // Children always follow their parent, so a node without a parent other
+    // than the root would start a second tree.
+    for (size_t i = 1; i < n; ++i) {
+        if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
+    }
+    if (leaves != tree.leaf_count) {
+        return make_error("tree says it has " + std::to_string(tree.leaf_count) +
+                          " leaves, its nodes hold " + std::to_string(leaves));
+    }
+    if (n == 0) return Ok{};
+
+    // Pre-order numbering without a stack (chains can be 10^6 deep): subtree
+    // sizes bottom-up (children have larger indices than their parent), then
+    // each child's entry from its parent's, top-down. Node j lies in i's
+    // subtree exactly when enter[i] <= enter[j] < enter[i] + subtree[i]; a
+    // subtree of one node is a leaf.
+    std::vector<uint32_t> subtree(n, 1);
+    for (size_t k = n; k-- > 0;) {
+        if (links[k].left == kNoChild) continue;
+        subtree[k] = 1 + subtree[static_cast<size_t>(links[k].left)] +
+                     subtree[static_cast<size_t>(links[k].right)];
+    }
+    std::vector<uint32_t> enter(n, 0);
+    for (size_t i = 0; i < n; ++i) {
+        if (links[i].left == kNoChild) continue;
+        const auto left = static_cast<size_t>(links[i].left);
+        enter[left] = enter[i] + 1;
+        enter[static_cast<size_t>(links[i].right)] = enter[i] + 1 + subtree[left];
+    }
+    for (size_t i = 0; i < n; ++i) {
+        const auto rep = static_cast<size_t>(links[i].representative);
+        if (subtree[rep] != 1) {
+            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
+                              " is not a leaf");
+        }
+        if (enter[rep] < enter[i] || enter[rep] >= enter[i] + subtree[i]) {
+            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
+                              " is outside its subtree");
+        }
+    }
+    return Ok{};
 }
 
 }  // namespace
@@ -478,6 +573,8 @@ Status validate_scene_light(const SceneLight& light, size_t index) {
 Status SceneChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("scene channel was already refused");
     bytes_seen_ += bytes.size();
+    reserve_once_an_eighth_arrives(lights_, expected_,
+                                   lights_.size() + bytes.size() / kSceneRecordBytes);
     Status status = push_records(
         pending_, expected_, lights_.size(), kSceneRecordBytes, bytes,
         [this](int32_t count) {
@@ -512,6 +609,8 @@ Result<std::vector<SceneLight>> SceneChannelReader::finish() {
 
 Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("result channel was already refused");
+    reserve_once_an_eighth_arrives(nodes_, expected_,
+                                   nodes_.size() + bytes.size() / kResultRecordBytes);
     Status status = push_records(
         pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
         [this](int32_t count) {
@@ -548,7 +647,8 @@ Result<LightTree> ResultChannelReader::finish() {
     LightTree tree;
     tree.nodes = std::move(nodes_);
     for (const LightTreeNode& n : tree.nodes) tree.leaf_count += n.is_leaf() ? 1u : 0u;
-    Status valid = validate_tree(tree);
+    // Every node's own values were validated as its record arrived.
+    Status valid = validate_tree_structure(tree);
     if (!valid) return make_error(valid.error());
     return tree;
 }
@@ -573,81 +673,11 @@ Status validate_tree(const LightTree& tree) {
         return make_error("tree has " + std::to_string(n) + " nodes, above the limit of " +
                           std::to_string(kMaxTreeNodes));
     }
-    // Per-node values, child ranges (children after their parent) and parent counts.
-    std::vector<uint8_t> parents(n, 0);
-    size_t leaves = 0;
     for (size_t i = 0; i < n; ++i) {
-        const LightTreeNode& node = tree.nodes[i];
-        Status valid = validate_node(node, i, n);
+        Status valid = validate_node(tree.nodes[i], i, n);
         if (!valid) return valid;
-        if (node.is_leaf()) {
-            ++leaves;
-            if (node.representative != static_cast<int32_t>(i)) {
-                return make_error(node_label(i) + ": a leaf must represent itself, not node " +
-                                  std::to_string(node.representative));
-            }
-            continue;
-        }
-        for (int32_t child : {node.left, node.right}) {
-            if (++parents[static_cast<size_t>(child)] > 1) {
-                return make_error(node_label(static_cast<size_t>(child)) +
-                                  " has more than one parent");
-            }
-        }
     }
-    // Children always follow their parent, so a node without a parent other
-    // than the root would start a second tree.
-    for (size_t i = 1; i < n; ++i) {
-        if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
-    }
-    if (leaves != tree.leaf_count) {
-        return make_error("tree says it has " + std::to_string(tree.leaf_count) +
-                          " leaves, its nodes hold " + std::to_string(leaves));
-    }
-    if (n == 0) return Ok{};
-
-    // Pre-order numbering with an explicit stack (chains can be 10^6 deep):
-    // node j lies in i's subtree exactly when enter[i] <= enter[j] < leave[i].
-    std::vector<uint32_t> enter(n, 0), leave(n, 0);
-    std::vector<uint32_t> stack;
-    stack.reserve(64);
-    stack.push_back(0);
-    uint32_t clock = 0;
-    while (!stack.empty()) {
-        const uint32_t i = stack.back();
-        stack.pop_back();
-        enter[i] = clock++;
-        const LightTreeNode& node = tree.nodes[i];
-        if (!node.is_leaf()) {
-            stack.push_back(static_cast<uint32_t>(node.right));
-            stack.push_back(static_cast<uint32_t>(node.left));
-        }
-    }
-    // Subtree sizes bottom-up (children have larger indices than their parent);
-    // in pre-order a subtree occupies [enter, enter + size).
-    std::vector<uint32_t> subtree(n, 1);
-    for (size_t k = n; k-- > 0;) {
-        const LightTreeNode& node = tree.nodes[k];
-        if (!node.is_leaf()) {
-            subtree[k] = 1 + subtree[static_cast<size_t>(node.left)] +
-                         subtree[static_cast<size_t>(node.right)];
-        }
-    }
-    for (size_t i = 0; i < n; ++i) leave[i] = enter[i] + subtree[i];
-
-    for (size_t i = 0; i < n; ++i) {
-        const LightTreeNode& node = tree.nodes[i];
-        const auto rep = static_cast<size_t>(node.representative);
-        if (!tree.nodes[rep].is_leaf()) {
-            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
-                              " is not a leaf");
-        }
-        if (enter[rep] < enter[i] || enter[rep] >= leave[i]) {
-            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
-                              " is outside its subtree");
-        }
-    }
-    return Ok{};
+    return validate_tree_structure(tree);
 }
 
 }  // namespace lc

@@ -352,19 +352,32 @@ std::string printable_identifier(const uint8_t* p) {
     return text;
 }
 
+// Builds the Envelope into `fbb`; the span points into the builder.
+std::span<const uint8_t> build_envelope(Fbb& fbb, const Message& message) {
+    const Body body = std::visit([&fbb](const auto& m) { return encode_body(fbb, m); }, message);
+    fb::FinishEnvelopeBuffer(fbb, fb::CreateEnvelope(fbb, body.first, body.second));
+    return {fbb.GetBufferPointer(), fbb.GetSize()};
+}
+
+// Sized so that a channel chunk never makes the builder regrow.
+size_t initial_builder_bytes(const Message& message) {
+    size_t initial = 256;
+    if (const auto* write = std::get_if<WriteChannelMsg>(&message)) initial += write->data.size();
+    return initial;
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_message(const Message& message) {
-    size_t initial = 256;
-    if (const auto* write = std::get_if<WriteChannelMsg>(&message)) initial += write->data.size();
-    Fbb fbb(initial);
-    const Body body = std::visit([&fbb](const auto& m) { return encode_body(fbb, m); }, message);
-    fb::FinishEnvelopeBuffer(fbb, fb::CreateEnvelope(fbb, body.first, body.second));
-    return std::vector<uint8_t>(fbb.GetBufferPointer(), fbb.GetBufferPointer() + fbb.GetSize());
+    Fbb fbb(initial_builder_bytes(message));
+    const std::span<const uint8_t> body = build_envelope(fbb, message);
+    return std::vector<uint8_t>(body.begin(), body.end());
 }
 
 std::vector<uint8_t> encode_frame(const Message& message) {
-    return frame_bytes(encode_message(message));
+    // Framed straight from the builder: one copy of a chunk, not two.
+    Fbb fbb(initial_builder_bytes(message));
+    return frame_bytes(build_envelope(fbb, message));
 }
 
 Result<Message> decode_message(std::span<const uint8_t> body) {

@@ -1,6 +1,7 @@
 // editor_client bake SCENE.gltf (--server HOST:PORT | --spawn-server) [...] [-o TREE.lcut] [--json]
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -17,6 +18,13 @@
 #include "protocol/dump.h"
 
 namespace lc::client {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
 
 void add_bake_command(CLI::App& app) {
     struct Options {
@@ -35,8 +43,10 @@ void add_bake_command(CLI::App& app) {
     cmd->add_flag("--json", options->json, "Print the summary as JSON");
     cmd->callback([options] {
         std::vector<std::string> warnings;
+        const auto load_start = std::chrono::steady_clock::now();
         Result<Scene> scene = load_scene(options->scene, warnings, options->gltf);
         if (!scene) fail(scene.error());
+        const double load_ms = ms_since(load_start);
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
@@ -54,10 +64,14 @@ void add_bake_command(CLI::App& app) {
         for (const SceneLight& l : scene->lights) classic += l.classic ? 1 : 0;
         double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
         std::string channel = outcome->result_channel_name;
+        const auto write_start = std::chrono::steady_clock::now();
         if (!options->output.empty())
             or_fail(write_dump(options->output, ChannelDump{channel, outcome->result_channel}));
+        const double write_ms = ms_since(write_start);
+        const auto import_start = std::chrono::steady_clock::now();
         TreeStore store;
         or_fail(store.import(std::move(outcome)));
+        const double import_ms = ms_since(import_start);
         if (options->json) {
             nlohmann::json j;
             j["scene"] = options->scene;
@@ -75,6 +89,9 @@ void add_bake_command(CLI::App& app) {
             j["upload_ms"] = upload_ms;
             j["download_ms"] = download_ms;
             j["total_ms"] = total_ms;
+            j["load_ms"] = load_ms;
+            j["write_ms"] = write_ms;
+            j["import_ms"] = import_ms;
             j["result_channel"] = channel;
             j["output"] = options->output;
             std::cout << j.dump(2) << "\n";

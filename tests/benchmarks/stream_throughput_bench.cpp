@@ -1,7 +1,11 @@
 // Result-channel streaming over loopback against a raw socket copy of the same
 // bytes, in one run. Usage: stream_throughput_bench RECORDS [RECORDS...]
-// Prints CSV: records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,ratio,peak_rss_mb
+// Prints CSV: records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,ratio,peak_rss_mb,
+// client_rss_bytes_per_record, and the CPU time of each side of the protocol
+// run (server_cpu_ms, client_cpu_ms): on a shared machine the wall clock
+// moves with the load, the CPU time much less.
 #include <sys/resource.h>
+#include <time.h>
 
 #include <chrono>
 #include <cstdio>
@@ -55,6 +59,18 @@ lc::LightTree make_tree(size_t node_count) {
     return tree;
 }
 
+double thread_cpu_ms() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+struct ProtocolRun {
+    double wall_ms = 0.0;
+    double server_cpu_ms = 0.0;
+    double client_cpu_ms = 0.0;
+};
+
 double peak_rss_mb() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
@@ -62,7 +78,8 @@ double peak_rss_mb() {
 }
 
 // Streams `tree` through ResultStream to a client that decodes and validates it.
-double protocol_ms(const std::shared_ptr<const lc::LightTree>& tree) {
+ProtocolRun protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
+    ProtocolRun run;
     lc::asio::io_context io;
     lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
     uint16_t port = acceptor.local_endpoint().port();
@@ -71,10 +88,13 @@ double protocol_ms(const std::shared_ptr<const lc::LightTree>& tree) {
         lc::BakeDoneMsg done;
         done.result_channel = lc::lightcuts_result_channel_name();
         done.node_count = static_cast<uint32_t>(tree->nodes.size());
+        const double cpu_start = thread_cpu_ms();
         lc::bake::ResultStream stream(tree, 1u << 31, done, lc::kDefaultChunkBytes);
         while (auto frame = stream.next_frame()) lc::asio::write(socket, lc::asio::buffer(*frame));
+        run.server_cpu_ms = thread_cpu_ms() - cpu_start;
     });
     auto start = Clock::now();
+    const double cpu_start = thread_cpu_ms();
     lc::tcp::socket socket(io);
     socket.connect(lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), port));
     lc::FrameDecoder decoder;
@@ -99,13 +119,14 @@ double protocol_ms(const std::shared_ptr<const lc::LightTree>& tree) {
         }
     }
     auto received = reader.finish();
-    double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run.client_cpu_ms = thread_cpu_ms() - cpu_start;
     server.join();
     if (!received || received->nodes.size() != tree->nodes.size()) {
         std::fprintf(stderr, "stream failed\n");
         std::exit(1);
     }
-    return ms;
+    return run;
 }
 
 // The same number of bytes, written and read raw in 1 MiB buffers.
@@ -140,19 +161,21 @@ double raw_ms(uint64_t bytes) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::printf("records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,client_rss_bytes_per_record\n");
+    std::printf("records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms\n");
     for (int i = 1; i < argc; ++i) {
         size_t records = std::strtoull(argv[i], nullptr, 10);
         auto tree = std::make_shared<const lc::LightTree>(make_tree(records));
         uint64_t bytes = 4 + tree->nodes.size() * lc::result_record_bytes();
         double rss_before = peak_rss_mb();
-        double p = protocol_ms(tree);
+        const ProtocolRun run = protocol_run(tree);
+        const double p = run.wall_ms;
         double r = raw_ms(bytes);
         double mb = static_cast<double>(bytes) / (1024.0 * 1024.0);
         double rss = peak_rss_mb();
-        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f\n", tree->nodes.size(),
+        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f\n", tree->nodes.size(),
                     static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p, rss,
-                    (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()));
+                    (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()),
+                    run.server_cpu_ms, run.client_cpu_ms);
         std::fflush(stdout);
     }
     return 0;
