@@ -37,9 +37,9 @@ out=docs/bench/scale.csv
 mkdir -p docs/bench
 work="$(mktemp -d)"
 server_pid=""
-stop_server() {
+stop_server() {  # SIGTERM to the server under /usr/bin/time, so time writes its report
   if [[ -n "$server_pid" ]]; then
-    kill -TERM "$server_pid" 2>/dev/null || true
+    pkill -TERM -P "$server_pid" 2>/dev/null || true
     wait "$server_pid" 2>/dev/null || true
     server_pid=""
   fi
@@ -53,7 +53,9 @@ wall_s() {
   awk -F': ' '/Elapsed \(wall clock\)/ {
     n = split($2, p, ":"); s = 0; for (i = 1; i <= n; ++i) s = s * 60 + p[i]; printf "%.3f", s }' "$1"
 }
-json_field() { /usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
+json_field() {  # one number from a JSON file, to 0.1
+  /usr/bin/python3 -c "import json,sys; print('%.1f' % json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"
+}
 
 # One bake through a fresh server (its peak RSS is this bake's alone).
 bake_once() {  # scene builder tag
