@@ -45,6 +45,47 @@ float export_cone_cos(double cone_cos) {
     return std::clamp(round_down_to_float(std::cos(theta)), -1.0f, 1.0f);
 }
 
+// Nodes [begin, end) of the breadth-first `order`, converted into `out`.
+void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
+                   const std::vector<int32_t>& exported_index, size_t begin, size_t end,
+                   std::vector<LightTreeNode>& out_nodes) {
+    for (size_t i = begin; i < end; ++i) {
+        // The node two strides ahead, then (once it has arrived) what it points at.
+        if (i + 2 * kPrefetchAhead < end) {
+            __builtin_prefetch(&arena.nodes[order[i + 2 * kPrefetchAhead]]);
+        }
+        if (i + kPrefetchAhead < end) {
+            const uint32_t representative = arena.nodes[order[i + kPrefetchAhead]].representative;
+            __builtin_prefetch(&arena.lights[representative]);
+            __builtin_prefetch(&exported_index[representative]);
+        }
+        const BuildNode& node = arena.nodes[order[i]];
+        const SceneLight& light = arena.representative_light(node);
+        LightTreeNode& out = out_nodes[i];
+        out.guid = node.guid;
+        out.type = node.type;
+        out.left = node.left == kNoBuildChild ? kNoChild : exported_index[size_t(node.left)];
+        out.right = node.right == kNoBuildChild ? kNoChild : exported_index[size_t(node.right)];
+        out.representative = exported_index[node.representative];
+
+        out.position = light.position;
+        out.direction = light.direction;
+        out.range = light.range;
+        out.spot_cos_inner = std::cos(light.inner_cone_angle);
+        out.spot_cos_outer = std::cos(light.outer_cone_angle);
+
+        out.intensity = nearest_vec3(node.intensity);
+        out.brightness = nearest_float(node.brightness);
+        out.radius = export_radius(node.radius);
+        out.falloff_exponent = 2.0f;
+        out.bbox_min = round_down(node.bbox_min);
+        out.bbox_max = round_up(node.bbox_max);
+        out.cone_axis = glm::vec3(node.cone_axis);
+        out.cone_cos = export_cone_cos(node.cone_cos);
+        out.mixed_types = node.mixed_types;
+    }
+}
+
 }  // namespace
 
 float round_down_to_float(double value) {
@@ -61,7 +102,8 @@ float round_up_to_float(double value) {
     return double(f) < value ? std::nextafter(f, kFloatMax) : f;
 }
 
-ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
+ExportedTree export_light_tree(const BuildArena& arena, int32_t root,
+                               const ParallelRanges& parallel) {
     ExportedTree result;
     if (root < 0) return result;
 
@@ -80,6 +122,7 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
         }
         const BuildNode& node = arena.nodes[order[head]];
         result.depth = std::max(result.depth, node_depth[head]);
+        if (node.is_leaf()) ++result.tree.leaf_count;
         for (const int32_t child : {node.left, node.right}) {
             if (child == kNoBuildChild) continue;
             exported_index[size_t(child)] = int32_t(order.size());
@@ -90,41 +133,13 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root) {
 
     LightTree& tree = result.tree;
     tree.nodes.resize(order.size());
-    for (size_t i = 0; i < order.size(); ++i) {
-        // The node two strides ahead, then (once it has arrived) what it points at.
-        if (i + 2 * kPrefetchAhead < order.size()) {
-            __builtin_prefetch(&arena.nodes[order[i + 2 * kPrefetchAhead]]);
-        }
-        if (i + kPrefetchAhead < order.size()) {
-            const uint32_t representative = arena.nodes[order[i + kPrefetchAhead]].representative;
-            __builtin_prefetch(&arena.lights[representative]);
-            __builtin_prefetch(&exported_index[representative]);
-        }
-        const BuildNode& node = arena.nodes[order[i]];
-        const SceneLight& light = arena.representative_light(node);
-        LightTreeNode& out = tree.nodes[i];
-        out.guid = node.guid;
-        out.type = node.type;
-        out.left = node.left == kNoBuildChild ? kNoChild : exported_index[size_t(node.left)];
-        out.right = node.right == kNoBuildChild ? kNoChild : exported_index[size_t(node.right)];
-        out.representative = exported_index[node.representative];
-        if (node.is_leaf()) ++tree.leaf_count;
-
-        out.position = light.position;
-        out.direction = light.direction;
-        out.range = light.range;
-        out.spot_cos_inner = std::cos(light.inner_cone_angle);
-        out.spot_cos_outer = std::cos(light.outer_cone_angle);
-
-        out.intensity = nearest_vec3(node.intensity);
-        out.brightness = nearest_float(node.brightness);
-        out.radius = export_radius(node.radius);
-        out.falloff_exponent = 2.0f;
-        out.bbox_min = round_down(node.bbox_min);
-        out.bbox_max = round_up(node.bbox_max);
-        out.cone_axis = glm::vec3(node.cone_axis);
-        out.cone_cos = export_cone_cos(node.cone_cos);
-        out.mixed_types = node.mixed_types;
+    const auto convert = [&](size_t begin, size_t end) {
+        convert_nodes(arena, order, exported_index, begin, end, tree.nodes);
+    };
+    if (parallel) {
+        parallel(order.size(), convert);
+    } else {
+        convert(0, order.size());
     }
     return result;
 }

@@ -5,7 +5,9 @@
 // so float bounds still hold what the double bounds held: bbox min rounded
 // down and max up, radius up, cone cosine down; sums that overflow float clamp
 // to the largest float, radii that do become unbounded.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 
 #include "lightcuts/build_tree.h"
 #include "lightcuts/light_tree.h"
@@ -17,8 +19,17 @@ struct ExportedTree {
     uint32_t depth = 0;  // edges from the root to the deepest leaf
 };
 
-// `root` is an arena index, or kNoBuildChild for an empty tree. Iterative.
-ExportedTree export_light_tree(const BuildArena& arena, int32_t root);
+// Runs body(begin, end) over disjoint ranges covering [0, count), in any order
+// and on any threads: how the caller lends its thread pool to the export (this
+// library has none). Each output node depends on its index only, so the tree is
+// the same however the ranges run.
+using ParallelRanges =
+    std::function<void(size_t count, const std::function<void(size_t begin, size_t end)>& body)>;
+
+// `root` is an arena index, or kNoBuildChild for an empty tree. Iterative. The
+// nodes are converted through `parallel` when given, else on this thread.
+ExportedTree export_light_tree(const BuildArena& arena, int32_t root,
+                               const ParallelRanges& parallel = {});
 
 // Rounding helpers, exposed for tests.
 float round_down_to_float(double value);

@@ -1,5 +1,8 @@
 #include "lightmass_server/cluster_bvh.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 
 namespace lc::bake {
@@ -88,47 +91,79 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
     std::vector<uint32_t> order(ids.begin(), ids.end());
     for (const uint32_t id : ids) centre_[id] = 0.5 * (set.shapes[id].lo + set.shapes[id].hi);
 
+    // 1. The median splits, one depth at a time: the ranges of one depth are
+    // disjoint, so they are split in parallel, each exactly as it would be
+    // alone. Ranges in breadth-first order; a split range's children follow
+    // at first_child and first_child + 1.
+    struct Range {
+        uint32_t begin, end;
+        uint32_t mid = 0;          // 0: a leaf range
+        uint32_t first_child = 0;  // index in `ranges`
+    };
+    std::vector<Range> ranges{{0, uint32_t(order.size())}};
+    for (size_t depth_begin = 0; depth_begin < ranges.size();) {
+        const size_t depth_end = ranges.size();
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(depth_begin, depth_end, 1),
+            [&](const tbb::blocked_range<size_t>& chunk) {
+                for (size_t k = chunk.begin(); k != chunk.end(); ++k) {
+                    Range& r = ranges[k];
+                    if (r.end - r.begin <= kLeafSlots) continue;
+                    glm::dvec3 lo(std::numeric_limits<double>::max());
+                    glm::dvec3 hi(std::numeric_limits<double>::lowest());
+                    for (uint32_t s = r.begin; s < r.end; ++s) {
+                        lo = glm::min(lo, centre_[order[s]]);
+                        hi = glm::max(hi, centre_[order[s]]);
+                    }
+                    const glm::dvec3 extent = hi - lo;
+                    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                                     : extent.y >= extent.z                       ? 1
+                                                                                  : 2;
+                    r.mid = r.begin + (r.end - r.begin) / 2;
+                    std::nth_element(order.begin() + r.begin, order.begin() + r.mid,
+                                     order.begin() + r.end, [&](uint32_t a, uint32_t b) {
+                                         const double ca = centre_[a][axis];
+                                         const double cb = centre_[b][axis];
+                                         return ca < cb || (ca == cb && a < b);
+                                     });
+                }
+            });
+        for (size_t k = depth_begin; k < depth_end; ++k) {
+            if (ranges[k].mid == 0) continue;
+            ranges[k].first_child = uint32_t(ranges.size());
+            const Range r = ranges[k];
+            ranges.push_back(Range{r.begin, r.mid});
+            ranges.push_back(Range{r.mid, r.end});
+        }
+        depth_begin = depth_end;
+    }
+
+    // 2. The nodes, numbered depth-first (a subtree's nodes close together,
+    // which the searches' caches like): a work list, no recursion.
     nodes_.reserve(2 * (ids.size() / kLeafSlots + 1));
     nodes_.push_back(Node{});
-    // Work list of (node, range of `order`): top-down median splits, no recursion.
     struct Pending {
-        uint32_t node, begin, end;
+        uint32_t node, range;
     };
-    std::vector<Pending> pending{{0, 0, uint32_t(order.size())}};
+    std::vector<Pending> pending{{0, 0}};
     while (!pending.empty()) {
         const Pending p = pending.back();
         pending.pop_back();
-        if (p.end - p.begin <= kLeafSlots) {
-            nodes_[p.node].first = p.begin;
-            nodes_[p.node].count = p.end - p.begin;
-            for (uint32_t s = p.begin; s < p.end; ++s) leaf_of_slot_[s] = p.node;
+        const Range& r = ranges[p.range];
+        if (r.mid == 0) {
+            nodes_[p.node].first = r.begin;
+            nodes_[p.node].count = r.end - r.begin;
+            for (uint32_t s = r.begin; s < r.end; ++s) leaf_of_slot_[s] = p.node;
             continue;
         }
-        glm::dvec3 lo(std::numeric_limits<double>::max());
-        glm::dvec3 hi(std::numeric_limits<double>::lowest());
-        for (uint32_t s = p.begin; s < p.end; ++s) {
-            lo = glm::min(lo, centre_[order[s]]);
-            hi = glm::max(hi, centre_[order[s]]);
-        }
-        const glm::dvec3 extent = hi - lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                         : extent.y >= extent.z                       ? 1
-                                                                      : 2;
-        const uint32_t mid = p.begin + (p.end - p.begin) / 2;
-        std::nth_element(order.begin() + p.begin, order.begin() + mid, order.begin() + p.end,
-                         [&](uint32_t a, uint32_t b) {
-                             const double ca = centre_[a][axis];
-                             const double cb = centre_[b][axis];
-                             return ca < cb || (ca == cb && a < b);
-                         });
         const uint32_t left = uint32_t(nodes_.size());
         nodes_.push_back(Node{});
         nodes_.push_back(Node{});
         nodes_[p.node].first = left;
         nodes_[left].parent = int32_t(p.node);
         nodes_[left + 1].parent = int32_t(p.node);
-        pending.push_back({left, p.begin, mid});
-        pending.push_back({left + 1, mid, p.end});
+        pending.push_back({left, r.first_child});
+        pending.push_back({left + 1, r.first_child + 1});
     }
     for (uint32_t s = 0; s < order.size(); ++s) {
         slots_[s] = Slot{set.shapes[order[s]], order[s]};
