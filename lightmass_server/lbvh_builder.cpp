@@ -144,7 +144,7 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     size_t merges = 0;
     for (uint32_t d = max_depth + 1; d-- > 0;) {
         const std::vector<uint32_t>& level = inner_by_depth[d];
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, level.size(), 512),
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, level.size(), 4096),
                           [&](const tbb::blocked_range<size_t>& range) {
                               for (size_t k = range.begin(); k != range.end(); ++k) {
                                   const SplitNode& node = nodes[level[k]];
