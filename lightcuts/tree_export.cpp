@@ -102,8 +102,7 @@ float round_up_to_float(double value) {
     return double(f) < value ? std::nextafter(f, kFloatMax) : f;
 }
 
-ExportedTree export_light_tree(const BuildArena& arena, int32_t root,
-                               const ParallelRanges& parallel) {
+ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const ParallelRanges& parallel) {
     ExportedTree result;
     if (root < 0) return result;
 

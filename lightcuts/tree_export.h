@@ -28,8 +28,7 @@ using ParallelRanges =
 
 // `root` is an arena index, or kNoBuildChild for an empty tree. Iterative. The
 // nodes are converted through `parallel` when given, else on this thread.
-ExportedTree export_light_tree(const BuildArena& arena, int32_t root,
-                               const ParallelRanges& parallel = {});
+ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const ParallelRanges& parallel = {});
 
 // Rounding helpers, exposed for tests.
 float round_down_to_float(double value);

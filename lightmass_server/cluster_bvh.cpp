@@ -100,34 +100,34 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
         uint32_t mid = 0;          // 0: a leaf range
         uint32_t first_child = 0;  // index in `ranges`
     };
+    // The median along the range's longest axis of centres, ties by id.
+    const auto split = [&](Range& r) {
+        if (r.end - r.begin <= kLeafSlots) return;
+        glm::dvec3 lo(std::numeric_limits<double>::max());
+        glm::dvec3 hi(std::numeric_limits<double>::lowest());
+        for (uint32_t s = r.begin; s < r.end; ++s) {
+            lo = glm::min(lo, centre_[order[s]]);
+            hi = glm::max(hi, centre_[order[s]]);
+        }
+        const glm::dvec3 extent = hi - lo;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                         : extent.y >= extent.z                       ? 1
+                                                                      : 2;
+        r.mid = r.begin + (r.end - r.begin) / 2;
+        std::nth_element(order.begin() + r.begin, order.begin() + r.mid, order.begin() + r.end,
+                         [&](uint32_t a, uint32_t b) {
+                             const double ca = centre_[a][axis];
+                             const double cb = centre_[b][axis];
+                             return ca < cb || (ca == cb && a < b);
+                         });
+    };
     std::vector<Range> ranges{{0, uint32_t(order.size())}};
     for (size_t depth_begin = 0; depth_begin < ranges.size();) {
         const size_t depth_end = ranges.size();
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(depth_begin, depth_end, 1),
-            [&](const tbb::blocked_range<size_t>& chunk) {
-                for (size_t k = chunk.begin(); k != chunk.end(); ++k) {
-                    Range& r = ranges[k];
-                    if (r.end - r.begin <= kLeafSlots) continue;
-                    glm::dvec3 lo(std::numeric_limits<double>::max());
-                    glm::dvec3 hi(std::numeric_limits<double>::lowest());
-                    for (uint32_t s = r.begin; s < r.end; ++s) {
-                        lo = glm::min(lo, centre_[order[s]]);
-                        hi = glm::max(hi, centre_[order[s]]);
-                    }
-                    const glm::dvec3 extent = hi - lo;
-                    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                                     : extent.y >= extent.z                       ? 1
-                                                                                  : 2;
-                    r.mid = r.begin + (r.end - r.begin) / 2;
-                    std::nth_element(order.begin() + r.begin, order.begin() + r.mid,
-                                     order.begin() + r.end, [&](uint32_t a, uint32_t b) {
-                                         const double ca = centre_[a][axis];
-                                         const double cb = centre_[b][axis];
-                                         return ca < cb || (ca == cb && a < b);
-                                     });
-                }
-            });
+        tbb::parallel_for(tbb::blocked_range<size_t>(depth_begin, depth_end, 1),
+                          [&](const tbb::blocked_range<size_t>& chunk) {
+                              for (size_t k = chunk.begin(); k != chunk.end(); ++k) split(ranges[k]);
+                          });
         for (size_t k = depth_begin; k < depth_end; ++k) {
             if (ranges[k].mid == 0) continue;
             ranges[k].first_child = uint32_t(ranges.size());

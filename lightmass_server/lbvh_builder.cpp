@@ -93,8 +93,7 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const glm::dvec3 p =
-                                  representative_point(arena, arena.nodes[leaves[i]]);
+                              const glm::dvec3 p = representative_point(arena, arena.nodes[leaves[i]]);
                               keys[i] = Keyed{morton_code(p, lo, scale), leaves[i]};
                           }
                       });
@@ -144,20 +143,19 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     size_t merges = 0;
     for (uint32_t d = max_depth + 1; d-- > 0;) {
         const std::vector<uint32_t>& level = inner_by_depth[d];
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, level.size(), 4096),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t k = range.begin(); k != range.end(); ++k) {
-                                  const SplitNode& node = nodes[level[k]];
-                                  arena.nodes[arena_of[level[k]]] = merge_clusters(
-                                      arena, arena_of[size_t(node.left)],
-                                      arena_of[size_t(node.right)], options.representative_rule,
-                                      options.seed);
-                              }
-                          });
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, level.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t k = range.begin(); k != range.end(); ++k) {
+                    const SplitNode& node = nodes[level[k]];
+                    arena.nodes[arena_of[level[k]]] =
+                        merge_clusters(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
+                                       options.representative_rule, options.seed);
+                }
+            });
         merges += level.size();
         if (progress && !progress(double(merges) / double(total_merges))) {
-            return make_error("cancelled during the lbvh build (" + std::to_string(merges) +
-                                  " of " + std::to_string(total_merges) + " merges done)",
+            return make_error("cancelled during the lbvh build (" + std::to_string(merges) + " of " +
+                                  std::to_string(total_merges) + " merges done)",
                               ErrorKind::kCancelled);
         }
     }

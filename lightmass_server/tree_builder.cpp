@@ -56,9 +56,7 @@ Status validate_lights(std::span<const SceneLight> lights) {
     for (size_t i = 0; i < lights.size(); ++i) {
         const SceneLight& light = lights[i];
         // Named only on failure: a million lights must not cost a million strings.
-        const auto name = [&] {
-            return "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")";
-        };
+        const auto name = [&] { return "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")"; };
         if (int(light.type) >= kLightTypeCount) {
             return make_error(name() + " has an unknown type " + std::to_string(int(light.type)));
         }
@@ -150,8 +148,7 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
     }
 
     // Converting 10^6 nodes is memory-bound: two threads overlap their misses.
-    const ParallelRanges tbb_ranges = [](size_t count,
-                                         const std::function<void(size_t, size_t)>& body) {
+    const ParallelRanges tbb_ranges = [](size_t count, const std::function<void(size_t, size_t)>& body) {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1u << 14),
                           [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
     };

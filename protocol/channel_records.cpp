@@ -262,8 +262,7 @@ Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t no
     const uint32_t flags = r.light.light_flags();
     const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kLightFlagTypeShift;
     if (r.node.light_type() >= kLightTypeCount) {
-        return make_error(who() + ": light_type " + std::to_string(r.node.light_type()) +
-                          " is unknown");
+        return make_error(who() + ": light_type " + std::to_string(r.node.light_type()) + " is unknown");
     }
     if (type_in_flags != r.node.light_type()) {
         return make_error(who() + ": FLightData.light_flags type " + std::to_string(type_in_flags) +
@@ -300,9 +299,8 @@ Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t no
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {
-        return make_error(who() + ": FLightData.light_flags says " +
-                          (cluster_flag ? "cluster" : "leaf") + " but the node has " +
-                          (n.is_leaf() ? "no children" : "children"));
+        return make_error(who() + ": FLightData.light_flags says " + (cluster_flag ? "cluster" : "leaf") +
+                          " but the node has " + (n.is_leaf() ? "no children" : "children"));
     }
     const float expected_w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     if (p.w() != expected_w) {
@@ -322,8 +320,7 @@ Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t no
 // Reserves room for all `expected` records once `arriving` (those received
 // plus those in the bytes at hand) make up an eighth of them.
 template <typename Record>
-void reserve_once_an_eighth_arrives(std::vector<Record>& records, int64_t expected,
-                                    size_t arriving) {
+void reserve_once_an_eighth_arrives(std::vector<Record>& records, int64_t expected, size_t arriving) {
     if (expected <= 0 || records.capacity() >= static_cast<size_t>(expected)) return;
     if (arriving * kReserveAllAfterFraction >= static_cast<size_t>(expected)) {
         records.reserve(static_cast<size_t>(expected));
@@ -438,8 +435,7 @@ Status validate_tree_structure(const LightTree& tree) {
         }
         for (int32_t child : {node.left, node.right}) {
             if (++parents[static_cast<size_t>(child)] > 1) {
-                return make_error(node_label(static_cast<size_t>(child)) +
-                                  " has more than one parent");
+                return make_error(node_label(static_cast<size_t>(child)) + " has more than one parent");
             }
         }
     }
@@ -449,8 +445,8 @@ Status validate_tree_structure(const LightTree& tree) {
         if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
     }
     if (leaves != tree.leaf_count) {
-        return make_error("tree says it has " + std::to_string(tree.leaf_count) +
-                          " leaves, its nodes hold " + std::to_string(leaves));
+        return make_error("tree says it has " + std::to_string(tree.leaf_count) + " leaves, its nodes hold " +
+                          std::to_string(leaves));
     }
     if (n == 0) return Ok{};
 
@@ -462,8 +458,8 @@ Status validate_tree_structure(const LightTree& tree) {
     std::vector<uint32_t> subtree(n, 1);
     for (size_t k = n; k-- > 0;) {
         if (links[k].left == kNoChild) continue;
-        subtree[k] = 1 + subtree[static_cast<size_t>(links[k].left)] +
-                     subtree[static_cast<size_t>(links[k].right)];
+        subtree[k] =
+            1 + subtree[static_cast<size_t>(links[k].left)] + subtree[static_cast<size_t>(links[k].right)];
     }
     std::vector<uint32_t> enter(n, 0);
     for (size_t i = 0; i < n; ++i) {
@@ -475,8 +471,7 @@ Status validate_tree_structure(const LightTree& tree) {
     for (size_t i = 0; i < n; ++i) {
         const auto rep = static_cast<size_t>(links[i].representative);
         if (subtree[rep] != 1) {
-            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
-                              " is not a leaf");
+            return make_error(node_label(i) + ": representative " + std::to_string(rep) + " is not a leaf");
         }
         if (enter[rep] < enter[i] || enter[rep] >= enter[i] + subtree[i]) {
             return make_error(node_label(i) + ": representative " + std::to_string(rep) +
@@ -573,8 +568,7 @@ Status validate_scene_light(const SceneLight& light, size_t index) {
 Status SceneChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("scene channel was already refused");
     bytes_seen_ += bytes.size();
-    reserve_once_an_eighth_arrives(lights_, expected_,
-                                   lights_.size() + bytes.size() / kSceneRecordBytes);
+    reserve_once_an_eighth_arrives(lights_, expected_, lights_.size() + bytes.size() / kSceneRecordBytes);
     Status status = push_records(
         pending_, expected_, lights_.size(), kSceneRecordBytes, bytes,
         [this](int32_t count) {
@@ -609,8 +603,7 @@ Result<std::vector<SceneLight>> SceneChannelReader::finish() {
 
 Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("result channel was already refused");
-    reserve_once_an_eighth_arrives(nodes_, expected_,
-                                   nodes_.size() + bytes.size() / kResultRecordBytes);
+    reserve_once_an_eighth_arrives(nodes_, expected_, nodes_.size() + bytes.size() / kResultRecordBytes);
     Status status = push_records(
         pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
         [this](int32_t count) {

@@ -161,7 +161,9 @@ double raw_ms(uint64_t bytes) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::printf("records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms\n");
+    std::printf(
+        "records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,"
+        "client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms\n");
     for (int i = 1; i < argc; ++i) {
         size_t records = std::strtoull(argv[i], nullptr, 10);
         auto tree = std::make_shared<const lc::LightTree>(make_tree(records));
@@ -173,8 +175,8 @@ int main(int argc, char** argv) {
         double mb = static_cast<double>(bytes) / (1024.0 * 1024.0);
         double rss = peak_rss_mb();
         std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f\n", tree->nodes.size(),
-                    static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p, rss,
-                    (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()),
+                    static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p,
+                    rss, (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()),
                     run.server_cpu_ms, run.client_cpu_ms);
         std::fflush(stdout);
     }
