@@ -385,6 +385,18 @@ Status check_count(int32_t count, uint32_t limit, const char* what) {
     return Ok{};
 }
 
+// Checks a channel's count and reserves its first records; `arriving` are the
+// records in the bytes at hand (a whole dump is reserved at once).
+template <typename Record>
+Status accept_count(std::vector<Record>& records, int32_t count, uint32_t limit, const char* what,
+                    size_t arriving) {
+    Status ok = check_count(count, limit, what);
+    if (!ok) return ok;
+    records.reserve(std::min<size_t>(static_cast<size_t>(count), kMaxUpFrontRecords));
+    reserve_once_an_eighth_arrives(records, count, arriving);
+    return ok;
+}
+
 std::string short_channel(const char* what, int64_t expected, size_t received,
                           size_t pending_bytes) {
     if (expected < 0) {
@@ -571,11 +583,8 @@ Status SceneChannelReader::consume(std::span<const uint8_t> bytes) {
     reserve_once_an_eighth_arrives(lights_, expected_, lights_.size() + bytes.size() / kSceneRecordBytes);
     Status status = push_records(
         pending_, expected_, lights_.size(), kSceneRecordBytes, bytes,
-        [this](int32_t count) {
-            Status ok = check_count(count, kMaxSceneLights, "scene");
-            if (ok)
-                lights_.reserve(std::min<size_t>(static_cast<size_t>(count), kMaxUpFrontRecords));
-            return ok;
+        [this, bytes](int32_t count) {
+            return accept_count(lights_, count, kMaxSceneLights, "scene", bytes.size() / kSceneRecordBytes);
         },
         [this](const uint8_t* p, size_t index) -> Status {
             Result<SceneLight> light = from_record(read_struct<fb::SceneLightRecord>(p), index);
@@ -606,11 +615,8 @@ Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     reserve_once_an_eighth_arrives(nodes_, expected_, nodes_.size() + bytes.size() / kResultRecordBytes);
     Status status = push_records(
         pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
-        [this](int32_t count) {
-            Status ok = check_count(count, kMaxTreeNodes, "result");
-            if (ok)
-                nodes_.reserve(std::min<size_t>(static_cast<size_t>(count), kMaxUpFrontRecords));
-            return ok;
+        [this, bytes](int32_t count) {
+            return accept_count(nodes_, count, kMaxTreeNodes, "result", bytes.size() / kResultRecordBytes);
         },
         [this](const uint8_t* p, size_t index) -> Status {
             ResultRecord r;
