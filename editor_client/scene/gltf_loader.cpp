@@ -373,10 +373,8 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
         return fail("the file is larger than 4 GiB");
     }
-    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    if (!binary && options_.stream_nodes) {
-        std::optional<GltfNodeSplit> split = read_gltf_nodes(
-            std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), capacity);
+    if (options_.stream_nodes) {
+        std::optional<GltfNodeSplit> split = read_gltf_nodes(bytes, capacity);
         if (split) {
             std::vector<std::string> warnings;
             const auto* remainder = reinterpret_cast<const uint8_t*>(split->remainder.data());

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -355,13 +356,60 @@ std::optional<GltfNodeSplit> read_padded(std::string_view json, size_t capacity)
     return split;
 }
 
-}  // namespace
-
-std::optional<GltfNodeSplit> read_gltf_nodes(std::string_view json, size_t capacity) {
+std::optional<GltfNodeSplit> read_json(std::string_view json, size_t capacity) {
     if (capacity >= json.size() + simdjson::SIMDJSON_PADDING) return read_padded(json, capacity);
     const simdjson::padded_string padded(json);
     return read_padded(std::string_view(padded.data(), padded.size()),
                        padded.size() + simdjson::SIMDJSON_PADDING);
+}
+
+uint32_t read_u32(const uint8_t* at) {
+    return uint32_t(at[0]) | uint32_t(at[1]) << 8 | uint32_t(at[2]) << 16 | uint32_t(at[3]) << 24;
+}
+
+void append_u32(std::string& out, size_t value) {
+    for (int i = 0; i < 4; ++i) out += char(uint8_t(value >> (8 * i)));
+}
+
+constexpr uint32_t kGlbVersion = 2;
+constexpr uint32_t kGlbChunkJson = 0x4E4F534Au;  // "JSON"
+constexpr size_t kGlbHeaderBytes = 12;
+constexpr size_t kGlbChunkHeaderBytes = 8;
+
+// A .glb whose header and JSON chunk are as the specification writes them;
+// the remainder is the same container around the emptied JSON, the chunks
+// after it copied as they are.
+std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, size_t capacity) {
+    constexpr size_t json_at = kGlbHeaderBytes + kGlbChunkHeaderBytes;
+    if (file.size() < json_at || read_u32(&file[4]) != kGlbVersion ||
+        read_u32(&file[8]) != file.size() || read_u32(&file[16]) != kGlbChunkJson) {
+        return std::nullopt;
+    }
+    const size_t json_bytes = read_u32(&file[12]);
+    if (json_bytes > file.size() - json_at) return std::nullopt;
+    const std::string_view json(reinterpret_cast<const char*>(file.data()) + json_at, json_bytes);
+    std::optional<GltfNodeSplit> split = read_json(json, capacity - json_at);
+    if (!split) return std::nullopt;
+    std::string text = std::move(split->remainder);
+    while (text.size() % 4 != 0) text += ' ';
+    const std::span<const uint8_t> chunks_after = file.subspan(json_at + json_bytes);
+    std::string& glb = split->remainder;
+    glb.reserve(json_at + text.size() + chunks_after.size());
+    glb.append(reinterpret_cast<const char*>(file.data()), 8);
+    append_u32(glb, json_at + text.size() + chunks_after.size());
+    append_u32(glb, text.size());
+    append_u32(glb, kGlbChunkJson);
+    glb += text;
+    glb.append(reinterpret_cast<const char*>(chunks_after.data()), chunks_after.size());
+    return split;
+}
+
+}  // namespace
+
+std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file, size_t capacity) {
+    if (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0) return read_glb(file, capacity);
+    return read_json(std::string_view(reinterpret_cast<const char*>(file.data()), file.size()),
+                     capacity);
 }
 
 }  // namespace lc::client

@@ -12,9 +12,10 @@
 // caller reads the whole file with tinygltf, so the loader's result and its
 // messages are the same on both paths.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
-#include <string_view>
 
 #include "editor_client/scene/gltf_node_table.h"
 
@@ -22,12 +23,14 @@ namespace lc::client {
 
 struct GltfNodeSplit {
     GltfNodeTable table;
-    // The document with `nodes`, `scenes` and the lights replaced by [].
+    // The file (.gltf text or .glb container) with `nodes`, `scenes` and the
+    // lights replaced by [].
     std::string remainder;
 };
 
-// `json` must stay readable for `capacity` bytes from its start (capacity >=
-// json.size() + 64: simdjson's padding); otherwise the reader copies it.
-std::optional<GltfNodeSplit> read_gltf_nodes(std::string_view json, size_t capacity);
+// A .gltf or .glb file's bytes. They must stay readable for `capacity` bytes
+// from their start (capacity >= size + 64: simdjson's padding); otherwise the
+// reader copies the JSON.
+std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file, size_t capacity);
 
 }  // namespace lc::client
