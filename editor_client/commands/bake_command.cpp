@@ -40,6 +40,7 @@ void add_bake_command(CLI::App& app) {
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
+        bake.keep_result_channel = !options->output.empty();
         ProgressDisplay progress(stderr);
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {
@@ -55,7 +56,8 @@ void add_bake_command(CLI::App& app) {
         double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
         std::string channel = outcome->result_channel_name;
         if (!options->output.empty())
-            or_fail(write_dump(options->output, ChannelDump{channel, outcome->result_channel}));
+            or_fail(write_dump(options->output,
+                               ChannelDump{channel, std::move(outcome->result_channel)}));
         TreeStore store;
         or_fail(store.import(std::move(outcome)));
         if (options->json) {
