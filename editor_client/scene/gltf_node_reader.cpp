@@ -99,6 +99,29 @@ bool read_string(sj::value value, std::string_view& out) {
     return value.get_string().get(out) == SUCCESS;
 }
 
+// A key or string as written, when it has no escapes (refused otherwise). It
+// points into the document: unescaping every key of a million nodes would
+// copy hundreds of megabytes into simdjson's string buffer.
+bool plain_text(sj::raw_json_string raw, std::string_view& out) {
+    const char* text = raw.raw();
+    size_t length = 0;
+    while (text[length] != '"') {
+        if (text[length] == '\\') return false;
+        ++length;
+    }
+    out = std::string_view(text, length);
+    return true;
+}
+
+bool read_plain_string(sj::value value, std::string_view& out) {
+    sj::raw_json_string raw;
+    return value.get_raw_json_string().get(raw) == SUCCESS && plain_text(raw, out);
+}
+
+bool read_key(sj::field& field, std::string_view& key) {
+    return plain_text(field.key(), key);
+}
+
 bool read_classic(sj::value value, ExtrasFlag& out) {
     bool flag = false;
     if (value.get_bool().get(flag) != SUCCESS) return false;  // the loader warns: tinygltf's path
@@ -115,9 +138,7 @@ bool for_each_field(sj::value value, Read&& read) {
     for (auto field_result : object) {
         sj::field field;
         std::string_view key;
-        if (std::move(field_result).get(field) != SUCCESS || field.unescaped_key().get(key) != SUCCESS) {
-            return false;
-        }
+        if (std::move(field_result).get(field) != SUCCESS || !read_key(field, key)) return false;
         if (!read(key, field.value())) return false;
     }
     return true;
@@ -162,7 +183,7 @@ bool read_node(sj::value value, GltfNodeTable& table, GltfNode& node) {
                 if (extra == kClassicExtrasKey) return read_classic(e, node.classic);
                 if (extra != kGuidExtrasKey) return false;
                 std::string_view text;
-                if (!read_string(e, text)) return false;
+                if (!read_plain_string(e, text)) return false;
                 const std::optional<Guid> guid = Guid::parse(text);
                 node.guid_extras = guid ? GltfNode::GuidExtras::kGuid : GltfNode::GuidExtras::kInvalid;
                 if (guid) node.guid = *guid;
@@ -267,9 +288,7 @@ bool find_sections(sj::parser& parser, std::string_view json, size_t capacity, S
     for (auto field_result : root) {
         sj::field field;
         std::string_view key;
-        if (std::move(field_result).get(field) != SUCCESS || field.unescaped_key().get(key) != SUCCESS) {
-            return false;
-        }
+        if (std::move(field_result).get(field) != SUCCESS || !read_key(field, key)) return false;
         if (key == "nodes" && !take_array(field.value(), out.nodes)) return false;
         if (key == "scenes" && !take_array(field.value(), out.scenes)) return false;
         if (key == "extensions") {
@@ -280,9 +299,7 @@ bool find_sections(sj::parser& parser, std::string_view json, size_t capacity, S
             for (auto ext_result : extensions) {
                 sj::field ext;
                 std::string_view name;
-                if (std::move(ext_result).get(ext) != SUCCESS || ext.unescaped_key().get(name) != SUCCESS) {
-                    return false;
-                }
+                if (std::move(ext_result).get(ext) != SUCCESS || !read_key(ext, name)) return false;
                 if (name != "KHR_lights_punctual") continue;
                 sj::object lights_punctual;
                 if (!out.lights.empty() ||
@@ -292,9 +309,7 @@ bool find_sections(sj::parser& parser, std::string_view json, size_t capacity, S
                 for (auto lp_result : lights_punctual) {
                     sj::field lp;
                     std::string_view lp_key;
-                    if (std::move(lp_result).get(lp) != SUCCESS || lp.unescaped_key().get(lp_key) != SUCCESS) {
-                        return false;
-                    }
+                    if (std::move(lp_result).get(lp) != SUCCESS || !read_key(lp, lp_key)) return false;
                     if (lp_key == "lights" && !take_array(lp.value(), out.lights)) return false;
                 }
             }
