@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -13,6 +14,7 @@
 #include <memory>
 
 #include "codec.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc {
 namespace {
@@ -105,7 +107,10 @@ Status write_dump(const std::filesystem::path& path, const ChannelDump& dump) {
     return Ok{};
 }
 
-Result<ChannelDump> read_dump(const std::filesystem::path& path) {
+Status read_dump_streaming(const std::filesystem::path& path,
+                           const std::function<Status(const DumpHeader&)>& on_header,
+                           const std::function<Status(std::span<const uint8_t>)>& on_payload,
+                           size_t chunk_bytes) {
     std::error_code ec;
     const uintmax_t file_size = std::filesystem::file_size(path, ec);
     if (ec) return make_error("cannot read dump " + path.string() + ": " + ec.message());
@@ -141,10 +146,10 @@ Result<ChannelDump> read_dump(const std::filesystem::path& path) {
     if (after_fixed < name_bytes + uint64_t{8}) {
         return make_error("dump is truncated inside its channel name or payload length");
     }
-    ChannelDump dump;
-    dump.channel_name.resize(name_bytes);
+    DumpHeader header;
+    header.channel_name.resize(name_bytes);
     std::array<uint8_t, 8> length_bytes{};
-    if (!read_exact(f.get(), reinterpret_cast<uint8_t*>(dump.channel_name.data()), name_bytes) ||
+    if (!read_exact(f.get(), reinterpret_cast<uint8_t*>(header.channel_name.data()), name_bytes) ||
         !read_exact(f.get(), length_bytes.data(), length_bytes.size())) {
         return make_error(system_error("cannot read dump header of", path));
     }
@@ -160,10 +165,34 @@ Result<ChannelDump> read_dump(const std::filesystem::path& path) {
                           " trailing bytes after its " + std::to_string(payload_bytes) +
                           "-byte payload");
     }
-    dump.payload.resize(static_cast<size_t>(payload_bytes));
-    if (!read_exact(f.get(), dump.payload.data(), dump.payload.size())) {
-        return make_error(system_error("cannot read dump payload of", path));
+    header.payload_bytes = payload_bytes;
+    LC_RETURN_IF_ERROR(on_header(header));
+    std::vector<uint8_t> chunk(static_cast<size_t>(std::min<uint64_t>(payload_bytes, chunk_bytes)));
+    for (uint64_t done = 0; done < payload_bytes;) {
+        const size_t n = static_cast<size_t>(std::min<uint64_t>(chunk.size(), payload_bytes - done));
+        if (!read_exact(f.get(), chunk.data(), n)) {
+            return make_error(system_error("cannot read dump payload of", path));
+        }
+        LC_RETURN_IF_ERROR(on_payload(std::span<const uint8_t>(chunk.data(), n)));
+        done += n;
     }
+    return Ok{};
+}
+
+Result<ChannelDump> read_dump(const std::filesystem::path& path) {
+    ChannelDump dump;
+    Status read = read_dump_streaming(
+        path,
+        [&](const DumpHeader& header) -> Status {
+            dump.channel_name = header.channel_name;
+            dump.payload.reserve(static_cast<size_t>(header.payload_bytes));
+            return Ok{};
+        },
+        [&](std::span<const uint8_t> chunk) -> Status {
+            dump.payload.insert(dump.payload.end(), chunk.begin(), chunk.end());
+            return Ok{};
+        });
+    if (!read) return read.failure();
     return dump;
 }
 

@@ -5,6 +5,7 @@
 //   channel name length (uint32) + name bytes, payload length (uint64), payload.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,6 +26,21 @@ Status write_dump(const std::filesystem::path& path, const ChannelDump& dump);
 // Refuses wrong magic, another dump version, another schema hash (naming both
 // hashes), truncated files and trailing bytes.
 Result<ChannelDump> read_dump(const std::filesystem::path& path);
+
+// A dump's header: its channel name and payload length (checked against the file).
+struct DumpHeader {
+    std::string channel_name;
+    uint64_t payload_bytes = 0;
+};
+
+// read_dump without holding the payload whole (a million-light tree's channel
+// is 380 MB): `on_header` sees the header, then `on_payload` the payload in
+// chunks of at most `chunk_bytes`. The same refusals as read_dump; an error
+// from either callback ends the read and is returned.
+Status read_dump_streaming(const std::filesystem::path& path,
+                           const std::function<Status(const DumpHeader&)>& on_header,
+                           const std::function<Status(std::span<const uint8_t>)>& on_payload,
+                           size_t chunk_bytes = size_t{1} << 20);
 
 // "<dir>/<channel name>.dump": the file name --record uses for a channel.
 std::filesystem::path dump_path_for(const std::filesystem::path& dir, const std::string& channel_name);

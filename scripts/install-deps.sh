@@ -12,7 +12,7 @@ PACKAGES=(
   libglm-dev libboost-dev libssl-dev
   libflatbuffers-dev flatbuffers-compiler
   liblemon-dev libtinygltf-dev libtbb-dev
-  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libstb-dev
+  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsimdjson-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # Vulkan on the CPU (lavapipe), shaders, window
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools

@@ -1,5 +1,7 @@
 // The glTF loader: transforms, attributes, materials, cameras, lights, the
-// shared scenes, and one broken file per rule with its error message.
+// shared scenes, and one broken file per rule with its error message. Every
+// file is loaded both ways (gltf_import_equivalence.h): the fast node reader
+// must give tinygltf's scene, errors and warnings.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -19,6 +21,7 @@
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/scene/scene_guid.h"
+#include "gltf_import_equivalence.h"
 #include "test_paths.h"
 
 namespace lc::client {
@@ -26,6 +29,7 @@ namespace {
 
 using json = nlohmann::json;
 using ::testing::HasSubstr;
+using lc::test::load_scene_both_ways;
 
 std::string base64(const std::vector<uint8_t>& bytes) {
     static constexpr char k[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -142,7 +146,7 @@ TEST_F(GltfLoaderScene, FlattensTheHierarchyWithTrsAndMatrices) {
     b.add_node({{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1}}, {"mesh", tri}}, root);
     const int spot = b.add_light({{"type", "spot"}, {"spot", json::object()}, {"intensity", 7}});
     b.add_node({{"extensions", {{"KHR_lights_punctual", {{"light", spot}}}}}}, root);
-    Result<Scene> scene = load_scene(b.write(dir_ / "hierarchy.gltf"));
+    Result<Scene> scene = load_scene_both_ways(b.write(dir_ / "hierarchy.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->meshes.size(), 1u);
     const Mesh& mesh = scene->meshes[0];
@@ -185,7 +189,7 @@ TEST_F(GltfLoaderScene, NormalsUseTheInverseTransposeAndMirrorsKeepWinding) {
         b.add_mesh({{"attributes", {{"POSITION", positions}}}, {"indices", indices}});
     b.add_node({{"scale", {1, 4, 1}}, {"mesh", with_normals}});
     b.add_node({{"scale", {-1, 1, 1}}, {"mesh", without}});
-    Result<Scene> scene = load_scene(b.write(dir_ / "normals.gltf"));
+    Result<Scene> scene = load_scene_both_ways(b.write(dir_ / "normals.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->meshes.size(), 2u);
     // Stretching y by 4 tilts the normal towards x: inverse transpose diag(1, 1/4, 1).
@@ -206,7 +210,7 @@ TEST_F(GltfLoaderScene, StripsAndFansBecomeTriangleLists) {
     b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", positions}}}, {"mode", 5}})}});
     b.add_node({{"mesh", b.add_mesh({{"attributes", {{"POSITION", positions}}}, {"mode", 1}})}});
     std::vector<std::string> warnings;
-    Result<Scene> scene = load_scene(b.write(dir_ / "modes.gltf"), warnings);
+    Result<Scene> scene = load_scene_both_ways(b.write(dir_ / "modes.gltf"), warnings);
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->meshes.size(), 2u);  // the line primitive is skipped
     EXPECT_EQ(scene->meshes[0].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));  // fan
@@ -232,7 +236,7 @@ TEST_F(GltfLoaderScene, MaterialsTexturesAndEmission) {
          json::object()});
     b.add_node(
         {{"mesh", b.add_mesh({{"attributes", {{"POSITION", positions}}}, {"material", 1}})}});
-    Result<Scene> scene = load_scene(b.write(dir_ / "materials.gltf"));
+    Result<Scene> scene = load_scene_both_ways(b.write(dir_ / "materials.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->materials.size(), 2u);
     const Material& m = scene->materials[0];
@@ -269,7 +273,7 @@ TEST_F(GltfLoaderScene, CamerasLookDownTheirNodesMinusZ) {
     b.add_node({{"camera", 0}, {"translation", {3, 0, 0}}, {"rotation", {0, h, 0, h}}});
     b.add_node({{"camera", 1}});
     std::vector<std::string> warnings;
-    Result<Scene> scene = load_scene(b.write(dir_ / "cameras.gltf"), warnings);
+    Result<Scene> scene = load_scene_both_ways(b.write(dir_ / "cameras.gltf"), warnings);
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->cameras.size(), 2u);  // the orthographic one is skipped with a warning
     const Camera& c = scene->cameras[0];
@@ -304,8 +308,8 @@ TEST_F(GltfLoaderScene, LightTypesExtrasAndStableGuids) {
          {"extras",
           {{"lightcuts_classic", true}, {"lightcuts_guid", "0123456789ABCDEF0123456789ABCDEF"}}}});
     const auto path = b.write(dir_ / "lights.gltf");
-    Result<Scene> first = load_scene(path);
-    Result<Scene> second = load_scene(path);
+    Result<Scene> first = load_scene_both_ways(path);
+    Result<Scene> second = load_scene_both_ways(path);
     ASSERT_TRUE(first.ok()) << first.error();
     ASSERT_TRUE(second.ok()) << second.error();
     const std::vector<SceneLight>& lights = first->lights;
@@ -337,7 +341,7 @@ TEST_F(GltfLoaderScene, LightTypesExtrasAndStableGuids) {
 
     // Another intensity: another scene GUID, same light GUIDs.
     b.doc["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 21;
-    Result<Scene> changed = load_scene(b.write(dir_ / "lights.gltf"));
+    Result<Scene> changed = load_scene_both_ways(b.write(dir_ / "lights.gltf"));
     ASSERT_TRUE(changed.ok()) << changed.error();
     EXPECT_NE(changed->guid, first->guid);
     EXPECT_EQ(changed->lights[0].guid, first->lights[0].guid);
@@ -365,7 +369,7 @@ TEST(SceneGuid, DependsOnGeometryAndLightsOnly) {
 
 TEST(GltfLoaderShared, LightsPunctualLampHasFivePointLights) {
     LC_REQUIRE_SHARED_SCENES();
-    Result<Scene> scene = load_scene(lc::test::shared_scenes_dir() / "LightsPunctualLamp" /
+    Result<Scene> scene = load_scene_both_ways(lc::test::shared_scenes_dir() / "LightsPunctualLamp" /
                                      "LightsPunctualLamp.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->lights.size(), 5u);
@@ -402,7 +406,7 @@ TEST(GltfLoaderShared, LightsPunctualLampHasFivePointLights) {
 TEST(GltfLoaderShared, CornellBoxHasGeometryAndNoLights) {
     LC_REQUIRE_SHARED_SCENES();
     Result<Scene> scene =
-        load_scene(lc::test::shared_scenes_dir() / "cornell_box" / "cornell_box.gltf");
+        load_scene_both_ways(lc::test::shared_scenes_dir() / "cornell_box" / "cornell_box.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error();
     EXPECT_TRUE(scene->lights.empty());
     EXPECT_EQ(scene->meshes.size(), 8u);  // the front wall node has no mesh
@@ -429,7 +433,7 @@ TEST_P(GltfLoaderBroken, FailsWithAMessageNamingTheProblem) {
     const BrokenCase& c = GetParam();
     const auto path = lc::test::data_dir() / "broken_gltf" / c.file;
     std::vector<std::string> warnings;
-    Result<Scene> scene = load_scene(path, warnings);
+    Result<Scene> scene = load_scene_both_ways(path, warnings);
     ASSERT_FALSE(scene.ok()) << c.file << " loaded";
     EXPECT_THAT(scene.error(), HasSubstr(c.message)) << c.file;
     EXPECT_THAT(scene.error(), HasSubstr(c.file)) << "the message names the file";
@@ -482,7 +486,7 @@ INSTANTIATE_TEST_SUITE_P(
     });
 
 TEST(GltfLoaderBrokenBaseline, TheUnbrokenFileLoads) {
-    Result<Scene> scene = load_scene(lc::test::data_dir() / "broken_gltf" / "valid_triangle.gltf");
+    Result<Scene> scene = load_scene_both_ways(lc::test::data_dir() / "broken_gltf" / "valid_triangle.gltf");
     ASSERT_TRUE(scene.ok()) << scene.error();
     EXPECT_EQ(scene->meshes.size(), 1u);
     ASSERT_EQ(scene->lights.size(), 1u);
@@ -492,7 +496,7 @@ TEST(GltfLoaderBrokenBaseline, TheUnbrokenFileLoads) {
 TEST(GltfLoaderBrokenBaseline, NoSceneUsesEveryRootNode) {
     std::vector<std::string> warnings;
     Result<Scene> scene =
-        load_scene(lc::test::data_dir() / "broken_gltf" / "no_scene.gltf", warnings);
+        load_scene_both_ways(lc::test::data_dir() / "broken_gltf" / "no_scene.gltf", warnings);
     ASSERT_TRUE(scene.ok()) << scene.error();
     EXPECT_EQ(scene->meshes.size(), 1u);
     EXPECT_EQ(scene->lights.size(), 1u);
@@ -503,7 +507,7 @@ TEST(GltfLoaderBrokenBaseline, NoSceneUsesEveryRootNode) {
 TEST(GltfLoaderBrokenBaseline, PointsAreSkippedWithAWarning) {
     std::vector<std::string> warnings;
     Result<Scene> scene =
-        load_scene(lc::test::data_dir() / "broken_gltf" / "points_primitive.gltf", warnings);
+        load_scene_both_ways(lc::test::data_dir() / "broken_gltf" / "points_primitive.gltf", warnings);
     ASSERT_TRUE(scene.ok()) << scene.error();
     EXPECT_TRUE(scene->meshes.empty());
     ASSERT_EQ(warnings.size(), 1u);
@@ -518,7 +522,7 @@ TEST(GltfLoaderBrokenBaseline, ADeepChainOfNodesLoadsWithoutRecursion) {
     for (int i = 0; i < 50000; ++i) parent = b.add_node({{"translation", {1, 0, 0}}}, parent);
     b.add_light({{"type", "point"}});
     b.doc["nodes"][size_t(parent)]["extensions"] = {{"KHR_lights_punctual", {{"light", 0}}}};
-    Result<Scene> scene = load_scene(b.write(dir / "chain.gltf"));
+    Result<Scene> scene = load_scene_both_ways(b.write(dir / "chain.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.error();
     ASSERT_EQ(scene->lights.size(), 1u);
     expect_vec_near(scene->lights[0].position, {50000, 0, 0});
@@ -561,7 +565,7 @@ TEST(GltfLoaderFuzz, RandomCorruptionsNeverCrash) {
         const auto path = dir / (binary ? "fuzz.glb" : "fuzz.gltf");
         std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
         std::vector<std::string> warnings;
-        Result<Scene> scene = load_scene(path, warnings);
+        Result<Scene> scene = load_scene_both_ways(path, warnings);
         if (scene.ok()) {
             ++loaded;
             for (const Mesh& m : scene->meshes)

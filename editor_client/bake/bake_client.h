@@ -44,6 +44,7 @@ struct BakeClientOptions {
     bool tls = false;
     std::filesystem::path tls_ca_file;
     std::filesystem::path record_dir;  // when set, every channel's bytes are dumped there
+    bool keep_result_channel = true;   // false: BakeOutcome::result_channel stays empty
     BuilderKind builder = BuilderKind::kOptimalPair;
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;

@@ -134,10 +134,12 @@ void ClientSession::on_bake_message(const Message& m) {
         if (!result_channel_id_ || write->channel_id != *result_channel_id_)
             return finish(make_error("server wrote to channel " + std::to_string(write->channel_id) +
                                      " which is not open"));
-        if (write->offset != result_bytes_.size() || result_bytes_.size() + write->data.size() > expected_bytes_)
+        if (write->offset != result_received_ || result_received_ + write->data.size() > expected_bytes_)
             return finish(make_error("result channel out of order or longer than announced"));
         if (Status s = reader_.consume(write->data); !s) return finish(make_error("result channel: " + s.error()));
-        result_bytes_.insert(result_bytes_.end(), write->data.begin(), write->data.end());
+        result_received_ += write->data.size();
+        if (options_.keep_result_channel || (options_.recorder && options_.recorder->enabled()))
+            result_bytes_.insert(result_bytes_.end(), write->data.begin(), write->data.end());
         if (options_.on_progress && reader_.nodes_expected() > 0) {
             float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
                         static_cast<float>(reader_.nodes_expected());
@@ -161,7 +163,8 @@ void ClientSession::on_bake_message(const Message& m) {
             Status recorded = options_.recorder->record(outcome_.result_channel_name, result_bytes_);
             if (!recorded) return finish(make_error(recorded.error()));
         }
-        outcome_.result_channel = std::move(result_bytes_);
+        if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
+        result_bytes_ = {};
         finish(std::move(outcome_));
     } else {
         finish(make_error(std::string("unexpected message from the server: ") + message_name(m)));

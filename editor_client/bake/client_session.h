@@ -31,6 +31,9 @@ struct ClientSessionOptions {
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
     const ChannelRecorder* recorder = nullptr;  // null or disabled: nothing is recorded
+    // False: BakeOutcome::result_channel stays empty; the tree is decoded as
+    // the channel streams in, and a million-light channel is 180 MB more.
+    bool keep_result_channel = true;
 };
 
 class ClientSession {
@@ -85,7 +88,8 @@ private:
     // Result channel.
     BakeOutcome outcome_;
     ResultChannelReader reader_;
-    std::vector<uint8_t> result_bytes_;
+    std::vector<uint8_t> result_bytes_;  // kept for the outcome or the recorder
+    uint64_t result_received_ = 0;
     std::optional<uint32_t> result_channel_id_;
     uint64_t expected_bytes_ = 0;
     bool channel_closed_ = false;

@@ -15,13 +15,23 @@ Status TreeStore::import(Result<BakeOutcome> outcome) {
     return Ok{};
 }
 
+// The channel goes straight from the file into the reader, a chunk at a time:
+// the payload and the decoded tree are never both held.
 Status TreeStore::import_dump(const std::filesystem::path& path) {
-    Result<ChannelDump> dump = read_dump(path);
-    if (!dump) return make_error(path.string() + ": " + dump.error());
-    auto name = ChannelName::parse(dump->channel_name);
-    if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
-        return make_error(path.string() + ": channel '" + dump->channel_name + "' is not a Lightcuts result channel");
-    Result<LightTree> tree = decode_result_channel(dump->payload);
+    ResultChannelReader reader;
+    Status read = read_dump_streaming(
+        path,
+        [](const DumpHeader& header) -> Status {
+            auto name = ChannelName::parse(header.channel_name);
+            if (!name || name->version != kLightcutsVersionGuid ||
+                name->extension != kLightcutsExtension)
+                return make_error("channel '" + header.channel_name +
+                                  "' is not a Lightcuts result channel");
+            return Ok{};
+        },
+        [&](std::span<const uint8_t> chunk) { return reader.consume(chunk); });
+    if (!read) return make_error(path.string() + ": " + read.error());
+    Result<LightTree> tree = reader.finish();
     if (!tree) return make_error(path.string() + ": " + tree.error());
     tree_ = std::make_shared<const LightTree>(std::move(tree.value()));
     ++generation_;

@@ -50,6 +50,7 @@ void add_bake_command(CLI::App& app) {
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
+        bake.keep_result_channel = !options->output.empty();
         ProgressDisplay progress(stderr);
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {
@@ -66,7 +67,8 @@ void add_bake_command(CLI::App& app) {
         std::string channel = outcome->result_channel_name;
         const auto write_start = std::chrono::steady_clock::now();
         if (!options->output.empty())
-            or_fail(write_dump(options->output, ChannelDump{channel, outcome->result_channel}));
+            or_fail(write_dump(options->output,
+                               ChannelDump{channel, std::move(outcome->result_channel)}));
         const double write_ms = ms_since(write_start);
         const auto import_start = std::chrono::steady_clock::now();
         TreeStore store;

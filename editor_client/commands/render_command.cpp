@@ -72,6 +72,7 @@ void run_render(const RenderOptions& options) {
     ProgressDisplay progress(stderr);
     if (options.bake.has_server()) {
         BakeClientOptions bake = options.bake.to_options();
+        bake.keep_result_channel = false;  // rendered from the decoded tree only
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {
             progress.finish();

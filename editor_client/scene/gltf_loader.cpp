@@ -24,8 +24,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "editor_client/scene/gltf_node_reader.h"
 #include "editor_client/scene/gltf_resource_access.h"
 #include "editor_client/scene/scene_guid.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 namespace {
@@ -78,7 +80,7 @@ std::string shorten_data_uris(std::string message) {
     return message;
 }
 
-bool all_finite(const std::vector<double>& values) {
+bool all_finite(std::span<const double> values) {
     return std::all_of(values.begin(), values.end(), [](double v) { return finite(v); });
 }
 
@@ -214,6 +216,69 @@ bool load_image_checked(tg::Image* image, const int image_index, std::string* er
     return true;
 }
 
+// A node's or light's extras.lightcuts_classic as tinygltf parsed it.
+ExtrasFlag classic_flag_of(const tg::Value& extras) {
+    if (!extras.IsObject() || !extras.Has(kClassicExtrasKey)) return ExtrasFlag::kAbsent;
+    const tg::Value& v = extras.Get(kClassicExtrasKey);
+    if (!v.IsBool()) return ExtrasFlag::kNotBoolean;
+    return v.Get<bool>() ? ExtrasFlag::kTrue : ExtrasFlag::kFalse;
+}
+
+// tinygltf's nodes, scenes and lights in the table the loader reads.
+GltfNodeTable node_table_from(const tg::Model& model) {
+    GltfNodeTable table;
+    table.nodes.reserve(model.nodes.size());
+    for (const tg::Node& in : model.nodes) {
+        GltfNode node;
+        node.mesh = in.mesh;
+        node.camera = in.camera;
+        node.first_child = uint32_t(table.children.size());
+        node.child_count = uint32_t(in.children.size());
+        table.children.insert(table.children.end(), in.children.begin(), in.children.end());
+        node.matrix = table.add_numbers(in.matrix);
+        node.translation = table.add_numbers(in.translation);
+        node.rotation = table.add_numbers(in.rotation);
+        node.scale = table.add_numbers(in.scale);
+        auto extension = in.extensions.find(kLightsExtension);
+        if (extension != in.extensions.end()) {
+            const tg::Value& e = extension->second;
+            const bool numbered = e.IsObject() && e.Has("light") && e.Get("light").IsNumber();
+            node.light = numbered ? LightReference::kNumber : LightReference::kMalformed;
+            if (numbered) node.light_number = e.Get("light").GetNumberAsDouble();
+        }
+        node.classic = classic_flag_of(in.extras);
+        if (in.extras.IsObject() && in.extras.Has(kGuidExtrasKey)) {
+            const tg::Value& v = in.extras.Get(kGuidExtrasKey);
+            std::optional<Guid> guid =
+                v.IsString() ? Guid::parse(v.Get<std::string>()) : std::nullopt;
+            node.guid_extras = guid ? GltfNode::GuidExtras::kGuid : GltfNode::GuidExtras::kInvalid;
+            if (guid) node.guid = *guid;
+        }
+        if (in.camera >= 0) node.name = table.add_text(in.name);
+        table.nodes.push_back(node);
+    }
+    for (const tg::Scene& scene : model.scenes) {
+        table.scenes.push_back({uint32_t(table.scene_roots.size()), uint32_t(scene.nodes.size())});
+        table.scene_roots.insert(table.scene_roots.end(), scene.nodes.begin(), scene.nodes.end());
+    }
+    table.lights.reserve(model.lights.size());
+    for (const tg::Light& in : model.lights) {
+        GltfPunctualLight light;
+        light.name = table.add_text(in.name);
+        light.type = table.add_text(in.type);
+        // Only 3 is valid; a longer list keeps a count that says it is not.
+        light.color_count = uint8_t(std::min<size_t>(in.color.size(), 255));
+        if (in.color.size() == 3) std::copy(in.color.begin(), in.color.end(), light.color);
+        light.intensity = in.intensity;
+        light.range = in.range;
+        light.inner_cone_angle = in.spot.innerConeAngle;
+        light.outer_cone_angle = in.spot.outerConeAngle;
+        light.classic = classic_flag_of(in.extras);
+        table.lights.push_back(light);
+    }
+    return table;
+}
+
 // A validated window onto an accessor's bytes.
 struct AccessorData {
     const uint8_t* base = nullptr;
@@ -239,14 +304,23 @@ public:
 
     Result<Scene> load_file();
     // `resource_folder` stands for the scene's folder (gltf_loader.h).
-    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
+    // `capacity`: how many bytes from bytes.data() may be read (padding for simdjson).
+    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
+                       size_t capacity);
 
 private:
     Error fail(const std::string& message) const { return Error{path_.string() + ": " + message}; }
     void warn(const std::string& message) { warnings_.push_back(path_.string() + ": " + message); }
 
     Status read_file(std::vector<uint8_t>& bytes) const;
-    Status parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
+    Status parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
+                 size_t capacity);
+    // tinygltf over `bytes` into model_; its warnings are added to `warnings`.
+    Status parse_with_tinygltf(std::span<const uint8_t> bytes,
+                               const std::filesystem::path& resource_folder,
+                               std::vector<std::string>& warnings);
+    // The rest of the load, once the file's bytes are parsed.
+    Result<Scene> build_scene();
     Status validate_node_graph();
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
@@ -258,8 +332,7 @@ private:
     Result<glm::dmat4> local_transform(int node_index) const;
     Status add_mesh(int node_index, int mesh_index, const glm::dmat4& world);
     Status add_primitive(int mesh_index, int primitive_index, const glm::dmat4& world);
-    Status add_light(int node_index, const tg::Value& extension, const glm::dmat4& world,
-                     uint64_t path_hash);
+    Status add_light(int node_index, const glm::dmat4& world, uint64_t path_hash);
     void add_camera(int node_index, int camera_index, const glm::dmat4& world);
     Status check_unique_light_guids() const;
     void finish_cameras();
@@ -277,6 +350,9 @@ private:
     std::vector<std::string>& warnings_;
     GltfLoadOptions options_;
     tg::Model model_;
+    // Nodes, scenes and punctual lights: read by gltf_node_reader, or taken
+    // from model_ (whose copies are then dropped).
+    GltfNodeTable nodes_;
     Scene scene_;
     std::map<std::pair<int, bool>, int> image_to_texture_;  // (glTF image, sRGB) -> Scene::textures
     std::vector<glm::dvec3> camera_forward_;  // per Scene::cameras entry, for finish_cameras()
@@ -291,14 +367,40 @@ Status Loader::read_file(std::vector<uint8_t>& bytes) const {
     return Ok{};
 }
 
-Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder) {
+Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
+                     size_t capacity) {
     if (bytes.empty()) return fail("the file is empty");
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
         return fail("the file is larger than 4 GiB");
     }
+    if (options_.stream_nodes) {
+        std::optional<GltfNodeSplit> split = read_gltf_nodes(bytes, capacity);
+        if (split) {
+            std::vector<std::string> warnings;
+            const auto* remainder = reinterpret_cast<const uint8_t*>(split->remainder.data());
+            if (parse_with_tinygltf({remainder, split->remainder.size()}, resource_folder,
+                                    warnings)) {
+                nodes_ = std::move(split->table);
+                warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
+                return Ok{};
+            }
+            // The whole file through tinygltf gives the message it always gave.
+            model_ = tg::Model{};
+        }
+    }
+    LC_RETURN_IF_ERROR(parse_with_tinygltf(bytes, resource_folder, warnings_));
+    nodes_ = node_table_from(model_);
+    model_.nodes = {};
+    model_.lights = {};
+    model_.scenes = {};
+    return Ok{};
+}
+
+Status Loader::parse_with_tinygltf(std::span<const uint8_t> bytes,
+                                   const std::filesystem::path& resource_folder,
+                                   std::vector<std::string>& warnings) {
     const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     const auto length = static_cast<unsigned int>(bytes.size());
-
     tg::TinyGLTF gltf;
     ImageLoadContext image_context{&model_};
     gltf.SetImageLoader(&load_image_checked, &image_context);
@@ -318,7 +420,7 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
         // tinygltf throws on some malformed inputs (e.g. .at() on an empty chunk).
         return fail(std::string("malformed glTF: ") + e.what());
     }
-    for (const std::string& line : split_lines(warn_text)) warn(line);
+    for (const std::string& line : split_lines(warn_text)) warnings.push_back(path_.string() + ": " + line);
     if (!ok) {
         std::string message = shorten_data_uris(trim(err));
         if (message.empty()) message = "tinygltf rejected the file without a message";
@@ -329,7 +431,9 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
         return fail(std::string(binary ? "invalid glTF binary: " : "invalid glTF: ") + message);
     }
     // Refused images are dropped with tinygltf's warning; say why.
-    for (const std::string& refusal : access.refusals()) warn("refused: " + refusal);
+    for (const std::string& refusal : access.refusals()) {
+        warnings.push_back(path_.string() + ": refused: " + refusal);
+    }
     return Ok{};
 }
 
@@ -337,10 +441,10 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
 // every node (not only those a scene reaches) without recursion: at most one
 // parent each, then no node may be its own ancestor.
 Status Loader::validate_node_graph() {
-    const int n = static_cast<int>(model_.nodes.size());
+    const int n = static_cast<int>(nodes_.nodes.size());
     std::vector<int> parent(size_t(n), -1);
     for (int i = 0; i < n; ++i) {
-        for (int child : model_.nodes[size_t(i)].children) {
+        for (int child : nodes_.children_of(nodes_.nodes[size_t(i)])) {
             if (child < 0 || child >= n) {
                 return fail("node " + std::to_string(i) + " lists child " + std::to_string(child) +
                             ", which does not exist (the file has " + std::to_string(n) +
@@ -378,8 +482,8 @@ Status Loader::validate_node_graph() {
 }
 
 Result<std::vector<int>> Loader::scene_roots() {
-    const int scene_count = static_cast<int>(model_.scenes.size());
-    const int node_count = static_cast<int>(model_.nodes.size());
+    const int scene_count = static_cast<int>(nodes_.scenes.size());
+    const int node_count = static_cast<int>(nodes_.nodes.size());
     if (model_.defaultScene >= scene_count) {
         return fail("'scene' is " + std::to_string(model_.defaultScene) + " but the file has " +
                     std::to_string(scene_count) + " scenes");
@@ -387,8 +491,8 @@ Result<std::vector<int>> Loader::scene_roots() {
     if (scene_count == 0) {
         // No scene: draw every root node (the spec leaves this to the application).
         std::vector<bool> is_child(size_t(node_count), false);
-        for (const tg::Node& node : model_.nodes)
-            for (int child : node.children) is_child[size_t(child)] = true;
+        for (const GltfNode& node : nodes_.nodes)
+            for (int child : nodes_.children_of(node)) is_child[size_t(child)] = true;
         std::vector<int> roots;
         for (int i = 0; i < node_count; ++i)
             if (!is_child[size_t(i)]) roots.push_back(i);
@@ -396,7 +500,8 @@ Result<std::vector<int>> Loader::scene_roots() {
         return roots;
     }
     const int chosen = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-    const std::vector<int>& roots = model_.scenes[size_t(chosen)].nodes;
+    const std::span<const int32_t> listed = nodes_.roots_of(size_t(chosen));
+    std::vector<int> roots(listed.begin(), listed.end());
     for (int root : roots) {
         if (root < 0 || root >= node_count) {
             return fail("scene " + std::to_string(chosen) + " lists node " + std::to_string(root) +
@@ -534,40 +639,44 @@ Status Loader::convert_materials() {
 }
 
 Result<glm::dmat4> Loader::local_transform(int node_index) const {
-    const tg::Node& node = model_.nodes[size_t(node_index)];
+    const GltfNode& node = nodes_.nodes[size_t(node_index)];
+    const std::span<const double> matrix = nodes_.values(node.matrix);
+    const std::span<const double> translation = nodes_.values(node.translation);
+    const std::span<const double> rotation = nodes_.values(node.rotation);
+    const std::span<const double> scale = nodes_.values(node.scale);
     const std::string what = "node " + std::to_string(node_index);
-    if (!node.matrix.empty()) {
-        if (node.matrix.size() != 16) {
-            return fail(what + ": 'matrix' has " + std::to_string(node.matrix.size()) +
+    if (!matrix.empty()) {
+        if (matrix.size() != 16) {
+            return fail(what + ": 'matrix' has " + std::to_string(matrix.size()) +
                         " numbers, expected 16");
         }
-        if (!all_finite(node.matrix)) return fail(what + ": 'matrix' has a non-finite value");
-        return glm::make_mat4(node.matrix.data());  // both column-major
+        if (!all_finite(matrix)) return fail(what + ": 'matrix' has a non-finite value");
+        return glm::make_mat4(matrix.data());  // both column-major
     }
     glm::dmat4 m(1.0);
-    if (!node.translation.empty()) {
-        if (node.translation.size() != 3) return fail(what + ": 'translation' needs 3 numbers");
-        if (!all_finite(node.translation)) {
+    if (!translation.empty()) {
+        if (translation.size() != 3) return fail(what + ": 'translation' needs 3 numbers");
+        if (!all_finite(translation)) {
             return fail(what + ": 'translation' has a non-finite value");
         }
-        m[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+        m[3] = glm::dvec4(translation[0], translation[1], translation[2], 1.0);
     }
-    if (!node.rotation.empty()) {
-        if (node.rotation.size() != 4) return fail(what + ": 'rotation' needs 4 numbers");
-        if (!all_finite(node.rotation)) return fail(what + ": 'rotation' has a non-finite value");
+    if (!rotation.empty()) {
+        if (rotation.size() != 4) return fail(what + ": 'rotation' needs 4 numbers");
+        if (!all_finite(rotation)) return fail(what + ": 'rotation' has a non-finite value");
         // glTF stores x, y, z, w; glm's constructor takes w first.
-        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        glm::dquat q(rotation[3], rotation[0], rotation[1], rotation[2]);
         const double len = glm::length(q);
         if (!(len > 1e-12)) return fail(what + ": 'rotation' is a zero quaternion");
         m = m * glm::mat4_cast(q / len);
     }
-    if (!node.scale.empty()) {
-        if (node.scale.size() != 3) return fail(what + ": 'scale' needs 3 numbers");
-        if (!all_finite(node.scale)) return fail(what + ": 'scale' has a non-finite value");
+    if (!scale.empty()) {
+        if (scale.size() != 3) return fail(what + ": 'scale' needs 3 numbers");
+        if (!all_finite(scale)) return fail(what + ": 'scale' has a non-finite value");
         glm::dmat4 s(1.0);
-        s[0][0] = node.scale[0];
-        s[1][1] = node.scale[1];
-        s[2][2] = node.scale[2];
+        s[0][0] = scale[0];
+        s[1][1] = scale[1];
+        s[2][2] = scale[2];
         m = m * s;
     }
     return m;
@@ -885,50 +994,51 @@ Status Loader::add_mesh(int node_index, int mesh_index, const glm::dmat4& world)
     return Ok{};
 }
 
-// Reads `extras.<key>` as a bool; other types are ignored with a warning.
-bool extras_flag(const tg::Value& extras, const char* key, const std::string& what,
+// An `extras.<key>` flag; other types than boolean are ignored with a warning.
+bool extras_flag(ExtrasFlag flag, const char* key, const std::string& what,
                  std::vector<std::string>& warnings, const std::string& file) {
-    if (!extras.IsObject() || !extras.Has(key)) return false;
-    const tg::Value& v = extras.Get(key);
-    if (v.IsBool()) return v.Get<bool>();
-    warnings.push_back(file + ": " + what + ": extras." + key + " is not a boolean; ignored");
-    return false;
+    if (flag == ExtrasFlag::kNotBoolean) {
+        warnings.push_back(file + ": " + what + ": extras." + key + " is not a boolean; ignored");
+    }
+    return flag == ExtrasFlag::kTrue;
 }
 
-Status Loader::add_light(int node_index, const tg::Value& extension, const glm::dmat4& world,
-                         uint64_t path_hash) {
+Status Loader::add_light(int node_index, const glm::dmat4& world, uint64_t path_hash) {
     const std::string node_what = "node " + std::to_string(node_index);
-    if (!extension.IsObject() || !extension.Has("light") || !extension.Get("light").IsNumber()) {
+    const GltfNode& node = nodes_.nodes[size_t(node_index)];
+    if (node.light != LightReference::kNumber) {
         return fail(node_what + ": KHR_lights_punctual extension has no 'light' index");
     }
-    const double light_number = extension.Get("light").GetNumberAsDouble();
-    if (!(light_number >= 0.0) || light_number >= double(model_.lights.size()) ||
+    const double light_number = node.light_number;
+    if (!(light_number >= 0.0) || light_number >= double(nodes_.lights.size()) ||
         light_number != std::floor(light_number)) {
         const bool integral =
             light_number == std::floor(light_number) && std::abs(light_number) < 1e15;
         return fail(node_what + " uses light " +
                     (integral ? std::to_string(int64_t(light_number)) : num(light_number)) +
-                    ", which does not exist (the file has " + std::to_string(model_.lights.size()) +
+                    ", which does not exist (the file has " + std::to_string(nodes_.lights.size()) +
                     " lights)");
     }
     const int light_index = static_cast<int>(light_number);
-    const tg::Light& in = model_.lights[size_t(light_index)];
-    const std::string what =
-        "light " + std::to_string(light_index) + (in.name.empty() ? "" : " '" + in.name + "'");
+    const GltfPunctualLight& in = nodes_.lights[size_t(light_index)];
+    const std::string_view name = nodes_.string(in.name);
+    const std::string_view type = nodes_.string(in.type);
+    const std::string what = "light " + std::to_string(light_index) +
+                             (name.empty() ? "" : " '" + std::string(name) + "'");
 
     SceneLight light;
-    if (in.type == "point") {
+    if (type == "point") {
         light.type = LightType::kPoint;
-    } else if (in.type == "spot") {
+    } else if (type == "spot") {
         light.type = LightType::kSpot;
-    } else if (in.type == "directional") {
+    } else if (type == "directional") {
         light.type = LightType::kDirectional;
     } else {
-        return fail(what + " has unknown type '" + in.type +
+        return fail(what + " has unknown type '" + std::string(type) +
                     "' (expected point, spot or directional)");
     }
-    if (!in.color.empty()) {
-        if (in.color.size() != 3) return fail(what + ": 'color' needs 3 numbers");
+    if (in.color_count != 0) {
+        if (in.color_count != 3) return fail(what + ": 'color' needs 3 numbers");
         for (double c : in.color) {
             if (!finite(c) || c < 0.0) {
                 return fail(what + ": 'color' components must be finite and >= 0");
@@ -949,8 +1059,8 @@ Status Loader::add_light(int node_index, const tg::Value& extension, const glm::
     }
     light.range = float(in.range);
     if (light.type == LightType::kSpot) {
-        const double inner = in.spot.innerConeAngle;
-        const double outer = in.spot.outerConeAngle;
+        const double inner = in.inner_cone_angle;
+        const double outer = in.outer_cone_angle;
         if (!finite(inner) || !finite(outer) || inner < 0.0 || outer > std::numbers::pi / 2.0 ||
             !(inner < outer)) {
             return fail(what + ": invalid spot angles (inner " + num(inner) + ", outer " +
@@ -979,21 +1089,20 @@ Status Loader::add_light(int node_index, const tg::Value& extension, const glm::
                     " collapses its direction (zero scale)");
     }
 
-    const tg::Node& node = model_.nodes[size_t(node_index)];
     light.classic =
-        extras_flag(in.extras, kClassicExtrasKey, what, warnings_, path_.string()) ||
-        extras_flag(node.extras, kClassicExtrasKey, node_what, warnings_, path_.string());
+        extras_flag(in.classic, kClassicExtrasKey, what, warnings_, path_.string()) ||
+        extras_flag(node.classic, kClassicExtrasKey, node_what, warnings_, path_.string());
 
-    if (node.extras.IsObject() && node.extras.Has(kGuidExtrasKey)) {
-        const tg::Value& v = node.extras.Get(kGuidExtrasKey);
-        std::optional<Guid> guid = v.IsString() ? Guid::parse(v.Get<std::string>()) : std::nullopt;
-        if (!guid) return fail(node_what + ": extras." + kGuidExtrasKey + " is not a GUID");
-        light.guid = *guid;
+    if (node.guid_extras != GltfNode::GuidExtras::kAbsent) {
+        if (node.guid_extras == GltfNode::GuidExtras::kInvalid) {
+            return fail(node_what + ": extras." + kGuidExtrasKey + " is not a GUID");
+        }
+        light.guid = node.guid;
     } else {
         // Stable for a given file: the light's index and name and where it hangs.
         std::vector<uint8_t> bytes;
         const std::string tag =
-            "KHR_lights_punctual/" + std::to_string(light_index) + "/" + in.name;
+            "KHR_lights_punctual/" + std::to_string(light_index) + "/" + std::string(name);
         bytes.assign(tag.begin(), tag.end());
         for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(path_hash >> (8 * i)));
         light.guid = Guid::from_bytes(bytes);
@@ -1026,7 +1135,8 @@ void Loader::add_camera(int node_index, int camera_index, const glm::dmat4& worl
         return;
     }
     Camera camera;
-    camera.name = !in.name.empty() ? in.name : model_.nodes[size_t(node_index)].name;
+    camera.name = !in.name.empty() ? in.name
+                                   : std::string(nodes_.string(nodes_.nodes[size_t(node_index)].name));
     camera.eye = glm::vec3(eye);
     camera.up = glm::vec3(up / ulen);
     camera.yfov = float(yfov);
@@ -1047,7 +1157,7 @@ void Loader::finish_cameras() {
 }
 
 Status Loader::traverse(const std::vector<int>& roots) {
-    std::vector<bool> visited(model_.nodes.size(), false);
+    std::vector<bool> visited(nodes_.nodes.size(), false);
     std::vector<Traversal> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
         stack.push_back({*it, glm::dmat4(1.0), 0xcbf29ce484222325ull});
@@ -1061,7 +1171,7 @@ Status Loader::traverse(const std::vector<int>& roots) {
                         "or listed twice)");
         }
         visited[size_t(item.node)] = true;
-        const tg::Node& node = model_.nodes[size_t(item.node)];
+        const GltfNode& node = nodes_.nodes[size_t(item.node)];
 
         Result<glm::dmat4> local = local_transform(item.node);
         if (!local) return Error{local.error()};
@@ -1088,44 +1198,60 @@ Status Loader::traverse(const std::vector<int>& roots) {
             }
             add_camera(item.node, node.camera, world);
         }
-        auto light_ext = node.extensions.find(kLightsExtension);
-        if (light_ext != node.extensions.end()) {
-            Status status = add_light(item.node, light_ext->second, world, path_hash);
+        if (node.light != LightReference::kNone) {
+            Status status = add_light(item.node, world, path_hash);
             if (!status) return status;
         }
-        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+        const std::span<const int32_t> children = nodes_.children_of(node);
+        for (auto it = children.rbegin(); it != children.rend(); ++it) {
             stack.push_back({*it, world, path_hash});
         }
     }
     return Ok{};
 }
 
+// Sorted (GUID, index) pairs rather than a map: a million lights. The pair
+// named is the one a scan in light order meets first: the smallest second
+// index of any shared GUID, with that GUID's first index.
 Status Loader::check_unique_light_guids() const {
-    std::map<Guid, size_t> seen;
-    for (size_t i = 0; i < scene_.lights.size(); ++i) {
-        auto [it, inserted] = seen.emplace(scene_.lights[i].guid, i);
-        if (!inserted) {
-            return fail("lights " + std::to_string(it->second) + " and " + std::to_string(i) +
-                        " share GUID " + scene_.lights[i].guid.to_hex());
+    std::vector<std::pair<Guid, uint32_t>> order(scene_.lights.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = {scene_.lights[i].guid, uint32_t(i)};
+    std::sort(order.begin(), order.end());
+    size_t first = 0;
+    size_t second = std::numeric_limits<size_t>::max();
+    for (size_t k = 1; k < order.size(); ++k) {
+        if (order[k].first == order[k - 1].first && order[k].second < second &&
+            (k < 2 || order[k - 2].first != order[k].first)) {
+            first = order[k - 1].second;
+            second = order[k].second;
         }
     }
-    return Ok{};
+    if (second == std::numeric_limits<size_t>::max()) return Ok{};
+    return fail("lights " + std::to_string(first) + " and " + std::to_string(second) +
+                " share GUID " + scene_.lights[second].guid.to_hex());
 }
 
 Result<Scene> Loader::load_file() {
-    std::vector<uint8_t> bytes;
-    Status status = read_file(bytes);
-    if (!status) return Error{status.error()};
     std::filesystem::path folder = path_.parent_path();
     if (folder.empty()) folder = ".";
-    return load(bytes, folder);
+    {
+        // The file's bytes go before the scene is built: a million-light file is
+        // hundreds of megabytes that nothing reads after parsing.
+        std::vector<uint8_t> bytes;
+        LC_RETURN_IF_ERROR(read_file(bytes));
+        LC_RETURN_IF_ERROR(parse(bytes, folder, bytes.capacity()));
+    }
+    return build_scene();
 }
 
 Result<Scene> Loader::load(std::span<const uint8_t> bytes,
-                           const std::filesystem::path& resource_folder) {
-    Status status = parse(bytes, resource_folder);
-    if (!status) return Error{status.error()};
-    status = validate_node_graph();
+                           const std::filesystem::path& resource_folder, size_t capacity) {
+    LC_RETURN_IF_ERROR(parse(bytes, resource_folder, capacity));
+    return build_scene();
+}
+
+Result<Scene> Loader::build_scene() {
+    Status status = validate_node_graph();
     if (!status) return Error{status.error()};
     Result<std::vector<int>> roots = scene_roots();
     if (!roots) return Error{roots.error()};
@@ -1176,7 +1302,7 @@ Result<Scene> load_scene_from_memory(std::span<const uint8_t> bytes,
                                      std::vector<std::string>& warnings,
                                      const GltfLoadOptions& options) {
     Loader loader("(memory)", warnings, options);
-    return loader.load(bytes, resource_folder);
+    return loader.load(bytes, resource_folder, bytes.size());
 }
 
 Result<Scene> load_scene(const std::filesystem::path& path, const GltfLoadOptions& options) {

@@ -34,6 +34,10 @@ struct GltfLoadOptions {
     // folder (gltf_resource_access.h); this also allows any other regular file
     // (absolute paths, "../"). FIFOs and devices are never read.
     bool allow_external_resources = false;
+    // Nodes, scenes and punctual lights read by simdjson
+    // (gltf_node_reader.h); false: tinygltf reads the whole file, as the
+    // reference the fast path is tested against.
+    bool stream_nodes = true;
 };
 
 // Warnings (skipped primitives, unsupported features) go to the log.

@@ -1,0 +1,430 @@
+// simdjson On-Demand over a glTF's nodes, scenes and punctual lights. Every
+// value of those arrays is either read with its type checked or refused
+// (nullopt): On-Demand does not validate what it skips, and what the reader
+// takes out of the document tinygltf never sees.
+#include "editor_client/scene/gltf_node_reader.h"
+
+#include <simdjson.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <utility>
+
+#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf_resource_access.h"
+
+namespace lc::client {
+namespace {
+
+namespace sj = simdjson::ondemand;
+using simdjson::SUCCESS;
+
+static_assert(GltfResourceAccess::kReadPadding >= simdjson::SIMDJSON_PADDING);
+
+// The three arrays the reader takes, as text inside the document.
+struct Sections {
+    std::string_view nodes;
+    std::string_view scenes;
+    std::string_view lights;
+};
+
+// tinygltf's JSON (nlohmann) keeps integer tokens as 64-bit integers and
+// converts them when asked for a double: "-0" is +0 there, and here.
+bool read_number(sj::value value, double& out) {
+    sj::number number;
+    if (value.get_number().get(number) != SUCCESS) return false;
+    switch (number.get_number_type()) {
+        case sj::number_type::signed_integer:
+            out = double(number.get_int64());
+            return true;
+        case sj::number_type::unsigned_integer:
+            out = double(number.get_uint64());
+            return true;
+        case sj::number_type::floating_point_number:
+            out = number.get_double();
+            return true;
+    }
+    return false;
+}
+
+// An integer token that fits an int (tinygltf truncates wider ones; we refuse them).
+bool read_int(sj::value value, int32_t& out) {
+    sj::number number;
+    if (value.get_number().get(number) != SUCCESS) return false;
+    if (number.get_number_type() != sj::number_type::signed_integer &&
+        number.get_number_type() != sj::number_type::unsigned_integer) {
+        return false;
+    }
+    if (!number.is_int64()) return false;
+    const int64_t v = number.get_int64();
+    if (v < std::numeric_limits<int32_t>::min() || v > std::numeric_limits<int32_t>::max()) {
+        return false;
+    }
+    out = int32_t(v);
+    return true;
+}
+
+bool read_numbers(sj::value value, GltfNodeTable& table, NumberRange& out) {
+    sj::array array;
+    if (value.get_array().get(array) != SUCCESS) return false;
+    out.first = uint32_t(table.numbers.size());
+    for (auto element : array) {
+        sj::value v;
+        double number = 0.0;
+        if (element.get(v) != SUCCESS || !read_number(v, number)) return false;
+        table.numbers.push_back(number);
+    }
+    out.count = uint32_t(table.numbers.size() - out.first);
+    return true;
+}
+
+bool read_ints(sj::value value, std::vector<int32_t>& pool, NumberRange& out) {
+    sj::array array;
+    if (value.get_array().get(array) != SUCCESS) return false;
+    out.first = uint32_t(pool.size());
+    for (auto element : array) {
+        sj::value v;
+        int32_t number = 0;
+        if (element.get(v) != SUCCESS || !read_int(v, number)) return false;
+        pool.push_back(number);
+    }
+    out.count = uint32_t(pool.size() - out.first);
+    return true;
+}
+
+bool read_string(sj::value value, std::string_view& out) {
+    return value.get_string().get(out) == SUCCESS;
+}
+
+// A key or string as written, when it has no escapes (refused otherwise). It
+// points into the document: unescaping every key of a million nodes would
+// copy hundreds of megabytes into simdjson's string buffer.
+bool plain_text(sj::raw_json_string raw, std::string_view& out) {
+    const char* text = raw.raw();
+    size_t length = 0;
+    while (text[length] != '"') {
+        if (text[length] == '\\') return false;
+        ++length;
+    }
+    out = std::string_view(text, length);
+    return true;
+}
+
+bool read_plain_string(sj::value value, std::string_view& out) {
+    sj::raw_json_string raw;
+    return value.get_raw_json_string().get(raw) == SUCCESS && plain_text(raw, out);
+}
+
+bool read_key(sj::field& field, std::string_view& key) {
+    return plain_text(field.key(), key);
+}
+
+bool read_classic(sj::value value, ExtrasFlag& out) {
+    bool flag = false;
+    if (value.get_bool().get(flag) != SUCCESS) return false;  // the loader warns: tinygltf's path
+    out = flag ? ExtrasFlag::kTrue : ExtrasFlag::kFalse;
+    return true;
+}
+
+// Iterates an object's fields, handing each key and value to `read`, which
+// returns false for a field it does not take.
+template <typename Read>
+bool for_each_field(sj::value value, Read&& read) {
+    sj::object object;
+    if (value.get_object().get(object) != SUCCESS) return false;
+    for (auto field_result : object) {
+        sj::field field;
+        std::string_view key;
+        if (std::move(field_result).get(field) != SUCCESS || !read_key(field, key)) return false;
+        if (!read(key, field.value())) return false;
+    }
+    return true;
+}
+
+bool read_node(sj::value value, GltfNodeTable& table, GltfNode& node) {
+    bool has_matrix = false;
+    std::string_view name;
+    const bool ok = for_each_field(value, [&](std::string_view key, sj::value v) {
+        if (key == "name") return read_string(v, name);
+        if (key == "mesh") return read_int(v, node.mesh);
+        if (key == "camera") return read_int(v, node.camera);
+        if (key == "children") {
+            NumberRange children;
+            if (!read_ints(v, table.children, children)) return false;
+            node.first_child = children.first;
+            node.child_count = children.count;
+            return true;
+        }
+        if (key == "matrix") {
+            has_matrix = true;
+            return read_numbers(v, table, node.matrix);
+        }
+        if (key == "translation") return read_numbers(v, table, node.translation);
+        if (key == "rotation") return read_numbers(v, table, node.rotation);
+        if (key == "scale") return read_numbers(v, table, node.scale);
+        if (key == "extensions") {
+            return for_each_field(v, [&](std::string_view extension, sj::value e) {
+                if (extension != "KHR_lights_punctual") return false;
+                node.light = LightReference::kMalformed;
+                return for_each_field(e, [&](std::string_view field, sj::value index) {
+                    int32_t light = -1;
+                    if (field != "light" || !read_int(index, light) || light < 0) return false;
+                    node.light = LightReference::kNumber;
+                    node.light_number = double(light);
+                    return true;
+                });
+            });
+        }
+        if (key == "extras") {
+            return for_each_field(v, [&](std::string_view extra, sj::value e) {
+                if (extra == kClassicExtrasKey) return read_classic(e, node.classic);
+                if (extra != kGuidExtrasKey) return false;
+                std::string_view text;
+                if (!read_plain_string(e, text)) return false;
+                const std::optional<Guid> guid = Guid::parse(text);
+                node.guid_extras = guid ? GltfNode::GuidExtras::kGuid : GltfNode::GuidExtras::kInvalid;
+                if (guid) node.guid = *guid;
+                return true;
+            });
+        }
+        return false;
+    });
+    if (!ok) return false;
+    // tinygltf reads T/R/S only when there is no matrix.
+    if (has_matrix) node.translation = node.rotation = node.scale = NumberRange{};
+    if (node.camera >= 0) node.name = table.add_text(name);
+    return true;
+}
+
+bool read_light(sj::value value, GltfNodeTable& table, GltfPunctualLight& light) {
+    std::string_view name;
+    std::string_view type;
+    bool has_type = false;
+    bool has_spot = false;
+    double inner = light.inner_cone_angle;
+    double outer = light.outer_cone_angle;
+    const bool ok = for_each_field(value, [&](std::string_view key, sj::value v) {
+        if (key == "name") return read_string(v, name);
+        if (key == "type") return has_type = read_string(v, type);
+        if (key == "intensity") return read_number(v, light.intensity);
+        if (key == "range") return read_number(v, light.range);
+        if (key == "color") {
+            NumberRange color;
+            if (!read_numbers(v, table, color) || color.count != 3) return false;
+            std::copy_n(table.numbers.begin() + color.first, 3, light.color);
+            table.numbers.resize(color.first);
+            light.color_count = 3;
+            return true;
+        }
+        if (key == "spot") {
+            has_spot = true;
+            return for_each_field(v, [&](std::string_view angle, sj::value a) {
+                if (angle == "innerConeAngle") return read_number(a, inner);
+                if (angle == "outerConeAngle") return read_number(a, outer);
+                return false;
+            });
+        }
+        if (key == "extras") {
+            return for_each_field(v, [&](std::string_view extra, sj::value e) {
+                return extra == kClassicExtrasKey && read_classic(e, light.classic);
+            });
+        }
+        return false;
+    });
+    // tinygltf requires a type, and a spot object on spot lights only.
+    if (!ok || !has_type || (type == "spot" && !has_spot)) return false;
+    if (type == "spot") {
+        light.inner_cone_angle = inner;
+        light.outer_cone_angle = outer;
+    }
+    light.name = table.add_text(name);
+    light.type = table.add_text(type);
+    return true;
+}
+
+bool read_scene(sj::value value, GltfNodeTable& table, NumberRange& roots) {
+    return for_each_field(value, [&](std::string_view key, sj::value v) {
+        std::string_view name;
+        if (key == "name") return read_string(v, name);
+        return key == "nodes" && read_ints(v, table.scene_roots, roots);
+    });
+}
+
+// Nothing follows the root value (On-Demand stops reading where we stop).
+bool at_end(sj::document& doc) {
+    return doc.current_location().error() == simdjson::OUT_OF_BOUNDS;
+}
+
+// Runs `read` on each element of the array `text`, a part of the padded document.
+template <typename Read>
+bool for_each_element(sj::parser& parser, std::string_view text, size_t capacity, Read&& read) {
+    if (text.empty()) return true;
+    sj::document doc;
+    if (parser.iterate(text.data(), text.size(), capacity).get(doc) != SUCCESS) return false;
+    sj::array array;
+    if (doc.get_array().get(array) != SUCCESS) return false;
+    for (auto element : array) {
+        sj::value v;
+        if (element.get(v) != SUCCESS || !read(v)) return false;
+    }
+    return at_end(doc);
+}
+
+// Finds the three arrays; the rest of the document is left to tinygltf.
+bool find_sections(sj::parser& parser, std::string_view json, size_t capacity, Sections& out) {
+    sj::document doc;
+    if (parser.iterate(json.data(), json.size(), capacity).get(doc) != SUCCESS) return false;
+    sj::object root;
+    if (doc.get_object().get(root) != SUCCESS) return false;
+    bool seen_extensions = false;
+    auto take_array = [](sj::value v, std::string_view& text) {
+        sj::array array;
+        return text.empty() && v.get_array().get(array) == SUCCESS &&
+               array.raw_json().get(text) == SUCCESS;
+    };
+    for (auto field_result : root) {
+        sj::field field;
+        std::string_view key;
+        if (std::move(field_result).get(field) != SUCCESS || !read_key(field, key)) return false;
+        if (key == "nodes" && !take_array(field.value(), out.nodes)) return false;
+        if (key == "scenes" && !take_array(field.value(), out.scenes)) return false;
+        if (key == "extensions") {
+            if (seen_extensions) return false;
+            seen_extensions = true;
+            sj::object extensions;
+            if (field.value().get_object().get(extensions) != SUCCESS) return false;
+            for (auto ext_result : extensions) {
+                sj::field ext;
+                std::string_view name;
+                if (std::move(ext_result).get(ext) != SUCCESS || !read_key(ext, name)) return false;
+                if (name != "KHR_lights_punctual") continue;
+                sj::object lights_punctual;
+                if (!out.lights.empty() ||
+                    ext.value().get_object().get(lights_punctual) != SUCCESS) {
+                    return false;
+                }
+                for (auto lp_result : lights_punctual) {
+                    sj::field lp;
+                    std::string_view lp_key;
+                    if (std::move(lp_result).get(lp) != SUCCESS || !read_key(lp, lp_key)) return false;
+                    if (lp_key == "lights" && !take_array(lp.value(), out.lights)) return false;
+                }
+            }
+        }
+    }
+    return at_end(doc);
+}
+
+// The document with each section's text replaced by an empty array.
+std::string remainder_without(std::string_view json, const Sections& sections) {
+    std::array<std::string_view, 3> cuts{sections.nodes, sections.scenes, sections.lights};
+    std::sort(cuts.begin(), cuts.end(),
+              [](std::string_view a, std::string_view b) { return a.data() < b.data(); });
+    std::string out;
+    const char* at = json.data();
+    for (std::string_view cut : cuts) {
+        if (cut.empty()) continue;
+        out.append(at, cut.data());
+        out += "[]";
+        at = cut.data() + cut.size();
+    }
+    out.append(at, json.data() + json.size());
+    return out;
+}
+
+std::optional<GltfNodeSplit> read_padded(std::string_view json, size_t capacity) {
+    sj::parser parser;
+    Sections sections;
+    if (!find_sections(parser, json, capacity, sections)) return std::nullopt;
+    auto capacity_at = [&](std::string_view part) {
+        return capacity - size_t(part.data() - json.data());
+    };
+    GltfNodeSplit split;
+    GltfNodeTable& table = split.table;
+    const bool ok =
+        for_each_element(parser, sections.nodes, capacity_at(sections.nodes),
+                         [&](sj::value v) {
+                             GltfNode node;
+                             if (!read_node(v, table, node)) return false;
+                             table.nodes.push_back(node);
+                             return true;
+                         }) &&
+        for_each_element(parser, sections.scenes, capacity_at(sections.scenes),
+                         [&](sj::value v) {
+                             NumberRange roots{uint32_t(table.scene_roots.size()), 0};
+                             if (!read_scene(v, table, roots)) return false;
+                             table.scenes.push_back(roots);
+                             return true;
+                         }) &&
+        for_each_element(parser, sections.lights, capacity_at(sections.lights),
+                         [&](sj::value v) {
+                             GltfPunctualLight light;
+                             if (!read_light(v, table, light)) return false;
+                             table.lights.push_back(light);
+                             return true;
+                         });
+    if (!ok) return std::nullopt;
+    split.remainder = remainder_without(json, sections);
+    return split;
+}
+
+std::optional<GltfNodeSplit> read_json(std::string_view json, size_t capacity) {
+    if (capacity >= json.size() + simdjson::SIMDJSON_PADDING) return read_padded(json, capacity);
+    const simdjson::padded_string padded(json);
+    return read_padded(std::string_view(padded.data(), padded.size()),
+                       padded.size() + simdjson::SIMDJSON_PADDING);
+}
+
+uint32_t read_u32(const uint8_t* at) {
+    return uint32_t(at[0]) | uint32_t(at[1]) << 8 | uint32_t(at[2]) << 16 | uint32_t(at[3]) << 24;
+}
+
+void append_u32(std::string& out, size_t value) {
+    for (int i = 0; i < 4; ++i) out += char(uint8_t(value >> (8 * i)));
+}
+
+constexpr uint32_t kGlbVersion = 2;
+constexpr uint32_t kGlbChunkJson = 0x4E4F534Au;  // "JSON"
+constexpr size_t kGlbHeaderBytes = 12;
+constexpr size_t kGlbChunkHeaderBytes = 8;
+
+// A .glb whose header and JSON chunk are as the specification writes them;
+// the remainder is the same container around the emptied JSON, the chunks
+// after it copied as they are.
+std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, size_t capacity) {
+    constexpr size_t json_at = kGlbHeaderBytes + kGlbChunkHeaderBytes;
+    if (file.size() < json_at || read_u32(&file[4]) != kGlbVersion ||
+        read_u32(&file[8]) != file.size() || read_u32(&file[16]) != kGlbChunkJson) {
+        return std::nullopt;
+    }
+    const size_t json_bytes = read_u32(&file[12]);
+    if (json_bytes > file.size() - json_at) return std::nullopt;
+    const std::string_view json(reinterpret_cast<const char*>(file.data()) + json_at, json_bytes);
+    std::optional<GltfNodeSplit> split = read_json(json, capacity - json_at);
+    if (!split) return std::nullopt;
+    std::string text = std::move(split->remainder);
+    while (text.size() % 4 != 0) text += ' ';
+    const std::span<const uint8_t> chunks_after = file.subspan(json_at + json_bytes);
+    std::string& glb = split->remainder;
+    glb.reserve(json_at + text.size() + chunks_after.size());
+    glb.append(reinterpret_cast<const char*>(file.data()), 8);
+    append_u32(glb, json_at + text.size() + chunks_after.size());
+    append_u32(glb, text.size());
+    append_u32(glb, kGlbChunkJson);
+    glb += text;
+    glb.append(reinterpret_cast<const char*>(chunks_after.data()), chunks_after.size());
+    return split;
+}
+
+}  // namespace
+
+std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file, size_t capacity) {
+    if (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0) return read_glb(file, capacity);
+    return read_json(std::string_view(reinterpret_cast<const char*>(file.data()), file.size()),
+                     capacity);
+}
+
+}  // namespace lc::client
