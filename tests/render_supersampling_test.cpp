@@ -16,14 +16,6 @@ namespace {
 
 constexpr uint32_t kSize = 32;
 
-RenderCamera room_camera() {
-    RenderCamera camera;
-    camera.eye = {0.0f, 2.2f, 4.6f};
-    camera.target = {0.0f, 0.4f, -1.0f};
-    camera.yfov = 1.1f;
-    return camera;
-}
-
 class Supersampling : public test::VulkanTest {
 protected:
     void SetUp() override {
@@ -35,7 +27,7 @@ protected:
         settings_.mode = RenderMode::kLightcuts;
         settings_.criterion = CutCriterion::kBound;
         settings_.width = settings_.height = kSize;
-        settings_.camera = room_camera();
+        settings_.camera = test::furnished_room_camera();
         Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
         ASSERT_TRUE(renderer.ok()) << renderer.error();
         renderer_ = std::move(renderer).value();

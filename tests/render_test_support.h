@@ -34,6 +34,16 @@ inline lc::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i
     return client::gbuffer_surface_point(g, i);
 }
 
+// A view of the furnished room (scene_generator.h) over the table towards the
+// cabinet and pillars: edges, shadows and glossy highlights in one frame.
+inline client::RenderCamera furnished_room_camera() {
+    client::RenderCamera camera;
+    camera.eye = {0.0f, 2.2f, 4.6f};
+    camera.target = {0.0f, 0.4f, -1.0f};
+    camera.yfov = 1.1f;
+    return camera;
+}
+
 // `count` lights generated in the room's light box (scene_generator.h).
 inline std::vector<SceneLight> room_lights(uint32_t count, uint64_t seed,
                                            client::LightTypeChoice type, float intensity) {
