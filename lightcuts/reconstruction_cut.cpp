@@ -13,6 +13,11 @@
 namespace lc {
 namespace {
 
+// A cluster evaluation this many times brighter than the samples predict (or
+// than the threshold, for nodes they saw as nearly dark) is refined instead:
+// the paper's third refinement, which gives no factor.
+constexpr double kMuchBrighter = 2.0;
+
 // Unit direction from x towards a node's representative.
 glm::dvec3 direction_to(const LightTreeNode& node, const glm::dvec3& x) {
     if (node.type == LightType::kDirectional) return -glm::normalize(glm::dvec3(node.direction));
@@ -33,6 +38,9 @@ Impostor make_impostor(const SurfacePoint& p, const glm::dvec3& d, const glm::dv
     Impostor imp;
     imp.direction = d;
     const glm::dvec3 M = material_term(p, d);
+    // A lobe that is zero in this direction (a metal away from its
+    // highlight) says nothing of the same node seen from another view.
+    if (glm::dot(p.normal, d) > 0.0 && max_channel(M) <= 0.0) imp.usable = false;
     for (int c = 0; c < 3; ++c) {
         if (M[c] > 0.0) {
             imp.gamma[c] = L[c] / M[c];
@@ -71,24 +79,25 @@ glm::dvec3 evaluate_cluster(const LightTreeNode& node, const SurfacePoint& p,
     return shade_node(node, p);
 }
 
-// The impostor of a node below a sample's cut: its ancestor's direction, the
+// Where one sample's record of a walked node is: its own slot, or below the
+// cut its ancestor's on the cut, whose impostor lends its direction with the
 // intensity scaled by the ratio of the clusters' intensities.
-Impostor derived_impostor(const Impostor& ancestor, const LightTreeNode& parent,
-                          const LightTreeNode& child) {
-    Impostor imp = ancestor;
-    const double parent_intensity = max_channel(glm::dvec3(parent.intensity));
-    const double ratio =
-        parent_intensity > 0.0 ? max_channel(glm::dvec3(child.intensity)) / parent_intensity : 0.0;
-    imp.gamma *= ratio;
-    imp.on_cut = false;
-    imp.below_cut = true;
-    return imp;
-}
+struct SampleRef {
+    int32_t slot = 0;
+    double scale = 1.0;
+    bool below = false;
+};
 
 struct WalkEntry {
     int32_t node = 0;
-    std::array<Impostor, kMaxReconstructionSamples> impostors;
+    std::array<SampleRef, kMaxReconstructionSamples> refs;
 };
+
+double intensity_ratio(const LightTreeNode& child, const LightTreeNode& parent) {
+    const double parent_intensity = max_channel(glm::dvec3(parent.intensity));
+    return parent_intensity > 0.0 ? max_channel(glm::dvec3(child.intensity)) / parent_intensity
+                                  : 0.0;
+}
 
 }  // namespace
 
@@ -118,44 +127,58 @@ ReconstructionSample make_reconstruction_sample(const LightTree& tree, const Sur
     sample.radiance = result.radiance;
     sample.cut_size = result.cut_size;
 
-    // Estimates and directions of the cut's nodes, then of every node above
-    // them: the sum of the children's estimates, and their directions
-    // weighted by those estimates (post-order, an explicit stack).
-    std::unordered_map<int32_t, std::pair<glm::dvec3, glm::dvec3>> estimates;  // L, d
-    estimates.reserve(cut.size() * 2);
-    for (const CutNodeEstimate& entry : cut) {
-        estimates[entry.node] = {entry.estimate,
-                                 direction_to(tree.nodes[size_t(entry.node)], p.position)};
-    }
-    std::vector<std::pair<int32_t, bool>> stack{{0, false}};
+    // Which tree nodes are on the cut (1 + their index in `cut`), in a buffer
+    // kept per thread and cleared after use.
+    thread_local std::vector<uint32_t> on_cut;
+    if (on_cut.size() < tree.nodes.size()) on_cut.assign(tree.nodes.size(), 0);
+    for (size_t k = 0; k < cut.size(); ++k) on_cut[size_t(cut[k].node)] = uint32_t(k + 1);
+
+    // Records in pre-order from the root, down to the cut (an explicit stack).
+    struct Pending {
+        int32_t node, parent_slot, child_position;
+    };
+    std::vector<Pending> stack{{0, -1, 0}};
+    std::vector<glm::dvec3> L, d;  // per record: the estimate and its direction
     while (!stack.empty()) {
-        auto [index, children_done] = stack.back();
+        const Pending next = stack.back();
         stack.pop_back();
-        if (estimates.contains(index) && !children_done) continue;
-        int32_t children[2];
-        const int child_count = valid_children(tree, index, children);
-        if (!children_done) {
-            stack.push_back({index, true});
-            for (int c = 0; c < child_count; ++c) stack.push_back({children[c], false});
+        const int32_t slot = int32_t(sample.nodes.size());
+        sample.nodes.emplace_back();
+        if (next.parent_slot >= 0)
+            sample.nodes[size_t(next.parent_slot)].children[next.child_position] = slot;
+        if (const uint32_t k = on_cut[size_t(next.node)]; k > 0) {
+            sample.nodes.back().impostor.on_cut = true;
+            L.push_back(cut[k - 1].estimate);
+            d.push_back(direction_to(tree.nodes[size_t(next.node)], p.position));
             continue;
         }
-        glm::dvec3 L(0.0), weighted(0.0), plain(0.0);
-        for (int c = 0; c < child_count; ++c) {
-            const auto& [child_L, child_d] = estimates[children[c]];
-            L += child_L;
-            weighted += max_channel(child_L) * child_d;
-            plain += child_d;
-        }
-        const glm::dvec3 d = glm::length(weighted) > 0.0 ? weighted : plain;
-        estimates[index] = {L, glm::length(d) > 0.0 ? glm::normalize(d) : p.normal};
+        L.emplace_back(0.0);
+        d.emplace_back(0.0);
+        int32_t children[2];
+        const int child_count = valid_children(tree, next.node, children);
+        for (int c = child_count - 1; c >= 0; --c) stack.push_back({children[c], slot, c});
     }
-    std::unordered_map<int32_t, bool> on_cut;
-    for (const CutNodeEstimate& entry : cut) on_cut[entry.node] = true;
-    sample.impostors.reserve(estimates.size());
-    for (const auto& [index, estimate] : estimates) {
-        Impostor imp = make_impostor(p, estimate.second, estimate.first, result.radiance);
-        imp.on_cut = on_cut.contains(index);
-        sample.impostors[index] = imp;
+    for (const CutNodeEstimate& entry : cut) on_cut[size_t(entry.node)] = 0;
+
+    // Above the cut, children before parents (reverse pre-order): the sum of
+    // the children's estimates, and their directions weighted by them.
+    for (size_t r = sample.nodes.size(); r-- > 0;) {
+        SampleNode& record = sample.nodes[r];
+        if (record.impostor.on_cut) continue;
+        glm::dvec3 weighted(0.0), plain(0.0);
+        for (int32_t child : record.children) {
+            if (child == kBelowCut) continue;
+            L[r] += L[size_t(child)];
+            weighted += max_channel(L[size_t(child)]) * d[size_t(child)];
+            plain += d[size_t(child)];
+        }
+        const glm::dvec3 sum = glm::length(weighted) > 0.0 ? weighted : plain;
+        d[r] = glm::length(sum) > 0.0 ? glm::normalize(sum) : p.normal;
+    }
+    for (size_t r = 0; r < sample.nodes.size(); ++r) {
+        const bool cut_node = sample.nodes[r].impostor.on_cut;
+        sample.nodes[r].impostor = make_impostor(p, d[r], L[r], result.radiance);
+        sample.nodes[r].impostor.on_cut = cut_node;
     }
     return sample;
 }
@@ -167,24 +190,16 @@ glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
     const size_t K = std::min(samples.size(), size_t(kMaxReconstructionSamples));
     glm::dvec3 radiance(0.0);
     if (tree.empty() || K == 0) return radiance;
-    const SurfacePoint open = without_occluders(p);
-    // The threshold's scale: the smallest total among samples that saw light
-    // (the paper takes the smallest of all; a sample in full shadow would
-    // make every threshold 0 and send the walk down to every leaf).
-    auto threshold = [&](const WalkEntry& e) {
-        double smallest = 0.0;
-        for (size_t k = 0; k < K; ++k) {
-            const double G = e.impostors[k].Gamma;
-            if (G > 0.0 && (smallest == 0.0 || G < smallest)) smallest = G;
-        }
-        return error_ratio * smallest;
-    };
-
-    std::vector<WalkEntry> stack(1);
     for (size_t k = 0; k < K; ++k) {
-        auto it = samples[k]->impostors.find(0);
-        if (it != samples[k]->impostors.end()) stack[0].impostors[k] = it->second;
+        if (samples[k]->nodes.empty()) return radiance;
     }
+    const SurfacePoint open = without_occluders(p);
+    const bool glossy = max_channel(p.specular) > 0.0 && p.exponent > 0.0;
+    double total_here = 0.0;
+    for (size_t k = 0; k < K; ++k) total_here += weights[k] * max_channel(samples[k]->radiance);
+
+    thread_local std::vector<WalkEntry> stack;
+    stack.assign(1, WalkEntry{});
     while (!stack.empty()) {
         const WalkEntry e = stack.back();
         stack.pop_back();
@@ -193,26 +208,33 @@ glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
         const int child_count = valid_children(tree, e.node, children);
         const bool leaf = child_count == 0;
 
-        double gamma_max = 0.0, gamma_min = 0.0, spread = 0.0;
+        // The samples' impostors of this node, and what the rules compare.
+        std::array<const Impostor*, kMaxReconstructionSamples> imp{};
+        std::array<glm::dvec3, kMaxReconstructionSamples> gamma{};
+        glm::dvec3 hi(0.0), lo(0.0);
+        double gamma_max = 0.0, gamma_min = 0.0, smallest_total = 0.0;
         bool usable = true, any_at_or_below = false, all_below = true;
-        for (int c = 0; c < 3; ++c) {
-            double hi = e.impostors[0].gamma[c], lo = hi;
-            for (size_t k = 1; k < K; ++k) {
-                hi = std::max(hi, e.impostors[k].gamma[c]);
-                lo = std::min(lo, e.impostors[k].gamma[c]);
-            }
-            spread = std::max(spread, hi - lo);
-        }
         for (size_t k = 0; k < K; ++k) {
-            const Impostor& imp = e.impostors[k];
-            const double g = max_channel(imp.gamma);
+            const SampleRef& ref = e.refs[k];
+            imp[k] = &samples[k]->nodes[size_t(ref.slot)].impostor;
+            gamma[k] = imp[k]->gamma * ref.scale;
+            const double g = max_channel(gamma[k]);
+            hi = k == 0 ? gamma[k] : glm::max(hi, gamma[k]);
+            lo = k == 0 ? gamma[k] : glm::min(lo, gamma[k]);
             gamma_max = k == 0 ? g : std::max(gamma_max, g);
             gamma_min = k == 0 ? g : std::min(gamma_min, g);
-            usable = usable && imp.usable;
-            any_at_or_below = any_at_or_below || imp.on_cut || imp.below_cut;
-            all_below = all_below && imp.below_cut;
+            usable = usable && imp[k]->usable;
+            any_at_or_below = any_at_or_below || ref.below || imp[k]->on_cut;
+            all_below = all_below && ref.below;
+            // The threshold's scale: the smallest total among samples that saw
+            // light (the paper takes the smallest of all; a sample in full
+            // shadow would make every threshold 0 and send the walk down to
+            // every leaf).
+            const double G = imp[k]->Gamma;
+            if (G > 0.0 && (smallest_total == 0.0 || G < smallest_total)) smallest_total = G;
         }
-        const double tau = threshold(e);
+        const double spread = max_channel(hi - lo);
+        const double tau = error_ratio * smallest_total;
         const bool junction = node.mixed_types && !leaf;
 
         // 1. Discard: dark at every sample.
@@ -220,39 +242,65 @@ glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
         // 2. Interpolate an impostor, unless no sample's cut reached this deep
         // or its direction lies in a glossy lobe.
         if (!junction && usable && !all_below && gamma_min > 0.0 && spread < tau) {
-            glm::dvec3 d(0.0), gamma(0.0);
+            glm::dvec3 d(0.0), g(0.0);
             for (size_t k = 0; k < K; ++k) {
-                d += weights[k] * e.impostors[k].direction;
-                gamma += weights[k] * e.impostors[k].gamma;
+                d += weights[k] * imp[k]->direction;
+                g += weights[k] * gamma[k];
             }
             if (glm::length(d) > 0.0) {
                 d = glm::normalize(d);
                 const glm::dvec3 f = material_response(p, d);
                 if (!inside_gloss_lobe(p, f)) {
-                    radiance += f * std::max(glm::dot(p.normal, d), 0.0) * gamma;
+                    radiance += f * std::max(glm::dot(p.normal, d), 0.0) * g;
                     continue;
                 }
             }
         }
         // 3. Evaluate the cluster as a lightcut would: a leaf, or a node small
-        // against the threshold that some sample's cut reached.
-        if (leaf || (!junction && usable && any_at_or_below && gamma_max < tau)) {
+        // against the threshold that some sample's cut reached. A cluster
+        // far brighter here than any sample predicts (its representative
+        // close to this point) is refined instead, as the paper does.
+        if (leaf) {
             radiance += evaluate_cluster(node, p, open, rays);
             continue;
+        }
+        // On a glossy point the samples' magnitudes (seen from other views)
+        // do not bound a node inside this view's lobe: the node must also
+        // pass the lightcut's own test here, its bound against the error
+        // ratio times the samples' interpolated total; that test alone
+        // decides for a node the samples' lobes could not see.
+        const bool small_at_samples = usable && gamma_max < tau;
+        const bool evaluate =
+            !junction && any_at_or_below &&
+            (glossy ? (small_at_samples || !usable) &&
+                          max_channel(node_contribution_bound(node, p)) <= error_ratio * total_here
+                    : small_at_samples);
+        if (evaluate) {
+            // What the samples predict here, and at least the threshold.
+            double expected = 0.0;
+            for (size_t k = 0; k < K; ++k) {
+                const glm::dvec3 M = material_term(p, imp[k]->direction);
+                expected = std::max({expected, max_channel(M * gamma[k]), max_channel(M) * tau});
+            }
+            const glm::dvec3 evaluated = evaluate_cluster(node, p, open, rays);
+            if (!(max_channel(evaluated) > kMuchBrighter * expected)) {
+                radiance += evaluated;
+                continue;
+            }
         }
         // 4. Refine.
         for (int c = child_count - 1; c >= 0; --c) {
             WalkEntry child;
             child.node = children[c];
-            const LightTreeNode& child_node = tree.nodes[size_t(children[c])];
+            const double ratio = intensity_ratio(tree.nodes[size_t(children[c])], node);
             for (size_t k = 0; k < K; ++k) {
-                const Impostor& parent = e.impostors[k];
-                auto it = parent.on_cut || parent.below_cut
-                              ? samples[k]->impostors.end()
-                              : samples[k]->impostors.find(children[c]);
-                child.impostors[k] = it != samples[k]->impostors.end()
-                                         ? it->second
-                                         : derived_impostor(parent, node, child_node);
+                const SampleRef& ref = e.refs[k];
+                const int32_t slot =
+                    ref.below || imp[k]->on_cut
+                        ? kBelowCut
+                        : samples[k]->nodes[size_t(ref.slot)].children[c];
+                child.refs[k] = slot != kBelowCut ? SampleRef{slot, 1.0, false}
+                                                  : SampleRef{ref.slot, ref.scale * ratio, true};
             }
             stack.push_back(child);
         }

@@ -10,7 +10,6 @@
 
 #include <cstdint>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
@@ -29,18 +28,27 @@ struct Impostor {
     glm::dvec3 direction{0.0, 0.0, 1.0};
     glm::dvec3 gamma{0.0};
     double Gamma = 0.0;
-    bool on_cut = false;     // the node is on the sample's lightcut
-    bool below_cut = false;  // derived from its ancestor on the cut
-    bool usable = true;      // false where the material term vanished (no direction to reuse)
+    bool on_cut = false;  // the node is on the sample's lightcut
+    bool usable = true;   // false where the material term vanished (no direction to reuse)
 };
 
-// A lightcut at one point, processed for interpolation: an impostor for every
-// node on or above its cut.
+// No slot: the node lies below the sample's cut.
+inline constexpr int32_t kBelowCut = -1;
+
+// One node on or above a sample's cut, and where its children's records are
+// (the paper's layout: records with offsets to their children, no lookup).
+struct SampleNode {
+    Impostor impostor;
+    int32_t children[2] = {kBelowCut, kBelowCut};  // in valid_children's order
+};
+
+// A lightcut at one point, processed for interpolation: a record for every
+// node on or above its cut, the root's first.
 struct ReconstructionSample {
     SurfacePoint point;
     glm::dvec3 radiance{0.0};  // the lightcut's estimate (tree lights only)
     uint32_t cut_size = 0;
-    std::unordered_map<int32_t, Impostor> impostors;
+    std::vector<SampleNode> nodes;
 };
 
 // Shadow rays traced, counted the paper's way: one per cluster evaluated

@@ -120,8 +120,9 @@ TEST_F(Supersampling, ReconstructionCutsAgreeWithTheReferenceOnFewerRays) {
                 (unsigned long long)reconstruction.cpu.reconstruction_cuts,
                 reconstructed->rel_err_mean);
     EXPECT_GT(reconstructed->measured_pixels, size_t(kSize) * kSize / 2);
-    // The stated bound on this small, edge-heavy view: within 3% on average.
-    EXPECT_LE(reconstructed->rel_err_mean, 0.03);
+    // The stated bound on this small, edge-heavy view (measured 1.2%, per
+    // eye ray 1.0%): within 2% on average.
+    EXPECT_LE(reconstructed->rel_err_mean, 0.02);
     EXPECT_LT(reconstruction.shadow_rays, lightcuts.shadow_rays);
 }
 
