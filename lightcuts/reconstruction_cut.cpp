@@ -54,8 +54,8 @@ Impostor make_impostor(const SurfacePoint& p, const glm::dvec3& d, const glm::dv
 
 // The paper keeps impostors out of glossy highlights: f_r above the largest
 // diffuse value, 1/pi. Our lobes also sit on dark or metallic bases (a brushed
-// steel cabinet), so a direction where the lobe outweighs the diffuse term
-// counts as inside too (measured: the cabinet's highlights were 50% off).
+// steel cabinet), where f_r stays under 1/pi inside the lobe, so a direction
+// where the lobe outweighs the diffuse term counts as inside too.
 bool inside_gloss_lobe(const SurfacePoint& p, const glm::dvec3& f_r) {
     const glm::dvec3 diffuse = p.albedo * std::numbers::inv_pi;
     return max_channel(f_r) > std::numbers::inv_pi * (1.0 + 1e-9) ||

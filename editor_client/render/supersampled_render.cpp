@@ -99,7 +99,10 @@ Result<SupersampledImage> render_supersampled(Renderer& renderer, const RenderSe
                                               const LightTree* tree,
                                               std::span<const SceneLight> classic_lights) {
     if (request.spp == 0) return make_error("--spp must be at least 1");
-    const std::vector<glm::dvec2> offsets = jittered_offsets(request.spp, request.seed);
+    // One eye ray per pixel passes through its centre, as in a plain frame.
+    const std::vector<glm::dvec2> offsets = request.spp == 1
+                                                ? std::vector<glm::dvec2>{glm::dvec2(0.0)}
+                                                : jittered_offsets(request.spp, request.seed);
     if (request.method == SppMethod::kGpu) return render_gpu_frames(renderer, settings, offsets);
     if (tree == nullptr || tree->empty())
         return make_error(std::string("--spp-method ") + spp_method_name(request.method) +

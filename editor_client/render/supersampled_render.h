@@ -1,6 +1,7 @@
 #pragma once
-// `render --spp N`: N jittered eye rays per pixel (jittered_offsets, seeded),
-// resolved into the pixel by their mean, shaded one of three ways:
+// `render --spp N`: N jittered eye rays per pixel (jittered_offsets, seeded;
+// one ray through the pixel's centre for N = 1), resolved into the pixel by
+// their mean, shaded one of three ways:
 //   gpu             N whole frames on the GPU (lightcuts or reference as the
 //                   settings' mode says), one per eye-ray offset;
 //   lightcuts       a CPU lightcut (bound criterion, heap search) per eye ray;
