@@ -39,7 +39,7 @@ def main():
         for m in METHODS:
             s = json.load(open(os.path.join(base, m + ".json")))
             row = {"lights": lights, "size": args.size, "method": m.split("_")[0],
-                   "error_ratio": s.get("error_ratio", ""), "reference_ms": round(ref["render_ms"], 1),
+                   "error_ratio": round(s["error_ratio"], 6) if "error_ratio" in s else "", "reference_ms": round(ref["render_ms"], 1),
                    "time_ms": round(s["render_ms"], 1),
                    "speedup": round(ref["render_ms"] / s["render_ms"], 2),
                    "gbuffer_ms": round(s["gbuffer_ms"], 1), "lighting_ms": round(s["lighting_ms"], 1),

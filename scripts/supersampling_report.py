@@ -73,20 +73,25 @@ def main():
     fig.tight_layout()
     fig.savefig(args.plot, dpi=110)
 
-    # The crop: the table's edge and its shadow, enlarged 4x without smoothing.
+    crop_edges(args.work, ("one_spp", "reconstruction", "reference"), args.crop)
+
+
+def crop_edges(work, methods, path):
+    """The table's front corner, its legs and its shadow, enlarged 4x without smoothing."""
     crops = []
-    for m in ("one_spp", "reconstruction", "reference"):
-        image = Image.open(os.path.join(args.work, m + ".png")).convert("RGB")
+    for m in methods:
+        image = Image.open(os.path.join(work, m + ".png")).convert("RGB")
         w, h = image.size
-        box = (int(w * 0.30), int(h * 0.45), int(w * 0.30) + w // 4, int(h * 0.45) + h // 4)
-        crops.append(image.crop(box).resize((4 * (w // 4), 4 * (h // 4)), Image.NEAREST))
+        box = (int(w * 0.12), int(h * 0.40), int(w * 0.52), int(h * 0.80))
+        crops.append(image.crop(box).resize((4 * (box[2] - box[0]), 4 * (box[3] - box[1])),
+                                            Image.NEAREST))
     out = Image.new("RGB", (sum(c.width for c in crops) + 8 * (len(crops) - 1), crops[0].height),
                     (255, 255, 255))
     x = 0
     for c in crops:
         out.paste(c, (x, 0))
         x += c.width + 8
-    out.save(args.crop)
+    out.save(path)
 
 
 if __name__ == "__main__":
