@@ -21,23 +21,16 @@ cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
 counts="${2:-16384,131072}"
 size="${3:-256x256}"
-if [[ ! -f "$build_dir/CMakeCache.txt" ]]; then
-  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-fi
-cmake --build "$build_dir" --target editor_client lightmass_server -j "$(nproc)"
-client="$build_dir/bin/editor_client"
+source scripts/lib/furnished_bench.sh
+build_bench_client "$build_dir"
+client="$LC_CLIENT"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
 for lights in ${counts//,/ }; do
   base="$work/$lights"
   mkdir -p "$base"
-  intensity="$(python3 -c "print(819.2 / $lights)")"
-  "$client" make-scene furnished-room -o "$base/empty.gltf" >/dev/null
-  "$client" add-lights "$base/empty.gltf" --count "$lights" --layout random --type point \
-    --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity "$intensity" --range 0 -o "$base/scene.gltf" >/dev/null
-  "$client" bake "$base/scene.gltf" --spawn-server --builder agglomerative -o "$base/tree.lcut" \
-    >/dev/null 2>&1
+  make_furnished_room "$base" "$lights"
   render() {  # tag, then render flags
     local tag=$1
     shift

@@ -20,19 +20,13 @@ build_dir="${1:-build}"
 lights="${2:-4096}"
 size="${3:-128x128}"
 spp="${4:-16}"
-if [[ ! -f "$build_dir/CMakeCache.txt" ]]; then
-  cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-fi
-cmake --build "$build_dir" --target editor_client lightmass_server -j "$(nproc)"
-client="$build_dir/bin/editor_client"
+source scripts/lib/furnished_bench.sh
+build_bench_client "$build_dir"
+client="$LC_CLIENT"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
-intensity="$(python3 -c "print(819.2 / $lights)")"
-"$client" make-scene furnished-room -o "$work/empty.gltf" >/dev/null
-"$client" add-lights "$work/empty.gltf" --count "$lights" --layout random --type point \
-  --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity "$intensity" --range 0 -o "$work/scene.gltf" >/dev/null
-"$client" bake "$work/scene.gltf" --spawn-server --builder agglomerative -o "$work/tree.lcut" >/dev/null
+make_furnished_room "$work" "$lights"
 
 render() {  # tag, then render flags
   local tag=$1

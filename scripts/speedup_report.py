@@ -7,7 +7,6 @@ speed-up, cut size, shadow rays, and the error against the reference
 gpu_noshadow row is the profile's (no error: it lacks the shadows).
 """
 import argparse
-import csv
 import json
 import os
 import sys
@@ -18,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sweep_accuracy import error_stats, read_pfm  # noqa: E402
+from bench_images import error_columns, read_pfm, write_rows  # noqa: E402
 
 METHODS = ["gpu_0.02", "reconstruction_0.02", "gpu_0.005", "reconstruction_0.005", "gpu_noshadow"]
 COLUMNS = ["lights", "size", "method", "error_ratio", "reference_ms", "time_ms", "speedup",
@@ -49,18 +48,10 @@ def main():
             if m == "gpu_noshadow":
                 row["method"] = "gpu, no shadow rays"
             else:
-                e = error_stats(read_pfm(os.path.join(base, m + ".pfm")), reference,
-                                ref["geometry_pixels"], 0.02)
-                row.update({"rel_err_mean": round(e["rel_err_mean"], 5),
-                            "rel_err_p99": round(e["rel_err_p99"], 5),
-                            "within_2pct": round(1.0 - e["frac_over_error"], 5),
-                            "max_err": round(e["max_err"], 4)})
+                row.update(error_columns(os.path.join(base, m + ".pfm"), reference,
+                                         ref["geometry_pixels"]))
             rows.append(row)
-    with open(args.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        for row in rows:
-            w.writerow(row)
+    write_rows(args.csv, COLUMNS, rows)
 
     shown = [r for r in rows if r["method"] in ("gpu", "reconstruction")]
     labels = [f"{r['method']}\n{int(r['lights']):,}, E={float(r['error_ratio']):g}" for r in shown]

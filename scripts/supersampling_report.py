@@ -5,10 +5,9 @@ Reads the renders' stats JSON and float images from --work, measures each
 against the reference (sweep_accuracy.py's error_stats: error_stats.cpp's
 definition, relative luminance error over the lit pixels), and writes one CSV
 row per method, a bar plot of time and shadow rays, and a crop of the 8-bit
-images (1 spp, reconstruction at N spp, reference at N spp) enlarged 4x.
+images (1 spp lightcuts, reconstruction cuts at N spp) enlarged 4x.
 """
 import argparse
-import csv
 import json
 import os
 import sys
@@ -17,11 +16,10 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from sweep_accuracy import error_stats, read_pfm  # noqa: E402
+from bench_images import error_columns, read_pfm, write_rows  # noqa: E402
 
 METHODS = ["reference", "gpu", "lightcuts", "reconstruction", "one_spp"]
 COLUMNS = ["method", "lights", "size", "spp", "shading_ms", "shadow_rays", "lightcuts_computed",
@@ -47,18 +45,9 @@ def main():
                "reconstruction_cuts": s.get("reconstruction_cuts", ""),
                "nonfinite_pixels": s["nonfinite_pixels"]}
         if m != "reference":
-            e = error_stats(read_pfm(os.path.join(args.work, m + ".pfm")), reference, geometry,
-                            0.02)
-            row.update({"rel_err_mean": round(e["rel_err_mean"], 5),
-                        "rel_err_p99": round(e["rel_err_p99"], 5),
-                        "within_2pct": round(1.0 - e["frac_over_error"], 5),
-                        "max_err": round(e["max_err"], 4)})
+            row.update(error_columns(os.path.join(args.work, m + ".pfm"), reference, geometry))
         rows.append(row)
-    with open(args.csv, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        for row in rows:
-            w.writerow(row)
+    write_rows(args.csv, COLUMNS, rows)
 
     shown = [r for r in rows if r["method"] in ("reference", "gpu", "lightcuts", "reconstruction")]
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.2))
@@ -73,7 +62,7 @@ def main():
     fig.tight_layout()
     fig.savefig(args.plot, dpi=110)
 
-    crop_edges(args.work, ("one_spp", "reconstruction", "reference"), args.crop)
+    crop_edges(args.work, ("one_spp", "reconstruction"), args.crop)
 
 
 def crop_edges(work, methods, path):
