@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lightcuts/cut_traversal.h"
+#include "lightcuts/material_model.h"
 
 namespace lc {
 namespace {
@@ -194,7 +195,7 @@ glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
         if (samples[k]->nodes.empty()) return radiance;
     }
     const SurfacePoint open = without_occluders(p);
-    const bool glossy = max_channel(p.specular) > 0.0 && p.exponent > 0.0;
+    const bool glossy = shading::has_lobe(p.specular, p.exponent);
     double total_here = 0.0;
     for (size_t k = 0; k < K; ++k) total_here += weights[k] * max_channel(samples[k]->radiance);
 

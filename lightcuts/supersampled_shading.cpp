@@ -6,9 +6,11 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <thread>
 
 #include "lightcuts/cut_traversal.h"
+#include "lightcuts/material_model.h"
 #include "lightcuts/reconstruction_cut.h"
 #include "lightcuts/seeded_mixer.h"
 
@@ -19,10 +21,10 @@ namespace {
 constexpr uint32_t kImageBlock = 16;
 constexpr uint32_t kStartBlock = 4;
 // Eye rays match when their normals differ by at most 30 degrees.
-const double kMatchCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+const double kMatchCos = std::cos(std::numbers::pi / 6.0);
 // The cone test: another point within 45 degrees of a point's normal could
 // shadow it, or be shadowed by it (a concave corner).
-const double kConeCos = std::cos(45.0 * 3.14159265358979323846 / 180.0);
+const double kConeCos = std::cos(std::numbers::pi / 4.0);
 // The samples' lightcuts refine to a quarter of the error ratio: their
 // errors are shared by every eye ray between them, where per-eye-ray cuts
 // err independently and average out within the pixel, and they are few
@@ -40,7 +42,7 @@ constexpr double kSpanFactor = 1.5;
 // Materials match when their diffuse albedos differ by at most this much.
 constexpr double kAlbedoMatch = 0.05;
 
-bool has_lobe(const SurfacePoint& p) { return max_channel(p.specular) > 0.0 && p.exponent > 0.0; }
+bool has_lobe(const SurfacePoint& p) { return shading::has_lobe(p.specular, p.exponent); }
 
 bool same_material(const SurfacePoint& a, const SurfacePoint& b) {
     return has_lobe(a) == has_lobe(b) && max_channel(glm::abs(a.albedo - b.albedo)) <= kAlbedoMatch &&
