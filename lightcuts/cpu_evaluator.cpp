@@ -130,7 +130,10 @@ CutResult radius_cut(const LightTree& tree, const SurfacePoint& p) {
     return result;
 }
 
-CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
+}  // namespace
+
+CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+                         std::vector<CutNodeEstimate>* nodes) {
     const BoundRule rule(settings);
     CutResult result;
     std::vector<CutEntry> heap{make_entry(tree, 0, p, nullptr)};
@@ -165,10 +168,11 @@ CutResult bound_cut(const LightTree& tree, const SurfacePoint& p, const CutSetti
     CutTally cut;
     for (const CutEntry& entry : heap) cut.add(entry.node, entry.estimate);
     cut.copy_to(result);
+    if (nodes != nullptr) {
+        for (const CutEntry& entry : heap) nodes->push_back({entry.node, entry.estimate});
+    }
     return result;
 }
-
-}  // namespace
 
 int valid_children(const LightTree& tree, int32_t index, int32_t out[2]) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
@@ -231,7 +235,7 @@ CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> cla
             result = radius_cut(tree, p);
         } else {
             result = settings.search == BoundSearch::kWalk ? bound_walk_cut(tree, p, settings)
-                                                           : bound_cut(tree, p, settings);
+                                                           : bound_heap_cut(tree, p, settings);
         }
     }
     for (const SceneLight& light : classic_lights) result.radiance += shade_light(light, p);

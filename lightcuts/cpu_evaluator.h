@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "lightcuts/light_tree.h"
 #include "lightcuts/scene_light.h"
@@ -86,6 +87,16 @@ glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l);
 // node: the diffuse term plus the lobe at the largest cosine between the
 // mirror direction and a direction to the node's box (paper Sec. 4.1).
 glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p);
+// One node of a cut with its cluster estimate (paper Eq. 2, visibility included).
+struct CutNodeEstimate {
+    int32_t node = 0;
+    glm::dvec3 estimate{0.0};
+};
+// The bound criterion's heap search (BoundSearch::kHeap; classic lights not
+// included), with the cut's nodes appended to `nodes` when given (the
+// samples of reconstruction cuts are made from them).
+CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+                         std::vector<CutNodeEstimate>* nodes = nullptr);
 // Lightcuts over the tree, plus the classic lights shaded one by one.
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);

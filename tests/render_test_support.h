@@ -17,6 +17,7 @@
 
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/material_model.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/scene.h"
@@ -30,17 +31,17 @@ namespace lc::test {
 
 // The surface point the lighting pass saw at pixel i of a G-buffer read-back.
 inline lc::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i) {
-    lc::SurfacePoint p;
-    p.position = {g.position[4 * i], g.position[4 * i + 1], g.position[4 * i + 2]};
-    p.normal = {g.normal[4 * i], g.normal[4 * i + 1], g.normal[4 * i + 2]};
-    const glm::dvec3 base(g.albedo[4 * i], g.albedo[4 * i + 1], g.albedo[4 * i + 2]);
-    const shading::SurfaceMaterial m =
-        shading::surface_material(base, g.albedo[4 * i + 3], g.normal[4 * i + 3]);
-    p.albedo = m.diffuse;
-    p.specular = m.specular;
-    p.exponent = m.exponent;
-    p.mirror = shading::mirror_direction(p.normal, p.position, glm::dvec3(g.eye));
-    return p;
+    return client::gbuffer_surface_point(g, i);
+}
+
+// A view of the furnished room (scene_generator.h) over the table towards the
+// cabinet and pillars: edges, shadows and glossy highlights in one frame.
+inline client::RenderCamera furnished_room_camera() {
+    client::RenderCamera camera;
+    camera.eye = {0.0f, 2.2f, 4.6f};
+    camera.target = {0.0f, 0.4f, -1.0f};
+    camera.yfov = 1.1f;
+    return camera;
 }
 
 // `count` lights generated in the room's light box (scene_generator.h).

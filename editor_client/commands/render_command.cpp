@@ -4,11 +4,14 @@
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
+//   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
 // --compare-reference) also renders the reference and measures lightcuts
 // against it (error_stats.h). Without --exposure the exposure is automatic.
+// --spp shades N jittered eye rays per pixel (supersampled_render.h); the
+// reference it is compared against has the same eye rays.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -30,6 +33,7 @@
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/renderer.h"
+#include "editor_client/render/supersampled_render.h"
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/vk/context.h"
@@ -59,7 +63,53 @@ struct RenderOptions {
     std::string float_output;
     std::string stats;
     bool validation = false;
+    uint32_t spp = 1;
+    std::string spp_method = "gpu";
+    uint64_t spp_seed = kDefaultSppSeed;
+    uint32_t threads = 2;
 };
+
+// The scene's classic lights (shaded one by one besides the tree).
+std::vector<SceneLight> classic_lights_of(const Scene& scene) {
+    std::vector<SceneLight> classic;
+    for (const SceneLight& light : scene.lights) {
+        if (light.classic) classic.push_back(light);
+    }
+    return classic;
+}
+
+// One frame's image and statistics: the renderer's, or the mean of --spp eye rays.
+struct RenderedFrame {
+    RenderStats stats;
+    std::vector<float> hdr;
+    std::vector<uint8_t> display;
+};
+
+RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
+                           const SupersampleRequest* spp, const LightTree* tree,
+                           std::span<const SceneLight> classic) {
+    // Timings are of the work alone, not of lavapipe compiling the shaders.
+    if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
+    RenderedFrame out;
+    out.stats = or_fail(renderer.render(settings));
+    if (spp == nullptr) {
+        out.display = or_fail(renderer.read_display());
+        out.hdr = or_fail(renderer.read_hdr());
+        return out;
+    }
+    SupersampledImage image =
+        or_fail(render_supersampled(renderer, settings, *spp, tree, classic));
+    out.hdr = std::move(image.hdr);
+    out.display = tone_map_image(out.hdr, settings.exposure);
+    out.stats.render_ms = image.shading_ms;
+    out.stats.shadow_rays = image.shadow_rays;
+    out.stats.nonfinite_pixels = image.nonfinite_pixels;
+    out.stats.spp = spp->spp;
+    out.stats.spp_method = spp_method_name(spp->method);
+    out.stats.lightcuts_computed = image.cpu.lightcuts;
+    out.stats.reconstruction_cuts = image.cpu.reconstruction_cuts;
+    return out;
+}
 
 void run_render(const RenderOptions& options) {
     auto command_start = std::chrono::steady_clock::now();
@@ -143,11 +193,26 @@ void run_render(const RenderOptions& options) {
                 fail(written.error());
         }
     }
-    // Timings are of the work alone, not of lavapipe compiling the shaders.
-    if (Status warm = renderer->warm_up(settings); !warm) fail(warm.error());
-    RenderStats stats = or_fail(renderer->render(settings));
-    std::vector<uint8_t> display = or_fail(renderer->read_display());
-    std::vector<float> hdr = or_fail(renderer->read_hdr());
+    const bool supersampled = options.spp > 1 || options.spp_method != "gpu";
+    SupersampleRequest spp;
+    spp.spp = options.spp;
+    spp.seed = options.spp_seed;
+    spp.threads = options.threads;
+    if (supersampled) {
+        std::optional<SppMethod> method = parse_spp_method(options.spp_method);
+        if (!method) fail("unknown --spp-method '" + options.spp_method + "'");
+        spp.method = *method;
+        if (!mode_is_shaded(settings.mode) || error_mode || !sweep_ratios.empty())
+            fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
+        if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
+            fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
+    }
+    const std::vector<SceneLight> classic = classic_lights_of(scene);
+    RenderedFrame rendered =
+        render_frame(*renderer, settings, supersampled ? &spp : nullptr, tree.get(), classic);
+    RenderStats stats = std::move(rendered.stats);
+    std::vector<uint8_t> display = std::move(rendered.display);
+    std::vector<float> hdr = std::move(rendered.hdr);
     stats.exposure = settings.exposure;
     // Shaded modes without --exposure: tone-map the read-back at the automatic exposure.
     const bool shaded = mode_is_shaded(settings.mode) && !error_mode;
@@ -159,20 +224,24 @@ void run_render(const RenderOptions& options) {
     if (compare) {
         RenderSettings reference_settings = settings;
         reference_settings.mode = RenderMode::kReference;
-        if (Status warm = renderer->warm_up(reference_settings); !warm) fail(warm.error());
-        RenderStats reference_stats = or_fail(renderer->render(reference_settings));
-        std::vector<float> reference = or_fail(renderer->read_hdr());
+        SupersampleRequest reference_spp = spp;
+        reference_spp.method = SppMethod::kGpu;
+        RenderedFrame reference = render_frame(*renderer, reference_settings,
+                                               supersampled ? &reference_spp : nullptr,
+                                               tree.get(), classic);
         ErrorStats errors =
-            or_fail(compute_error_stats(hdr, reference, width, height, settings.error_ratio));
+            or_fail(compute_error_stats(hdr, reference.hdr, width, height, settings.error_ratio));
         stats.has_error_stats = true;
         stats.rel_err_mean = errors.rel_err_mean;
         stats.rel_err_p99 = errors.rel_err_p99;
         stats.frac_over_error = errors.frac_over_error;
+        stats.frac_over_2pct = fraction_over(errors, 0.02);
         stats.max_err = errors.max_err;
         stats.error_pixels = errors.measured_pixels;
-        stats.reference_ms = reference_stats.render_ms;
+        stats.reference_ms = reference.stats.render_ms;
+        stats.reference_shadow_rays = reference.stats.shadow_rays;
         if (error_mode) {
-            display = error_heatmap(errors, reference, width, height, settings.error_ratio);
+            display = error_heatmap(errors, reference.hdr, width, height, settings.error_ratio);
             stats.mode = "error";
         }
     }
@@ -280,6 +349,21 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("-o,--output", options->output, "8-bit PNG to write")->required();
     cmd->add_option("--float", options->float_output, "Linear float PFM to write");
     cmd->add_option("--stats", options->stats, "Statistics JSON to write");
+    cmd->add_option("--spp", options->spp,
+                    "Eye rays per pixel, jittered (seeded) and averaged into the pixel")
+        ->check(CLI::Range(1u, 1024u))
+        ->capture_default_str();
+    cmd->add_option("--spp-method", options->spp_method,
+                    "How --spp shades its eye rays: gpu (a whole frame per eye ray), lightcuts "
+                    "(a CPU lightcut per eye ray) or reconstruction (the paper's reconstruction "
+                    "cuts: CPU lightcuts at sparse samples, interpolated between)")
+        ->check(CLI::IsMember({"gpu", "lightcuts", "reconstruction"}))
+        ->capture_default_str();
+    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")
+        ->capture_default_str();
+    cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
+        ->check(CLI::Range(1u, 256u))
+        ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_render(*options); });

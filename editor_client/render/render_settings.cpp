@@ -179,6 +179,12 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (!std::isfinite(settings.exposure) || settings.exposure < 0.0f)
         return make_error("exposure " + number_text(settings.exposure) +
                           " is not a finite number >= 0");
+    const glm::vec2 o = settings.pixel_offset;
+    if (!(std::abs(o.x) <= 0.5f && std::abs(o.y) <= 0.5f))
+        return make_error("pixel offset (" + number_text(o.x) + ", " + number_text(o.y) +
+                          ") is outside [-0.5, 0.5]");
+    if (settings.corner_grid && (settings.width < 2 || settings.height < 2))
+        return make_error("a corner grid needs at least 2x2 corners");
     return Ok{};
 }
 

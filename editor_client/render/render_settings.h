@@ -1,5 +1,6 @@
 #pragma once
 // What one frame shows and how: mode, cut criterion, size, camera, exposure.
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -60,6 +61,12 @@ struct RenderSettings {
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
     BoundSearch bound_search = BoundSearch::kWalk;  // how the bound criterion finds the cut
+    // Where each pixel's eye ray passes, in pixels from the pixel's centre
+    // (supersampling's jitter; each component in [-0.5, 0.5]).
+    glm::vec2 pixel_offset{0.0f};
+    // The frame's pixels are the corners of the pixels of a (width - 1) x
+    // (height - 1) image seen by the same camera (reconstruction cuts' samples).
+    bool corner_grid = false;
 };
 
 // Largest max-cut the GPU accepts (the heap search keeps it in private memory per invocation).

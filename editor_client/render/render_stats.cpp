@@ -54,6 +54,16 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["error_pixels"] = s.error_pixels;
         j["reference_ms"] = s.reference_ms;
     }
+    if (s.spp > 1 || s.spp_method != "gpu") {
+        j["spp"] = s.spp;
+        j["spp_method"] = s.spp_method;
+        j["lightcuts_computed"] = s.lightcuts_computed;
+        j["reconstruction_cuts"] = s.reconstruction_cuts;
+        if (s.has_error_stats) {
+            j["frac_over_2pct"] = s.frac_over_2pct;
+            j["reference_shadow_rays"] = s.reference_shadow_rays;
+        }
+    }
     j["exposure"] = s.exposure;
     j["auto_exposure"] = s.auto_exposure;
     j["validation_messages"] = s.validation_messages;

@@ -59,6 +59,14 @@ struct RenderStats {
     double max_err = 0.0;
     uint64_t error_pixels = 0;   // pixels with a non-negligible reference
     double reference_ms = 0.0;   // GPU time of the reference frame
+    double frac_over_2pct = 0.0;  // measured pixels whose relative error exceeds 2%
+    uint64_t reference_shadow_rays = 0;
+    // Supersampling (render --spp): eye rays per pixel and how they were
+    // shaded; the CPU methods' lightcuts and reconstruction cuts.
+    uint32_t spp = 1;
+    std::string spp_method = "gpu";
+    uint64_t lightcuts_computed = 0;
+    uint64_t reconstruction_cuts = 0;
     double exposure = 1.0;       // the exposure the PNG was tone-mapped with
     bool auto_exposure = false;
     uint32_t validation_messages = 0;

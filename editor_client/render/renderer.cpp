@@ -293,6 +293,22 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     return Ok{};
 }
 
+Status Renderer::render_gbuffer(const RenderSettings& settings) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    update_frame_descriptors();
+    const Frame frame = make_frame(settings);
+    FramePass& gbuffer = passes_->gbuffer();
+    LC_RETURN_IF_ERROR(gbuffer.prepare(pipelines_, frame));
+    last_eye_ = settings.camera.eye;
+    return context_.command_pool().run_one_time(context_.device(), [&](VkCommandBuffer cmd) {
+        gbuffer.record(cmd, frame);
+        vk::memory_barrier(cmd, gbuffer.last_stage() | kComputeStage,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                           VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    });
+}
+
 Status Renderer::warm_up(const RenderSettings& settings) {
     RenderSettings tiny = settings;
     tiny.width = tiny.height = 16;

@@ -87,6 +87,9 @@ public:
 
     // Headless: records, submits, waits, and gathers statistics.
     Result<RenderStats> render(const RenderSettings& settings);
+    // Headless: rasterises the G-buffer alone (no lighting, no output) for
+    // read_gbuffer(), e.g. the eye rays of a supersampled frame.
+    Status render_gbuffer(const RenderSettings& settings);
     // Renders a 16x16 frame with these settings' pipelines, so that the next
     // full frame's timing is the work alone: lavapipe compiles a pipeline's
     // shaders on its first dispatch (~0.4 s for the lightcuts shader), inside

@@ -22,6 +22,8 @@ public:
 
     // The passes that render `settings`, in recording order.
     std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
+    // The G-buffer pass alone (Renderer::render_gbuffer).
+    FramePass& gbuffer() { return *gbuffer_; }
 
 private:
     std::unique_ptr<GBufferPass> gbuffer_;

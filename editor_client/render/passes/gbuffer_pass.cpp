@@ -37,6 +37,25 @@ glm::mat4 view_projection(const RenderCamera& camera, float aspect, const glm::v
     return projection * view;
 }
 
+glm::mat4 eye_ray_view_projection(const RenderSettings& settings, uint32_t width,
+                                   uint32_t height, const glm::vec3& bounds_min,
+                                   const glm::vec3& bounds_max) {
+    // The image the camera frames: the frame itself, or the one whose pixel
+    // corners the frame's pixels are.
+    const float image_width = float(width - (settings.corner_grid ? 1u : 0u));
+    const float image_height = float(height - (settings.corner_grid ? 1u : 0u));
+    glm::mat4 clip(1.0f);
+    // Corner grid: the image's pixel pitch kept, pixel centres on its corners.
+    clip[0][0] = image_width / float(width);
+    clip[1][1] = image_height / float(height);
+    // The eye ray of a pixel passes `pixel_offset` from its centre: the scene
+    // moves the other way (NDC spans 2 over the frame; y grows with rows).
+    clip[3][0] = -2.0f * settings.pixel_offset.x / float(width);
+    clip[3][1] = -2.0f * settings.pixel_offset.y / float(height);
+    return clip * view_projection(settings.camera, image_width / image_height, bounds_min,
+                                  bounds_max);
+}
+
 GBufferPass::GBufferPass(const GpuScene& gpu_scene, const Scene& scene, vk::PipelineLayout layout)
     : gpu_scene_(gpu_scene), scene_(scene), layout_(std::move(layout)) {}
 
@@ -142,8 +161,8 @@ void GBufferPass::draw(VkCommandBuffer cmd, const Frame& frame) const {
     vkCmdBindIndexBuffer(cmd, gpu_scene_.index_buffer(), 0, VK_INDEX_TYPE_UINT32);
     const RenderCamera& camera = frame.settings->camera;
     GpuDrawConstants constants;
-    constants.view_proj = view_projection(camera, float(targets.width) / float(targets.height),
-                                          scene_.bounds_min, scene_.bounds_max);
+    constants.view_proj = eye_ray_view_projection(*frame.settings, targets.width, targets.height,
+                                                  scene_.bounds_min, scene_.bounds_max);
     constants.eye_roughness = glm::vec4(camera.eye, 0.0f);
     for (const GpuDraw& d : gpu_scene_.draws()) {
         const GpuMaterial& material = gpu_scene_.materials()[d.material];

@@ -40,5 +40,10 @@ private:
 // near and far planes that enclose the scene bounds.
 glm::mat4 view_projection(const RenderCamera& camera, float aspect, const glm::vec3& bounds_min,
                           const glm::vec3& bounds_max);
+// The frame's view_projection with its eye rays placed as `settings` asks
+// (RenderSettings::pixel_offset, corner_grid), for a width x height frame.
+glm::mat4 eye_ray_view_projection(const RenderSettings& settings, uint32_t width,
+                                   uint32_t height, const glm::vec3& bounds_min,
+                                   const glm::vec3& bounds_max);
 
 }  // namespace lc::client

@@ -1,0 +1,312 @@
+#include "lightcuts/reconstruction_cut.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include "lightcuts/cut_traversal.h"
+#include "lightcuts/material_model.h"
+
+namespace lc {
+namespace {
+
+// A cluster evaluation this many times brighter than the samples predict (or
+// than the threshold, for nodes they saw as nearly dark) is refined instead:
+// the paper's third refinement, which gives no factor.
+constexpr double kMuchBrighter = 2.0;
+
+// Unit direction from x towards a node's representative.
+glm::dvec3 direction_to(const LightTreeNode& node, const glm::dvec3& x) {
+    if (node.type == LightType::kDirectional) return -glm::normalize(glm::dvec3(node.direction));
+    const glm::dvec3 to_light = glm::dvec3(node.position) - x;
+    const double distance = glm::length(to_light);
+    return distance > 0.0 ? to_light / distance : glm::dvec3(0.0, 0.0, 1.0);
+}
+
+// The impostor's material term M (Eq. 5): f_r times the cosine at the surface
+// (an impostor's geometric term is 1).
+glm::dvec3 material_term(const SurfacePoint& p, const glm::dvec3& d) {
+    return material_response(p, d) * std::max(glm::dot(p.normal, d), 0.0);
+}
+
+// An estimate L from direction d as an impostor of the sample at p.
+Impostor make_impostor(const SurfacePoint& p, const glm::dvec3& d, const glm::dvec3& L,
+                       const glm::dvec3& total) {
+    Impostor imp;
+    imp.direction = d;
+    const glm::dvec3 M = material_term(p, d);
+    // A lobe that is zero in this direction (a metal away from its
+    // highlight) says nothing of the same node seen from another view.
+    if (glm::dot(p.normal, d) > 0.0 && max_channel(M) <= 0.0) imp.usable = false;
+    for (int c = 0; c < 3; ++c) {
+        if (M[c] > 0.0) {
+            imp.gamma[c] = L[c] / M[c];
+            imp.Gamma = std::max(imp.Gamma, total[c] / M[c]);
+        } else if (L[c] > 0.0) {
+            imp.usable = false;
+        }
+    }
+    return imp;
+}
+
+// The paper keeps impostors out of glossy highlights: f_r above the largest
+// diffuse value, 1/pi. Our lobes also sit on dark or metallic bases (a brushed
+// steel cabinet), where f_r stays under 1/pi inside the lobe, so a direction
+// where the lobe outweighs the diffuse term counts as inside too.
+bool inside_gloss_lobe(const SurfacePoint& p, const glm::dvec3& f_r) {
+    const glm::dvec3 diffuse = p.albedo * std::numbers::inv_pi;
+    return max_channel(f_r) > std::numbers::inv_pi * (1.0 + 1e-9) ||
+           max_channel(f_r - diffuse) > max_channel(diffuse);
+}
+
+// Nothing blocks this copy of p: its shading says whether a ray would be traced.
+SurfacePoint without_occluders(const SurfacePoint& p) {
+    SurfacePoint open = p;
+    open.occluders = nullptr;
+    return open;
+}
+
+// A cluster evaluated as a lightcut does (Eq. 2), its shadow ray counted.
+glm::dvec3 evaluate_cluster(const LightTreeNode& node, const SurfacePoint& p,
+                            const SurfacePoint& open, ShadowRayCount& rays) {
+    const glm::dvec3 unshadowed = shade_node(node, open);
+    if (max_channel(unshadowed) <= 0.0) return glm::dvec3(0.0);
+    if (p.occluders == nullptr) return unshadowed;
+    ++rays.rays;
+    return shade_node(node, p);
+}
+
+// Where one sample's record of a walked node is: its own slot, or below the
+// cut its ancestor's on the cut, whose impostor lends its direction with the
+// intensity scaled by the ratio of the clusters' intensities.
+struct SampleRef {
+    int32_t slot = 0;
+    double scale = 1.0;
+    bool below = false;
+};
+
+struct WalkEntry {
+    int32_t node = 0;
+    std::array<SampleRef, kMaxReconstructionSamples> refs;
+};
+
+double intensity_ratio(const LightTreeNode& child, const LightTreeNode& parent) {
+    const double parent_intensity = max_channel(glm::dvec3(parent.intensity));
+    return parent_intensity > 0.0 ? max_channel(glm::dvec3(child.intensity)) / parent_intensity
+                                  : 0.0;
+}
+
+}  // namespace
+
+CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+                           ShadowRayCount& rays, std::vector<CutNodeEstimate>* nodes) {
+    if (tree.empty()) return {};
+    std::vector<CutNodeEstimate> cut;
+    const CutResult result = bound_heap_cut(tree, p, settings, &cut);
+    if (p.occluders != nullptr) {
+        const SurfacePoint open = without_occluders(p);
+        for (const CutNodeEstimate& entry : cut) {
+            if (max_channel(shade_node(tree.nodes[size_t(entry.node)], open)) > 0.0) ++rays.rays;
+        }
+    }
+    if (nodes != nullptr) *nodes = std::move(cut);
+    return result;
+}
+
+ReconstructionSample make_reconstruction_sample(const LightTree& tree, const SurfacePoint& p,
+                                                const CutSettings& settings,
+                                                ShadowRayCount& rays) {
+    ReconstructionSample sample;
+    sample.point = p;
+    if (tree.empty()) return sample;
+    std::vector<CutNodeEstimate> cut;
+    const CutResult result = counted_lightcut(tree, p, settings, rays, &cut);
+    sample.radiance = result.radiance;
+    sample.cut_size = result.cut_size;
+
+    // Which tree nodes are on the cut (1 + their index in `cut`), in a buffer
+    // kept per thread and cleared after use.
+    thread_local std::vector<uint32_t> on_cut;
+    if (on_cut.size() < tree.nodes.size()) on_cut.assign(tree.nodes.size(), 0);
+    for (size_t k = 0; k < cut.size(); ++k) on_cut[size_t(cut[k].node)] = uint32_t(k + 1);
+
+    // Records in pre-order from the root, down to the cut (an explicit stack).
+    struct Pending {
+        int32_t node, parent_slot, child_position;
+    };
+    std::vector<Pending> stack{{0, -1, 0}};
+    std::vector<glm::dvec3> L, d;  // per record: the estimate and its direction
+    while (!stack.empty()) {
+        const Pending next = stack.back();
+        stack.pop_back();
+        const int32_t slot = int32_t(sample.nodes.size());
+        sample.nodes.emplace_back();
+        if (next.parent_slot >= 0)
+            sample.nodes[size_t(next.parent_slot)].children[next.child_position] = slot;
+        if (const uint32_t k = on_cut[size_t(next.node)]; k > 0) {
+            sample.nodes.back().impostor.on_cut = true;
+            L.push_back(cut[k - 1].estimate);
+            d.push_back(direction_to(tree.nodes[size_t(next.node)], p.position));
+            continue;
+        }
+        L.emplace_back(0.0);
+        d.emplace_back(0.0);
+        int32_t children[2];
+        const int child_count = valid_children(tree, next.node, children);
+        for (int c = child_count - 1; c >= 0; --c) stack.push_back({children[c], slot, c});
+    }
+    for (const CutNodeEstimate& entry : cut) on_cut[size_t(entry.node)] = 0;
+
+    // Above the cut, children before parents (reverse pre-order): the sum of
+    // the children's estimates, and their directions weighted by them.
+    for (size_t r = sample.nodes.size(); r-- > 0;) {
+        SampleNode& record = sample.nodes[r];
+        if (record.impostor.on_cut) continue;
+        glm::dvec3 weighted(0.0), plain(0.0);
+        for (int32_t child : record.children) {
+            if (child == kBelowCut) continue;
+            L[r] += L[size_t(child)];
+            weighted += max_channel(L[size_t(child)]) * d[size_t(child)];
+            plain += d[size_t(child)];
+        }
+        const glm::dvec3 sum = glm::length(weighted) > 0.0 ? weighted : plain;
+        d[r] = glm::length(sum) > 0.0 ? glm::normalize(sum) : p.normal;
+    }
+    for (size_t r = 0; r < sample.nodes.size(); ++r) {
+        const bool cut_node = sample.nodes[r].impostor.on_cut;
+        sample.nodes[r].impostor = make_impostor(p, d[r], L[r], result.radiance);
+        sample.nodes[r].impostor.on_cut = cut_node;
+    }
+    return sample;
+}
+
+glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
+                              std::span<const ReconstructionSample* const> samples,
+                              std::span<const double> weights, double error_ratio,
+                              ShadowRayCount& rays) {
+    const size_t K = std::min(samples.size(), size_t(kMaxReconstructionSamples));
+    glm::dvec3 radiance(0.0);
+    if (tree.empty() || K == 0) return radiance;
+    for (size_t k = 0; k < K; ++k) {
+        if (samples[k]->nodes.empty()) return radiance;
+    }
+    const SurfacePoint open = without_occluders(p);
+    const bool glossy = shading::has_lobe(p.specular, p.exponent);
+    double total_here = 0.0;
+    for (size_t k = 0; k < K; ++k) total_here += weights[k] * max_channel(samples[k]->radiance);
+
+    thread_local std::vector<WalkEntry> stack;
+    stack.assign(1, WalkEntry{});
+    while (!stack.empty()) {
+        const WalkEntry e = stack.back();
+        stack.pop_back();
+        const LightTreeNode& node = tree.nodes[size_t(e.node)];
+        int32_t children[2];
+        const int child_count = valid_children(tree, e.node, children);
+        const bool leaf = child_count == 0;
+
+        // The samples' impostors of this node, and what the rules compare.
+        std::array<const Impostor*, kMaxReconstructionSamples> imp{};
+        std::array<glm::dvec3, kMaxReconstructionSamples> gamma{};
+        glm::dvec3 hi(0.0), lo(0.0);
+        double gamma_max = 0.0, gamma_min = 0.0, smallest_total = 0.0;
+        bool usable = true, any_at_or_below = false, all_below = true;
+        for (size_t k = 0; k < K; ++k) {
+            const SampleRef& ref = e.refs[k];
+            imp[k] = &samples[k]->nodes[size_t(ref.slot)].impostor;
+            gamma[k] = imp[k]->gamma * ref.scale;
+            const double g = max_channel(gamma[k]);
+            hi = k == 0 ? gamma[k] : glm::max(hi, gamma[k]);
+            lo = k == 0 ? gamma[k] : glm::min(lo, gamma[k]);
+            gamma_max = k == 0 ? g : std::max(gamma_max, g);
+            gamma_min = k == 0 ? g : std::min(gamma_min, g);
+            usable = usable && imp[k]->usable;
+            any_at_or_below = any_at_or_below || ref.below || imp[k]->on_cut;
+            all_below = all_below && ref.below;
+            // The threshold's scale: the smallest total among samples that saw
+            // light (the paper takes the smallest of all; a sample in full
+            // shadow would make every threshold 0 and send the walk down to
+            // every leaf).
+            const double G = imp[k]->Gamma;
+            if (G > 0.0 && (smallest_total == 0.0 || G < smallest_total)) smallest_total = G;
+        }
+        const double spread = max_channel(hi - lo);
+        const double tau = error_ratio * smallest_total;
+        const bool junction = node.mixed_types && !leaf;
+
+        // 1. Discard: dark at every sample.
+        if (!junction && usable && gamma_max <= 0.0) continue;
+        // 2. Interpolate an impostor, unless no sample's cut reached this deep
+        // or its direction lies in a glossy lobe.
+        if (!junction && usable && !all_below && gamma_min > 0.0 && spread < tau) {
+            glm::dvec3 d(0.0), g(0.0);
+            for (size_t k = 0; k < K; ++k) {
+                d += weights[k] * imp[k]->direction;
+                g += weights[k] * gamma[k];
+            }
+            if (glm::length(d) > 0.0) {
+                d = glm::normalize(d);
+                const glm::dvec3 f = material_response(p, d);
+                if (!inside_gloss_lobe(p, f)) {
+                    radiance += f * std::max(glm::dot(p.normal, d), 0.0) * g;
+                    continue;
+                }
+            }
+        }
+        // 3. Evaluate the cluster as a lightcut would: a leaf, or a node small
+        // against the threshold that some sample's cut reached. A cluster
+        // far brighter here than any sample predicts (its representative
+        // close to this point) is refined instead, as the paper does.
+        if (leaf) {
+            radiance += evaluate_cluster(node, p, open, rays);
+            continue;
+        }
+        // On a glossy point the samples' magnitudes (seen from other views)
+        // do not bound a node inside this view's lobe: the node must also
+        // pass the lightcut's own test here, its bound against the error
+        // ratio times the samples' interpolated total; that test alone
+        // decides for a node the samples' lobes could not see.
+        const bool small_at_samples = usable && gamma_max < tau;
+        const bool evaluate =
+            !junction && any_at_or_below &&
+            (glossy ? (small_at_samples || !usable) &&
+                          max_channel(node_contribution_bound(node, p)) <= error_ratio * total_here
+                    : small_at_samples);
+        if (evaluate) {
+            // What the samples predict here, and at least the threshold.
+            double expected = 0.0;
+            for (size_t k = 0; k < K; ++k) {
+                const glm::dvec3 M = material_term(p, imp[k]->direction);
+                expected = std::max({expected, max_channel(M * gamma[k]), max_channel(M) * tau});
+            }
+            const glm::dvec3 evaluated = evaluate_cluster(node, p, open, rays);
+            if (!(max_channel(evaluated) > kMuchBrighter * expected)) {
+                radiance += evaluated;
+                continue;
+            }
+        }
+        // 4. Refine.
+        for (int c = child_count - 1; c >= 0; --c) {
+            WalkEntry child;
+            child.node = children[c];
+            const double ratio = intensity_ratio(tree.nodes[size_t(children[c])], node);
+            for (size_t k = 0; k < K; ++k) {
+                const SampleRef& ref = e.refs[k];
+                const int32_t slot =
+                    ref.below || imp[k]->on_cut
+                        ? kBelowCut
+                        : samples[k]->nodes[size_t(ref.slot)].children[c];
+                child.refs[k] = slot != kBelowCut ? SampleRef{slot, 1.0, false}
+                                                  : SampleRef{ref.slot, ref.scale * ratio, true};
+            }
+            stack.push_back(child);
+        }
+    }
+    return radiance;
+}
+
+}  // namespace lc

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Lightcuts against the reference at one sample per pixel, the issue's setting:
+# the furnished room (table, pillars, partition, steel cabinet, varnished
+# floor; shadow rays on) with unbounded point lights spread through the volume
+# (0.3 m from every surface, 819.2 cd in total), agglomerative tree, bound
+# criterion (max cut 1000). Per light count, every frame after a warm-up:
+#   reference        every light with its shadow ray (GPU);
+#   gpu_E            the GPU lightcuts frame (walk search) at E = 0.02, 0.005;
+#   gpu_noshadow     the same at E = 0.02 with --shadows off: the walk, its
+#                    bounds and the cluster shading without a ray (the profile);
+#   reconstruction_E reconstruction cuts at one eye ray per pixel (render --spp 1
+#                    --spp-method reconstruction: CPU lightcuts at the corners of
+#                    4x4 blocks, reconstruction cuts for the pixels, 2 workers).
+# GPU times are the frames' timestamps; CPU times the shading's wall clock (the
+# G-buffer rasterised beforehand is left out; it costs ~0.1% of a frame).
+# Errors against the reference (scripts/speedup_report.py, error_stats.cpp's
+# definition). Writes docs/bench/speedup.csv and docs/bench/speedup.png.
+# Usage: scripts/bench-speedup.sh [build-dir] [light counts, comma-separated] [size]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir="${1:-build}"
+counts="${2:-16384,131072}"
+size="${3:-256x256}"
+source scripts/lib/furnished_bench.sh
+build_bench_client "$build_dir"
+client="$LC_CLIENT"
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+for lights in ${counts//,/ }; do
+  base="$work/$lights"
+  mkdir -p "$base"
+  make_furnished_room "$base" "$lights"
+  render() {  # tag, then render flags
+    local tag=$1
+    shift
+    # Validation would slow the GPU work down; the benchmark measures the renderer alone.
+    LC_VALIDATION=0 "$client" render "$base/scene.gltf" --tree "$base/tree.lcut" --size "$size" \
+      --criterion bound --threads 2 --stats "$base/$tag.json" --float "$base/$tag.pfm" \
+      -o "$base/$tag.png" "$@" >"$base/$tag.log" 2>&1 || { cat "$base/$tag.log"; exit 1; }
+    tail -n 1 "$base/$tag.log"
+  }
+  render reference --mode reference
+  for e in 0.02 0.005; do
+    render "gpu_$e" --mode lightcuts --error "$e"
+    render "reconstruction_$e" --mode lightcuts --error "$e" --spp 1 --spp-method reconstruction
+  done
+  render gpu_noshadow --mode lightcuts --error 0.02 --shadows off
+done
+
+mkdir -p docs/bench
+/usr/bin/python3 scripts/speedup_report.py --work "$work" --counts "$counts" --size "$size" \
+  --csv docs/bench/speedup.csv --plot docs/bench/speedup.png
+cat docs/bench/speedup.csv

@@ -1,0 +1,24 @@
+"""What the render benchmarks' reports share (scripts/speedup_report.py,
+scripts/supersampling_report.py): an image's error columns against a reference
+(sweep_accuracy.py's error_stats: error_stats.cpp's definition), and the CSV."""
+import csv
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sweep_accuracy import error_stats, read_pfm  # noqa: E402,F401
+
+
+def error_columns(pfm_path, reference, geometry_pixels):
+    """Mean, p99 and largest relative error, and the share of lit pixels within 2%."""
+    e = error_stats(read_pfm(pfm_path), reference, geometry_pixels, 0.02)
+    return {"rel_err_mean": round(e["rel_err_mean"], 5), "rel_err_p99": round(e["rel_err_p99"], 5),
+            "within_2pct": round(1.0 - e["frac_over_error"], 5), "max_err": round(e["max_err"], 4)}
+
+
+def write_rows(path, columns, rows):
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns)
+        w.writeheader()
+        for row in rows:
+            w.writerow(row)
