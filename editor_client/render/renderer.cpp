@@ -202,13 +202,28 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
     return client::check_loop_budget(context_.physical().quirks, loop_work(), settings);
 }
 
-Status Renderer::ensure_targets(uint32_t width, uint32_t height) {
-    if (targets_.width == width && targets_.height == height) return Ok{};
+Result<bool> Renderer::ensure_targets(uint32_t width, uint32_t height) {
+    if (targets_.width == width && targets_.height == height) return false;
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     Result<RenderTargets> targets = RenderTargets::create(context_.device(), width, height);
     if (!targets) return make_error(targets.error());
     targets_ = std::move(targets).value();
     frame_set_dirty_ = true;
+    return true;
+}
+
+Status Renderer::check_regions(std::span<const PixelRegion> regions, uint32_t width,
+                               uint32_t height) const {
+    const uint32_t size = options_.workgroup_size;
+    for (const PixelRegion& r : regions) {
+        if (r.width == 0 || r.height == 0 || r.x % size != 0 || r.y % size != 0 ||
+            r.x >= width || r.y >= height || r.width > width - r.x || r.height > height - r.y)
+            return make_error("pixel region " + std::to_string(r.x) + "," + std::to_string(r.y) +
+                              " " + std::to_string(r.width) + "x" + std::to_string(r.height) +
+                              " is not inside the " + std::to_string(width) + "x" +
+                              std::to_string(height) + " image on " + std::to_string(size) +
+                              "-pixel workgroup boundaries");
+    }
     return Ok{};
 }
 
@@ -267,10 +282,22 @@ Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
 }
 
 Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
+    const PixelRegion whole{0, 0, settings.width, settings.height};
+    return record_regions(cmd, settings, std::span(&whole, 1), false);
+}
+
+Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& settings,
+                                std::span<const PixelRegion> regions, bool continues_image) {
     LC_RETURN_IF_ERROR(validate(settings));
-    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
+    Result<bool> remade = ensure_targets(settings.width, settings.height);
+    if (!remade) return make_error(remade.error());
+    if (*remade && continues_image)
+        return make_error("the image to continue was lost: another size was rendered since");
     update_frame_descriptors();
-    const Frame frame = make_frame(settings);
+    Frame frame = make_frame(settings);
+    frame.regions = regions;
+    frame.continues_image = continues_image;
     Result<std::array<FramePass*, 3>> passes = prepare_passes(frame);
     if (!passes) return make_error(passes.error());
     last_eye_ = settings.camera.eye;
@@ -282,7 +309,9 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;
     for (const FramePass* pass : *passes) {
-        pass->record(cmd, frame);
+        // A continued image keeps its G-buffer: the pass's time slot stays, empty.
+        const bool skipped = continues_image && pass == passes->front();
+        if (!skipped) pass->record(cmd, frame);
         timestamps_.write(cmd, pass->last_stage(), ++slot);
     }
 
@@ -304,7 +333,8 @@ Status Renderer::warm_up(const RenderSettings& settings) {
 Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(validate(settings));
     // Build targets and pipelines before the clock starts: wall_ms is the frame.
-    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    if (Result<bool> remade = ensure_targets(settings.width, settings.height); !remade)
+        return make_error(remade.error());
     if (auto passes = prepare_passes(make_frame(settings)); !passes)
         return make_error(passes.error());
 
