@@ -232,6 +232,36 @@ TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(EditorProgressive, AutoExposureFromTheCoarsePassKeepsRefining) {
+    // The room's lights scaled 1000x: at exposure 1 the image would be white.
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    Scene scene = test::lit_room(5);
+    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
+    EditorSession session(std::move(scene));
+    ASSERT_TRUE(session.set_camera(camera));
+    Result<std::vector<ScriptLine>> lines = parse_editor_script("wait-refined\nquit\n", "exposure.txt");
+    ASSERT_TRUE(lines.ok()) << lines.error();
+    ScriptRunner script(std::move(lines).value(), "exposure.txt");
+    HeadlessWindow window(64, 48);
+    EditorLoopOptions options;
+    options.width = 64;
+    options.height = 48;
+    options.script = &script;
+    options.auto_exposure = true;
+    options.progressive = true;
+    options.refinement.frame_budget_ms = kOneTileBudgetMs;
+    Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
+    ASSERT_TRUE(summary.ok()) << summary.error();
+    EXPECT_GT(session.view().exposure, 0.0f);
+    EXPECT_LT(session.view().exposure, 0.01f) << "set from the coarse pass";
+    // Only the start and the end: the new exposure tone-mapped the coarse image again.
+    ASSERT_EQ(summary->refinement_events.size(), 2u);
+    EXPECT_EQ(summary->refinement_events[1].kind, RefinementEvent::Kind::kCompleted);
+    EXPECT_EQ(context->validation_message_count(), 0u);
+}
+
 std::string read_text(const std::filesystem::path& path) {
     std::ifstream in(path);
     std::stringstream text;

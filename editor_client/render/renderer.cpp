@@ -322,6 +322,24 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     return Ok{};
 }
 
+Status Renderer::record_output(VkCommandBuffer cmd, const RenderSettings& settings,
+                               std::span<const PixelRegion> regions) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
+    if (targets_.width != settings.width || targets_.height != settings.height)
+        return make_error("no lit image of this size to tone-map again");
+    update_frame_descriptors();
+    Frame frame = make_frame(settings);
+    frame.regions = regions;
+    frame.continues_image = true;
+    Result<std::array<FramePass*, 3>> passes = prepare_passes(frame);
+    if (!passes) return make_error(passes.error());
+    passes->back()->record(cmd, frame);
+    vk::memory_barrier(cmd, kComputeStage, kStorageWrite, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
+    return Ok{};
+}
+
 Status Renderer::warm_up(const RenderSettings& settings) {
     RenderSettings tiny = settings;
     tiny.width = tiny.height = 16;

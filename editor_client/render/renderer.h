@@ -92,6 +92,10 @@ public:
     // targets were remade since (another size was rendered in between).
     Status record_regions(VkCommandBuffer cmd, const RenderSettings& settings,
                           std::span<const PixelRegion> regions, bool continues_image);
+    // Records the output pass alone over `regions` of the image the last
+    // frame lit (same size): what is lit already, at a new exposure.
+    Status record_output(VkCommandBuffer cmd, const RenderSettings& settings,
+                         std::span<const PixelRegion> regions);
     uint32_t workgroup_size() const { return options_.workgroup_size; }
 
     // Headless: records, submits, waits, and gathers statistics.

@@ -385,6 +385,18 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 Result<std::vector<float>> hdr = renderer.read_hdr();
                 if (!hdr) return make_error(hdr.error());
                 LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
+                // The progressive image goes on refining: what it lit is tone-mapped again.
+                if (refinement) {
+                    refined.exposure = session.view().exposure;
+                    settings.exposure = refined.exposure;
+                    const PixelRegion whole{0, 0, settings.width, settings.height};
+                    Status toned = Ok{};
+                    LC_RETURN_IF_ERROR(context.command_pool().run_one_time(device, [&](VkCommandBuffer c) {
+                        toned = renderer.record_output(c, settings, std::span(&whole, 1));
+                        if (toned) canvas->record_tiles(c, renderer.display_image(), std::span(&whole, 1), divisor);
+                    }));
+                    LC_RETURN_IF_ERROR(toned);
+                }
             }
         }
         FrameInfo& frame = summary.last_frame;
