@@ -179,6 +179,37 @@ std::string input_while_refining_script(const RenderCamera& camera, const std::f
 // view takes dozens of frames, and the input arrives long before the end.
 constexpr double kOneTileBudgetMs = 1e-3;
 
+struct ScriptedRun {
+    Result<EditorLoopSummary> summary = make_error("not run");
+    ScriptState script_state = ScriptState::kRunning;
+    std::string script_error;
+};
+
+// The progressive loop headless at width x height, one tile a frame, driven by `script_text`.
+ScriptedRun run_progressive_script(const vk::Context& context, EditorSession& session,
+                                   const std::string& script_text, uint32_t width, uint32_t height,
+                                   bool auto_exposure) {
+    ScriptedRun run;
+    Result<std::vector<ScriptLine>> lines = parse_editor_script(script_text, "progressive.txt");
+    if (!lines) {
+        run.summary = make_error(lines.error());
+        return run;
+    }
+    ScriptRunner script(std::move(lines).value(), "progressive.txt");
+    HeadlessWindow window(width, height);
+    EditorLoopOptions options;
+    options.width = width;
+    options.height = height;
+    options.script = &script;
+    options.auto_exposure = auto_exposure;
+    options.progressive = true;
+    options.refinement.frame_budget_ms = kOneTileBudgetMs;
+    run.summary = run_editor_loop(window, context, session, options);
+    run.script_state = script.state();
+    run.script_error = script.error();
+    return run;
+}
+
 TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
@@ -191,20 +222,11 @@ TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
     ASSERT_TRUE(session.import_tree_dump(tree).ok());
     session.set_mode(RenderMode::kLightcuts);
 
-    Result<std::vector<ScriptLine>> lines =
-        parse_editor_script(input_while_refining_script(camera, dir), "progressive.txt");
-    ASSERT_TRUE(lines.ok()) << lines.error();
-    ScriptRunner script(std::move(lines).value(), "progressive.txt");
-    HeadlessWindow window(96, 72);
-    EditorLoopOptions options;
-    options.width = 96;
-    options.height = 72;
-    options.script = &script;
-    options.progressive = true;
-    options.refinement.frame_budget_ms = kOneTileBudgetMs;
-    Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
+    const ScriptedRun run =
+        run_progressive_script(*context, session, input_while_refining_script(camera, dir), 96, 72, false);
+    const Result<EditorLoopSummary>& summary = run.summary;
     ASSERT_TRUE(summary.ok()) << summary.error();
-    EXPECT_EQ(summary->script_state, ScriptState::kQuit) << script.error();
+    EXPECT_EQ(run.script_state, ScriptState::kQuit) << run.script_error;
 
     using Kind = RefinementEvent::Kind;
     const std::vector<RefinementEvent>& events = summary->refinement_events;
@@ -233,27 +255,16 @@ TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
 }
 
 TEST(EditorProgressive, AutoExposureFromTheCoarsePassKeepsRefining) {
-    // The room's lights scaled 1000x: at exposure 1 the image would be white.
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    Scene scene = test::lit_room(5);
-    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    Scene scene = test::overexposed_lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene));
     ASSERT_TRUE(session.set_camera(camera));
-    Result<std::vector<ScriptLine>> lines = parse_editor_script("wait-refined\nquit\n", "exposure.txt");
-    ASSERT_TRUE(lines.ok()) << lines.error();
-    ScriptRunner script(std::move(lines).value(), "exposure.txt");
-    HeadlessWindow window(64, 48);
-    EditorLoopOptions options;
-    options.width = 64;
-    options.height = 48;
-    options.script = &script;
-    options.auto_exposure = true;
-    options.progressive = true;
-    options.refinement.frame_budget_ms = kOneTileBudgetMs;
-    Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
+    const ScriptedRun run = run_progressive_script(*context, session, "wait-refined\nquit\n", 64, 48, true);
+    const Result<EditorLoopSummary>& summary = run.summary;
     ASSERT_TRUE(summary.ok()) << summary.error();
+    EXPECT_EQ(run.script_state, ScriptState::kQuit) << run.script_error;
     EXPECT_GT(session.view().exposure, 0.0f);
     EXPECT_LT(session.view().exposure, 0.01f) << "set from the coarse pass";
     // Only the start and the end: the new exposure tone-mapped the coarse image again.

@@ -77,6 +77,14 @@ inline Scene lit_room(uint64_t seed) {
     return scene;
 }
 
+// lit_room with its lights 1000x brighter: at exposure 1 the image is white,
+// so an automatic exposure must be far below 1.
+inline Scene overexposed_lit_room(uint64_t seed) {
+    Scene scene = lit_room(seed);
+    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    return scene;
+}
+
 // A screenshot shows something: more than `min_colours` colours (shaded
 // images have many, the cuts view one per distinct cut) and at least a
 // quarter of its pixels lit.

@@ -281,6 +281,15 @@ Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
     return passes;
 }
 
+Result<std::array<FramePass*, 3>> Renderer::prepare_regions(Frame& frame,
+                                                            std::span<const PixelRegion> regions,
+                                                            bool continues_image) {
+    update_frame_descriptors();
+    frame.regions = regions;
+    frame.continues_image = continues_image;
+    return prepare_passes(frame);
+}
+
 Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
     const PixelRegion whole{0, 0, settings.width, settings.height};
     return record_regions(cmd, settings, std::span(&whole, 1), false);
@@ -294,11 +303,8 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     if (!remade) return make_error(remade.error());
     if (*remade && continues_image)
         return make_error("the image to continue was lost: another size was rendered since");
-    update_frame_descriptors();
     Frame frame = make_frame(settings);
-    frame.regions = regions;
-    frame.continues_image = continues_image;
-    Result<std::array<FramePass*, 3>> passes = prepare_passes(frame);
+    Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, continues_image);
     if (!passes) return make_error(passes.error());
     last_eye_ = settings.camera.eye;
 
@@ -328,11 +334,8 @@ Status Renderer::record_output(VkCommandBuffer cmd, const RenderSettings& settin
     LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
     if (targets_.width != settings.width || targets_.height != settings.height)
         return make_error("no lit image of this size to tone-map again");
-    update_frame_descriptors();
     Frame frame = make_frame(settings);
-    frame.regions = regions;
-    frame.continues_image = true;
-    Result<std::array<FramePass*, 3>> passes = prepare_passes(frame);
+    Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, true);
     if (!passes) return make_error(passes.error());
     passes->back()->record(cmd, frame);
     vk::memory_barrier(cmd, kComputeStage, kStorageWrite, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,

@@ -147,6 +147,9 @@ private:
     Frame make_frame(const RenderSettings& settings) const;
     // The passes of a frame with these settings, in order, their pipelines found.
     Result<std::array<FramePass*, 3>> prepare_passes(const Frame& frame);
+    // The same for a frame over `regions`, with the descriptors brought up to date.
+    Result<std::array<FramePass*, 3>> prepare_regions(Frame& frame, std::span<const PixelRegion> regions,
+                                                      bool continues_image);
     Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
 
     const vk::Context& context_;
