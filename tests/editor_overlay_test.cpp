@@ -43,6 +43,26 @@ TEST(EditorOverlay, ShowsFrameViewAndLightCounts) {
     const std::vector<std::string> still = overlay_lines(session, frame);
     EXPECT_FALSE(has_line(still, "cut size"));
     EXPECT_FALSE(has_line(still, "moving"));
+    EXPECT_FALSE(has_line(still, "refin"));
+}
+
+TEST(EditorOverlay, ShowsHowFarTheProgressiveImageHasRefined) {
+    EditorSession session(make_room_scene());
+    FrameInfo frame{.frame_ms = 40.0, .gpu_ms = 28.0, .width = 120, .height = 75, .divisor = 8};
+    frame.refinement = RefinementProgress{.pass = 0, .passes = 2, .percent = 37.5, .divisor = 8};
+    std::vector<std::string> lines = overlay_lines(session, frame);
+    EXPECT_TRUE(has_line(lines, "120x75 (coarse pass)"));
+    EXPECT_TRUE(has_line(lines, "refining: pass 1 of 2 (1/8 size), 38% of its tiles"));
+
+    frame.divisor = 1;
+    frame.refinement = RefinementProgress{.pass = 1, .passes = 2, .percent = 5.0, .divisor = 1};
+    lines = overlay_lines(session, frame);
+    EXPECT_TRUE(has_line(lines, "refining: pass 2 of 2 (full size), 5% of its tiles"));
+
+    frame.refinement = RefinementProgress{.pass = 2, .passes = 2};
+    lines = overlay_lines(session, frame);
+    EXPECT_TRUE(has_line(lines, "refined: 2 of 2 passes"));
+    EXPECT_FALSE(has_line(lines, "refining"));
 }
 
 }  // namespace

@@ -182,11 +182,9 @@ TEST(EditorView, AFailingScriptLineStopsTheLoopWithItsLineNumber) {
 }
 
 TEST(EditorView, AutoExposureIsSetFromTheFirstFullSizeFrameUnlessGiven) {
-    // The room's lights scaled 1000x: at exposure 1 the frame would be white.
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
-    Scene scene = test::lit_room(5);
-    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    const Scene scene = test::overexposed_lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     auto run = [&](bool automatic, const std::string& script_text) {
         Result<std::vector<ScriptLine>> lines = parse_editor_script(script_text, "exposure.txt");

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <numbers>
 #include <optional>
@@ -23,6 +24,9 @@
 #include "lightcuts/scene.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/tree_builder.h"
+#include "protocol/channel_name.h"
+#include "protocol/channel_records.h"
+#include "protocol/dump.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/light_tree.h"
 #include "tree_fixtures.h"
@@ -74,6 +78,14 @@ inline Scene lit_room(uint64_t seed) {
     return scene;
 }
 
+// lit_room with its lights 1000x brighter: at exposure 1 the image is white,
+// so an automatic exposure must be far below 1.
+inline Scene overexposed_lit_room(uint64_t seed) {
+    Scene scene = lit_room(seed);
+    for (SceneLight& light : scene.lights) light.intensity *= 1000.0f;
+    return scene;
+}
+
 // A screenshot shows something: more than `min_colours` colours (shaded
 // images have many, the cuts view one per distinct cut) and at least a
 // quarter of its pixels lit.
@@ -96,6 +108,20 @@ inline LightTree agglomerative_tree(const std::vector<SceneLight>& lights) {
     Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
     EXPECT_TRUE(built.ok()) << built.error();
     return built.ok() ? std::move(built->tree) : LightTree{};
+}
+
+// The scene's lights baked in process and written as a result channel dump
+// (what `bake -o` writes) to dir/room.lcut, for `--tree`.
+inline std::filesystem::path write_tree_dump(const Scene& scene, const std::filesystem::path& dir) {
+    Result<bake::BuildResult> built = bake::build_light_tree(scene.lights, {}, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error();
+    const std::filesystem::path path = dir / "room.lcut";
+    if (built.ok()) {
+        Status written = write_dump(
+            path, ChannelDump{lightcuts_result_channel_name(), encode_result_channel(built->tree)});
+        EXPECT_TRUE(written.ok()) << written.error();
+    }
+    return path;
 }
 
 // Null (and the reason in `why`) when no usable Vulkan device exists.

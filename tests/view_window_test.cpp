@@ -18,10 +18,6 @@
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/headless_window.h"
 #include "editor_client/window/orbit_camera.h"
-#include "lightmass_server/tree_builder.h"
-#include "protocol/channel_name.h"
-#include "protocol/channel_records.h"
-#include "protocol/dump.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 
@@ -29,18 +25,6 @@ namespace lc::client {
 namespace {
 
 // The scene's tree as the server builds it, written as `bake -o` writes it.
-std::filesystem::path write_tree_dump(const Scene& scene, const std::filesystem::path& dir) {
-    Result<bake::BuildResult> built = bake::build_light_tree(scene.lights, {}, nullptr);
-    EXPECT_TRUE(built.ok()) << built.error();
-    const std::filesystem::path path = dir / "room.lcut";
-    if (built.ok()) {
-        Status written = write_dump(
-            path, ChannelDump{lightcuts_result_channel_name(), encode_result_channel(built->tree)});
-        EXPECT_TRUE(written.ok()) << written.error();
-    }
-    return path;
-}
-
 TEST(OrbitCamera, StartsWhereTheCameraIsAndOrbitsAroundTheTarget) {
     RenderCamera start;
     start.eye = {3.0f, 2.0f, 4.0f};
@@ -93,7 +77,7 @@ TEST(EditorLoop, HeadlessInputSwitchesModesAndOrbits) {
     std::filesystem::path dir = test::make_temp_dir("view-loop");
     Scene scene = test::lit_room(11);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
-    const std::filesystem::path tree = write_tree_dump(scene, dir);
+    const std::filesystem::path tree = test::write_tree_dump(scene, dir);
     EditorSession session(std::move(scene));
     ASSERT_TRUE(session.set_camera(camera));
     Status imported = session.import_tree_dump(tree);
@@ -166,7 +150,7 @@ TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
     Scene scene = test::lit_room(11);
     std::filesystem::path scene_path = dir / "room.gltf";
     ASSERT_TRUE(write_scene_gltf(scene, scene_path).ok());
-    const std::filesystem::path tree_path = write_tree_dump(scene, dir);
+    const std::filesystem::path tree_path = test::write_tree_dump(scene, dir);
 
     for (const char* mode : {"reference", "cuts"}) {
         SCOPED_TRACE(mode);

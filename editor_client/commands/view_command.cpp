@@ -1,14 +1,19 @@
 // editor_client view SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server]
 //   [--token-file F] [--script FILE] [--mode M] [--size WxH] [--camera ... | --camera-index I]
 //   [--exposure E] [--frames N --screenshot OUT.png] [--headless] [--no-adaptive] [--no-panels]
+//   [--no-progressive | --frame-budget-ms MS]
 // The interactive editor: drag with the left button to orbit, the right button
 // to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts, cuts,
 // cutsize; Esc or Q closes. `--script` runs editor commands through the same
-// session functions the panels call, one command per frame.
+// session functions the panels call, one command per frame. The view refines
+// progressively (coarse to fine, in tiles within a GPU budget per frame) unless
+// --no-progressive; with --tree it opens in lightcuts mode, as render does.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -38,7 +43,7 @@ struct ViewCommandOptions {
     std::string tree;
     BakeFlags bake;
     std::string script;
-    std::string mode = "reference";
+    std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
     std::string shadows = "auto";
     std::string size = "800x600";
     std::string camera;
@@ -52,7 +57,28 @@ struct ViewCommandOptions {
     float orbit_drag = 0.0f;
     bool no_panels = false;
     std::string window_screenshot;
+    bool no_progressive = false;
+    double frame_budget_ms = 30.0;
 };
+
+// The progressive view's story: when each image started, restarted and completed.
+void print_refinement(const EditorLoopSummary& summary) {
+    for (const RefinementEvent& e : summary.refinement_events) {
+        if (e.kind == RefinementEvent::Kind::kRestarted)
+            std::printf("refinement: frame %u at %.3f s restarted, pass %u of %u was %.1f%% done\n", e.frame,
+                        e.seconds, std::min(e.pass + 1, e.passes), e.passes, e.percent);
+        else
+            std::printf("refinement: frame %u at %.3f s %s\n", e.frame, e.seconds,
+                        refinement_event_name(e.kind));
+    }
+    const double fps = summary.refining_seconds > 0.0 ? summary.refining_frames / summary.refining_seconds : 0.0;
+    std::printf("progressive: %u frames while refining in %.3f s = %.2f fps; first complete image ",
+                summary.refining_frames, summary.refining_seconds, fps);
+    if (summary.first_complete_seconds)
+        std::printf("in %.3f s\n", *summary.first_complete_seconds);
+    else
+        std::printf("not reached\n");
+}
 
 void run_view(const ViewCommandOptions& options) {
     std::vector<std::string> warnings;
@@ -62,8 +88,9 @@ void run_view(const ViewCommandOptions& options) {
     auto [width, height] = or_fail(parse_size(options.size));
     if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
-    std::optional<RenderMode> mode = parse_render_mode(options.mode);
-    if (!mode) fail("unknown --mode '" + options.mode + "' (reference, lightcuts, cuts, cutsize)");
+    const std::string mode_name = options.mode.value_or(options.tree.empty() ? "reference" : "lightcuts");
+    std::optional<RenderMode> mode = parse_render_mode(mode_name);
+    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize)");
     const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
@@ -134,6 +161,10 @@ void run_view(const ViewCommandOptions& options) {
     loop.panels = !options.no_panels;
     loop.window_screenshot = options.window_screenshot;
     loop.shadows = or_fail(parse_shadow_mode(options.shadows));
+    loop.progressive = !options.no_progressive;
+    if (!(options.frame_budget_ms > 0.0) || !std::isfinite(options.frame_budget_ms))
+        fail("--frame-budget-ms must be a positive number of milliseconds");
+    loop.refinement.frame_budget_ms = options.frame_budget_ms;
     EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
     const double steady_fps =
         summary.steady_seconds > 0.0 ? summary.steady_frames / summary.steady_seconds : 0.0;
@@ -144,6 +175,7 @@ void run_view(const ViewCommandOptions& options) {
         context.validation_message_count(), options.screenshot.empty() ? "" : " -> ",
         options.screenshot.c_str(), summary.steady_frames, summary.steady_seconds, steady_fps,
         summary.last_frame.width, summary.last_frame.height, session.scene().lights.size());
+    if (loop.progressive) print_refinement(summary);
     if (script && script->state() == ScriptState::kFailed) fail(script->error());
 }
 
@@ -162,9 +194,10 @@ void add_view_command(CLI::App& app) {
     auto* tree = cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
-    cmd->add_option("--mode", options->mode, "First mode: reference, lightcuts, cuts or cutsize")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}))
-        ->capture_default_str();
+    cmd->add_option("--mode", options->mode,
+                    "First mode: reference, lightcuts, cuts or cutsize (default: lightcuts with --tree, "
+                    "reference otherwise)")
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}));
     cmd->add_option("--size", options->size, "Window and render size WxH")->capture_default_str();
     auto* camera =
         cmd->add_option("--camera", options->camera, "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
@@ -188,6 +221,14 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--window-screenshot", options->window_screenshot,
                     "At the end, save the window as shown, panels included (PNG)");
     cmd->add_flag("--no-panels", options->no_panels, "Hide the editor panels and the overlay");
+    auto* no_progressive = cmd->add_flag(
+        "--no-progressive", options->no_progressive,
+        "Render every frame whole (the window waits for it) instead of refining the view over "
+        "frames, coarse to fine, in tiles");
+    cmd->add_option("--frame-budget-ms", options->frame_budget_ms,
+                    "Progressive view: GPU time per frame for its tiles, in milliseconds")
+        ->capture_default_str()
+        ->excludes(no_progressive);
     cmd->add_option("--shadows", options->shadows,
                     "Shadow rays: auto (when a surface may hide a light), on or off")
         ->check(CLI::IsMember({"auto", "on", "off"}))

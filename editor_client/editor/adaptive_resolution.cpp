@@ -1,5 +1,6 @@
 #include "editor_client/editor/adaptive_resolution.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lc::client {
@@ -11,12 +12,16 @@ uint32_t AdaptiveResolution::next_divisor(bool view_changed, double now_ms) {
         divisor_ = 1;
         return divisor_;
     }
-    // The smallest divisor whose estimated cost meets the target.
+    divisor_ = divisor_meeting_target();
+    return divisor_;
+}
+
+uint32_t AdaptiveResolution::divisor_meeting_target() const {
+    if (full_frame_ms_ <= 0.0) return std::max(options_.max_divisor, 1u);
     uint32_t d = 1;
     while (d < options_.max_divisor && full_frame_ms_ / double(d * d) > options_.target_frame_ms)
         ++d;
-    divisor_ = d;
-    return divisor_;
+    return d;
 }
 
 void AdaptiveResolution::report_frame(uint32_t divisor, double frame_ms) {

@@ -24,6 +24,9 @@ public:
     void report_frame(uint32_t divisor, double frame_ms);
 
     uint32_t divisor() const { return divisor_; }
+    // The smallest divisor whose estimated frame meets the target (the largest
+    // allowed before any frame was reported): the progressive editor's first pass.
+    uint32_t divisor_meeting_target() const;
     // Estimated full-resolution frame time (0 until a frame was reported).
     double full_frame_ms() const { return full_frame_ms_; }
 

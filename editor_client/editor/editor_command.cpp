@@ -242,10 +242,21 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
         LC_TRY(path, parse_path(name, line));
         return R(cmd::Save{path});
     }
+    if (name == "save-view") {
+        LC_TRY(path, parse_path(name, line));
+        return R(cmd::SaveView{path});
+    }
+    if (name == "wait-refined") return no_args(args, cmd::WaitRefined{});
+    if (name == "wait-frames") {
+        if (Status ok = args.expect(1, 1, "N"); !ok) return make_error(ok.error());
+        LC_TRY(frames, args.integer(0, "N"));
+        if (frames > UINT32_MAX) return make_error("wait-frames: N is too large");
+        return R(cmd::WaitFrames{static_cast<uint32_t>(frames)});
+    }
     return make_error("unknown command '" + std::string(name) +
                       "' (add-light, add-lights, remove-light, move-light, select, undo, redo, "
                       "bake, cancel-bake, mode, criterion, error-ratio, max-cut, exposure, "
-                      "camera, screenshot, save, quit)");
+                      "camera, screenshot, save, save-view, wait-frames, wait-refined, quit)");
 }
 
 Result<std::vector<ScriptLine>> parse_editor_script(std::string_view text,

@@ -7,7 +7,9 @@
 //   bake | cancel-bake
 //   mode NAME | criterion NAME | error-ratio R | max-cut N | exposure E
 //   camera EX EY EZ TX TY TZ FOVY          (FOVY in degrees)
-//   screenshot PATH | save PATH | quit
+//   screenshot PATH | save PATH | quit      (screenshot: PNG, or PFM of the radiance)
+//   wait-frames N | wait-refined | save-view PATH   (the progressive view: let N frames
+//   pass, wait until the image is complete, save it as refined so far)
 // '#' starts a comment; blank lines are skipped.
 #include <cstdint>
 #include <filesystem>
@@ -75,13 +77,20 @@ struct Save {
     std::filesystem::path path;
 };
 struct Quit {};
+struct WaitFrames {
+    uint32_t frames = 0;
+};
+struct WaitRefined {};
+struct SaveView {
+    std::filesystem::path path;
+};
 }  // namespace cmd
 
 using EditorCommand =
     std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select,
                  cmd::Undo, cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion,
                  cmd::ErrorRatio, cmd::MaxCut, cmd::Exposure, cmd::Camera, cmd::Screenshot,
-                 cmd::Save, cmd::Quit>;
+                 cmd::Save, cmd::Quit, cmd::WaitFrames, cmd::WaitRefined, cmd::SaveView>;
 
 // One line without its comment; the error names the command and argument.
 // An empty (or comment-only) line gives std::nullopt.

@@ -18,9 +18,19 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
     std::vector<std::string> lines;
     const ViewState& view = session.view();
     const double fps = frame.frame_ms > 0.0 ? 1000.0 / frame.frame_ms : 0.0;
+    const char* reduced = frame.refinement ? " (coarse pass)" : " (moving: reduced)";
     lines.push_back(format("frame %.1f ms (%.1f fps), GPU %.1f ms, %ux%u%s", frame.frame_ms, fps,
-                           frame.gpu_ms, frame.width, frame.height,
-                           frame.divisor > 1 ? " (moving: reduced)" : ""));
+                           frame.gpu_ms, frame.width, frame.height, frame.divisor > 1 ? reduced : ""));
+    if (const std::optional<RefinementProgress>& r = frame.refinement) {
+        if (r->complete())
+            lines.push_back(format("refined: %u of %u passes", r->passes, r->passes));
+        else if (r->divisor > 1)
+            lines.push_back(format("refining: pass %u of %u (1/%u size), %.0f%% of its tiles", r->pass + 1,
+                                   r->passes, r->divisor, r->percent));
+        else
+            lines.push_back(format("refining: pass %u of %u (full size), %.0f%% of its tiles", r->pass + 1,
+                                   r->passes, r->percent));
+    }
     lines.push_back(format("mode %s, criterion %s, error %.3g, max cut %u",
                            render_mode_name(view.mode), criterion_name(view.criterion),
                            view.error_ratio, view.max_cut));

@@ -10,6 +10,15 @@
 
 namespace lc::client {
 
+// Where the progressive view's image stands.
+struct RefinementProgress {
+    uint32_t pass = 0;      // passes done
+    uint32_t passes = 1;
+    double percent = 100.0;  // of the refining pass's tiles
+    uint32_t divisor = 1;    // of the refining pass
+    bool complete() const { return pass >= passes; }
+};
+
 // What the last frame measured (from the renderer's stats and timestamps).
 struct FrameInfo {
     double frame_ms = 0.0;  // wall time of the last frame
@@ -19,6 +28,7 @@ struct FrameInfo {
     uint32_t divisor = 1;           // 1: full resolution
     std::optional<double> avg_cut;  // absent in reference mode or before a read-back
     std::optional<uint32_t> max_cut;
+    std::optional<RefinementProgress> refinement;  // progressive view only
 };
 
 std::vector<std::string> overlay_lines(const EditorSession& session, const FrameInfo& frame);

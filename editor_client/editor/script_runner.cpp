@@ -82,6 +82,11 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
                 return host.screenshot(c.path);
             } else if constexpr (std::is_same_v<T, cmd::Save>) {
                 return session.save(c.path);
+            } else if constexpr (std::is_same_v<T, cmd::SaveView>) {
+                return host.save_view(c.path);
+            } else if constexpr (std::is_same_v<T, cmd::WaitFrames> ||
+                                 std::is_same_v<T, cmd::WaitRefined>) {
+                return Ok{};  // the runner waits; a single command has nothing to wait for
             } else {
                 static_assert(std::is_same_v<T, cmd::Quit>);
                 host.request_quit();
@@ -114,6 +119,12 @@ ScriptState ScriptRunner::step(EditorSession& session, EditorHost& host) {
         if (!report) return fail(bake_line, "the bake ended without a report");
         if (!report->succeeded) return fail(bake_line, "bake failed: " + report->error);
     }
+    // This step is a frame of its own: the frames waited for count down here.
+    if (frames_to_wait_ > 0 && --frames_to_wait_ > 0) return state_ = ScriptState::kWaiting;
+    if (waiting_for_refinement_) {
+        if (!host.view_refined()) return state_ = ScriptState::kWaiting;
+        waiting_for_refinement_ = false;
+    }
     while (next_ < lines_.size()) {
         const ScriptLine& line = lines_[next_++];
         Status done = execute_editor_command(line.command, session, host);
@@ -121,6 +132,14 @@ ScriptState ScriptRunner::step(EditorSession& session, EditorHost& host) {
         if (std::holds_alternative<cmd::Quit>(line.command)) return state_ = ScriptState::kQuit;
         if (std::holds_alternative<cmd::Bake>(line.command)) {
             waiting_for_bake_ = true;
+            return state_ = ScriptState::kWaiting;
+        }
+        if (const auto* wait = std::get_if<cmd::WaitFrames>(&line.command); wait && wait->frames > 0) {
+            frames_to_wait_ = wait->frames;
+            return state_ = ScriptState::kWaiting;
+        }
+        if (std::holds_alternative<cmd::WaitRefined>(line.command) && !host.view_refined()) {
+            waiting_for_refinement_ = true;
             return state_ = ScriptState::kWaiting;
         }
     }
@@ -131,7 +150,7 @@ ScriptState run_script_to_end(ScriptRunner& runner, EditorSession& session, Edit
     while (true) {
         const ScriptState state = runner.step(session, host);
         if (state != ScriptState::kWaiting) return state;
-        session.wait_for_bake();
+        if (session.bake_running()) session.wait_for_bake();
     }
 }
 

@@ -17,9 +17,15 @@ namespace lc::client {
 class EditorHost {
 public:
     virtual ~EditorHost() = default;
-    // Renders the session's current state at full resolution and saves a PNG.
+    // Renders the session's current state at full resolution and saves a PNG
+    // (a PFM of the linear radiance when the path ends in .pfm).
     virtual Status screenshot(const std::filesystem::path& path) = 0;
     virtual void request_quit() = 0;
+    // A host that refines the view over frames saves it as refined so far and
+    // says when it is complete; without refinement the view is always
+    // complete and saving it is a screenshot.
+    virtual Status save_view(const std::filesystem::path& path) { return screenshot(path); }
+    virtual bool view_refined() const { return true; }
 };
 
 // Executes one command now. A `bake` only starts the bake; the caller waits
@@ -29,7 +35,7 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
 
 enum class ScriptState {
     kRunning,   // more commands to run
-    kWaiting,   // a scripted bake is in flight; step again next frame
+    kWaiting,   // a scripted bake, frames or the refinement to wait for; step again next frame
     kFinished,  // every command ran
     kQuit,      // a `quit` command ran
     kFailed,    // a command failed: see error()
@@ -54,6 +60,8 @@ private:
     std::string name_;
     size_t next_ = 0;
     bool waiting_for_bake_ = false;
+    uint32_t frames_to_wait_ = 0;
+    bool waiting_for_refinement_ = false;
     ScriptState state_ = ScriptState::kRunning;
     std::string error_;
 };

@@ -202,13 +202,28 @@ Status Renderer::check_loop_budget(const RenderSettings& settings) const {
     return client::check_loop_budget(context_.physical().quirks, loop_work(), settings);
 }
 
-Status Renderer::ensure_targets(uint32_t width, uint32_t height) {
-    if (targets_.width == width && targets_.height == height) return Ok{};
+Result<bool> Renderer::ensure_targets(uint32_t width, uint32_t height) {
+    if (targets_.width == width && targets_.height == height) return false;
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     Result<RenderTargets> targets = RenderTargets::create(context_.device(), width, height);
     if (!targets) return make_error(targets.error());
     targets_ = std::move(targets).value();
     frame_set_dirty_ = true;
+    return true;
+}
+
+Status Renderer::check_regions(std::span<const PixelRegion> regions, uint32_t width,
+                               uint32_t height) const {
+    const uint32_t size = options_.workgroup_size;
+    for (const PixelRegion& r : regions) {
+        if (r.width == 0 || r.height == 0 || r.x % size != 0 || r.y % size != 0 ||
+            r.x >= width || r.y >= height || r.width > width - r.x || r.height > height - r.y)
+            return make_error("pixel region " + std::to_string(r.x) + "," + std::to_string(r.y) +
+                              " " + std::to_string(r.width) + "x" + std::to_string(r.height) +
+                              " is not inside the " + std::to_string(width) + "x" +
+                              std::to_string(height) + " image on " + std::to_string(size) +
+                              "-pixel workgroup boundaries");
+    }
     return Ok{};
 }
 
@@ -266,12 +281,30 @@ Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
     return passes;
 }
 
-Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
-    LC_RETURN_IF_ERROR(validate(settings));
-    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+Result<std::array<FramePass*, 3>> Renderer::prepare_regions(Frame& frame,
+                                                            std::span<const PixelRegion> regions,
+                                                            bool continues_image) {
     update_frame_descriptors();
-    const Frame frame = make_frame(settings);
-    Result<std::array<FramePass*, 3>> passes = prepare_passes(frame);
+    frame.regions = regions;
+    frame.continues_image = continues_image;
+    return prepare_passes(frame);
+}
+
+Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
+    const PixelRegion whole{0, 0, settings.width, settings.height};
+    return record_regions(cmd, settings, std::span(&whole, 1), false);
+}
+
+Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& settings,
+                                std::span<const PixelRegion> regions, bool continues_image) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
+    Result<bool> remade = ensure_targets(settings.width, settings.height);
+    if (!remade) return make_error(remade.error());
+    if (*remade && continues_image)
+        return make_error("the image to continue was lost: another size was rendered since");
+    Frame frame = make_frame(settings);
+    Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, continues_image);
     if (!passes) return make_error(passes.error());
     last_eye_ = settings.camera.eye;
 
@@ -282,7 +315,9 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;
     for (const FramePass* pass : *passes) {
-        pass->record(cmd, frame);
+        // A continued image keeps its G-buffer: the pass's time slot stays, empty.
+        const bool skipped = continues_image && pass == passes->front();
+        if (!skipped) pass->record(cmd, frame);
         timestamps_.write(cmd, pass->last_stage(), ++slot);
     }
 
@@ -309,6 +344,21 @@ Status Renderer::render_gbuffer(const RenderSettings& settings) {
     });
 }
 
+Status Renderer::record_output(VkCommandBuffer cmd, const RenderSettings& settings,
+                               std::span<const PixelRegion> regions) {
+    LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
+    if (targets_.width != settings.width || targets_.height != settings.height)
+        return make_error("no lit image of this size to tone-map again");
+    Frame frame = make_frame(settings);
+    Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, true);
+    if (!passes) return make_error(passes.error());
+    passes->back()->record(cmd, frame);
+    vk::memory_barrier(cmd, kComputeStage, kStorageWrite, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
+    return Ok{};
+}
+
 Status Renderer::warm_up(const RenderSettings& settings) {
     RenderSettings tiny = settings;
     tiny.width = tiny.height = 16;
@@ -320,7 +370,8 @@ Status Renderer::warm_up(const RenderSettings& settings) {
 Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(validate(settings));
     // Build targets and pipelines before the clock starts: wall_ms is the frame.
-    LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
+    if (Result<bool> remade = ensure_targets(settings.width, settings.height); !remade)
+        return make_error(remade.error());
     if (auto passes = prepare_passes(make_frame(settings)); !passes)
         return make_error(passes.error());
 

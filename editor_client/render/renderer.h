@@ -19,6 +19,7 @@
 #include "editor_client/render/loop_budget.h"
 #include "editor_client/render/passes/frame_passes.h"
 #include "editor_client/render/pipeline_cache.h"
+#include "editor_client/render/pixel_region.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
@@ -84,6 +85,18 @@ public:
     // Records every pass of one frame into `cmd`. All storage images end in
     // VK_IMAGE_LAYOUT_GENERAL; display_image() holds the 8-bit result.
     Status record(VkCommandBuffer cmd, const RenderSettings& settings);
+    // Records part of a frame: the lighting and output passes over `regions`
+    // only (origins on workgroup boundaries, inside the image). A new image
+    // (`continues_image` false) draws the G-buffer first; a continued one
+    // keeps the G-buffer and what earlier regions lit, and fails when the
+    // targets were remade since (another size was rendered in between).
+    Status record_regions(VkCommandBuffer cmd, const RenderSettings& settings,
+                          std::span<const PixelRegion> regions, bool continues_image);
+    // Records the output pass alone over `regions` of the image the last
+    // frame lit (same size): what is lit already, at a new exposure.
+    Status record_output(VkCommandBuffer cmd, const RenderSettings& settings,
+                         std::span<const PixelRegion> regions);
+    uint32_t workgroup_size() const { return options_.workgroup_size; }
 
     // Headless: records, submits, waits, and gathers statistics.
     Result<RenderStats> render(const RenderSettings& settings);
@@ -130,11 +143,16 @@ private:
     // A device-local storage buffer holding `bytes` (the frame set is rewritten).
     Status upload_storage(vk::Buffer& out, std::span<const std::byte> bytes);
     Status upload_lights(const LightTree* tree);
-    Status ensure_targets(uint32_t width, uint32_t height);
+    // Remade (contents lost) when the size differs: the result says whether.
+    Result<bool> ensure_targets(uint32_t width, uint32_t height);
+    Status check_regions(std::span<const PixelRegion> regions, uint32_t width, uint32_t height) const;
     void update_frame_descriptors();
     Frame make_frame(const RenderSettings& settings) const;
     // The passes of a frame with these settings, in order, their pipelines found.
     Result<std::array<FramePass*, 3>> prepare_passes(const Frame& frame);
+    // The same for a frame over `regions`, with the descriptors brought up to date.
+    Result<std::array<FramePass*, 3>> prepare_regions(Frame& frame, std::span<const PixelRegion> regions,
+                                                      bool continues_image);
     Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
 
     const vk::Context& context_;

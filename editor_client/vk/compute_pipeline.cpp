@@ -17,6 +17,8 @@ Result<ComputePipeline> ComputePipeline::create(VkDevice device, VkPipelineLayou
     info.stage.pName = "main";
     info.stage.pSpecializationInfo = specialization.info();
     info.layout = layout;
+    // Dispatches may start at a workgroup offset (the renderer's pixel regions).
+    info.flags = VK_PIPELINE_CREATE_DISPATCH_BASE_BIT;
     VkPipeline handle = VK_NULL_HANDLE;
     LC_VK_CHECK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &handle));
     ComputePipeline pipeline;

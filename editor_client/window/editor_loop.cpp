@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include <imgui.h>
 
@@ -18,12 +19,37 @@
 #include "editor_client/window/imgui_layer.h"
 #include "editor_client/window/orbit_camera.h"
 #include "editor_client/window/presentation.h"
+#include "editor_client/window/progressive_canvas.h"
 
 namespace lc::client {
 namespace {
 
 bool same_camera(const RenderCamera& a, const RenderCamera& b) {
     return a.eye == b.eye && a.target == b.target && a.up == b.up && a.yfov == b.yfov;
+}
+
+// The same image: every setting equal (an exposure change tone-maps anew, so it refines anew).
+bool same_settings(const RenderSettings& a, const RenderSettings& b) {
+    return a.mode == b.mode && a.criterion == b.criterion && a.width == b.width && a.height == b.height &&
+           same_camera(a.camera, b.camera) && a.exposure == b.exposure && a.error_ratio == b.error_ratio &&
+           a.max_cut == b.max_cut && a.bound_search == b.bound_search;
+}
+
+// The renderer's last image: a PFM of the linear radiance, or a PNG of what is shown.
+Status write_rendered_image(const Renderer& renderer, const std::filesystem::path& path) {
+    std::error_code ec;
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+    if (path.extension() == ".pfm") {
+        Result<std::vector<float>> hdr = renderer.read_hdr();
+        if (!hdr) return make_error(hdr.error());
+        FloatImage image{renderer.width(), renderer.height(), {}};
+        image.rgb.reserve(hdr->size() / 4 * 3);
+        for (size_t i = 0; i < hdr->size(); i += 4) image.rgb.insert(image.rgb.end(), &(*hdr)[i], &(*hdr)[i + 3]);
+        return write_pfm(path, image);
+    }
+    Result<std::vector<uint8_t>> pixels = renderer.read_display();
+    if (!pixels) return make_error(pixels.error());
+    return write_png(path, renderer.width(), renderer.height(), *pixels);
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
@@ -47,8 +73,11 @@ public:
         revision_ = session_.scene_revision();
         generation_ = session_.tree_generation();
         synced_ = true;
+        ++updates_;
         return Ok{};
     }
+    // Counts the renderer's lights and tree changing (a progressive image starts again).
+    uint64_t updates() const { return updates_; }
 
     // The session's settings at a size, falling back to reference mode while
     // there is no tree matching the lights.
@@ -63,39 +92,53 @@ private:
     uint64_t revision_ = 0;
     uint64_t generation_ = 0;
     bool synced_ = false;
+    uint64_t updates_ = 0;
 };
 
 // Screenshots render the current state afresh at full size, so a scripted
 // screenshot right after an edit shows the edit (not the last, possibly
-// reduced, frame). Called between frames, when the GPU is idle.
+// reduced, frame). Called between frames, when the GPU is idle. With a
+// progressive view (`refinement`), saving the view saves the image as refined
+// so far, and a screenshot that overwrote an unfinished image asks for a restart.
 class LoopHost final : public EditorHost {
 public:
-    LoopHost(Renderer& renderer, RendererSync& sync, uint32_t width, uint32_t height)
-        : renderer_(renderer), sync_(sync), width_(width), height_(height) {}
+    LoopHost(Renderer& renderer, RendererSync& sync, uint32_t width, uint32_t height,
+             const ProgressiveRefinement* refinement)
+        : renderer_(renderer), sync_(sync), width_(width), height_(height), refinement_(refinement) {}
 
     Status screenshot(const std::filesystem::path& path) override {
         if (path.empty()) return make_error("screenshot needs a file name");
         LC_RETURN_IF_ERROR(sync_.update());
         Result<RenderStats> rendered = renderer_.render(sync_.settings(width_, height_));
         if (!rendered) return make_error("screenshot: " + rendered.error());
-        Result<std::vector<uint8_t>> pixels = renderer_.read_display();
-        if (!pixels) return make_error("screenshot: " + pixels.error());
-        std::error_code ec;
-        if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-        LC_RETURN_IF_ERROR(write_png(path, renderer_.width(), renderer_.height(), *pixels));
+        if (refinement_ != nullptr && !refinement_->complete()) image_lost_ = true;
+        if (Status written = write_rendered_image(renderer_, path); !written)
+            return make_error("screenshot: " + written.error());
         ++count_;
         return Ok{};
     }
+    Status save_view(const std::filesystem::path& path) override {
+        if (refinement_ == nullptr) return screenshot(path);
+        if (path.empty()) return make_error("save-view needs a file name");
+        if (Status written = write_rendered_image(renderer_, path); !written)
+            return make_error("save-view: " + written.error());
+        return Ok{};
+    }
+    bool view_refined() const override { return refinement_ == nullptr || refinement_->complete(); }
     void request_quit() override { quit_ = true; }
 
     bool quit_requested() const { return quit_; }
     uint32_t count() const { return count_; }
+    // Whether a screenshot replaced the renderer's unfinished image (once).
+    bool take_image_lost() { return std::exchange(image_lost_, false); }
 
 private:
     Renderer& renderer_;
     RendererSync& sync_;
     uint32_t width_, height_;
+    const ProgressiveRefinement* refinement_;
     bool quit_ = false;
+    bool image_lost_ = false;
     uint32_t count_ = 0;
 };
 
@@ -111,6 +154,15 @@ void log_bake(const BakeReport& report) {
 }
 
 }  // namespace
+
+const char* refinement_event_name(RefinementEvent::Kind kind) {
+    switch (kind) {
+        case RefinementEvent::Kind::kStarted: return "started";
+        case RefinementEvent::Kind::kRestarted: return "restarted";
+        case RefinementEvent::Kind::kCompleted: return "completed";
+    }
+    return "started";
+}
 
 Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context, EditorSession& session,
                                           const EditorLoopOptions& options) {
@@ -131,7 +183,22 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
     Renderer& renderer = **created;
     RendererSync sync(renderer, session);
     LC_RETURN_IF_ERROR(sync.update());
-    LoopHost host(renderer, sync, options.width, options.height);
+    std::optional<ProgressiveRefinement> refinement;
+    std::optional<ProgressiveCanvas> canvas;
+    AdaptiveResolutionOptions adaptive_options = options.adaptive;
+    if (options.progressive) {
+        if (!(options.refinement.frame_budget_ms > 0.0))
+            return make_error("the frame budget must be a positive number of milliseconds");
+        refinement.emplace(options.width, options.height, renderer.workgroup_size(), options.refinement);
+        Result<ProgressiveCanvas> made = ProgressiveCanvas::create(device, options.width, options.height);
+        if (!made) return make_error(made.error());
+        canvas.emplace(std::move(made).value());
+        // The coarse pass is the size whose whole image fits one frame's budget.
+        adaptive_options.target_frame_ms = options.refinement.frame_budget_ms;
+    }
+    LoopHost host(renderer, sync, options.width, options.height, refinement ? &*refinement : nullptr);
+    RenderSettings refined;  // what the progressive image shows
+    uint64_t refined_updates = 0;
 
     Result<VkCommandBuffer> cmd = context.command_pool().allocate();
     if (!cmd) return make_error(cmd.error());
@@ -147,7 +214,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
 
     OrbitCamera orbit(session.view().camera);
     RenderCamera orbit_camera = session.view().camera;
-    AdaptiveResolution adaptive(options.adaptive);
+    AdaptiveResolution adaptive(adaptive_options);
     EditorLoopSummary summary;
     bool auto_exposure_pending = options.auto_exposure;
     const float initial_exposure = session.view().exposure;
@@ -211,11 +278,6 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (host.quit_requested()) break;
         LC_RETURN_IF_ERROR(sync.update());
 
-        const uint32_t divisor =
-            options.adaptive_resolution ? adaptive.next_divisor(moved, elapsed_ms(started)) : 1;
-        const RenderSettings settings =
-            sync.settings(reduced_size(options.width, divisor), reduced_size(options.height, divisor));
-
         uint32_t image_index = 0;
         if (presenting) {
             VkExtent2D extent = window.framebuffer_size();
@@ -241,17 +303,64 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             }
         }
 
+        // After the swapchain image is in hand: a skipped frame must not take tiles.
+        const auto since_start = [&] { return elapsed_ms(started) / 1000.0; };
+        uint32_t divisor = 1;
+        RenderSettings settings;
+        std::optional<TileBatch> batch;
+        if (refinement) {
+            settings = sync.settings(options.width, options.height);
+            const bool lost = host.take_image_lost();
+            if (summary.refinement_events.empty() || lost || !same_settings(settings, refined) ||
+                sync.updates() != refined_updates) {
+                RefinementEvent event;
+                event.kind = summary.refinement_events.empty() ? RefinementEvent::Kind::kStarted
+                                                               : RefinementEvent::Kind::kRestarted;
+                event.frame = summary.frames;
+                event.seconds = since_start();
+                event.percent = refinement->percent();
+                event.pass = refinement->pass();
+                event.passes = refinement->passes();
+                summary.refinement_events.push_back(event);
+                refinement->restart(adaptive.divisor_meeting_target());
+                refined = settings;
+                refined_updates = sync.updates();
+            }
+            batch = refinement->next_batch();
+            if (batch) {
+                divisor = batch->divisor;
+                settings.width = batch->width;
+                settings.height = batch->height;
+            }
+        } else {
+            divisor = options.adaptive_resolution ? adaptive.next_divisor(moved, elapsed_ms(started)) : 1;
+            settings = sync.settings(reduced_size(options.width, divisor), reduced_size(options.height, divisor));
+        }
+
         LC_RETURN_IF_ERROR(begin_frame_commands(*cmd));
-        Status recorded = renderer.record(*cmd, settings);
+        Status recorded = Ok{};
+        const vk::Image* shown = &renderer.display_image();
+        DisplayWrite written;
+        if (canvas) {
+            if (batch) recorded = renderer.record_regions(*cmd, settings, batch->tiles, !batch->new_image);
+            if (recorded)
+                canvas->record_tiles(*cmd, renderer.display_image(),
+                                     batch ? std::span<const PixelRegion>(batch->tiles) : std::span<const PixelRegion>(),
+                                     divisor);
+            shown = &canvas->image();
+            written = {ProgressiveCanvas::kWriteStage, ProgressiveCanvas::kWriteAccess};
+        } else {
+            recorded = renderer.record(*cmd, settings);
+        }
         const bool draw_panels = ui && ui->frame_open() && recorded && presenting;
         if (recorded && presenting) {
             const VkImage target = presentation->swapchain.images()[image_index];
             if (draw_panels) {
-                record_blit(*cmd, renderer.display_image(), ui->composite().handle(),
-                            presentation->swapchain.extent(), true);
+                record_blit(*cmd, *shown, ui->composite().handle(), presentation->swapchain.extent(), true,
+                            written);
                 ui->record(*cmd, target);
             } else {
-                record_blit(*cmd, renderer.display_image(), target, presentation->swapchain.extent());
+                record_blit(*cmd, *shown, target, presentation->swapchain.extent(), false, written);
             }
         }
         LC_VK_CHECK(vkEndCommandBuffer(*cmd));
@@ -267,32 +376,84 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (*out_of_date) recreate = true;
 
         ++summary.frames;
-        if (auto_exposure_pending && divisor == 1 && mode_is_shaded(settings.mode)) {
+        // A progressive view sets the exposure from its first whole image, coarse or not.
+        const bool whole_image = refinement ? batch && refinement->pass() > batch->pass : divisor == 1;
+        if (auto_exposure_pending && whole_image && mode_is_shaded(settings.mode)) {
             auto_exposure_pending = false;
             // A script or the panel may have set one already: keep it.
             if (session.view().exposure == initial_exposure) {
                 Result<std::vector<float>> hdr = renderer.read_hdr();
                 if (!hdr) return make_error(hdr.error());
                 LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
+                // The progressive image goes on refining: what it lit is tone-mapped again.
+                if (refinement) {
+                    refined.exposure = session.view().exposure;
+                    settings.exposure = refined.exposure;
+                    const PixelRegion whole{0, 0, settings.width, settings.height};
+                    Status toned = Ok{};
+                    LC_RETURN_IF_ERROR(context.command_pool().run_one_time(device, [&](VkCommandBuffer c) {
+                        toned = renderer.record_output(c, settings, std::span(&whole, 1));
+                        if (toned) canvas->record_tiles(c, renderer.display_image(), std::span(&whole, 1), divisor);
+                    }));
+                    LC_RETURN_IF_ERROR(toned);
+                }
             }
         }
         FrameInfo& frame = summary.last_frame;
         frame.frame_ms = elapsed_ms(frame_start);
-        frame.width = settings.width;
-        frame.height = settings.height;
-        frame.divisor = divisor;
-        if (Result<PassTimings> timings = renderer.read_timings()) frame.gpu_ms = timings->total_ms;
-        frame.avg_cut.reset();
-        frame.max_cut.reset();
-        if (settings.mode != RenderMode::kReference) {
-            if (Result<GpuFrameCounters> counters = renderer.read_counters())
-                frame.max_cut = counters->max_cut;
+        if (refinement) {
+            RefinementProgress progress;
+            progress.pass = refinement->pass();
+            progress.passes = refinement->passes();
+            progress.percent = refinement->percent();
+            progress.divisor = divisor;
+            frame.refinement = progress;
+            if (batch) {
+                summary.refining_frames += 1;
+                summary.refining_seconds += frame.frame_ms / 1000.0;
+            }
+            if (batch && refinement->complete()) {
+                RefinementEvent event;
+                event.kind = RefinementEvent::Kind::kCompleted;
+                event.frame = summary.frames - 1;
+                event.seconds = since_start();
+                event.percent = 100.0;
+                event.pass = event.passes = refinement->passes();
+                summary.refinement_events.push_back(event);
+                if (!summary.first_complete_seconds) summary.first_complete_seconds = event.seconds;
+            }
+        }
+        if (!refinement || batch) {
+            frame.width = settings.width;
+            frame.height = settings.height;
+            frame.divisor = divisor;
+            if (Result<PassTimings> timings = renderer.read_timings()) {
+                frame.gpu_ms = timings->total_ms;
+                if (batch) {
+                    // The budget is for the tiles: the G-buffer is drawn once per pass.
+                    const double tiles_ms = timings->lighting_ms + timings->output_ms;
+                    refinement->report(*batch, tiles_ms);
+                    const double pass_pixels = double(batch->width) * double(batch->height);
+                    adaptive.report_frame(divisor, tiles_ms * pass_pixels / double(batch->pixels()));
+                }
+            }
+            frame.avg_cut.reset();
+            frame.max_cut.reset();
+            if (settings.mode != RenderMode::kReference) {
+                if (Result<GpuFrameCounters> counters = renderer.read_counters())
+                    frame.max_cut = counters->max_cut;
+            }
+        } else {
+            frame.gpu_ms = 0.0;
         }
         summary.last_mode = settings.mode;
-        adaptive.report_frame(divisor, frame.frame_ms);
+        if (!refinement) adaptive.report_frame(divisor, frame.frame_ms);
         if (steady_since) ++summary.steady_frames;
         const std::vector<std::string> lines = overlay_lines(session, frame);
         window.set_title("lightcuts editor: " + (lines.empty() ? std::string() : lines[0]));
+        // A finished progressive image has nothing left for the GPU: the loop
+        // only answers input, without spinning a core.
+        if (refinement && !batch) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     LC_RETURN_IF_ERROR(device.wait_idle());
     const auto ended = std::chrono::steady_clock::now();

@@ -7,11 +7,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "editor_client/editor/adaptive_resolution.h"
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/overlay_text.h"
+#include "editor_client/editor/progressive_refinement.h"
 #include "editor_client/editor/script_runner.h"
 #include "lightcuts/shadow_ray.h"
 #include "editor_client/vk/context.h"
@@ -39,6 +42,23 @@ struct EditorLoopOptions {
     bool panels = false;
     AdaptiveResolutionOptions adaptive;
     ShadowMode shadows = ShadowMode::kAuto;  // the renderer's (scene analysis by default)
+    // Refine the view over frames, coarse to fine, in tiles within a GPU budget
+    // per frame (progressive_refinement.h), so input and the panels are
+    // handled every frame; otherwise each frame renders a whole image. The
+    // coarse pass is AdaptiveResolution's divisor for a frame of that budget.
+    bool progressive = false;
+    ProgressiveOptions refinement;
+};
+
+// What the progressive view did, frame by frame.
+struct RefinementEvent {
+    enum class Kind { kStarted, kRestarted, kCompleted };
+    Kind kind = Kind::kStarted;
+    uint32_t frame = 0;         // 0-based frame of the loop
+    double seconds = 0.0;       // since the loop started
+    double percent = 0.0;       // restarted: of the pass that was refining
+    uint32_t pass = 0;          // restarted: the pass that was refining (0-based)
+    uint32_t passes = 0;
 };
 
 struct EditorLoopSummary {
@@ -52,7 +72,15 @@ struct EditorLoopSummary {
     RenderMode last_mode = RenderMode::kReference;  // what the last frame rendered
     ScriptState script_state = ScriptState::kFinished;
     uint32_t screenshots = 0;
+    // Progressive view: every start, restart and completion, and the frames
+    // drawn while an image was refining (the frame rate the UI keeps then).
+    std::vector<RefinementEvent> refinement_events;
+    std::optional<double> first_complete_seconds;  // since the loop started
+    uint32_t refining_frames = 0;
+    double refining_seconds = 0.0;
 };
+
+const char* refinement_event_name(RefinementEvent::Kind kind);
 
 Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context, EditorSession& session,
                                           const EditorLoopOptions& options);

@@ -41,11 +41,10 @@ Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D ex
 }
 
 void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent,
-                 bool keep_target_for_drawing) {
-    vk::transition_image(cmd,
-                         {display.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                          VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT});
+                 bool keep_target_for_drawing, DisplayWrite written) {
+    vk::transition_image(cmd, {display.handle(), VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               written.stage, written.access, VK_PIPELINE_STAGE_2_BLIT_BIT,
+                               VK_ACCESS_2_TRANSFER_READ_BIT});
     // The acquire semaphore is waited at the blit stage, so the layout change
     // chains after it.
     vk::transition_image(

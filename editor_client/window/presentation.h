@@ -24,12 +24,19 @@ struct Presentation {
 
 Result<Presentation> make_presentation(const vk::Context& context, VkExtent2D extent, Presentation* old);
 
-// Scales `display` (GENERAL, written by compute) onto `target` and leaves
-// `target` ready to present and `display` back in GENERAL. With
-// `keep_target_for_drawing`, `target` ends in COLOR_ATTACHMENT_OPTIMAL instead
-// so a UI pass can draw over it (the pass then moves it to PRESENT_SRC).
+// How the image to show was last written (the renderer's compute passes, or
+// the progressive canvas's copies).
+struct DisplayWrite {
+    VkPipelineStageFlags2 stage = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    VkAccessFlags2 access = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+};
+
+// Scales `display` (GENERAL) onto `target` and leaves `target` ready to
+// present and `display` back in GENERAL. With `keep_target_for_drawing`,
+// `target` ends in COLOR_ATTACHMENT_OPTIMAL instead so a UI pass can draw over
+// it (the pass then moves it to PRESENT_SRC).
 void record_blit(VkCommandBuffer cmd, const vk::Image& display, VkImage target, VkExtent2D extent,
-                 bool keep_target_for_drawing = false);
+                 bool keep_target_for_drawing = false, DisplayWrite written = {});
 
 // Makes `presentation` match `extent`: (re)creates it when absent, when its
 // size differs, or when `recreate` is set (then cleared). True when it was made anew.

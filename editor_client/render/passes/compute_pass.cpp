@@ -28,7 +28,10 @@ void ComputePass::dispatch(VkCommandBuffer cmd, const Frame& frame,
                            const GpuFrameConstants& constants) {
     vkCmdPushConstants(cmd, frame.compute_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                        &constants);
-    vkCmdDispatch(cmd, frame.groups_x(), frame.groups_y(), 1);
+    const uint32_t size = frame.workgroup_size;
+    for (const PixelRegion& r : frame.regions)
+        vkCmdDispatchBase(cmd, r.x / size, r.y / size, 0, (r.width + size - 1) / size,
+                          (r.height + size - 1) / size, 1);
 }
 
 }  // namespace lc::client

@@ -32,7 +32,7 @@ protected:
 
     // Binds the frame's set and this pass's pipeline.
     void bind(VkCommandBuffer cmd, const Frame& frame) const;
-    // One dispatch over the image with these push constants.
+    // One dispatch over each of the frame's regions with these push constants.
     static void dispatch(VkCommandBuffer cmd, const Frame& frame, const GpuFrameConstants& constants);
 
 private:

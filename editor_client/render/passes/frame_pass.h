@@ -6,8 +6,10 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <span>
 
 #include "editor_client/render/pipeline_cache.h"
+#include "editor_client/render/pixel_region.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
@@ -26,9 +28,12 @@ struct Frame {
     VkDescriptorSet frame_set = VK_NULL_HANDLE;
     GpuFrameConstants constants;  // what every compute dispatch pushes, before a pass adjusts it
     uint32_t reference_chunk = 1;  // leaves per reference dispatch (the device's loop limit)
-
-    uint32_t groups_x() const { return (targets->width + workgroup_size - 1) / workgroup_size; }
-    uint32_t groups_y() const { return (targets->height + workgroup_size - 1) / workgroup_size; }
+    // The pixels the compute passes shade (the whole image, or tiles of it),
+    // their origins on workgroup boundaries.
+    std::span<const PixelRegion> regions;
+    // The lighting and output images keep what earlier regions wrote (the
+    // G-buffer is not redrawn); otherwise the frame starts a new image.
+    bool continues_image = false;
 };
 
 class FramePass {

@@ -19,9 +19,11 @@ void LightingPass::specialize(vk::Specialization& spec, const Frame& frame) cons
 }
 
 void LightingPass::record(VkCommandBuffer cmd, const Frame& frame) const {
-    // Every pixel of hdr and cut is written, so old contents are dropped.
+    // A new image drops the old contents; a continued one keeps the regions already lit.
+    const VkImageLayout old_layout =
+        frame.continues_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
     for (const vk::Image* image : {&frame.targets->hdr, &frame.targets->cut}) {
-        vk::transition_image(cmd, {image->handle(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+        vk::transition_image(cmd, {image->handle(), old_layout, VK_IMAGE_LAYOUT_GENERAL,
                                    kComputeStage, kStorageReadWrite, kComputeStage, kStorageWrite});
     }
     bind(cmd, frame);
