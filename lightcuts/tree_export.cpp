@@ -45,7 +45,7 @@ float export_cone_cos(double cone_cos) {
     return std::clamp(round_down_to_float(std::cos(theta)), -1.0f, 1.0f);
 }
 
-// Nodes [begin, end) of the breadth-first `order`, converted into `out`.
+// Nodes [begin, end) of the breadth-first `order`, converted into `out_nodes`.
 void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
                    const std::vector<int32_t>& exported_index, size_t begin, size_t end,
                    std::vector<LightTreeNode>& out_nodes) {

@@ -256,8 +256,9 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     return Ok{};
 }
 
-Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t node_count) {
-    LightTreeNode n;
+// Fills `n` (a default node, already in place in the reader's vector: no copy
+// per record) from the record and validates it.
+Status from_record(const ResultRecord& r, size_t index, size_t node_count, LightTreeNode& n) {
     const auto who = [index] { return node_label(index); };
     const uint32_t flags = r.light.light_flags();
     const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kLightFlagTypeShift;
@@ -312,9 +313,7 @@ Result<LightTreeNode> from_record(const ResultRecord& r, size_t index, size_t no
         !std::isfinite(c.w()) || !std::isfinite(d.w())) {
         return make_error(who() + ": FLightData colour or direction.w is not finite");
     }
-    Status valid = validate_node(n, index, node_count);
-    if (!valid) return make_error(valid.error());
-    return n;
+    return validate_node(n, index, node_count);
 }
 
 // Reserves room for all `expected` records once `arriving` (those received
@@ -624,10 +623,9 @@ Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
             r.point = read_struct<fb::FPointLightData>(p + sizeof(fb::FLightData));
             r.node = read_struct<fb::LightcutsNodeRecord>(p + sizeof(fb::FLightData) +
                                                           sizeof(fb::FPointLightData));
-            Result<LightTreeNode> node = from_record(r, index, static_cast<size_t>(expected_));
-            if (!node) return make_error(node.error());
-            nodes_.push_back(node.value());
-            return Ok{};
+            Status valid = from_record(r, index, static_cast<size_t>(expected_), nodes_.emplace_back());
+            if (!valid) nodes_.pop_back();
+            return valid;
         });
     if (!status) {
         failed_ = true;

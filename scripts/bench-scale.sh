@@ -73,8 +73,9 @@ bake_once() {  # scene builder tag
   stop_server
 }
 
-rows="$work/rows.csv"
-: >"$rows"
+header="lights,gltf_mb,bake_wall_s,load_ms,upload_ms,build_agglomerative_ms,download_ms,write_ms,import_ms,bake_network_ms,client_peak_mb,server_peak_mb,bake_wall_lbvh_s,build_lbvh_ms,render_wall_s,render_gpu_ms,render_peak_mb"
+# Appended after every count: a failure at 2^22 keeps the rows before it.
+echo "$header" >"$out"
 counts=()
 for k in $(seq 10 2 "$max_log2"); do counts+=("$k"); done
 if [[ "$huge" == 1 ]]; then counts+=(22); fi
@@ -110,13 +111,9 @@ for k in "${counts[@]}"; do
   render_peak="$(peak_mb "$work/render_$k.time")"
 
   echo "$lights,$gltf_mb,$bake_wall,$(json_field "$j" load_ms),$(json_field "$j" upload_ms),$(json_field "$j" build_ms),$(json_field "$j" download_ms),$(json_field "$j" write_ms),$(json_field "$j" import_ms),$(json_field "$j" total_ms),$client_peak,$server_peak,$lbvh_wall,$lbvh_build_ms,$render_wall,$render_gpu_ms,$render_peak" \
-    | tee -a "$rows" >&2
+    | tee -a "$out" >&2
   rm -f "$scene"* "$work/$tag.lcut"
 done
 
-{
-  echo "lights,gltf_mb,bake_wall_s,load_ms,upload_ms,build_agglomerative_ms,download_ms,write_ms,import_ms,bake_network_ms,client_peak_mb,server_peak_mb,bake_wall_lbvh_s,build_lbvh_ms,render_wall_s,render_gpu_ms,render_peak_mb"
-  cat "$rows"
-} >"$out"
 cat "$out"
 /usr/bin/python3 scripts/plot_scale.py "$out" docs/bench/scale.png
