@@ -6,11 +6,47 @@
 // no invocation exceeds llvmpipe's loop budget (Renderer::reference_chunk):
 // the first dispatch adds the classic lights and emission, the last one
 // stores the pixel with its checks and counters.
+//
+// A small image (reference_pass.cpp) splits each dispatch's leaves over the
+// dispatch's layers of workgroups (gl_NumWorkGroups.z parts): an 8x8 image is
+// one workgroup, which would leave all but one of the device's threads idle.
+// Part z of a pixel adds its leaves to its own sum, kept in the walk search's
+// per-pixel scratch (walk_states[z * pixels + pixel].radiance; no walk runs in
+// a reference frame), and a last dispatch with no leaves (light_begin ==
+// light_end) adds the parts in order and stores the pixel.
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
 
 layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
+
+vec3 leaves_radiance(uint begin, uint end, SurfacePoint p) {
+    vec3 radiance = vec3(0.0);
+    uint i = begin;
+    for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
+        radiance += light_radiance(leaf_lights[i], p);
+        radiance += light_radiance(leaf_lights[i + 1u], p);
+        radiance += light_radiance(leaf_lights[i + 2u], p);
+        radiance += light_radiance(leaf_lights[i + 3u], p);
+    }
+    for (; i < end; ++i) radiance += light_radiance(leaf_lights[i], p);
+    return radiance;
+}
+
+// One part: the dispatch's leaves onto the pixel's sum in the HDR image.
+void sum_onto_the_image(ivec2 pixel, SurfacePoint p) {
+    const bool first = frame.light_begin == 0u;
+    const bool last = frame.light_end >= frame.leaf_count;
+    vec3 radiance = leaves_radiance(frame.light_begin, min(frame.light_end, frame.leaf_count), p);
+    radiance += first ? classic_and_emitted_radiance(p) : imageLoad(hdr_image, pixel).rgb;
+    if (last) {
+        // Every leaf is in the "cut"; the hash is not needed for reference pixels.
+        store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
+    } else {
+        imageStore(hdr_image, pixel, vec4(radiance, 1.0));
+        flush_pixel_counters(false);
+    }
+}
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -20,24 +56,26 @@ void main() {
         store_background(pixel);
         return;
     }
-    const bool first = frame.light_begin == 0u;
-    const bool last = frame.light_end >= frame.leaf_count;
-    vec3 radiance = vec3(0.0);
-    uint i = frame.light_begin;
-    uint end = min(frame.light_end, frame.leaf_count);
-    for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
-        radiance += light_radiance(leaf_lights[i], p);
-        radiance += light_radiance(leaf_lights[i + 1u], p);
-        radiance += light_radiance(leaf_lights[i + 2u], p);
-        radiance += light_radiance(leaf_lights[i + 3u], p);
+    const uint parts = gl_NumWorkGroups.z;
+    if (parts == 1u) {
+        sum_onto_the_image(pixel, p);
+        return;
     }
-    for (; i < end; ++i) radiance += light_radiance(leaf_lights[i], p);
-    radiance += first ? classic_and_emitted_radiance(p) : imageLoad(hdr_image, pixel).rgb;
-    if (last) {
-        // Every leaf is in the "cut"; the hash is not needed for reference pixels.
+    const uint pixels = frame.width * frame.height;
+    const uint pixel_index = uint(pixel.y) * frame.width + uint(pixel.x);
+    if (frame.light_begin == frame.light_end) {
+        if (gl_WorkGroupID.z != 0u) return;
+        vec3 radiance = classic_and_emitted_radiance(p);
+        for (uint z = 0u; z < parts; ++z) radiance += walk_states[z * pixels + pixel_index].radiance;
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
-    } else {
-        imageStore(hdr_image, pixel, vec4(radiance, 1.0));
-        flush_pixel_counters(false);
+        return;
     }
+    const uint part = (frame.light_end - frame.light_begin + parts - 1u) / parts;
+    const uint begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
+    const uint end = min(begin + part, frame.light_end);
+    const uint at = gl_WorkGroupID.z * pixels + pixel_index;
+    vec3 radiance = leaves_radiance(begin, end, p);
+    if (frame.light_begin != 0u) radiance = walk_states[at].radiance + radiance;
+    walk_states[at].radiance = radiance;
+    flush_pixel_counters(false);
 }

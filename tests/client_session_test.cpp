@@ -134,6 +134,27 @@ TEST(ClientSession, ReceivesProgressWarningsAndTheTree) {
     EXPECT_EQ(stages.back(), "receiving");
 }
 
+// The raw channel is kept for a dump only; without one the tree alone comes
+// back, decoded as the chunks arrived, and it is the same tree.
+TEST(ClientSession, KeepsTheRawResultChannelOnlyWhenAsked) {
+    const std::vector<SceneLight> lights = scene_lights();
+    std::vector<BakeOutcome> outcomes;
+    for (bool keep : {true, false}) {
+        ClientSessionOptions options = session_options();
+        options.keep_result_channel = keep;
+        ClientSession session(lights, kSceneGuid, options);
+        upload(session);
+        for (const Message& message : result_messages(lights)) session.on_message(message);
+        Result<BakeOutcome> outcome = session.take_result();
+        ASSERT_TRUE(outcome) << outcome.error();
+        outcomes.push_back(std::move(outcome.value()));
+    }
+    EXPECT_FALSE(outcomes[0].result_channel.empty());
+    EXPECT_TRUE(outcomes[1].result_channel.empty());
+    ASSERT_EQ(outcomes[0].tree.nodes.size(), outcomes[1].tree.nodes.size());
+    EXPECT_EQ(encode_result_channel(outcomes[1].tree), encode_result_channel(outcomes[0].tree));
+}
+
 TEST(ClientSession, VersionMismatchIsRefused) {
     ClientSession session(scene_lights(), kSceneGuid, session_options());
     session.start();

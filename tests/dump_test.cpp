@@ -77,6 +77,48 @@ TEST(Dump, RoundTripsNameAndPayload) {
     fs::remove_all(dir);
 }
 
+// The streaming read hands the payload over in chunks of the size asked for,
+// after the header, and stops at the first error a callback returns.
+TEST(Dump, StreamsThePayloadInChunks) {
+    const fs::path dir = test::make_temp_dir("dump-stream");
+    const ChannelDump dump = sample_dump();
+    ASSERT_TRUE(write_dump(dir / "x.dump", dump).ok());
+    DumpHeader header;
+    std::vector<uint8_t> payload;
+    std::vector<size_t> chunks;
+    Status read = read_dump_streaming(
+        dir / "x.dump",
+        [&](const DumpHeader& h) -> Status {
+            EXPECT_TRUE(payload.empty());
+            header = h;
+            return Ok{};
+        },
+        [&](std::span<const uint8_t> chunk) -> Status {
+            chunks.push_back(chunk.size());
+            payload.insert(payload.end(), chunk.begin(), chunk.end());
+            return Ok{};
+        },
+        128);
+    ASSERT_TRUE(read.ok()) << read.error();
+    EXPECT_EQ(header.channel_name, dump.channel_name);
+    EXPECT_EQ(header.payload_bytes, dump.payload.size());
+    EXPECT_EQ(payload, dump.payload);
+    EXPECT_EQ(chunks, (std::vector<size_t>{128, 128, 44}));
+
+    int calls = 0;
+    Status stopped = read_dump_streaming(
+        dir / "x.dump", [](const DumpHeader&) -> Status { return Ok{}; },
+        [&](std::span<const uint8_t>) -> Status {
+            ++calls;
+            return make_error("enough");
+        },
+        128);
+    EXPECT_FALSE(stopped.ok());
+    EXPECT_EQ(stopped.error(), "enough");
+    EXPECT_EQ(calls, 1);
+    fs::remove_all(dir);
+}
+
 TEST(Dump, HeaderLayoutIsAsDocumented) {
     const fs::path dir = test::make_temp_dir("dump-layout");
     const ChannelDump dump = sample_dump();

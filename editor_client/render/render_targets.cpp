@@ -1,5 +1,6 @@
 #include "editor_client/render/render_targets.h"
 
+#include <algorithm>
 #include <string>
 
 #include "lightcuts/gpu_layout.h"
@@ -60,8 +61,12 @@ Result<RenderTargets> RenderTargets::create(const vk::Device& device, uint32_t w
           make(targets.display, kDisplayFormat, kStorageUsage)}) {
         if (!made) return make_error(made.error());
     }
-    Result<vk::Buffer> walk_states =
-        vk::Buffer::create(device, VkDeviceSize(width) * height * sizeof(GpuWalkState),
+    // Per pixel for the walk search; at least kReferenceScratch entries, where
+    // reference mode keeps the sums of a small image's parts
+    // (passes/reference_pass.cpp): 64 parts of an 8x8 image.
+    constexpr VkDeviceSize kReferenceScratch = 4096;
+    Result<vk::Buffer> walk_states = vk::Buffer::create(
+        device, std::max(VkDeviceSize(width) * height, kReferenceScratch) * sizeof(GpuWalkState),
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::kDeviceLocal);
     if (!walk_states) return make_error(walk_states.error());
     targets.walk_states = std::move(walk_states).value();

@@ -1,7 +1,9 @@
-// glTF 2.0 -> Scene. tinygltf parses the JSON and the buffers; everything it
-// does not check (index ranges, accessor extents, finiteness, the node graph)
-// is checked here before any byte is read, so a broken file gives an error and
-// never a crash.
+// glTF 2.0 -> Scene. The node reader (simdjson) takes the nodes, scenes and
+// punctual lights into a flat table when the file is in its plain form, and
+// tinygltf parses the rest and the buffers (or everything, otherwise: the
+// table is then filled from tinygltf's model). Everything neither checks
+// (index ranges, accessor extents, finiteness, the node graph) is checked here
+// before any byte is read, so a broken file gives an error and never a crash.
 #include "editor_client/scene/gltf_loader.h"
 
 #include <tiny_gltf.h>  // Debian's shared library: no TINYGLTF_IMPLEMENTATION here

@@ -1,29 +1,67 @@
 #include "editor_client/render/passes/reference_pass.h"
 
+#include <algorithm>
+
 #include "editor_client/vk/barriers.h"
 #include "reference_comp.spv.h"
 
 namespace lc::client {
+namespace {
+
+// Workgroups a dispatch needs to keep every thread of the device busy: an
+// 8x8 image is one workgroup, which lavapipe runs on one thread.
+constexpr uint64_t kBusyWorkgroups = 64;
+
+// Parts each dispatch splits its leaves into (shaders/reference.comp): layers
+// of workgroups enough to keep the device busy, as many as the walk search's
+// per-pixel scratch holds (RenderTargets sizes it for small images), at most
+// one per leaf; 1 on images with workgroups enough.
+uint32_t reference_parts(const Frame& frame) {
+    const uint64_t groups = uint64_t(frame.groups_x()) * frame.groups_y();
+    const uint64_t pixels = uint64_t(frame.targets->width) * frame.targets->height;
+    const uint64_t scratch = frame.targets->walk_states.size() / sizeof(GpuWalkState);
+    const uint64_t parts = std::min({(kBusyWorkgroups + groups - 1) / groups, scratch / pixels,
+                                     uint64_t(frame.constants.leaf_count)});
+    return uint32_t(std::max<uint64_t>(parts, 1));
+}
+
+void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, const GpuFrameConstants& constants,
+                     uint32_t layers) {
+    vkCmdPushConstants(cmd, frame.compute_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                       &constants);
+    vkCmdDispatch(cmd, frame.groups_x(), frame.groups_y(), layers);
+}
+
+}  // namespace
 
 std::span<const uint32_t> ReferencePass::module(const Frame&) const {
     return spirv_words(reference_comp_spv);
 }
 
 void ReferencePass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const {
-    // Each dispatch adds its leaves to the previous dispatches' sums.
+    // Each dispatch adds its leaves to the previous dispatches' sums; each of
+    // its parts stays within the loop budget.
+    const uint32_t parts = reference_parts(frame);
     GpuFrameConstants constants = frame.constants;
     const uint32_t leaf_count = constants.leaf_count;
-    const uint32_t chunk = frame.reference_chunk;
+    const uint64_t per_dispatch = uint64_t(frame.reference_chunk) * parts;
     uint32_t begin = 0;
     do {
         constants.light_begin = begin;
-        constants.light_end = leaf_count - begin > chunk ? begin + chunk : leaf_count;
+        constants.light_end = uint32_t(std::min<uint64_t>(leaf_count, begin + per_dispatch));
         if (begin > 0)
             vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
                                kStorageReadWrite);
-        dispatch(cmd, frame, constants);
+        dispatch_layers(cmd, frame, constants, parts);
         begin = constants.light_end;
     } while (begin < leaf_count);
+    if (parts > 1) {
+        // The parts' sums, added in order.
+        vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
+                           kStorageReadWrite);
+        constants.light_begin = constants.light_end = leaf_count;
+        dispatch_layers(cmd, frame, constants, parts);
+    }
 }
 
 }  // namespace lc::client
