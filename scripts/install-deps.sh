@@ -11,7 +11,7 @@ PACKAGES=(
   # libraries
   libglm-dev libboost-dev libssl-dev
   libflatbuffers-dev flatbuffers-compiler
-  liblemon-dev libtinygltf-dev libtbb-dev
+  liblemon-dev libtinygltf-dev libtbb-dev libembree-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsimdjson-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # Vulkan on the CPU (lavapipe), shaders, window
