@@ -112,15 +112,6 @@ SceneLight directional_light(const glm::dvec3& towards_light, const glm::dvec3& 
 
 }  // namespace
 
-Status validate_environment_light_count(const Environment& environment, uint32_t count) {
-    const uint32_t least = environment.has_sky() ? 2 : 1;
-    if (count < least || count > kMaxEnvironmentLights)
-        return make_error("environment lights: " + std::to_string(count) + " is outside [" + std::to_string(least) +
-                          ", " + std::to_string(kMaxEnvironmentLights) + "]" +
-                          (environment.has_sky() ? " (a sun and sky needs a sun light and a sky light)" : ""));
-    return Ok{};
-}
-
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
                                             uint32_t count, uint64_t seed) {
     std::vector<SceneLight> lights;
@@ -144,26 +135,28 @@ std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotat
             }
             continue;
         }
-        // Halve the longer side, measured as an angle on the sphere.
+        // Split the longer side (as an angle on the sphere) where half the
+        // lights' share of the power lies on either side: equal-power strata.
         const double sin_theta = std::sin(std::numbers::pi * 0.5 * (s.y0 + s.y1) / height);
         const bool split_x = dx / width * 2.0 * sin_theta >= dy / height;
+        const double power = integral.power(s.x0, s.x1, s.y0, s.y1);
         Stratum a = s, b = s;
-        if (split_x) a.x1 = b.x0 = 0.5 * (s.x0 + s.x1);
-        else a.y1 = b.y0 = 0.5 * (s.y0 + s.y1);
-        const double power_a = integral.power(a.x0, a.x1, a.y0, a.y1);
-        const double power_b = integral.power(b.x0, b.x1, b.y0, b.y1);
-        if (!(power_a > 0.0) && !(power_b > 0.0)) continue;
-        if (!(power_a > 0.0)) {
-            stack.push_back(b);
-            continue;
-        }
-        if (!(power_b > 0.0)) {
-            stack.push_back(a);
-            continue;
-        }
-        const double share = std::round(s.lights * power_a / (power_a + power_b));
-        a.lights = uint32_t(std::clamp(share, 1.0, double(s.lights - 1)));
+        a.lights = s.lights / 2;
         b.lights = s.lights - a.lights;
+        const double target = power * a.lights / s.lights;
+        if (split_x)
+            a.x1 = b.x0 = bisect(s.x0, s.x1, target, [&](double t) { return integral.power(s.x0, t, s.y0, s.y1); });
+        else
+            a.y1 = b.y0 = bisect(s.y0, s.y1, target, [&](double t) { return integral.power(s.x0, s.x1, s.y0, t); });
+        // Rounding can leave a side empty: the other takes its lights.
+        const bool a_lit = integral.power(a.x0, a.x1, a.y0, a.y1) > 0.0;
+        const bool b_lit = integral.power(b.x0, b.x1, b.y0, b.y1) > 0.0;
+        if (!a_lit || !b_lit) {
+            Stratum& lit = a_lit ? a : b;
+            lit.lights = s.lights;
+            if (a_lit || b_lit) stack.push_back(lit);
+            continue;
+        }
         stack.push_back(b);
         stack.push_back(a);
     }

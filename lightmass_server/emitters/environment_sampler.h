@@ -3,9 +3,9 @@
 // tree (the Lightcuts paper, section 3: HDR environments and sun/sky).
 //
 // Stratified importance sampling with luminance-proportional strata: the
-// map's texel rectangle is split in halves (along its longer side in angle),
-// each half getting lights in proportion to its share of luminous power, until
-// a stratum holds one light. A stratum's light shines from a direction drawn
+// map's texel rectangle is split along its longer side (in angle) where the
+// luminous power divides as the lights do (half each), until a stratum holds
+// one light, so every stratum carries the same power. A stratum's light shines from a direction drawn
 // inside it with probability proportional to radiance times solid angle, and
 // its irradiance (lux) is the stratum's exact solid-angle integral of
 // radiance, so the lights' irradiances sum to the environment's integral
@@ -23,13 +23,10 @@
 
 namespace lc::bake {
 
-// 3,000: the paper's HDR-map budget. A sun and sky shares it in the paper's
-// 64 : 5,000 ratio (38 sun and 2,962 sky lights).
-inline constexpr uint32_t kDefaultEnvironmentLights = 3000;
-inline constexpr uint32_t kMaxEnvironmentLights = 1u << 22;  // 4,194,304
 // The sky is sampled from this raster (texel centres) of the model.
 inline constexpr uint32_t kSkyRasterWidth = 1024;
 inline constexpr uint32_t kSkyRasterHeight = 512;
+// The paper's 64 sun lights for 5,000 sky lights.
 inline constexpr double kSunShareOfSkyLights = 64.0 / 5064.0;
 
 struct EnvironmentLights {
@@ -37,9 +34,6 @@ struct EnvironmentLights {
     // "environment: simulated (W x H map, N lights)" or "sun and sky: simulated (...)".
     std::string census;
 };
-
-// count in [1, kMaxEnvironmentLights] (2 at least for a sun and sky).
-Status validate_environment_light_count(const Environment& environment, uint32_t count);
 
 // `environment` must be valid (protocol/environment_records.h); count 0 means the default.
 Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed);
