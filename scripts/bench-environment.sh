@@ -10,3 +10,4 @@ build_dir="${1:-build}"
 cmake --build "$build_dir" --target environment_sampling_bench -j "$(nproc)"
 mkdir -p docs/bench
 "$build_dir/bin/environment_sampling_bench" "${2:-1000000}" | tee docs/bench/environment_sampling.csv
+/usr/bin/python3 scripts/plot_environment_bench.py docs/bench/environment_sampling.csv
