@@ -129,7 +129,9 @@ void run_render(const RenderOptions& options) {
         or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
     std::vector<EffectDecision> decisions = renderer->effects().decisions;
     std::optional<EffectDecision> sky_decision;
-    if (std::shared_ptr<const Environment> environment = or_fail(options.bake.environment.load())) {
+    // A bake loaded it already; a tree from a dump was baked with it.
+    if (std::shared_ptr<const Environment> environment =
+            source.bake ? source.bake->environment : or_fail(options.bake.environment.load())) {
         size_t scene_tree_lights = 0;
         for (const SceneLight& light : scene.lights) scene_tree_lights += !light.classic;
         sky_decision = environment_decision(*environment, tree.get(), scene_tree_lights);
