@@ -16,6 +16,7 @@ namespace {
 
 static_assert(sizeof(fb::EnvironmentHeaderRecord) == 32);
 constexpr size_t kTexelBytes = 3 * sizeof(float);
+constexpr uint64_t kMaxUpFrontTexels = 1u << 16;
 
 enum class EnvironmentKind : uint8_t { kMap = 0, kSky = 1 };
 
@@ -89,7 +90,8 @@ Status EnvironmentChannelReader::take_header() {
     environment_.map.width = header.width();
     environment_.map.height = header.height();
     texels_expected_ = uint64_t{header.width()} * header.height();
-    environment_.map.texels.reserve(texels_expected_);
+    // A lying header must not make us reserve memory for texels that never come.
+    environment_.map.texels.reserve(std::min<uint64_t>(texels_expected_, kMaxUpFrontTexels));
     return Ok{};
 }
 
