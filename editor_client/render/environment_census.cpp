@@ -15,7 +15,7 @@ EffectDecision environment_decision(const Environment& environment, const LightT
     }
     const size_t lights = tree->leaf_count > scene_tree_lights ? tree->leaf_count - scene_tree_lights : 0;
     if (lights == 0) {
-        decision.reason = "it emits no light";
+        decision.reason = "the tree holds no lights beyond the scene's (baked without it, or it emits no light)";
         return decision;
     }
     decision.simulated = true;
