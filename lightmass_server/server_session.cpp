@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "lightmass_server/auth_token.h"
+#include "lightmass_server/emitters/environment_sampler.h"
 #include "protocol/channel_name.h"
 
 namespace lc::bake {
@@ -118,18 +119,25 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     };
     auto name = ChannelName::parse(open.name);
     if (!name) return refuse(ErrorCode::kUnknownChannel, "not a VERSION.GUID.ext channel name");
-    if (name->extension != kSceneExtension)
+    const bool environment = name->extension == kEnvironmentChannelExtension;
+    if (name->extension != kSceneExtension && !environment)
         return refuse(ErrorCode::kUnknownChannel, "this server accepts only ." + std::string(kSceneExtension) +
-                                                      " channels, got ." + name->extension);
+                                                      " and ." + kEnvironmentChannelExtension + " channels, got ." +
+                                                      name->extension);
     if (name->version != kSceneFormatVersionGuid)
         return refuse(ErrorCode::kVersionMismatch, "scene format version " + name->version.to_hex() +
                                                        " is not supported; this server reads " +
                                                        kSceneFormatVersionGuid.to_hex());
-    const uint64_t max_bytes = 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
+    const uint64_t max_bytes = environment ? max_environment_channel_bytes()
+                                           : 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
     if (open.total_bytes > max_bytes)
-        return refuse(ErrorCode::kTooLarge, "announces " + std::to_string(open.total_bytes) +
-                                                " bytes; the limit is " + std::to_string(max_bytes) + " (" +
-                                                std::to_string(kMaxSceneLights) + " lights)");
+        return refuse(ErrorCode::kTooLarge,
+                      "announces " + std::to_string(open.total_bytes) + " bytes; the limit is " +
+                          std::to_string(max_bytes) + " (" +
+                          (environment ? std::to_string(kMaxEquirectWidth) + " x " +
+                                             std::to_string(kMaxEquirectHeight) + " texels"
+                                       : std::to_string(kMaxSceneLights) + " lights") +
+                          ")");
     if (incoming_.size() >= kMaxOpenChannels)
         return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
                                             std::to_string(kMaxOpenChannels) + ")");
@@ -141,6 +149,7 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
                                             std::to_string(budget->limit()) + " bytes in use; --memory-budget-mb)");
     IncomingScene& scene = incoming_[open.channel_id];
     scene.name = open.name;
+    scene.environment = environment;
     scene.total_bytes = open.total_bytes;
     scene.reservation = BudgetReservation(budget, open.total_bytes);
     return true;
@@ -162,14 +171,16 @@ bool ServerSession::on_write_channel(WriteChannelMsg& write) {
         return false;
     }
     auto refuse = [&](const std::string& text) {
-        send_error(0, ErrorCode::kInvalidScene, "scene channel '" + scene.name + "': " + text);
+        send_error(0, ErrorCode::kInvalidScene,
+                   std::string(scene.environment ? "environment" : "scene") + " channel '" + scene.name + "': " + text);
         refused_.insert(write.channel_id);
         incoming_.erase(it);
         return true;
     };
     if (scene.received + write.data.size() > scene.total_bytes)
         return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
-    Status consumed = scene.reader.consume(write.data);
+    Status consumed =
+        scene.environment ? scene.environment_reader.consume(write.data) : scene.reader.consume(write.data);
     if (!consumed) return refuse(consumed.error());
     scene.received += write.data.size();
     if (options_.record_channels)
@@ -191,6 +202,23 @@ bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
         send_error(0, ErrorCode::kInvalidScene,
                    "scene channel '" + scene.name + "' closed after " + std::to_string(scene.received) +
                        " of " + std::to_string(scene.total_bytes) + " bytes");
+        return true;
+    }
+    if (scene.environment) {
+        Result<Environment> environment = scene.environment_reader.finish();
+        if (!environment) {
+            send_error(0, ErrorCode::kInvalidScene, "environment channel '" + scene.name + "': " + environment.error());
+            return true;
+        }
+        if (options_.record_channels) actions_.push_back(RecordChannel{scene.name, std::move(scene.recorded)});
+        spdlog::info("connection {}: environment '{}' received, {}", options_.connection_id, scene.name,
+                     environment->has_sky() ? std::string("a sun and sky")
+                                            : std::to_string(environment->map.width) + " x " +
+                                                  std::to_string(environment->map.height) + " map");
+        if (environments_.size() >= kMaxStoredScenes && !environments_.count(scene.name))
+            environments_.erase(environments_.begin());
+        environments_[scene.name] = StoredEnvironment{
+            std::make_shared<const Environment>(std::move(environment.value())), std::move(scene.reservation)};
         return true;
     }
     Result<std::vector<SceneLight>> lights = scene.reader.finish();
@@ -219,6 +247,24 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
                        "' (open, write and close it before BakeRequest)");
         return true;
     }
+    std::shared_ptr<const Environment> environment;
+    if (!request.environment_channel.empty()) {
+        auto stored = environments_.find(request.environment_channel);
+        if (stored == environments_.end()) {
+            send_error(request.bake_id, ErrorCode::kUnknownChannel,
+                       "no complete environment channel named '" + request.environment_channel +
+                           "' (open, write and close it before BakeRequest)");
+            return true;
+        }
+        environment = stored->second.environment;
+        if (request.environment_lights != 0) {
+            Status count = validate_environment_light_count(*environment, request.environment_lights);
+            if (!count) {
+                send_error(request.bake_id, ErrorCode::kInvalidScene, count.error());
+                return true;
+            }
+        }
+    }
     auto lights = std::make_shared<std::vector<SceneLight>>();
     size_t classic = 0;
     for (const SceneLight& light : scene->second.lights) {
@@ -239,6 +285,8 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     spdlog::info("connection {}: bake {} of {} lights with {} (seed {})", options_.connection_id,
                  request.bake_id, lights->size(), builder_name(start.build.builder), start.build.seed);
     start.lights = std::move(lights);
+    start.environment = std::move(environment);
+    start.environment_lights = request.environment_lights;
 
     bake_ = ActiveBake{request.bake_id};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});

@@ -13,12 +13,14 @@
 #include <variant>
 #include <vector>
 
+#include "lightcuts/environment.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightmass_server/memory_budget.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
+#include "protocol/environment_records.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {
@@ -42,6 +44,9 @@ struct StartBake {
     uint32_t bake_id = 0;
     std::shared_ptr<const std::vector<SceneLight>> lights;
     BuildOptions build;
+    // Null: no environment. Else sampled into lights (environment_sampler.h) before the build.
+    std::shared_ptr<const Environment> environment;
+    uint32_t environment_lights = 0;  // validated; 0: the default
 };
 // Stop the running build (it reports back with a cancelled error).
 struct CancelBake {
@@ -100,12 +105,18 @@ private:
         std::string name;
         uint64_t total_bytes = 0;
         uint64_t received = 0;
+        bool environment = false;  // a .env channel, else a .scene channel
         SceneChannelReader reader;
+        EnvironmentChannelReader environment_reader;
         std::vector<uint8_t> recorded;  // kept only when recording
         BudgetReservation reservation;
     };
     struct StoredScene {
         std::vector<SceneLight> lights;
+        BudgetReservation reservation;
+    };
+    struct StoredEnvironment {
+        std::shared_ptr<const Environment> environment;
         BudgetReservation reservation;
     };
     struct ActiveBake {
@@ -135,6 +146,7 @@ private:
     std::map<uint32_t, IncomingScene> incoming_;
     std::set<uint32_t> refused_;  // channels already refused with an error: their writes are dropped
     std::map<std::string, StoredScene> scenes_;
+    std::map<std::string, StoredEnvironment> environments_;
     std::optional<ActiveBake> bake_;
     uint32_t next_channel_id_ = 1u << 31;  // server-opened channels use the upper half
 };

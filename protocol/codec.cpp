@@ -70,10 +70,14 @@ Body encode_body(Fbb& fbb, const CloseChannelMsg& m) {
 
 Body encode_body(Fbb& fbb, const BakeRequestMsg& m) {
     auto scene = fbb.CreateString(m.scene_channel);
+    // No environment: the field stays absent, as before it existed.
+    flatbuffers::Offset<flatbuffers::String> environment;
+    if (!m.environment_channel.empty()) environment = fbb.CreateString(m.environment_channel);
     auto table =
         fb::CreateBakeRequest(fbb, m.bake_id, scene, static_cast<fb::BuilderKind>(m.builder),
                               m.seed, static_cast<fb::RepresentativeRule>(m.representative_rule),
-                              static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit);
+                              static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit,
+                              environment, m.environment_lights);
     return {fb::Message::BakeRequest, table.Union()};
 }
 
@@ -203,6 +207,7 @@ Result<Message> decode_table(const fb::CloseChannel& t, ExtentTracker&) {
 
 Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     extent.string(t.scene_channel());
+    extent.string(t.environment_channel());
     if (!t.scene_channel()) return missing("BakeRequest.scene_channel");
     if (!enum_in_range(t.builder())) {
         return bad_enum("BakeRequest.builder", static_cast<unsigned>(t.builder()));
@@ -222,6 +227,8 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     m.representative_rule = static_cast<RepresentativeRule>(t.representative_rule());
     m.pairing = static_cast<PairingMode>(t.pairing());
     m.exact_pairing_limit = t.exact_pairing_limit();
+    m.environment_channel = to_string(t.environment_channel());
+    m.environment_lights = t.environment_lights();
     return Message{std::move(m)};
 }
 

@@ -64,6 +64,8 @@ struct BakeRequestMsg {
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = 0;
+    std::string environment_channel;  // empty: the scene has no environment
+    uint32_t environment_lights = 0;  // 0: server default
 };
 struct ProgressMsg {
     uint32_t bake_id = 0;

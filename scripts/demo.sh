@@ -64,6 +64,21 @@ for mode in reference lightcuts cuts cutsize; do
   "$bin/editor_client" render "$out/room.gltf" --tree "$out/room.lcut" --mode "$mode" --size 512x512 \
       -o "$out/room_$mode.png" --float "$out/room_$mode.pfm" --stats "$out/room_$mode.json"
 done
+
+# Open air under a Preetham sun and sky (--sky ELEVATION,AZIMUTH,TURBIDITY): the server samples
+# the sun's disc and the sky into 3,000 directional lights of the tree (the census says so in the
+# bake's progress, the log and the stats); the ground and the boxes cast the sun's shadows.
+/usr/bin/python3 scripts/make_sky_scene.py "$out/yard.gltf"
+"$bin/editor_client" bake "$out/yard.gltf" --server "$server" --sky 30,40,3 -o "$out/yard.lcut" > /dev/null
+"$bin/editor_client" render "$out/yard.gltf" --tree "$out/yard.lcut" --sky 30,40,3 --size 256x256 \
+    --camera 10,6,10,0,1,0,50 -o "$out/yard_sky.png" --stats "$out/yard_sky.json"
+python3 - "$out/yard_sky.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+for d in s["effects_simulated"] + s["effects_skipped"]:
+    print("yard effect: %s: %s" % (d["name"], ("simulated, " if d in s["effects_simulated"] else "skipped, ") + d["reason"]))
+PY
+
 python3 - "$out/room_reference.json" "$out/furnished_error.json" <<'PY'
 import json, sys
 for path in sys.argv[1:]:

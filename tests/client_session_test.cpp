@@ -12,6 +12,7 @@
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
+#include "protocol/environment_records.h"
 #include "protocol/frame_decoder.h"
 #include "tree_invariants.h"
 
@@ -102,7 +103,35 @@ TEST(ClientSession, SendsHelloThenTheSceneChannelThenTheRequest) {
     EXPECT_EQ(request.bake_id, kBake);
     EXPECT_EQ(request.scene_channel, open.name);
     EXPECT_EQ(request.seed, 17u);
+    EXPECT_TRUE(request.environment_channel.empty());  // no environment: nothing new on the wire
     EXPECT_EQ(session.stage(), ClientSession::Stage::kBaking);
+}
+
+TEST(ClientSession, SendsTheEnvironmentChannelAfterTheSceneAndNamesIt) {
+    auto environment = std::make_shared<Environment>();
+    environment->map = EquirectMap{16, 8, std::vector<glm::vec3>(128, glm::vec3(0.25f))};
+    ClientSessionOptions options = session_options();
+    options.environment = environment;
+    options.request.environment_lights = 77;
+    ClientSession session(scene_lights(), kSceneGuid, options);
+    session.start();
+    drain(session);
+    session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+    std::vector<Message> upload = drain(session);
+    std::vector<std::string> opened;
+    std::vector<uint8_t> environment_bytes;
+    for (const Message& message : upload) {
+        if (auto* open = std::get_if<OpenChannelMsg>(&message)) opened.push_back(open->name);
+        if (auto* write = std::get_if<WriteChannelMsg>(&message); write && opened.size() == 2)
+            environment_bytes.insert(environment_bytes.end(), write->data.begin(), write->data.end());
+    }
+    ASSERT_EQ(opened.size(), 2u);
+    EXPECT_EQ(opened[0], scene_channel_name(kSceneGuid));
+    EXPECT_EQ(opened[1], environment_channel_name(kSceneGuid));
+    EXPECT_EQ(environment_bytes, encode_environment_channel(*environment));
+    const auto& request = std::get<BakeRequestMsg>(upload.back());
+    EXPECT_EQ(request.environment_channel, opened[1]);
+    EXPECT_EQ(request.environment_lights, 77u);
 }
 
 TEST(ClientSession, ReceivesProgressWarningsAndTheTree) {

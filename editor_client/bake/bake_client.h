@@ -5,11 +5,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
@@ -50,6 +52,10 @@ struct BakeClientOptions {
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = 0;  // 0: server default
     uint64_t seed = 0;
+    // Non-null: sent on the environment channel and sampled into
+    // environment_lights directional lights (0: the server's default).
+    std::shared_ptr<const Environment> environment;
+    uint32_t environment_lights = 0;
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
     // accepts and never answers is given up on after this long.

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "protocol/channel_name.h"
+#include "protocol/environment_records.h"
 
 namespace lc::client {
 namespace {
@@ -25,7 +26,10 @@ ErrorKind outcome_of(ErrorCode code) {
 }  // namespace
 
 ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_guid, ClientSessionOptions options)
-    : lights_(std::move(lights)), scene_channel_(scene_channel_name(scene_guid)), options_(std::move(options)) {}
+    : lights_(std::move(lights)),
+      scene_channel_(scene_channel_name(scene_guid)),
+      environment_channel_(environment_channel_name(scene_guid)),
+      options_(std::move(options)) {}
 
 void ClientSession::start() {
     if (stage_ != Stage::kConnecting) return;
@@ -44,40 +48,56 @@ std::optional<Message> ClientSession::next_message() {
     return std::nullopt;
 }
 
-// The scene channel (the tree lights, count-prefixed, in bounded chunks), then
-// BakeRequest; one message at a time, so a chunk exists only while it is sent.
+// The scene channel (the tree lights, count-prefixed, in bounded chunks), the
+// environment channel when the scene has one, then BakeRequest; one message at
+// a time, so a chunk exists only while it is sent.
 std::optional<Message> ClientSession::next_upload_message() {
     switch (upload_step_) {
-        case UploadStep::kOpen:
-            scene_bytes_ = encode_scene_channel(lights_);
-            lights_ = {};
-            upload_start_ = Clock::now();
-            upload_step_ = scene_bytes_.empty() ? UploadStep::kClose : UploadStep::kData;
-            return OpenChannelMsg{kSceneChannelId, scene_channel_, scene_bytes_.size()};
+        case UploadStep::kOpen: {
+            if (uploads_.empty()) {
+                upload_start_ = Clock::now();
+                uploads_.push_back({kSceneChannelId, scene_channel_, encode_scene_channel(lights_)});
+                lights_ = {};
+                if (options_.environment)
+                    uploads_.push_back({kEnvironmentChannelId, environment_channel_,
+                                        encode_environment_channel(*options_.environment)});
+            }
+            const UploadChannel& channel = uploads_[upload_index_];
+            upload_offset_ = 0;
+            upload_step_ = channel.bytes.empty() ? UploadStep::kClose : UploadStep::kData;
+            return OpenChannelMsg{channel.id, channel.name, channel.bytes.size()};
+        }
         case UploadStep::kData: {
-            size_t n = std::min<uint64_t>(options_.chunk_bytes, scene_bytes_.size() - upload_offset_);
-            auto begin = scene_bytes_.begin() + static_cast<ptrdiff_t>(upload_offset_);
-            WriteChannelMsg write{kSceneChannelId, upload_offset_, {begin, begin + static_cast<ptrdiff_t>(n)}};
+            const UploadChannel& channel = uploads_[upload_index_];
+            size_t n = std::min<uint64_t>(options_.chunk_bytes, channel.bytes.size() - upload_offset_);
+            auto begin = channel.bytes.begin() + static_cast<ptrdiff_t>(upload_offset_);
+            WriteChannelMsg write{channel.id, upload_offset_, {begin, begin + static_cast<ptrdiff_t>(n)}};
             upload_offset_ += n;
-            if (upload_offset_ == scene_bytes_.size()) upload_step_ = UploadStep::kClose;
+            if (upload_offset_ == channel.bytes.size()) upload_step_ = UploadStep::kClose;
             return write;
         }
-        case UploadStep::kClose:
-            upload_step_ = UploadStep::kRequest;
-            return CloseChannelMsg{kSceneChannelId};
+        case UploadStep::kClose: {
+            const uint32_t id = uploads_[upload_index_].id;
+            ++upload_index_;
+            upload_step_ = upload_index_ < uploads_.size() ? UploadStep::kOpen : UploadStep::kRequest;
+            return CloseChannelMsg{id};
+        }
         case UploadStep::kRequest: {
             if (options_.recorder && options_.recorder->enabled()) {
-                if (Status recorded = options_.recorder->record(scene_channel_, scene_bytes_); !recorded) {
-                    finish(make_error(recorded.error()));
-                    return std::nullopt;
+                for (const UploadChannel& channel : uploads_) {
+                    if (Status recorded = options_.recorder->record(channel.name, channel.bytes); !recorded) {
+                        finish(make_error(recorded.error()));
+                        return std::nullopt;
+                    }
                 }
             }
-            scene_bytes_ = {};
+            uploads_ = {};
             upload_step_ = UploadStep::kDone;
             stage_ = Stage::kBaking;
             outcome_.upload_ms = ms_since(upload_start_);
             BakeRequestMsg request = options_.request;
             request.scene_channel = scene_channel_;
+            request.environment_channel = options_.environment ? environment_channel_ : std::string();
             return request;
         }
         case UploadStep::kDone: break;

@@ -9,11 +9,13 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "editor_client/bake/bake_client.h"
+#include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
@@ -27,6 +29,9 @@ struct ClientSessionOptions {
     std::string token;
     // The bake to ask for; the session names its scene channel.
     BakeRequestMsg request{.bake_id = 1};
+    // Non-null: sent on the environment channel after the scene channel, and
+    // named in the request (request.environment_lights is its light budget).
+    std::shared_ptr<const Environment> environment;
     size_t chunk_bytes = kDefaultChunkBytes;
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
@@ -70,8 +75,15 @@ private:
     void on_bake_message(const Message& message);
     void finish(Result<BakeOutcome> result);
 
+    struct UploadChannel {
+        uint32_t id = 0;
+        std::string name;
+        std::vector<uint8_t> bytes;
+    };
+
     std::vector<SceneLight> lights_;
     std::string scene_channel_;
+    std::string environment_channel_;
     ClientSessionOptions options_;
     Stage stage_ = Stage::kConnecting;
     std::deque<Message> outbox_;
@@ -80,8 +92,10 @@ private:
 
     // Upload.
     static constexpr uint32_t kSceneChannelId = 1;
+    static constexpr uint32_t kEnvironmentChannelId = 2;
     UploadStep upload_step_ = UploadStep::kOpen;
-    std::vector<uint8_t> scene_bytes_;
+    std::vector<UploadChannel> uploads_;  // the scene channel, then the environment's when there is one
+    size_t upload_index_ = 0;
     uint64_t upload_offset_ = 0;
     Clock::time_point upload_start_;
 

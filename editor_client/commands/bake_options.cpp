@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "editor_client/commands/command_errors.h"
+
 namespace lc::client {
 
 void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
@@ -38,6 +40,7 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
     cmd.add_option("--connect-timeout", connect_timeout, "Seconds to connect, finish TLS and get HelloAck")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    environment.add_to(cmd);
 }
 
 BakeClientOptions BakeFlags::to_options() const {
@@ -59,6 +62,8 @@ BakeClientOptions BakeFlags::to_options() const {
     options.exact_pairing_limit = exact_limit;
     options.seed = seed;
     options.connect_timeout_seconds = connect_timeout;
+    options.environment = or_fail(environment.load());
+    options.environment_lights = environment.lights.value_or(0);
     return options;
 }
 

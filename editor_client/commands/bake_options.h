@@ -5,6 +5,7 @@
 #include <string>
 
 #include "editor_client/bake/bake_client.h"
+#include "editor_client/commands/environment_flags.h"
 
 namespace lc::client {
 
@@ -21,11 +22,14 @@ struct BakeFlags {
     uint64_t seed = 0;
     std::string record_dir;
     double connect_timeout = 10.0;
+    EnvironmentFlags environment;
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --record and --connect-timeout to a subcommand.
+    // --pairing, --representative, --exact-limit, --seed, --record, --connect-timeout and the
+    // environment flags (environment_flags.h) to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
+    // Loads the environment, if any; a subcommand ends on a bad one (command_errors.h).
     BakeClientOptions to_options() const;
 };
 

@@ -26,6 +26,7 @@
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/commands/gltf_load_flags.h"
+#include "editor_client/render/environment_census.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
 #include "editor_client/render/image_io.h"
@@ -177,7 +178,17 @@ void run_render(const RenderOptions& options) {
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
     std::unique_ptr<Renderer> renderer =
         or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
-    for (const EffectDecision& d : renderer->effects().decisions)
+    std::vector<EffectDecision> decisions = renderer->effects().decisions;
+    std::optional<EffectDecision> sky_decision;
+    // A bake loaded it already; a tree from a dump was baked with it.
+    if (std::shared_ptr<const Environment> environment =
+            source.bake ? source.bake->environment : or_fail(options.bake.environment.load())) {
+        size_t scene_tree_lights = 0;
+        for (const SceneLight& light : scene.lights) scene_tree_lights += !light.classic;
+        sky_decision = environment_decision(*environment, tree.get(), scene_tree_lights);
+        decisions.push_back(*sky_decision);
+    }
+    for (const EffectDecision& d : decisions)
         spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
 
     if (!sweep_ratios.empty()) {
@@ -214,6 +225,8 @@ void run_render(const RenderOptions& options) {
     std::vector<uint8_t> display = std::move(rendered.display);
     std::vector<float> hdr = std::move(rendered.hdr);
     stats.exposure = settings.exposure;
+    if (sky_decision)
+        (sky_decision->simulated ? stats.effects_simulated : stats.effects_skipped).push_back(*sky_decision);
     // Shaded modes without --exposure: tone-map the read-back at the automatic exposure.
     const bool shaded = mode_is_shaded(settings.mode) && !error_mode;
     if (shaded && !options.exposure) {

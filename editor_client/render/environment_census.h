@@ -1,0 +1,17 @@
+#pragma once
+// The effects report's line for light from the sky: what the environment or
+// sun and sky became in the tree, or why it was skipped.
+#include <cstddef>
+
+#include "editor_client/render/scene_effects.h"
+#include "lightcuts/environment.h"
+#include "lightcuts/light_tree.h"
+
+namespace lc::client {
+
+// `tree`: the baked tree (null without a tree source); `scene_tree_lights`: the
+// scene's own lights in it (its non-classic lights), the rest came from the sky.
+EffectDecision environment_decision(const Environment& environment, const LightTree* tree,
+                                    size_t scene_tree_lights);
+
+}  // namespace lc::client
