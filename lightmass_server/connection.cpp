@@ -124,6 +124,7 @@ void Connection::apply(ServerActions actions) {
 }
 
 void Connection::start_bake(StartBake start) {
+    start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     build_cancel_ = cancel;
     auto self = shared_from_this();
@@ -146,7 +147,7 @@ void Connection::start_bake(StartBake start) {
         };
         Result<BuildResult> result =
             cancel->load() ? Result<BuildResult>(make_error("cancelled before start", ErrorKind::kCancelled))
-                           : build_light_tree(*start.lights, start.build, progress);
+                           : run_bake(start.inputs, progress);
         asio::post(executor, [self, bake_id, cancel, result = std::move(result)]() mutable {
             if (self->build_cancel_ == cancel) self->build_cancel_.reset();
             if (!self->closed()) self->apply(self->session_.on_bake_finished(bake_id, std::move(result)));

@@ -19,11 +19,13 @@ struct BakeFlags {
     std::string representative = "intensity";
     uint32_t exact_limit = 0;
     uint64_t seed = 0;
+    uint32_t area_lights = kDefaultAreaLights;
     std::string record_dir;
     double connect_timeout = 10.0;
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --record and --connect-timeout to a subcommand.
+    // --pairing, --representative, --exact-limit, --seed, --area-lights, --record and
+    // --connect-timeout to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
     BakeClientOptions to_options() const;
