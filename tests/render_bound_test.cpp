@@ -87,33 +87,44 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
 
 using BoundCriterion = test::VulkanTest;
 
-TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
-    // Points with and without ranges, spots and directional lights: every bound
-    // (omni, oriented with cone, directional) and the mixed-type junctions.
+// A renderer of the room with `lights` and their `tree`, every light visible
+// (shadows off: these tests are about the bounds), and lightcuts-bound settings.
+std::unique_ptr<Renderer> unshadowed_room(vk::Context& context, const std::vector<SceneLight>& lights,
+                                          const LightTree& tree) {
     Scene scene = make_room_scene();
-    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
-    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
     scene.lights = lights;
-    LightTree tree = test::agglomerative_tree(lights);
-    ASSERT_FALSE(tree.empty());
-    // The closed room hides the directional lights entirely (shadows would be
-    // on); this test is about the bounds, so every light is visible here.
     RendererOptions visible;
     visible.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> renderer =
-        Renderer::create(*context_, scene, &tree, visible);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
+    EXPECT_TRUE(renderer.ok()) << renderer.error();
+    return renderer.ok() ? std::move(renderer.value()) : nullptr;
+}
+RenderSettings bound_settings() {
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
     settings.criterion = CutCriterion::kBound;
     settings.width = settings.height = 48;
     settings.camera = room_camera();
+    return settings;
+}
+
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
+    // Points with and without ranges, spots and directional lights: every bound
+    // (omni, oriented with cone, directional) and the mixed-type junctions.
+    // The closed room hides the directional lights entirely (shadows would be on).
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
+    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    const LightTree tree = test::agglomerative_tree(lights);
+    ASSERT_FALSE(tree.empty());
+    std::unique_ptr<Renderer> renderer = unshadowed_room(*context_, lights, tree);
+    ASSERT_NE(renderer, nullptr);
+    RenderSettings settings = bound_settings();
     for (BoundSearch search : {BoundSearch::kWalk, BoundSearch::kHeap}) {
         for (float error : {0.02f, 0.1f}) {
             SCOPED_TRACE(testing::Message() << bound_search_name(search) << " " << error);
             settings.bound_search = search;
             settings.error_ratio = error;
-            CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+            CutAgreement a = compare_with_cpu(*renderer, settings, tree);
             EXPECT_GT(a.geometry, 48u * 48u / 2);
             EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
         }
@@ -123,24 +134,15 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
     // Cosine emitters (area-light samples): the oriented bound over the box
     // and the cone of normals, on the GPU as on the CPU.
-    Scene scene = make_room_scene();
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kSpot, 2.0f);
     for (SceneLight& light : lights) light.type = LightType::kOriented;
-    scene.lights = lights;
-    LightTree tree = test::agglomerative_tree(lights);
+    const LightTree tree = test::agglomerative_tree(lights);
     ASSERT_FALSE(tree.empty());
-    RendererOptions visible;
-    visible.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> renderer =
-        Renderer::create(*context_, scene, &tree, visible);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 48;
-    settings.camera = room_camera();
+    std::unique_ptr<Renderer> renderer = unshadowed_room(*context_, lights, tree);
+    ASSERT_NE(renderer, nullptr);
+    RenderSettings settings = bound_settings();
     settings.error_ratio = 0.02f;
-    CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+    CutAgreement a = compare_with_cpu(*renderer, settings, tree);
     EXPECT_GT(a.geometry, 48u * 48u / 2);
     EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
 }
