@@ -87,12 +87,11 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
 
 using BoundCriterion = test::VulkanTest;
 
-// A renderer of the room with `lights` and their `tree`, every light visible
-// (shadows off: these tests are about the bounds), and lightcuts-bound settings.
-std::unique_ptr<Renderer> unshadowed_room(vk::Context& context, const std::vector<SceneLight>& lights,
-                                          const LightTree& tree) {
-    Scene scene = make_room_scene();
-    scene.lights = lights;
+// A renderer of `scene` (held by the caller, as the renderer reads it) and
+// its `tree`, every light visible (shadows off: these tests are about the
+// bounds), and lightcuts-bound settings.
+std::unique_ptr<Renderer> unshadowed_renderer(vk::Context& context, const Scene& scene,
+                                              const LightTree& tree) {
     RendererOptions visible;
     visible.shadows = ShadowMode::kOff;
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
@@ -114,9 +113,11 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     // The closed room hides the directional lights entirely (shadows would be on).
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
     for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    Scene scene = make_room_scene();
+    scene.lights = lights;
     const LightTree tree = test::agglomerative_tree(lights);
     ASSERT_FALSE(tree.empty());
-    std::unique_ptr<Renderer> renderer = unshadowed_room(*context_, lights, tree);
+    std::unique_ptr<Renderer> renderer = unshadowed_renderer(*context_, scene, tree);
     ASSERT_NE(renderer, nullptr);
     RenderSettings settings = bound_settings();
     for (BoundSearch search : {BoundSearch::kWalk, BoundSearch::kHeap}) {
@@ -136,9 +137,11 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
     // and the cone of normals, on the GPU as on the CPU.
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kSpot, 2.0f);
     for (SceneLight& light : lights) light.type = LightType::kOriented;
+    Scene scene = make_room_scene();
+    scene.lights = lights;
     const LightTree tree = test::agglomerative_tree(lights);
     ASSERT_FALSE(tree.empty());
-    std::unique_ptr<Renderer> renderer = unshadowed_room(*context_, lights, tree);
+    std::unique_ptr<Renderer> renderer = unshadowed_renderer(*context_, scene, tree);
     ASSERT_NE(renderer, nullptr);
     RenderSettings settings = bound_settings();
     settings.error_ratio = 0.02f;
