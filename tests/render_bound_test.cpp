@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
@@ -87,24 +88,36 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
 
 using BoundCriterion = test::VulkanTest;
 
-// A renderer of `scene` (held by the caller, as the renderer reads it) and
-// its `tree`, every light visible (shadows off: these tests are about the
-// bounds), and lightcuts-bound settings.
-std::unique_ptr<Renderer> unshadowed_renderer(vk::Context& context, const Scene& scene,
-                                              const LightTree& tree) {
+// The room with `lights` and their agglomerative tree, every light visible
+// (shadows off: these tests are about the bounds), rendered in lightcuts-bound
+// mode with each search at each error ratio: at least 99% of the pixels take
+// the CPU's cut, and those match it in radiance.
+void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<SceneLight>& lights,
+                                   std::initializer_list<BoundSearch> searches,
+                                   std::initializer_list<float> errors) {
+    Scene scene = make_room_scene();
+    scene.lights = lights;
+    const LightTree tree = test::agglomerative_tree(lights);
+    ASSERT_FALSE(tree.empty());
     RendererOptions visible;
     visible.shadows = ShadowMode::kOff;
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
-    EXPECT_TRUE(renderer.ok()) << renderer.error();
-    return renderer.ok() ? std::move(renderer.value()) : nullptr;
-}
-RenderSettings bound_settings() {
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
     settings.criterion = CutCriterion::kBound;
     settings.width = settings.height = 48;
     settings.camera = room_camera();
-    return settings;
+    for (BoundSearch search : searches) {
+        for (float error : errors) {
+            SCOPED_TRACE(testing::Message() << bound_search_name(search) << " " << error);
+            settings.bound_search = search;
+            settings.error_ratio = error;
+            CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+            EXPECT_GT(a.geometry, 48u * 48u / 2);
+            EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+        }
+    }
 }
 
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
@@ -113,23 +126,8 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     // The closed room hides the directional lights entirely (shadows would be on).
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
     for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
-    Scene scene = make_room_scene();
-    scene.lights = lights;
-    const LightTree tree = test::agglomerative_tree(lights);
-    ASSERT_FALSE(tree.empty());
-    std::unique_ptr<Renderer> renderer = unshadowed_renderer(*context_, scene, tree);
-    ASSERT_NE(renderer, nullptr);
-    RenderSettings settings = bound_settings();
-    for (BoundSearch search : {BoundSearch::kWalk, BoundSearch::kHeap}) {
-        for (float error : {0.02f, 0.1f}) {
-            SCOPED_TRACE(testing::Message() << bound_search_name(search) << " " << error);
-            settings.bound_search = search;
-            settings.error_ratio = error;
-            CutAgreement a = compare_with_cpu(*renderer, settings, tree);
-            EXPECT_GT(a.geometry, 48u * 48u / 2);
-            EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
-        }
-    }
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk, BoundSearch::kHeap},
+                                  {0.02f, 0.1f});
 }
 
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
@@ -137,17 +135,7 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
     // and the cone of normals, on the GPU as on the CPU.
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kSpot, 2.0f);
     for (SceneLight& light : lights) light.type = LightType::kOriented;
-    Scene scene = make_room_scene();
-    scene.lights = lights;
-    const LightTree tree = test::agglomerative_tree(lights);
-    ASSERT_FALSE(tree.empty());
-    std::unique_ptr<Renderer> renderer = unshadowed_renderer(*context_, scene, tree);
-    ASSERT_NE(renderer, nullptr);
-    RenderSettings settings = bound_settings();
-    settings.error_ratio = 0.02f;
-    CutAgreement a = compare_with_cpu(*renderer, settings, tree);
-    EXPECT_GT(a.geometry, 48u * 48u / 2);
-    EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk}, {0.02f});
 }
 
 TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
