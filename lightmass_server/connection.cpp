@@ -4,7 +4,6 @@
 
 #include <algorithm>
 
-#include "lightmass_server/emitters/environment_sampler.h"
 #include "protocol/codec.h"
 
 namespace lc::bake {
@@ -25,20 +24,6 @@ struct Overloaded : Ts... {
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
-// The scene's lights, then the environment's directional lights when it has
-// one; the census (what the environment became) is a Progress stage of its own.
-Result<BuildResult> build_bake(const StartBake& start, uint64_t connection_id, const ProgressFn& progress) {
-    if (!start.environment) return build_light_tree(*start.lights, start.build, progress);
-    if (!progress("sampling environment", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
-    Result<EnvironmentLights> environment =
-        sample_environment(*start.environment, start.environment_lights, start.build.seed);
-    if (!environment) return environment.failure();
-    spdlog::info("connection {}: bake {}: {}", connection_id, start.bake_id, environment->census);
-    if (!progress(environment->census, 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
-    std::vector<SceneLight> lights = *start.lights;
-    lights.insert(lights.end(), environment->lights.begin(), environment->lights.end());
-    return build_light_tree(lights, start.build, progress);
-}
 
 }  // namespace
 
@@ -140,6 +125,7 @@ void Connection::apply(ServerActions actions) {
 }
 
 void Connection::start_bake(StartBake start) {
+    start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     build_cancel_ = cancel;
     auto self = shared_from_this();
@@ -162,7 +148,7 @@ void Connection::start_bake(StartBake start) {
         };
         Result<BuildResult> result =
             cancel->load() ? Result<BuildResult>(make_error("cancelled before start", ErrorKind::kCancelled))
-                           : build_bake(start, self->id_, progress);
+                           : run_bake(start.inputs, progress);
         asio::post(executor, [self, bake_id, cancel, result = std::move(result)]() mutable {
             if (self->build_cancel_ == cancel) self->build_cancel_.reset();
             if (!self->closed()) self->apply(self->session_.on_bake_finished(bake_id, std::move(result)));

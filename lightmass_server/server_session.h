@@ -17,10 +17,12 @@
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_pipeline.h"
 #include "lightmass_server/memory_budget.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "protocol/environment_records.h"
+#include "protocol/geometry_channel.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {
@@ -42,11 +44,7 @@ struct SendMessage {
 // Build this tree on the worker pool; report back with on_bake_progress and on_bake_finished.
 struct StartBake {
     uint32_t bake_id = 0;
-    std::shared_ptr<const std::vector<SceneLight>> lights;
-    BuildOptions build;
-    // Null: no environment. Else sampled into lights (environment_sampler.h) before the build.
-    std::shared_ptr<const Environment> environment;
-    uint32_t environment_lights = 0;  // validated; 0: the default
+    BakeInputs inputs;
 };
 // Stop the running build (it reports back with a cancelled error).
 struct CancelBake {
@@ -95,19 +93,23 @@ public:
     ServerActions on_closing();
 
     bool greeted() const { return greeted_; }
-    // No bake running or streaming and no scene channel half-received: the idle timeout applies.
+    // No bake running or streaming and no channel half-received: the idle timeout applies.
     bool idle() const { return !bake_ && incoming_.empty(); }
     bool bake_running() const { return bake_.has_value(); }
     bool streaming() const { return bake_ && bake_->streaming; }
 
 private:
+    // A scene or geometry channel on its way in.
     struct IncomingScene {
         std::string name;
+        bool geometry = false;  // a .geom channel (geometry_reader); neither: .scene (reader)
         uint64_t total_bytes = 0;
         uint64_t received = 0;
-        bool environment = false;  // a .env channel, else a .scene channel
+        bool environment = false;  // a .env channel (environment_reader)
         SceneChannelReader reader;
+        std::string kind() const { return environment ? "environment" : geometry ? "geometry" : "scene"; }
         EnvironmentChannelReader environment_reader;
+        GeometryChannelReader geometry_reader;
         std::vector<uint8_t> recorded;  // kept only when recording
         BudgetReservation reservation;
     };
@@ -117,6 +119,10 @@ private:
     };
     struct StoredEnvironment {
         std::shared_ptr<const Environment> environment;
+        BudgetReservation reservation;
+    };
+    struct StoredGeometry {
+        std::shared_ptr<const SceneGeometry> geometry;
         BudgetReservation reservation;
     };
     struct ActiveBake {
@@ -130,6 +136,7 @@ private:
     bool on_open_channel(const OpenChannelMsg& open);
     bool on_write_channel(WriteChannelMsg& write);
     bool on_close_channel(const CloseChannelMsg& close);
+    void store_geometry(IncomingScene& channel);
     bool on_bake_request(const BakeRequestMsg& request);
     void on_cancel(const CancelMsg& cancel);
 
@@ -147,6 +154,7 @@ private:
     std::set<uint32_t> refused_;  // channels already refused with an error: their writes are dropped
     std::map<std::string, StoredScene> scenes_;
     std::map<std::string, StoredEnvironment> environments_;
+    std::map<std::string, StoredGeometry> geometries_;
     std::optional<ActiveBake> bake_;
     uint32_t next_channel_id_ = 1u << 31;  // server-opened channels use the upper half
 };

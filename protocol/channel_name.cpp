@@ -61,4 +61,8 @@ std::string environment_channel_name(const Guid& scene_guid) {
     return create_channel_name(scene_guid, kSceneFormatVersionGuid, kEnvironmentChannelExtension);
 }
 
+std::string geometry_channel_name(const Guid& scene_guid) {
+    return create_channel_name(scene_guid, kSceneFormatVersionGuid, kGeometryExtension);
+}
+
 }  // namespace lc

@@ -20,6 +20,8 @@ inline constexpr Guid kSceneFormatVersionGuid{0x4C435363u, 0x656E6546u, 0x6F726D
 inline constexpr const char* kSceneExtension = "scene";
 // The scene's environment or sky, named by the same GUID (environment_records.h).
 inline constexpr const char* kEnvironmentChannelExtension = "env";
+// The scene's surfaces (protocol/geometry_channel.h), named like its scene channel.
+inline constexpr const char* kGeometryExtension = "geom";
 
 struct ChannelName {
     Guid version;
@@ -34,5 +36,6 @@ std::string create_channel_name(const Guid& data, const Guid& version, std::stri
 std::string lightcuts_result_channel_name();
 std::string scene_channel_name(const Guid& scene_guid);
 std::string environment_channel_name(const Guid& scene_guid);
+std::string geometry_channel_name(const Guid& scene_guid);
 
 }  // namespace lc

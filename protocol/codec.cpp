@@ -73,11 +73,14 @@ Body encode_body(Fbb& fbb, const BakeRequestMsg& m) {
     // No environment: the field stays absent, as before it existed.
     flatbuffers::Offset<flatbuffers::String> environment;
     if (!m.environment_channel.empty()) environment = fbb.CreateString(m.environment_channel);
+    // Left out when empty, so a bake without geometry sends today's bytes.
+    flatbuffers::Offset<flatbuffers::String> geometry;
+    if (!m.geometry_channel.empty()) geometry = fbb.CreateString(m.geometry_channel);
     auto table =
         fb::CreateBakeRequest(fbb, m.bake_id, scene, static_cast<fb::BuilderKind>(m.builder),
                               m.seed, static_cast<fb::RepresentativeRule>(m.representative_rule),
                               static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit,
-                              environment, m.environment_lights);
+                              environment, m.environment_lights, geometry, m.area_lights);
     return {fb::Message::BakeRequest, table.Union()};
 }
 
@@ -103,8 +106,10 @@ Body encode_body(Fbb& fbb, const CancelMsg& m) {
 
 Body encode_body(Fbb& fbb, const BakeDoneMsg& m) {
     auto channel = fbb.CreateString(m.result_channel);
+    flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> effects;
+    if (!m.effects.empty()) effects = fbb.CreateVectorOfStrings(m.effects);
     auto table = fb::CreateBakeDone(fbb, m.bake_id, channel, m.node_count, m.leaf_count, m.build_ms,
-                                    m.pairing_cost, m.pairing_lower_bound, m.exact);
+                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects);
     return {fb::Message::BakeDone, table.Union()};
 }
 
@@ -138,6 +143,11 @@ public:
     }
     void string(const flatbuffers::String* s) {
         if (s) extend(offset_of(s) + sizeof(flatbuffers::uoffset_t) + s->size() + 1);
+    }
+    void strings(const flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>* v) {
+        if (!v) return;
+        extend(offset_of(v) + sizeof(flatbuffers::uoffset_t) * (1 + v->size()));
+        for (const flatbuffers::String* s : *v) string(s);
     }
     void vector(const flatbuffers::Vector<uint8_t>* v) {
         if (v) extend(offset_of(v) + sizeof(flatbuffers::uoffset_t) + v->size());
@@ -208,6 +218,7 @@ Result<Message> decode_table(const fb::CloseChannel& t, ExtentTracker&) {
 Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     extent.string(t.scene_channel());
     extent.string(t.environment_channel());
+    extent.string(t.geometry_channel());
     if (!t.scene_channel()) return missing("BakeRequest.scene_channel");
     if (!enum_in_range(t.builder())) {
         return bad_enum("BakeRequest.builder", static_cast<unsigned>(t.builder()));
@@ -229,6 +240,8 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     m.exact_pairing_limit = t.exact_pairing_limit();
     m.environment_channel = to_string(t.environment_channel());
     m.environment_lights = t.environment_lights();
+    m.geometry_channel = to_string(t.geometry_channel());
+    m.area_lights = t.area_lights();
     return Message{std::move(m)};
 }
 
@@ -259,6 +272,7 @@ Result<Message> decode_table(const fb::Cancel& t, ExtentTracker&) {
 
 Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     extent.string(t.result_channel());
+    extent.strings(t.effects());
     if (!std::isfinite(t.build_ms())) return not_finite("BakeDone.build_ms", t.build_ms());
     if (!std::isfinite(t.pairing_cost())) {
         return not_finite("BakeDone.pairing_cost", t.pairing_cost());
@@ -275,6 +289,8 @@ Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     m.pairing_cost = t.pairing_cost();
     m.pairing_lower_bound = t.pairing_lower_bound();
     m.exact = t.exact();
+    if (t.effects())
+        for (const flatbuffers::String* line : *t.effects()) m.effects.push_back(line->str());
     return Message{std::move(m)};
 }
 

@@ -41,7 +41,8 @@ bool same(const CloseChannelMsg& x, const CloseChannelMsg& y) {
 bool same(const BakeRequestMsg& x, const BakeRequestMsg& y) {
     return x.bake_id == y.bake_id && x.scene_channel == y.scene_channel && x.builder == y.builder &&
            x.seed == y.seed && x.representative_rule == y.representative_rule &&
-           x.pairing == y.pairing && x.exact_pairing_limit == y.exact_pairing_limit;
+           x.pairing == y.pairing && x.exact_pairing_limit == y.exact_pairing_limit &&
+           x.geometry_channel == y.geometry_channel && x.area_lights == y.area_lights;
 }
 bool same(const ProgressMsg& x, const ProgressMsg& y) {
     return x.bake_id == y.bake_id && x.stage == y.stage && x.percent == y.percent;
@@ -57,7 +58,8 @@ bool same(const BakeDoneMsg& x, const BakeDoneMsg& y) {
     return x.bake_id == y.bake_id && x.result_channel == y.result_channel &&
            x.node_count == y.node_count && x.leaf_count == y.leaf_count &&
            x.build_ms == y.build_ms && x.pairing_cost == y.pairing_cost &&
-           x.pairing_lower_bound == y.pairing_lower_bound && x.exact == y.exact;
+           x.pairing_lower_bound == y.pairing_lower_bound && x.exact == y.exact &&
+           x.effects == y.effects;
 }
 bool same(const Message& x, const Message& y) {
     if (x.index() != y.index()) return false;
@@ -79,8 +81,11 @@ std::vector<Message> sample_messages() {
                         0xFEEDFACECAFEBEEFull,
                         RepresentativeRule::kThesisFirst,
                         PairingMode::kApproximate,
-                        4096};
-    BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false};
+                        4096,
+                        "4C435363656E65466F726D6174000001.0123.geom",
+                        777};
+    BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false,
+                     {"area lights: simulated (2 emissive triangles, 777 samples)", "second"}};
     return {
         HelloMsg{kProtocolVersion, "editor_client 0.1", "s3cret-token"},
         HelloAckMsg{kProtocolVersion, "lightmass_server 0.1"},

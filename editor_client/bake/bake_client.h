@@ -14,6 +14,7 @@
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/light_tree.h"
+#include "lightcuts/scene_geometry.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
@@ -56,6 +57,10 @@ struct BakeClientOptions {
     // environment_lights directional lights (0: the server's default).
     std::shared_ptr<const Environment> environment;
     uint32_t environment_lights = 0;
+    // The scene's surfaces, sent on the geometry channel; null: none (no
+    // effect needs them, see surface_geometry.h's geometry_the_bake_needs).
+    std::shared_ptr<const SceneGeometry> geometry;
+    uint32_t area_lights = 0;  // area-light sample budget; 0: the server's default
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
     // accepts and never answers is given up on after this long.

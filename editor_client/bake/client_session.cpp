@@ -4,6 +4,7 @@
 
 #include "protocol/channel_name.h"
 #include "protocol/environment_records.h"
+#include "protocol/geometry_channel.h"
 
 namespace lc::client {
 namespace {
@@ -29,6 +30,7 @@ ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_g
     : lights_(std::move(lights)),
       scene_channel_(scene_channel_name(scene_guid)),
       environment_channel_(environment_channel_name(scene_guid)),
+      geometry_channel_(options.geometry ? geometry_channel_name(scene_guid) : std::string()),
       options_(std::move(options)) {}
 
 void ClientSession::start() {
@@ -49,8 +51,8 @@ std::optional<Message> ClientSession::next_message() {
 }
 
 // The scene channel (the tree lights, count-prefixed, in bounded chunks), the
-// environment channel when the scene has one, then BakeRequest; one message at
-// a time, so a chunk exists only while it is sent.
+// geometry channel when an effect needs the surfaces, the environment channel
+// when the scene has one, then BakeRequest; one message at a time.
 std::optional<Message> ClientSession::next_upload_message() {
     switch (upload_step_) {
         case UploadStep::kOpen: {
@@ -58,6 +60,11 @@ std::optional<Message> ClientSession::next_upload_message() {
                 upload_start_ = Clock::now();
                 uploads_.push_back({kSceneChannelId, scene_channel_, encode_scene_channel(lights_)});
                 lights_ = {};
+                if (options_.geometry) {
+                    uploads_.push_back({kGeometryChannelId, geometry_channel_,
+                                        encode_geometry_channel(*options_.geometry)});
+                    options_.geometry.reset();
+                }
                 if (options_.environment)
                     uploads_.push_back({kEnvironmentChannelId, environment_channel_,
                                         encode_environment_channel(*options_.environment)});
@@ -98,6 +105,7 @@ std::optional<Message> ClientSession::next_upload_message() {
             BakeRequestMsg request = options_.request;
             request.scene_channel = scene_channel_;
             request.environment_channel = options_.environment ? environment_channel_ : std::string();
+            request.geometry_channel = geometry_channel_;
             return request;
         }
         case UploadStep::kDone: break;

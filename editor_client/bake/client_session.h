@@ -18,6 +18,7 @@
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
@@ -39,6 +40,9 @@ struct ClientSessionOptions {
     // False: BakeOutcome::result_channel stays empty; the tree is decoded as
     // the channel streams in, and a million-light channel is 180 MB more.
     bool keep_result_channel = true;
+    // Sent on the geometry channel after the scene channel when an effect
+    // needs the surfaces (surface_geometry.h); null: no geometry channel.
+    std::shared_ptr<const SceneGeometry> geometry;
 };
 
 class ClientSession {
@@ -84,6 +88,7 @@ private:
     std::vector<SceneLight> lights_;
     std::string scene_channel_;
     std::string environment_channel_;
+    std::string geometry_channel_;  // empty: none to send
     ClientSessionOptions options_;
     Stage stage_ = Stage::kConnecting;
     std::deque<Message> outbox_;
@@ -92,9 +97,10 @@ private:
 
     // Upload.
     static constexpr uint32_t kSceneChannelId = 1;
-    static constexpr uint32_t kEnvironmentChannelId = 2;
+    static constexpr uint32_t kGeometryChannelId = 2;
+    static constexpr uint32_t kEnvironmentChannelId = 3;
     UploadStep upload_step_ = UploadStep::kOpen;
-    std::vector<UploadChannel> uploads_;  // the scene channel, then the environment's when there is one
+    std::vector<UploadChannel> uploads_;  // the scene channel, then the geometry's and the environment's when due
     size_t upload_index_ = 0;
     uint64_t upload_offset_ = 0;
     Clock::time_point upload_start_;

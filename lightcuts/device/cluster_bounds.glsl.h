@@ -26,13 +26,14 @@ const float kAngleSlack = 1e-6;  // radians, for a float acos
 struct ClusterShape {
     bool directional;  // the representative's type, which every light shares
     bool spot;
+    bool oriented;     // cosine emitters: the cone holds their normals
     bool leaf;
     real3 bbox_min;    // the lights' positions (directions when directional)
     real3 bbox_max;
     real3 position;    // the representative's
     real range;        // the representative's; <= 0: unbounded
     real radius;       // every light's sphere of influence lies within it around position
-    real3 cone_axis;   // the spots' directions lie within the cone (axis, cone_cos)
+    real3 cone_axis;   // the spots' directions (oriented: normals) lie within the cone (axis, cone_cos)
     real cone_cos;     // -1: every direction
 };
 
@@ -93,6 +94,29 @@ LC_INLINE bool spot_cluster_excluded(LC_IN(ClusterShape) c, real3 x) {
     return acos(clamp(cos_bound, -1.0, 1.0)) > limit + kAngleSlack;
 }
 
+// Upper bound of the emitter cosine (shading.glsl.h's emitter_cosine) over
+// every oriented light of the cluster at x (paper Sec. 4.1): the directions
+// from the lights to x lie in x - box, at least theta from the cone axis, and
+// every normal within beta of it, so each angle to a normal is at least
+// theta - beta: the bound is 1 when theta <= beta, else cos(theta - beta),
+// expanded into products (no acos: float and double agree closely), 0 past
+// pi/2.
+LC_INLINE real oriented_emitter_bound(LC_IN(ClusterShape) c, real3 x) {
+    if (!(c.cone_cos >= -1.0 && c.cone_cos <= 1.0)) return 1.0;
+    real axis_len = length(c.cone_axis);
+    if (!(axis_len > 0.0)) return 1.0;
+    real cos_theta =
+        clamp(max_cos_to_box(c.cone_axis / axis_len, x - c.bbox_max, x - c.bbox_min), -1.0, 1.0);
+    if (cos_theta >= c.cone_cos) return 1.0;
+    real sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    real sin_beta = sqrt(max(1.0 - c.cone_cos * c.cone_cos, 0.0));
+    real bound = cos_theta * c.cone_cos + sin_theta * sin_beta;
+    // theta - beta is in (0, pi], where the cosine falls: negative past pi/2
+    // (the slack keeps a grazing angle's rounding from zeroing it).
+    if (!(bound > -kAngleSlack)) return 0.0;
+    return clamp(bound * (1.0 + kFewUlps) + kAngleSlack, 0.0, 1.0);
+}
+
 // Upper bound of G (shading.glsl.h, cosine with the normal included,
 // visibility 1) over every light of the cluster at x with unit normal n.
 LC_INLINE real cluster_geometric_bound(LC_IN(ClusterShape) c, real3 x, real3 n) {
@@ -109,6 +133,7 @@ LC_INLINE real cluster_geometric_bound(LC_IN(ClusterShape) c, real3 x, real3 n) 
     real cos_bound = max_cos_to_box(n, c.bbox_min - x, c.bbox_max - x);
     if (!(cos_bound > 0.0)) return 0.0;
     if (c.spot && spot_cluster_excluded(c, x)) return 0.0;
+    if (c.oriented) cos_bound *= oriented_emitter_bound(c, x);
     return cos_bound * window * inverse_square(dmin2);
 }
 

@@ -1,0 +1,38 @@
+#pragma once
+// One bake from its inputs to the tree: the seam between the session (which
+// collects the channels) and the stages that turn a scene into lights. With
+// geometry, the bake builds one RayCaster (the solvers that trace rays go
+// through it) and samples the emissive triangles into oriented lights; with an
+// environment or sky, it samples that into directional lights; then every
+// light goes to the tree builder. Each stage reports a census line.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "lightcuts/environment.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
+#include "lightcuts/scene_light.h"
+#include "lightmass_server/tree_builder.h"
+#include "protocol/messages.h"
+
+namespace lc::bake {
+
+struct BakeInputs {
+    // The scene channel's tree lights (classic lights already left out).
+    std::shared_ptr<const std::vector<SceneLight>> lights;
+    // The geometry channel's surfaces; null when the client sent none.
+    std::shared_ptr<const SceneGeometry> geometry;
+    uint32_t area_lights = kDefaultAreaLights;  // the area-light sample budget
+    // The environment channel's map or sun and sky; null when the client sent none.
+    std::shared_ptr<const Environment> environment;
+    uint32_t environment_lights = 0;  // validated by the session; 0: the default
+    BuildOptions build;
+    int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
+};
+
+// A cancelled bake returns an error of kind ErrorKind::kCancelled. The
+// report's effects hold the census (area lights simulated or skipped, why).
+Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress);
+
+}  // namespace lc::bake
