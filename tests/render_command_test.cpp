@@ -178,6 +178,38 @@ TEST_F(RenderCommand, BakesOnASpawnedServer) {
     EXPECT_TRUE(std::filesystem::exists(png));
 }
 
+TEST_F(RenderCommand, SupersamplingIsDeterministicAndCountsItsWork) {
+    // --spp with reconstruction cuts, twice with the same seed: the same bytes;
+    // another seed moves the eye rays; the stats say what was computed.
+    auto render_spp = [&](const std::string& tag, const std::string& seed) {
+        std::filesystem::path pfm = dir_ / (tag + ".pfm"), stats = dir_ / (tag + ".json");
+        CommandRun r = run(scene_path_.string() + " --tree " + tree_path_.string() +
+                               " --size 32x24 --spp 4 --spp-method reconstruction --spp-seed " +
+                               seed + " --compare-reference -o " + (dir_ / (tag + ".png")).string() +
+                               " --float " + pfm.string() + " --stats " + stats.string(),
+                           dir_);
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        std::ifstream in(pfm, std::ios::binary);
+        std::stringstream bytes;
+        bytes << in.rdbuf();
+        std::ifstream json(stats);
+        return std::pair{bytes.str(), nlohmann::json::parse(json)};
+    };
+    auto [a, stats] = render_spp("a", "5");
+    auto [b, b_stats] = render_spp("b", "5");
+    const std::string c = render_spp("c", "6").first;
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(b_stats["shadow_rays"], stats["shadow_rays"]);
+    EXPECT_NE(a, c);
+    EXPECT_EQ(stats["spp"], 4);
+    EXPECT_EQ(stats["spp_method"], "reconstruction");
+    EXPECT_GT(stats["lightcuts_computed"].get<uint64_t>(), 0u);
+    EXPECT_GT(stats["reconstruction_cuts"].get<uint64_t>(), 0u);
+    EXPECT_EQ(stats["nonfinite_pixels"], 0);
+    EXPECT_LE(stats["rel_err_mean"].get<double>(), 0.05);
+}
+
 TEST_F(RenderCommand, ErrorsNameTheProblem) {
     std::filesystem::path png = dir_ / "x.png";
     CommandRun no_tree = run(scene_path_.string() + " --mode lightcuts -o " + png.string(), dir_);
