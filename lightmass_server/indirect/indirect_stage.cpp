@@ -1,0 +1,53 @@
+#include "lightmass_server/indirect/indirect_stage.h"
+
+#include <cstdio>
+
+namespace lc::bake {
+
+const char* indirect_method_name(IndirectMethod method) {
+    switch (method) {
+        case IndirectMethod::kOff: return "off";
+        case IndirectMethod::kVpl: return "vpl";
+        case IndirectMethod::kRadiosity: return "radiosity";
+    }
+    return "unknown";
+}
+
+Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,
+                                               std::span<const SceneLight> lights, const IndirectOptions& options,
+                                               const ProgressFn& progress) {
+    IndirectStageResult stage;
+    bool no_bounce = options.method == IndirectMethod::kOff ||
+                     (options.method == IndirectMethod::kVpl && options.vpl.bounces == 0);
+    if (no_bounce) {
+        stage.census = "skipped: no bounce requested";
+        return stage;
+    }
+    if (caster == nullptr || caster->triangle_count() == 0) {
+        stage.census = "skipped: the scene has no geometry";
+        return stage;
+    }
+    char text[160];
+    if (options.method == IndirectMethod::kVpl) {
+        auto traced = trace_vpls(geometry, *caster, lights, options.vpl, progress);
+        if (!traced.ok()) return traced.failure();
+        stage.lights = std::move(traced->lights);
+        std::snprintf(text, sizeof text, "simulated (%zu VPLs from %llu particles, %u bounces)", stage.lights.size(),
+                      static_cast<unsigned long long>(traced->particles), options.vpl.bounces);
+        stage.census = text;
+        return stage;
+    }
+    auto solved = solve_radiosity(geometry, *caster, lights, options.radiosity, progress);
+    if (!solved.ok()) return solved.failure();
+    stage.lights = std::move(solved->lights);
+    std::snprintf(text, sizeof text, "simulated (%zu patches, all bounces, %llu steps, %.3g%% unshot)",
+                  solved->mesh.patches.size(), static_cast<unsigned long long>(solved->steps),
+                  100.0 * solved->unshot_fraction);
+    stage.census = text;
+    if (!solved->converged) stage.warnings.push_back(solved->message);
+    stage.patches = std::move(solved->mesh.patches);
+    stage.patch_radiosity = std::move(solved->radiosity);
+    return stage;
+}
+
+}  // namespace lc::bake
