@@ -236,6 +236,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     start.build.pairing = request.pairing;
     start.build.seed = request.seed;
     if (request.exact_pairing_limit != 0) start.build.exact_pairing_limit = request.exact_pairing_limit;
+    start.indirect = indirect_options(request.indirect, request.seed);
     spdlog::info("connection {}: bake {} of {} lights with {} (seed {})", options_.connection_id,
                  request.bake_id, lights->size(), builder_name(start.build.builder), start.build.seed);
     start.lights = std::move(lights);

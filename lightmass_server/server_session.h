@@ -17,6 +17,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightmass_server/memory_budget.h"
+#include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "protocol/messages.h"
@@ -42,6 +43,7 @@ struct StartBake {
     uint32_t bake_id = 0;
     std::shared_ptr<const std::vector<SceneLight>> lights;
     BuildOptions build;
+    IndirectOptions indirect;
 };
 // Stop the running build (it reports back with a cancelled error).
 struct CancelBake {

@@ -302,7 +302,8 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              .seed = options.seed,
                                              .representative_rule = options.representative_rule,
                                              .pairing = options.pairing,
-                                             .exact_pairing_limit = options.exact_pairing_limit};
+                                             .exact_pairing_limit = options.exact_pairing_limit,
+                                             .indirect = options.indirect};
     session_options.on_progress = options.on_progress;
     session_options.on_warning = options.on_warning;
     session_options.recorder = &recorder;

@@ -49,6 +49,7 @@ struct BakeClientOptions {
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = 0;  // 0: server default
     uint64_t seed = 0;
+    IndirectRequest indirect;
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
     // accepts and never answers is given up on after this long.

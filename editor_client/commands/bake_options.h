@@ -21,9 +21,12 @@ struct BakeFlags {
     uint64_t seed = 0;
     std::string record_dir;
     double connect_timeout = 10.0;
+    std::string indirect = "off";
+    IndirectRequest indirect_request;
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --record and --connect-timeout to a subcommand.
+    // --pairing, --representative, --exact-limit, --seed, --record, --connect-timeout and the indirect
+    // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
     BakeClientOptions to_options() const;

@@ -4,13 +4,15 @@
 
 namespace lc::bake {
 
-const char* indirect_method_name(IndirectMethod method) {
-    switch (method) {
-        case IndirectMethod::kOff: return "off";
-        case IndirectMethod::kVpl: return "vpl";
-        case IndirectMethod::kRadiosity: return "radiosity";
-    }
-    return "unknown";
+IndirectOptions indirect_options(const IndirectRequest& request, uint64_t seed) {
+    IndirectOptions options;
+    options.method = request.method;
+    options.vpl.bounces = request.bounces;
+    options.vpl.particle_count = request.vpl_count;
+    options.vpl.seed = seed;
+    options.radiosity.patch_size = request.patch_size;
+    options.radiosity.tolerance = request.tolerance;
+    return options;
 }
 
 Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,

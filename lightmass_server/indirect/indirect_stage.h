@@ -18,15 +18,14 @@
 
 namespace lc::bake {
 
-enum class IndirectMethod : uint8_t { kOff = 0, kVpl = 1, kRadiosity = 2 };
-
-const char* indirect_method_name(IndirectMethod method);
-
 struct IndirectOptions {
     IndirectMethod method = IndirectMethod::kOff;
     VplOptions vpl;
     RadiosityOptions radiosity;
 };
+
+// The solvers' settings from a bake request; `seed` seeds the photon paths.
+IndirectOptions indirect_options(const IndirectRequest& request, uint64_t seed);
 
 struct IndirectStageResult {
     std::vector<IndirectLight> lights;
