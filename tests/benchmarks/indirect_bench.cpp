@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
         std::fflush(results);
     }
     std::fprintf(convergence, "patch_size,step,seconds,shot_fraction\n");
-    for (float size : {0.5f, 0.25f, 0.125f, 0.0625f}) {
+    for (float size : {0.5f, 0.25f, 0.125f}) {
         lc::bake::RadiosityOptions options;
         options.patch_size = size;
         options.tolerance = 1e-3;
