@@ -37,6 +37,7 @@ shading::Emitter make_emitter(LightType type, const glm::vec3& position, const g
     shading::Emitter e;
     e.directional = type == LightType::kDirectional;
     e.spot = type == LightType::kSpot;
+    e.oriented = type == LightType::kOriented;
     e.position = glm::dvec3(position);
     e.direction = glm::dvec3(direction);
     e.range = range;
@@ -61,10 +62,11 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     shading::ClusterShape c;
     c.directional = node.type == LightType::kDirectional;
     c.spot = node.type == LightType::kSpot;
+    c.oriented = node.type == LightType::kOriented;
     c.leaf = node.is_leaf();
     // The box and cone the shaders see. The compact node keeps the float box
-    // as it is; its cone is widened by the packing and only spots read it, so
-    // only they pay for packing it here.
+    // as it is; its cone is widened by the packing and only spots and
+    // oriented lights read it, so only they pay for packing it here.
     c.bbox_min = glm::dvec3(node.bbox_min);
     c.bbox_max = glm::dvec3(node.bbox_max);
     c.position = glm::dvec3(node.position);
@@ -72,7 +74,7 @@ shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
     c.radius = node.radius;
     c.cone_axis = glm::dvec3(0.0, 0.0, 1.0);
     c.cone_cos = -1.0;
-    if (c.spot) {
+    if (c.spot || c.oriented) {
         const CompactBounds bounds = compact_bounds(node);
         c.cone_axis = bounds.cone_axis;
         c.cone_cos = bounds.cone_cos;

@@ -10,7 +10,8 @@
 namespace lc {
 
 static_assert(kLightPoint == uint(LightType::kPoint) && kLightSpot == uint(LightType::kSpot) &&
-              kLightDirectional == uint(LightType::kDirectional));
+              kLightDirectional == uint(LightType::kDirectional) &&
+              kLightOriented == uint(LightType::kOriented));
 
 namespace {
 

@@ -7,6 +7,7 @@ const char* light_type_name(LightType type) {
         case LightType::kPoint: return "point";
         case LightType::kSpot: return "spot";
         case LightType::kDirectional: return "directional";
+        case LightType::kOriented: return "oriented";
     }
     return "unknown";
 }

@@ -11,8 +11,11 @@
 
 namespace lc {
 
-enum class LightType : uint8_t { kPoint = 0, kSpot = 1, kDirectional = 2 };
-inline constexpr int kLightTypeCount = 3;
+// kOriented: the paper's oriented light, a point of an area light. It emits
+// intensity x max(0, cos) of the angle to its normal `direction` (a cosine
+// emitter), so its total power is pi x intensity per channel.
+enum class LightType : uint8_t { kPoint = 0, kSpot = 1, kDirectional = 2, kOriented = 3 };
+inline constexpr int kLightTypeCount = 4;
 
 const char* light_type_name(LightType type);
 
@@ -20,11 +23,13 @@ struct SceneLight {
     Guid guid;
     LightType type = LightType::kPoint;
     glm::vec3 position{0.0f};
-    // Direction the light shines along (spot, directional); unit length.
+    // Direction the light shines along (spot, directional) or the emitting
+    // side's normal (oriented); unit length.
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
     // Linear RGB, each component >= 0.
     glm::vec3 color{1.0f};
-    // Candela for point and spot lights, lux for directional lights.
+    // Candela for point and spot lights (oriented: along the normal), lux for
+    // directional lights.
     float intensity = 1.0f;
     // Distance at which the light is windowed to zero; 0 means unbounded.
     float range = 0.0f;

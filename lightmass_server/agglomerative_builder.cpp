@@ -95,7 +95,8 @@ MetricParams agglomerative_metric_params(const BuildArena& arena,
         intensity_sum += scalar_intensity(arena.nodes[leaf]);
     }
     // c: the scene diagonal, for oriented lights only (the paper).
-    if (arena.nodes[leaves[0]].type == LightType::kSpot) params.c2 = squared_diagonal(lo, hi);
+    const LightType type = arena.nodes[leaves[0]].type;
+    if (type == LightType::kSpot || type == LightType::kOriented) params.c2 = squared_diagonal(lo, hi);
     const double mean = intensity_sum / double(leaves.size());
     params.intensity_floor = mean > 0.0 ? 1e-15 * mean : 1.0;
     return params;

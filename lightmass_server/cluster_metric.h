@@ -2,7 +2,7 @@
 // The paper's cluster size metric (section 4, "Similarity Metric"):
 //   I_C * (alpha_C^2 + c^2 (1 - cos beta_C)^2)
 // alpha_C: diagonal of the merged bounding box; beta_C: half-angle of the
-// merged orientation cone; c: scene diagonal for oriented (spot) lights, 0 for
+// merged orientation cone; c: scene diagonal for oriented (spot and oriented) lights, 0 for
 // omni and directional lights. Also a lower bound of it over a whole group of
 // clusters, so a spatial hierarchy can prune its nearest-neighbour search.
 #include <glm/common.hpp>

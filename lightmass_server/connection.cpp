@@ -123,29 +123,9 @@ void Connection::apply(ServerActions actions) {
     rearm_deadline();
 }
 
-namespace {
-
-// The indirect stage, then the tree. The scene's surfaces arrive on the
-// geometry channel (issue 15); until a bake has them the stage reports that
-// the scene has no geometry.
-Result<BuildResult> bake_with_indirect(const StartBake& start, const ProgressFn& progress) {
-    SceneGeometry geometry;
-    auto indirect = run_indirect_stage(geometry, nullptr, *start.lights, start.indirect, progress);
-    if (!indirect.ok()) return indirect.failure();
-    spdlog::info("bake {}: indirect: {}", start.bake_id, indirect->census);
-    if (progress && !progress("indirect: " + indirect->census, 100.0)) {
-        return make_error("cancelled after the indirect stage", ErrorKind::kCancelled);
-    }
-    auto built = build_light_tree(*start.lights, start.build, progress);
-    if (built.ok()) {
-        for (std::string& warning : indirect->warnings) built->report.warnings.push_back(std::move(warning));
-    }
-    return built;
-}
-
-}  // namespace
-
 void Connection::start_bake(StartBake start) {
+    start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
+    start.inputs.radiosity_out = options_.radiosity_out.string();
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     build_cancel_ = cancel;
     auto self = shared_from_this();
@@ -166,9 +146,9 @@ void Connection::start_bake(StartBake start) {
             }
             return !cancel->load();
         };
-        Result<BuildResult> result = cancel->load()
-                                         ? Result<BuildResult>(make_error("cancelled before start", ErrorKind::kCancelled))
-                                         : bake_with_indirect(start, progress);
+        Result<BuildResult> result =
+            cancel->load() ? Result<BuildResult>(make_error("cancelled before start", ErrorKind::kCancelled))
+                           : run_bake(start.inputs, progress);
         asio::post(executor, [self, bake_id, cancel, result = std::move(result)]() mutable {
             if (self->build_cancel_ == cancel) self->build_cancel_.reset();
             if (!self->closed()) self->apply(self->session_.on_bake_finished(bake_id, std::move(result)));

@@ -118,18 +118,24 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     };
     auto name = ChannelName::parse(open.name);
     if (!name) return refuse(ErrorCode::kUnknownChannel, "not a VERSION.GUID.ext channel name");
-    if (name->extension != kSceneExtension)
+    const bool geometry = name->extension == kGeometryExtension;
+    if (name->extension != kSceneExtension && !geometry)
         return refuse(ErrorCode::kUnknownChannel, "this server accepts only ." + std::string(kSceneExtension) +
-                                                      " channels, got ." + name->extension);
+                                                      " and ." + kGeometryExtension + " channels, got ." +
+                                                      name->extension);
     if (name->version != kSceneFormatVersionGuid)
         return refuse(ErrorCode::kVersionMismatch, "scene format version " + name->version.to_hex() +
                                                        " is not supported; this server reads " +
                                                        kSceneFormatVersionGuid.to_hex());
-    const uint64_t max_bytes = 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
+    const uint64_t max_bytes = geometry ? geometry_channel_bytes(kMaxGeometryMaterials, kMaxGeometryTriangles)
+                                        : 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
+    const std::string limit = geometry ? std::to_string(kMaxGeometryMaterials) + " materials and " +
+                                             std::to_string(kMaxGeometryTriangles) + " triangles"
+                                       : std::to_string(kMaxSceneLights) + " lights";
     if (open.total_bytes > max_bytes)
         return refuse(ErrorCode::kTooLarge, "announces " + std::to_string(open.total_bytes) +
                                                 " bytes; the limit is " + std::to_string(max_bytes) + " (" +
-                                                std::to_string(kMaxSceneLights) + " lights)");
+                                                limit + ")");
     if (incoming_.size() >= kMaxOpenChannels)
         return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
                                             std::to_string(kMaxOpenChannels) + ")");
@@ -141,6 +147,7 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
                                             std::to_string(budget->limit()) + " bytes in use; --memory-budget-mb)");
     IncomingScene& scene = incoming_[open.channel_id];
     scene.name = open.name;
+    scene.geometry = geometry;
     scene.total_bytes = open.total_bytes;
     scene.reservation = BudgetReservation(budget, open.total_bytes);
     return true;
@@ -162,14 +169,16 @@ bool ServerSession::on_write_channel(WriteChannelMsg& write) {
         return false;
     }
     auto refuse = [&](const std::string& text) {
-        send_error(0, ErrorCode::kInvalidScene, "scene channel '" + scene.name + "': " + text);
+        send_error(0, ErrorCode::kInvalidScene,
+                   (scene.geometry ? "geometry channel '" : "scene channel '") + scene.name + "': " + text);
         refused_.insert(write.channel_id);
         incoming_.erase(it);
         return true;
     };
     if (scene.received + write.data.size() > scene.total_bytes)
         return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
-    Status consumed = scene.reader.consume(write.data);
+    Status consumed =
+        scene.geometry ? scene.geometry_reader.consume(write.data) : scene.reader.consume(write.data);
     if (!consumed) return refuse(consumed.error());
     scene.received += write.data.size();
     if (options_.record_channels)
@@ -189,8 +198,13 @@ bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
     incoming_.erase(it);
     if (scene.received != scene.total_bytes) {
         send_error(0, ErrorCode::kInvalidScene,
-                   "scene channel '" + scene.name + "' closed after " + std::to_string(scene.received) +
-                       " of " + std::to_string(scene.total_bytes) + " bytes");
+                   (scene.geometry ? "geometry channel '" : "scene channel '") + scene.name +
+                       "' closed after " + std::to_string(scene.received) + " of " +
+                       std::to_string(scene.total_bytes) + " bytes");
+        return true;
+    }
+    if (scene.geometry) {
+        store_geometry(scene);
         return true;
     }
     Result<std::vector<SceneLight>> lights = scene.reader.finish();
@@ -206,6 +220,27 @@ bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
     return true;
 }
 
+void ServerSession::store_geometry(IncomingScene& channel) {
+    const size_t degenerate = channel.geometry_reader.degenerate_skipped();
+    Result<SceneGeometry> geometry = channel.geometry_reader.finish();
+    if (!geometry) {
+        send_error(0, ErrorCode::kInvalidScene, "geometry channel '" + channel.name + "': " + geometry.error());
+        return;
+    }
+    if (options_.record_channels)
+        actions_.push_back(RecordChannel{channel.name, std::move(channel.recorded)});
+    if (degenerate > 0) {
+        send(WarningMsg{0, "geometry channel '" + channel.name + "': " + std::to_string(degenerate) +
+                               " degenerate triangles (zero or non-finite area) skipped"});
+    }
+    spdlog::info("connection {}: geometry '{}' received, {} triangles, {} materials", options_.connection_id,
+                 channel.name, geometry->triangles.size(), geometry->materials.size());
+    if (geometries_.size() >= kMaxStoredScenes && !geometries_.count(channel.name))
+        geometries_.erase(geometries_.begin());
+    geometries_[channel.name] = StoredGeometry{std::make_shared<const SceneGeometry>(std::move(geometry.value())),
+                                               std::move(channel.reservation)};
+}
+
 bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     if (bake_) {
         send_error(request.bake_id, ErrorCode::kBusy,
@@ -217,6 +252,23 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
         send_error(request.bake_id, ErrorCode::kUnknownChannel,
                    "no complete scene channel named '" + request.scene_channel +
                        "' (open, write and close it before BakeRequest)");
+        return true;
+    }
+    std::shared_ptr<const SceneGeometry> geometry;
+    if (!request.geometry_channel.empty()) {
+        auto stored = geometries_.find(request.geometry_channel);
+        if (stored == geometries_.end()) {
+            send_error(request.bake_id, ErrorCode::kUnknownChannel,
+                       "no complete geometry channel named '" + request.geometry_channel +
+                           "' (open, write and close it before BakeRequest)");
+            return true;
+        }
+        geometry = stored->second.geometry;
+    }
+    if (request.area_lights > kMaxAreaLights) {
+        send_error(request.bake_id, ErrorCode::kInvalidScene,
+                   "area-light budget " + std::to_string(request.area_lights) + " exceeds the limit of " +
+                       std::to_string(kMaxAreaLights));
         return true;
     }
     auto lights = std::make_shared<std::vector<SceneLight>>();
@@ -231,15 +283,19 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
 
     StartBake start;
     start.bake_id = request.bake_id;
-    start.build.builder = request.builder;
-    start.build.representative_rule = request.representative_rule;
-    start.build.pairing = request.pairing;
-    start.build.seed = request.seed;
-    if (request.exact_pairing_limit != 0) start.build.exact_pairing_limit = request.exact_pairing_limit;
-    start.indirect = indirect_options(request.indirect, request.seed);
-    spdlog::info("connection {}: bake {} of {} lights with {} (seed {})", options_.connection_id,
-                 request.bake_id, lights->size(), builder_name(start.build.builder), start.build.seed);
-    start.lights = std::move(lights);
+    BuildOptions& build = start.inputs.build;
+    build.builder = request.builder;
+    build.representative_rule = request.representative_rule;
+    build.pairing = request.pairing;
+    build.seed = request.seed;
+    if (request.exact_pairing_limit != 0) build.exact_pairing_limit = request.exact_pairing_limit;
+    spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
+                 request.bake_id, lights->size(), geometry ? " and geometry" : "", builder_name(build.builder),
+                 build.seed);
+    start.inputs.indirect = indirect_options(request.indirect, request.seed);
+    start.inputs.lights = std::move(lights);
+    start.inputs.geometry = std::move(geometry);
+    if (request.area_lights != 0) start.inputs.area_lights = request.area_lights;
 
     bake_ = ActiveBake{request.bake_id};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});
@@ -291,6 +347,7 @@ ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResu
     done.pairing_cost = built.report.pairing_cost;
     done.pairing_lower_bound = built.report.pairing_lower_bound;
     done.exact = built.report.exact;
+    done.effects = built.report.effects;
     spdlog::info("connection {}: bake {} built {} nodes in {:.1f} ms", options_.connection_id, bake_id,
                  done.node_count, done.build_ms);
     if (options_.record_channels)

@@ -16,10 +16,11 @@
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_pipeline.h"
 #include "lightmass_server/memory_budget.h"
-#include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
+#include "protocol/geometry_channel.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {
@@ -41,9 +42,7 @@ struct SendMessage {
 // Build this tree on the worker pool; report back with on_bake_progress and on_bake_finished.
 struct StartBake {
     uint32_t bake_id = 0;
-    std::shared_ptr<const std::vector<SceneLight>> lights;
-    BuildOptions build;
-    IndirectOptions indirect;
+    BakeInputs inputs;
 };
 // Stop the running build (it reports back with a cancelled error).
 struct CancelBake {
@@ -92,22 +91,29 @@ public:
     ServerActions on_closing();
 
     bool greeted() const { return greeted_; }
-    // No bake running or streaming and no scene channel half-received: the idle timeout applies.
+    // No bake running or streaming and no channel half-received: the idle timeout applies.
     bool idle() const { return !bake_ && incoming_.empty(); }
     bool bake_running() const { return bake_.has_value(); }
     bool streaming() const { return bake_ && bake_->streaming; }
 
 private:
+    // A scene or geometry channel on its way in.
     struct IncomingScene {
         std::string name;
+        bool geometry = false;  // a .geom channel (geometry_reader), else .scene (reader)
         uint64_t total_bytes = 0;
         uint64_t received = 0;
         SceneChannelReader reader;
+        GeometryChannelReader geometry_reader;
         std::vector<uint8_t> recorded;  // kept only when recording
         BudgetReservation reservation;
     };
     struct StoredScene {
         std::vector<SceneLight> lights;
+        BudgetReservation reservation;
+    };
+    struct StoredGeometry {
+        std::shared_ptr<const SceneGeometry> geometry;
         BudgetReservation reservation;
     };
     struct ActiveBake {
@@ -121,6 +127,7 @@ private:
     bool on_open_channel(const OpenChannelMsg& open);
     bool on_write_channel(WriteChannelMsg& write);
     bool on_close_channel(const CloseChannelMsg& close);
+    void store_geometry(IncomingScene& channel);
     bool on_bake_request(const BakeRequestMsg& request);
     void on_cancel(const CancelMsg& cancel);
 
@@ -137,6 +144,7 @@ private:
     std::map<uint32_t, IncomingScene> incoming_;
     std::set<uint32_t> refused_;  // channels already refused with an error: their writes are dropped
     std::map<std::string, StoredScene> scenes_;
+    std::map<std::string, StoredGeometry> geometries_;
     std::optional<ActiveBake> bake_;
     uint32_t next_channel_id_ = 1u << 31;  // server-opened channels use the upper half
 };

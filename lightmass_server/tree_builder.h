@@ -40,6 +40,8 @@ struct BuildReport {
     uint32_t levels = 0;
     uint32_t depth = 0;
     std::vector<std::string> warnings;
+    // The bake's census (bake_pipeline.h): each effect simulated or skipped, and why.
+    std::vector<std::string> effects;
 };
 
 struct BuildResult {

@@ -57,4 +57,8 @@ std::string scene_channel_name(const Guid& scene_guid) {
     return create_channel_name(scene_guid, kSceneFormatVersionGuid, kSceneExtension);
 }
 
+std::string geometry_channel_name(const Guid& scene_guid) {
+    return create_channel_name(scene_guid, kSceneFormatVersionGuid, kGeometryExtension);
+}
+
 }  // namespace lc

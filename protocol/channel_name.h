@@ -18,6 +18,8 @@ inline constexpr const char* kLightcutsExtension = "lcut";
 // Our scene-format version; the scene channel is named by the scene's GUID.
 inline constexpr Guid kSceneFormatVersionGuid{0x4C435363u, 0x656E6546u, 0x6F726D61u, 0x74000001u};
 inline constexpr const char* kSceneExtension = "scene";
+// The scene's surfaces (protocol/geometry_channel.h), named like its scene channel.
+inline constexpr const char* kGeometryExtension = "geom";
 
 struct ChannelName {
     Guid version;
@@ -31,5 +33,6 @@ struct ChannelName {
 std::string create_channel_name(const Guid& data, const Guid& version, std::string_view extension);
 std::string lightcuts_result_channel_name();
 std::string scene_channel_name(const Guid& scene_guid);
+std::string geometry_channel_name(const Guid& scene_guid);
 
 }  // namespace lc

@@ -235,7 +235,8 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     if (!std::isfinite(n.spot_cos_inner) || !std::isfinite(n.spot_cos_outer)) {
         return fail("spot cosines are not finite");
     }
-    const bool oriented = n.type == LightType::kSpot || n.type == LightType::kDirectional;
+    const bool oriented = n.type == LightType::kSpot || n.type == LightType::kDirectional ||
+                          n.type == LightType::kOriented;
     if (oriented && !n.mixed_types && !unit_length(n.direction)) {
         return fail("direction " + vec_text(n.direction) + " of a " + light_type_name(n.type) +
                     " light is not unit length");
@@ -459,7 +460,9 @@ Status validate_scene_light(const SceneLight& light, size_t index) {
         return fail("cone angles (" + number(light.inner_cone_angle) + ", " +
                     number(light.outer_cone_angle) + ") are not finite");
     }
-    const bool oriented = light.type == LightType::kSpot || light.type == LightType::kDirectional;
+    const bool oriented = light.type == LightType::kSpot ||
+                          light.type == LightType::kDirectional ||
+                          light.type == LightType::kOriented;
     if (oriented && !unit_length(light.direction)) {
         return fail("direction " + vec_text(light.direction) + " is not unit length (length " +
                     number(glm::length(light.direction)) + ")");

@@ -70,10 +70,14 @@ Body encode_body(Fbb& fbb, const CloseChannelMsg& m) {
 
 Body encode_body(Fbb& fbb, const BakeRequestMsg& m) {
     auto scene = fbb.CreateString(m.scene_channel);
+    // Left out when empty, so a bake without geometry sends today's bytes.
+    flatbuffers::Offset<flatbuffers::String> geometry;
+    if (!m.geometry_channel.empty()) geometry = fbb.CreateString(m.geometry_channel);
     auto table =
         fb::CreateBakeRequest(fbb, m.bake_id, scene, static_cast<fb::BuilderKind>(m.builder),
                               m.seed, static_cast<fb::RepresentativeRule>(m.representative_rule),
                               static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit,
+                              geometry, m.area_lights,
                               static_cast<fb::IndirectMethod>(m.indirect.method), m.indirect.bounces,
                               m.indirect.vpl_count, m.indirect.patch_size, m.indirect.tolerance);
     return {fb::Message::BakeRequest, table.Union()};
@@ -101,8 +105,10 @@ Body encode_body(Fbb& fbb, const CancelMsg& m) {
 
 Body encode_body(Fbb& fbb, const BakeDoneMsg& m) {
     auto channel = fbb.CreateString(m.result_channel);
+    flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> effects;
+    if (!m.effects.empty()) effects = fbb.CreateVectorOfStrings(m.effects);
     auto table = fb::CreateBakeDone(fbb, m.bake_id, channel, m.node_count, m.leaf_count, m.build_ms,
-                                    m.pairing_cost, m.pairing_lower_bound, m.exact);
+                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects);
     return {fb::Message::BakeDone, table.Union()};
 }
 
@@ -136,6 +142,11 @@ public:
     }
     void string(const flatbuffers::String* s) {
         if (s) extend(offset_of(s) + sizeof(flatbuffers::uoffset_t) + s->size() + 1);
+    }
+    void strings(const flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>* v) {
+        if (!v) return;
+        extend(offset_of(v) + sizeof(flatbuffers::uoffset_t) * (1 + v->size()));
+        for (const flatbuffers::String* s : *v) string(s);
     }
     void vector(const flatbuffers::Vector<uint8_t>* v) {
         if (v) extend(offset_of(v) + sizeof(flatbuffers::uoffset_t) + v->size());
@@ -205,6 +216,7 @@ Result<Message> decode_table(const fb::CloseChannel& t, ExtentTracker&) {
 
 Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     extent.string(t.scene_channel());
+    extent.string(t.geometry_channel());
     if (!t.scene_channel()) return missing("BakeRequest.scene_channel");
     if (!enum_in_range(t.builder())) {
         return bad_enum("BakeRequest.builder", static_cast<unsigned>(t.builder()));
@@ -231,6 +243,8 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     m.representative_rule = static_cast<RepresentativeRule>(t.representative_rule());
     m.pairing = static_cast<PairingMode>(t.pairing());
     m.exact_pairing_limit = t.exact_pairing_limit();
+    m.geometry_channel = to_string(t.geometry_channel());
+    m.area_lights = t.area_lights();
     m.indirect.method = static_cast<IndirectMethod>(t.indirect());
     m.indirect.bounces = t.indirect_bounces();
     m.indirect.vpl_count = t.vpl_count();
@@ -266,6 +280,7 @@ Result<Message> decode_table(const fb::Cancel& t, ExtentTracker&) {
 
 Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     extent.string(t.result_channel());
+    extent.strings(t.effects());
     if (!std::isfinite(t.build_ms())) return not_finite("BakeDone.build_ms", t.build_ms());
     if (!std::isfinite(t.pairing_cost())) {
         return not_finite("BakeDone.pairing_cost", t.pairing_cost());
@@ -282,6 +297,8 @@ Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     m.pairing_cost = t.pairing_cost();
     m.pairing_lower_bound = t.pairing_lower_bound();
     m.exact = t.exact();
+    if (t.effects())
+        for (const flatbuffers::String* line : *t.effects()) m.effects.push_back(line->str());
     return Message{std::move(m)};
 }
 

@@ -67,6 +67,11 @@ struct WriteChannelMsg {
 struct CloseChannelMsg {
     uint32_t channel_id = 0;
 };
+// BakeRequest.area_lights: the oriented point lights the server samples from
+// emissive triangles (0 on the wire: the default).
+inline constexpr uint32_t kDefaultAreaLights = 4096;
+inline constexpr uint32_t kMaxAreaLights = 1u << 22;  // 4,194,304
+
 struct BakeRequestMsg {
     uint32_t bake_id = 0;
     std::string scene_channel;
@@ -75,6 +80,9 @@ struct BakeRequestMsg {
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = 0;
+    // Empty: no geometry channel (nothing in the scene needs the surfaces).
+    std::string geometry_channel;
+    uint32_t area_lights = 0;  // the area-light sample budget; 0: the server's default
     IndirectRequest indirect;
 };
 struct ProgressMsg {
@@ -103,6 +111,8 @@ struct BakeDoneMsg {
     double pairing_cost = 0.0;
     double pairing_lower_bound = 0.0;
     bool exact = true;
+    // The bake's census, one line per effect: simulated (with counts) or skipped, and why.
+    std::vector<std::string> effects;
 };
 
 using Message = std::variant<HelloMsg, HelloAckMsg, OpenChannelMsg, WriteChannelMsg,

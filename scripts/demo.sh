@@ -60,5 +60,50 @@ for path in sys.argv[1:]:
                 on = d in s["effects_simulated"]
                 print("demo: %s: %s %s (%s)" % (path, effect, "on" if on else "off", d["reason"]))
 PY
+# The Cornell box lit only by an emissive ceiling panel (no punctual light at all): the client
+# sends the scene's geometry, the server samples the panel into 4,096 oriented lights (area
+# lights) and builds their tree; the panel itself still renders as emission.
+"$bin/editor_client" make-scene cornell-emissive -o "$out/cornell.gltf"
+"$bin/editor_client" bake "$out/cornell.gltf" --server "$server" --builder agglomerative \
+    --area-lights 4096 -o "$out/cornell.lcut" --json > "$out/cornell_bake.json"
+for mode in lightcuts reference; do
+  "$bin/editor_client" render "$out/cornell.gltf" --tree "$out/cornell.lcut" --mode "$mode" \
+      --size 256x256 -o "$out/cornell_$mode.png" --stats "$out/cornell_$mode.json"
+done
+python3 - "$out/cornell_bake.json" "$out/cornell_lightcuts.json" <<'PY'
+import json, sys
+bake, render = (json.load(open(p)) for p in sys.argv[1:])
+print("demo: cornell-emissive bake: " + "; ".join(bake["effects"]))
+print("demo: cornell-emissive effects report:")
+for d in render["effects_simulated"]:
+    print("  simulated: %s (%s)" % (d["name"], d["reason"]))
+for d in render["effects_skipped"]:
+    print("  skipped:   %s (%s)" % (d["name"], d["reason"]))
+PY
+
+# Indirect light on the same box (issue 16): direct light only, then VPL (instant radiosity) and
+# progressive radiosity bounces added to the tree as oriented lights, side by side in one PNG.
+for indirect in vpl radiosity; do
+  "$bin/editor_client" bake "$out/cornell.gltf" --server "$server" --builder agglomerative \
+      --area-lights 4096 --indirect "$indirect" --bounces 4 --vpl-count 20000 --patch-size 0.1 \
+      -o "$out/cornell_$indirect.lcut" --json > "$out/cornell_${indirect}_bake.json"
+  "$bin/editor_client" render "$out/cornell.gltf" --tree "$out/cornell_$indirect.lcut" --mode lightcuts \
+      --size 256x256 -o "$out/cornell_$indirect.png" --stats "$out/cornell_${indirect}_render.json"
+done
+python3 - "$out" <<'PY'
+import json, sys
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.image as mpimg
+import numpy as np
+out = sys.argv[1]
+for indirect in ("vpl", "radiosity"):
+    bake = json.load(open("%s/cornell_%s_bake.json" % (out, indirect)))
+    print("demo: cornell %s bake: %s" % (indirect, "; ".join(bake["effects"])))
+panels = [mpimg.imread("%s/cornell_%s.png" % (out, name)) for name in ("lightcuts", "vpl", "radiosity")]
+mpimg.imsave("%s/cornell_indirect_side_by_side.png" % out, np.concatenate(panels, axis=1))
+print("demo: cornell_indirect_side_by_side.png: direct only | VPL indirect | radiosity indirect")
+PY
+
 echo "demo: images and stats in $out/"
 ls -1 "$out"

@@ -27,6 +27,7 @@ ClusterShape cluster_shape_of(GpuTreeNode node, GpuLight rep) {
     ClusterShape c;
     c.directional = kDirectionalLights && type == kLightDirectional;
     c.spot = kSpotLights && type == kLightSpot;
+    c.oriented = kOrientedLights && type == kLightOriented;
     c.leaf = node.first_child == kEndOfWalk;
     c.bbox_min = node.bbox_min;
     c.bbox_max = node.bbox_max;

@@ -11,9 +11,10 @@
 // The GPU light as G sees it; effects the scene lacks compile away.
 Emitter emitter_of(GpuLight light) {
     Emitter e;
-    bool positional_lights = kPointLights || kSpotLights;
+    bool positional_lights = kPointLights || kSpotLights || kOrientedLights;
     e.directional = kDirectionalLights && (!positional_lights || light.type == kLightDirectional);
     e.spot = kSpotLights && light.type == kLightSpot;
+    e.oriented = kOrientedLights && light.type == kLightOriented;
     e.position = light.position;
     e.direction = light.direction;
     e.range = kRangeWindow ? light.range : 0.0;

@@ -32,7 +32,9 @@ void expect_conservative(const LightTree& tree) {
         const CompactBounds bounds = decode_bounds(gpu->nodes[i]);
         EXPECT_EQ(bounds.cone_cos, compact_bounds(cluster).cone_cos) << "node " << i;
         EXPECT_LE(bounds.cone_cos, double(cluster.cone_cos)) << "node " << i << ": narrowed";
-        const bool spot_cluster = cluster.type == LightType::kSpot && !cluster.mixed_types;
+        const bool spot_cluster = (cluster.type == LightType::kSpot ||
+                                   cluster.type == LightType::kOriented) &&
+                                  !cluster.mixed_types;
         std::vector<int32_t> stack{int32_t(i)};
         while (!stack.empty()) {
             const LightTreeNode& node = tree.nodes[size_t(stack.back())];
@@ -95,7 +97,8 @@ TEST(CompactNode, AZeroWidthConeIsWidenedByWhatThePackingMovedItsAxis) {
 }
 
 TEST(CompactNode, BoundsHoldEveryLeafOnRandomTrees) {
-    for (LightType type : {LightType::kPoint, LightType::kSpot, LightType::kDirectional}) {
+    for (LightType type : {LightType::kPoint, LightType::kSpot, LightType::kDirectional,
+                           LightType::kOriented}) {
         for (BuilderKind builder :
              {BuilderKind::kAgglomerative, BuilderKind::kOptimalPair}) {
             SCOPED_TRACE(int(type));

@@ -27,14 +27,16 @@ TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     int checked = 0, nonzero = 0;
     for (int config = 0; config < 100000; ++config) {
-        const LightType type = LightType(config % 3);
+        const LightType type = LightType(config % kLightTypeCount);
         const int count = 1 + int(rng() % 8);
         const float size = 0.01f + 3.0f * u(rng);
         const glm::vec3 center(8 * u(rng) - 4, 8 * u(rng) - 4, 4 * u(rng) - 1);
         std::vector<SceneLight> lights =
             random_lights_in_box(rng, count, type, center - size, center + size, config % 2 == 0);
-        if (type == LightType::kSpot && config % 5 == 0) {
-            // A tight cone of directions, where the exclusion test matters.
+        const bool has_cone = type == LightType::kSpot || type == LightType::kOriented;
+        if (has_cone && config % 5 == 0) {
+            // A tight cone of directions, where the exclusion test (spots) and
+            // the emitter-cosine bound (oriented lights) matter.
             const glm::vec3 axis = lights[0].direction;
             for (SceneLight& l : lights)
                 l.direction = glm::normalize(axis + 0.1f * glm::vec3(u(rng), u(rng), u(rng)));
@@ -84,6 +86,33 @@ TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
     }
     EXPECT_EQ(checked, 100000 * kPointsPerCluster);
     EXPECT_GT(nonzero, 100000);  // the test exercised real bounds, not only zeros
+}
+
+// The oriented bound (the emitter cosine's maximum over the box and the cone
+// of normals) is zero behind a panel, and tighter than the point light's
+// beside it, where the emitters' cosines are small.
+TEST(ErrorBound, OrientedClusterBoundFollowsTheEmittersCosine) {
+    std::vector<SceneLight> panel;
+    for (int i = 0; i < 16; ++i) {
+        SceneLight s = make_light(LightType::kOriented, {float(i % 4) * 0.1f, float(i / 4) * 0.1f, 5},
+                                  1.0f, glm::vec3(1), 0.0f);
+        s.direction = {0, 0, -1};
+        s.guid = Guid{4, 4, 4, uint32_t(i + 1)};
+        panel.push_back(s);
+    }
+    const LightTree tree = morton_pairing_tree(panel, 1);
+    EXPECT_EQ(node_contribution_bound(tree.nodes[0], surface({0, 0, 10}, {0, 0, -1})),
+              glm::dvec3(0.0));
+    EXPECT_GT(node_contribution_bound(tree.nodes[0], surface({0, 0, 0})).x, 0.0);
+    // Far to the side, seen from a wall facing the panel: the emitter cosine
+    // is about 0.5 / 20 = 0.025.
+    const SurfacePoint side = surface({20, 0, 4.5}, {-1, 0, 0});
+    std::vector<SceneLight> as_points = panel;
+    for (SceneLight& l : as_points) l.type = LightType::kPoint;
+    const double oriented = node_contribution_bound(tree.nodes[0], side).x;
+    const double point = node_contribution_bound(morton_pairing_tree(as_points, 1).nodes[0], side).x;
+    EXPECT_GE(oriented, shade_reference(panel, side).x);
+    EXPECT_LT(oriented, 0.1 * point);
 }
 
 TEST(ErrorBound, IsZeroBehindASpotClusterAndOutsideTheRadius) {

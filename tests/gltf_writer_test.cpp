@@ -175,6 +175,13 @@ TEST_F(GltfWriter, RejectsInvalidLightsAndMissingFolders) {
     EXPECT_THAT(status.error(), HasSubstr("position"));
     EXPECT_FALSE(std::filesystem::exists(dir_ / "bad.gltf"));
 
+    // glTF has no cosine emitter: an oriented light (an area-light sample) is refused.
+    scene = sample_scene();
+    scene.lights[0].type = LightType::kOriented;
+    status = write_scene_gltf(scene, dir_ / "bad.gltf");
+    ASSERT_FALSE(status.ok());
+    EXPECT_THAT(status.error(), HasSubstr("no oriented light type"));
+
     scene = sample_scene();
     scene.lights[0].intensity = -1.0f;
     status = write_scene_gltf(scene, dir_ / "bad.gltf");

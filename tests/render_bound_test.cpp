@@ -120,6 +120,31 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnMixedLights) {
     }
 }
 
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
+    // Cosine emitters (area-light samples): the oriented bound over the box
+    // and the cone of normals, on the GPU as on the CPU.
+    Scene scene = make_room_scene();
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kSpot, 2.0f);
+    for (SceneLight& light : lights) light.type = LightType::kOriented;
+    scene.lights = lights;
+    LightTree tree = test::agglomerative_tree(lights);
+    ASSERT_FALSE(tree.empty());
+    RendererOptions visible;
+    visible.shadows = ShadowMode::kOff;
+    Result<std::unique_ptr<Renderer>> renderer =
+        Renderer::create(*context_, scene, &tree, visible);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = 48;
+    settings.camera = room_camera();
+    settings.error_ratio = 0.02f;
+    CutAgreement a = compare_with_cpu(**renderer, settings, tree);
+    EXPECT_GT(a.geometry, 48u * 48u / 2);
+    EXPECT_GE(double(a.same_cut), 0.99 * double(a.geometry));
+}
+
 TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(2000, LightTypeChoice::kPoint, 0.5f);

@@ -71,6 +71,8 @@ protected:
             test::spot_light({-3.0f, 2.5f, -2.0f}, {0.5f, -1.0f, 0.2f}, {0.4f, 1.0f, 0.6f}, 20.0f,
                              0.1f, 0.7f, 6.0f),
             test::directional_light({0.3f, -1.0f, -0.4f}, {0.2f, 0.2f, 0.25f}, 0.3f),
+            test::oriented_light({1.0f, 2.5f, 0.5f}, {-0.3f, -1.0f, 0.2f}, {0.8f, 0.9f, 1.0f}, 9.0f),
+            test::oriented_light({1.5f, 2.5f, 0.0f}, {0.2f, -1.0f, -0.4f}, {1.0f, 0.7f, 0.5f}, 7.0f),
         };
         for (uint32_t i = 0; i < scene_.lights.size(); ++i)
             test::set_unit_guid(scene_.lights[i], i);

@@ -163,6 +163,15 @@ inline SceneLight spot_light(glm::vec3 position, glm::vec3 direction, glm::vec3 
     return light;
 }
 
+// A cosine emitter facing `normal` (an area-light sample).
+inline SceneLight oriented_light(glm::vec3 position, glm::vec3 normal, glm::vec3 color,
+                                 float intensity) {
+    SceneLight light = point_light(position, color, intensity);
+    light.type = LightType::kOriented;
+    light.direction = glm::normalize(normal);
+    return light;
+}
+
 inline SceneLight directional_light(glm::vec3 direction, glm::vec3 color, float lux) {
     SceneLight light;
     light.type = LightType::kDirectional;

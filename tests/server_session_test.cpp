@@ -7,6 +7,7 @@
 #include "lightmass_server/server_session.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
+#include "protocol/geometry_channel.h"
 #include "tree_invariants.h"
 
 namespace lc::bake {
@@ -144,7 +145,7 @@ TEST(ServerSession, BakeBeforeTheSceneChannelIsClosedNamesTheChannel) {
     const StartBake* start = first_of<StartBake>(started);
     ASSERT_NE(start, nullptr);
     EXPECT_EQ(start->bake_id, kBake);
-    EXPECT_EQ(start->lights->size(), 8u);
+    EXPECT_EQ(start->inputs.lights->size(), 8u);
 }
 
 TEST(ServerSession, UnknownChannels) {
@@ -379,6 +380,100 @@ TEST(ServerSession, RecordsTheSceneAndTheResultWhenAsked) {
     const RecordChannel* result = first_of<RecordChannel>(finished);
     ASSERT_NE(result, nullptr);
     EXPECT_EQ(result->name, lightcuts_result_channel_name());
+}
+
+// An emissive triangle and a degenerate one.
+SceneGeometry emissive_geometry(float emission) {
+    SceneGeometry g;
+    SurfaceMaterial panel;
+    panel.emission = glm::vec3(emission);
+    g.materials = {panel};
+    SurfaceTriangle t;
+    t.positions[0] = {0, 2, 0};
+    t.positions[1] = {1, 2, 1};
+    t.positions[2] = {1, 2, 0};
+    t.normals[0] = t.normals[1] = t.normals[2] = {0, -1, 0};
+    SurfaceTriangle line = t;
+    line.positions[2] = line.positions[1];
+    g.triangles = {t, line};
+    return g;
+}
+
+ServerActions send_geometry(ServerSession& session, const SceneGeometry& geometry) {
+    constexpr uint32_t kGeometryChannel = 2;
+    const std::vector<uint8_t> bytes = encode_geometry_channel(geometry);
+    const std::string name = geometry_channel_name(kSceneGuid);
+    ServerActions all = session.on_message(OpenChannelMsg{kGeometryChannel, name, bytes.size()});
+    for (ServerActions more : {session.on_message(WriteChannelMsg{kGeometryChannel, 0, bytes}),
+                               session.on_message(CloseChannelMsg{kGeometryChannel})})
+        all.insert(all.end(), more.begin(), more.end());
+    return all;
+}
+
+size_t warnings(const ServerActions& actions) {
+    size_t n = 0;
+    for (const Message& message : sent(actions)) n += std::holds_alternative<WarningMsg>(message) ? 1 : 0;
+    return n;
+}
+
+TEST(ServerSession, GeometryChannelReachesTheBakeWithItsBudget) {
+    ServerSession session = session_with_scene();
+    ServerActions received = send_geometry(session, emissive_geometry(3.0f));
+    EXPECT_TRUE(error_codes(received).empty());
+    EXPECT_EQ(warnings(received), 1u);  // the degenerate triangle, skipped and counted
+    BakeRequestMsg request = bake_request();
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    request.area_lights = 500;
+    ServerActions started = session.on_message(request);
+    EXPECT_TRUE(error_codes(started).empty());
+    const StartBake* start = first_of<StartBake>(started);
+    ASSERT_NE(start, nullptr);
+    ASSERT_NE(start->inputs.geometry, nullptr);
+    EXPECT_EQ(start->inputs.geometry->triangles.size(), 1u);
+    EXPECT_EQ(start->inputs.area_lights, 500u);
+}
+
+TEST(ServerSession, WithoutGeometryTheBakeHasNoneAndTheDefaultBudget) {
+    ServerSession session = session_with_scene();
+    ServerActions started = session.on_message(bake_request());
+    const StartBake* start = first_of<StartBake>(started);
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->inputs.geometry, nullptr);
+    EXPECT_EQ(start->inputs.area_lights, kDefaultAreaLights);
+}
+
+TEST(ServerSession, BadGeometryOrBudgetIsRefusedAndNothingBakes) {
+    ServerSession session = session_with_scene();
+    // Negative emission: the channel is refused as it streams in.
+    EXPECT_EQ(error_codes(send_geometry(session, emissive_geometry(-1.0f))),
+              std::vector<ErrorCode>{ErrorCode::kInvalidScene});
+    BakeRequestMsg request = bake_request();
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    ServerActions refused = session.on_message(request);
+    EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kUnknownChannel});
+    EXPECT_EQ(count_of<StartBake>(refused), 0u);
+    // An absurd budget.
+    EXPECT_TRUE(error_codes(send_geometry(session, emissive_geometry(1.0f))).empty());
+    request.area_lights = kMaxAreaLights + 1;
+    refused = session.on_message(request);
+    EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kInvalidScene});
+    EXPECT_EQ(count_of<StartBake>(refused), 0u);
+}
+
+TEST(ServerSession, DegenerateGeometryOnlyWarnsAndBakes) {
+    ServerSession session = session_with_scene();
+    SceneGeometry degenerate = emissive_geometry(1.0f);
+    degenerate.triangles.erase(degenerate.triangles.begin());
+    ServerActions received = send_geometry(session, degenerate);
+    EXPECT_TRUE(error_codes(received).empty());
+    EXPECT_EQ(warnings(received), 1u);
+    BakeRequestMsg request = bake_request();
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    ServerActions started = session.on_message(request);
+    const StartBake* start = first_of<StartBake>(started);
+    ASSERT_NE(start, nullptr);
+    ASSERT_NE(start->inputs.geometry, nullptr);
+    EXPECT_TRUE(start->inputs.geometry->triangles.empty());
 }
 
 }  // namespace

@@ -65,6 +65,21 @@ TEST(ShadeLight, DirectionalUsesLuxAndCosine) {
     EXPECT_EQ(shade_light(sun, surface({0, 0, 0})).x, 0.0);
 }
 
+TEST(ShadeLight, OrientedLightIsACosineEmitter) {
+    // 2 cd along the normal (down) from 1 m above: E = 2 lux straight below.
+    SceneLight panel = make_light(LightType::kOriented, {0, 0, 1}, 2.0f, {1.0f, 0.5f, 0.25f});
+    panel.direction = {0, 0, -1};
+    expect_near_rel(shade_light(panel, surface({0, 0, 0})), glm::dvec3(2.0, 1.0, 0.5) / kPi, 1e-12);
+    // At 60 degrees off the normal the emitter's cosine (1/2) joins the
+    // receiver's (1/2) and the inverse square (distance 2).
+    const glm::dvec3 x(std::tan(kPi / 3.0), 0.0, 0.0);
+    expect_near_rel(shade_light(panel, surface(x)),
+                    glm::dvec3(2.0, 1.0, 0.5) * 0.5 * 0.5 / 4.0 / kPi, 1e-9);
+    // Behind the emitting side and in its plane: nothing.
+    EXPECT_EQ(shade_light(panel, surface({0, 0, 2}, {0, 0, -1})).x, 0.0);
+    EXPECT_NEAR(shade_light(panel, surface({3, 0, 1}, {-1, 0, 0})).x, 0.0, 1e-15);
+}
+
 TEST(ShadeLight, PointExactlyOnALightStaysFinite) {
     SceneLight light = make_light(LightType::kPoint, {1, 2, 3}, 1e6f);
     const glm::dvec3 L = shade_light(light, surface({1, 2, 3}));

@@ -141,6 +141,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kPointLights", kSpecPointLights},
         {"kSpotLights", kSpecSpotLights},
         {"kDirectionalLights", kSpecDirectionalLights},
+        {"kOrientedLights", kSpecOrientedLights},
         {"kRangeWindow", kSpecRangeWindow},
         {"kClassicLights", kSpecClassicLights},
         {"kEmissive", kSpecEmissive},

@@ -303,7 +303,10 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              .representative_rule = options.representative_rule,
                                              .pairing = options.pairing,
                                              .exact_pairing_limit = options.exact_pairing_limit,
+                                             // Only a bake with geometry has area lights to sample.
+                                             .area_lights = options.geometry ? options.area_lights : 0u,
                                              .indirect = options.indirect};
+    session_options.geometry = options.geometry;
     session_options.on_progress = options.on_progress;
     session_options.on_warning = options.on_warning;
     session_options.recorder = &recorder;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "lightcuts/guid.h"
 #include "lightcuts/light_tree.h"
+#include "lightcuts/scene_geometry.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
@@ -49,6 +51,10 @@ struct BakeClientOptions {
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = 0;  // 0: server default
     uint64_t seed = 0;
+    // The scene's surfaces, sent on the geometry channel; null: none (no
+    // effect needs them, see surface_geometry.h's geometry_the_bake_needs).
+    std::shared_ptr<const SceneGeometry> geometry;
+    uint32_t area_lights = 0;  // area-light sample budget; 0: the server's default
     IndirectRequest indirect;
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that

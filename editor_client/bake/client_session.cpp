@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "protocol/channel_name.h"
+#include "protocol/geometry_channel.h"
 
 namespace lc::client {
 namespace {
@@ -25,7 +26,10 @@ ErrorKind outcome_of(ErrorCode code) {
 }  // namespace
 
 ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_guid, ClientSessionOptions options)
-    : lights_(std::move(lights)), scene_channel_(scene_channel_name(scene_guid)), options_(std::move(options)) {}
+    : lights_(std::move(lights)),
+      scene_channel_(scene_channel_name(scene_guid)),
+      geometry_channel_(options.geometry ? geometry_channel_name(scene_guid) : std::string()),
+      options_(std::move(options)) {}
 
 void ClientSession::start() {
     if (stage_ != Stage::kConnecting) return;
@@ -44,40 +48,55 @@ std::optional<Message> ClientSession::next_message() {
     return std::nullopt;
 }
 
-// The scene channel (the tree lights, count-prefixed, in bounded chunks), then
-// BakeRequest; one message at a time, so a chunk exists only while it is sent.
+// The scene channel (the tree lights, count-prefixed, in bounded chunks), the
+// geometry channel when one is due, then BakeRequest; one message at a time,
+// so a chunk exists only while it is sent.
 std::optional<Message> ClientSession::next_upload_message() {
     switch (upload_step_) {
         case UploadStep::kOpen:
-            scene_bytes_ = encode_scene_channel(lights_);
-            lights_ = {};
-            upload_start_ = Clock::now();
-            upload_step_ = scene_bytes_.empty() ? UploadStep::kClose : UploadStep::kData;
-            return OpenChannelMsg{kSceneChannelId, scene_channel_, scene_bytes_.size()};
+            if (!scene_sent_) {
+                channel_id_ = kSceneChannelId;
+                channel_name_ = scene_channel_;
+                channel_bytes_ = encode_scene_channel(lights_);
+                lights_ = {};
+                upload_start_ = Clock::now();
+            } else {
+                channel_id_ = kGeometryChannelId;
+                channel_name_ = geometry_channel_;
+                channel_bytes_ = encode_geometry_channel(*options_.geometry);
+                options_.geometry.reset();
+            }
+            upload_offset_ = 0;
+            upload_step_ = channel_bytes_.empty() ? UploadStep::kClose : UploadStep::kData;
+            return OpenChannelMsg{channel_id_, channel_name_, channel_bytes_.size()};
         case UploadStep::kData: {
-            size_t n = std::min<uint64_t>(options_.chunk_bytes, scene_bytes_.size() - upload_offset_);
-            auto begin = scene_bytes_.begin() + static_cast<ptrdiff_t>(upload_offset_);
-            WriteChannelMsg write{kSceneChannelId, upload_offset_, {begin, begin + static_cast<ptrdiff_t>(n)}};
+            size_t n = std::min<uint64_t>(options_.chunk_bytes, channel_bytes_.size() - upload_offset_);
+            auto begin = channel_bytes_.begin() + static_cast<ptrdiff_t>(upload_offset_);
+            WriteChannelMsg write{channel_id_, upload_offset_, {begin, begin + static_cast<ptrdiff_t>(n)}};
             upload_offset_ += n;
-            if (upload_offset_ == scene_bytes_.size()) upload_step_ = UploadStep::kClose;
+            if (upload_offset_ == channel_bytes_.size()) upload_step_ = UploadStep::kClose;
             return write;
         }
-        case UploadStep::kClose:
-            upload_step_ = UploadStep::kRequest;
-            return CloseChannelMsg{kSceneChannelId};
-        case UploadStep::kRequest: {
+        case UploadStep::kClose: {
             if (options_.recorder && options_.recorder->enabled()) {
-                if (Status recorded = options_.recorder->record(scene_channel_, scene_bytes_); !recorded) {
+                if (Status recorded = options_.recorder->record(channel_name_, channel_bytes_); !recorded) {
                     finish(make_error(recorded.error()));
                     return std::nullopt;
                 }
             }
-            scene_bytes_ = {};
+            channel_bytes_ = {};
+            const bool geometry_due = !scene_sent_ && !geometry_channel_.empty();
+            scene_sent_ = true;
+            upload_step_ = geometry_due ? UploadStep::kOpen : UploadStep::kRequest;
+            return CloseChannelMsg{channel_id_};
+        }
+        case UploadStep::kRequest: {
             upload_step_ = UploadStep::kDone;
             stage_ = Stage::kBaking;
             outcome_.upload_ms = ms_since(upload_start_);
             BakeRequestMsg request = options_.request;
             request.scene_channel = scene_channel_;
+            request.geometry_channel = geometry_channel_;
             return request;
         }
         case UploadStep::kDone: break;

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "editor_client/bake/bake_client.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
@@ -31,6 +33,9 @@ struct ClientSessionOptions {
     std::function<void(const ProgressMsg&)> on_progress;
     std::function<void(const std::string&)> on_warning;
     const ChannelRecorder* recorder = nullptr;  // null or disabled: nothing is recorded
+    // Sent on the geometry channel after the scene channel when an effect
+    // needs the surfaces (surface_geometry.h); null: no geometry channel.
+    std::shared_ptr<const SceneGeometry> geometry;
 };
 
 class ClientSession {
@@ -69,6 +74,7 @@ private:
 
     std::vector<SceneLight> lights_;
     std::string scene_channel_;
+    std::string geometry_channel_;  // empty: none to send
     ClientSessionOptions options_;
     Stage stage_ = Stage::kConnecting;
     std::deque<Message> outbox_;
@@ -77,8 +83,12 @@ private:
 
     // Upload.
     static constexpr uint32_t kSceneChannelId = 1;
+    static constexpr uint32_t kGeometryChannelId = 2;
     UploadStep upload_step_ = UploadStep::kOpen;
-    std::vector<uint8_t> scene_bytes_;
+    bool scene_sent_ = false;       // the channel being uploaded is the geometry's
+    uint32_t channel_id_ = kSceneChannelId;
+    std::string channel_name_;
+    std::vector<uint8_t> channel_bytes_;
     uint64_t upload_offset_ = 0;
     Clock::time_point upload_start_;
 

@@ -14,6 +14,7 @@
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/surface_geometry.h"
 #include "protocol/dump.h"
 
 namespace lc::client {
@@ -40,6 +41,7 @@ void add_bake_command(CLI::App& app) {
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
+        bake.geometry = geometry_the_bake_needs(*scene, bake.indirect.method);
         ProgressDisplay progress(stderr);
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {
@@ -77,6 +79,7 @@ void add_bake_command(CLI::App& app) {
             j["total_ms"] = total_ms;
             j["result_channel"] = channel;
             j["output"] = options->output;
+            j["effects"] = done.effects;
             std::cout << j.dump(2) << "\n";
         } else {
             std::printf("baked %zu lights (%zu classic kept local) into %u nodes with %s in %.1f ms\n",
@@ -87,6 +90,7 @@ void add_bake_command(CLI::App& app) {
                             done.pairing_lower_bound);
             std::printf("transfer: upload %.1f ms, download %.1f ms, total %.1f ms\n", upload_ms, download_ms, total_ms);
             std::printf("result channel %s\n", channel.c_str());
+            for (const std::string& effect : done.effects) std::printf("%s\n", effect.c_str());
             if (!options->output.empty()) std::printf("wrote %s\n", options->output.c_str());
         }
     });

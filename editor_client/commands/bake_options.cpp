@@ -34,6 +34,10 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
         ->capture_default_str();
     cmd.add_option("--exact-limit", exact_limit, "Level size above which auto pairing is approximate (0: server default)");
     cmd.add_option("--seed", seed, "Seed for representative choice")->capture_default_str();
+    cmd.add_option("--area-lights", area_lights,
+                   "Oriented point lights sampled from the emissive triangles, shared by their power")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, kMaxAreaLights));
     cmd.add_option("--record", record_dir, "Write every channel sent and received as a dump file here");
     cmd.add_option("--connect-timeout", connect_timeout, "Seconds to connect, finish TLS and get HelloAck")
         ->capture_default_str()
@@ -73,6 +77,7 @@ BakeClientOptions BakeFlags::to_options() const {
         representative == "thesis-first" ? RepresentativeRule::kThesisFirst : RepresentativeRule::kIntensity;
     options.exact_pairing_limit = exact_limit;
     options.seed = seed;
+    options.area_lights = area_lights;
     options.connect_timeout_seconds = connect_timeout;
     static const std::map<std::string, IndirectMethod> methods = {
         {"off", IndirectMethod::kOff}, {"vpl", IndirectMethod::kVpl}, {"radiosity", IndirectMethod::kRadiosity}};

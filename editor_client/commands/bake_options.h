@@ -19,14 +19,15 @@ struct BakeFlags {
     std::string representative = "intensity";
     uint32_t exact_limit = 0;
     uint64_t seed = 0;
+    uint32_t area_lights = kDefaultAreaLights;
     std::string record_dir;
     double connect_timeout = 10.0;
     std::string indirect = "off";
     IndirectRequest indirect_request;
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --record, --connect-timeout and the indirect
-    // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
+    // --pairing, --representative, --exact-limit, --seed, --area-lights, --record, --connect-timeout and
+    // the indirect light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
     BakeClientOptions to_options() const;

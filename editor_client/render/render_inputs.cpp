@@ -1,6 +1,7 @@
 #include "editor_client/render/render_inputs.h"
 
 #include "editor_client/bake/tree_store.h"
+#include "editor_client/scene/surface_geometry.h"
 
 namespace lc::client {
 
@@ -20,7 +21,9 @@ Result<std::shared_ptr<const LightTree>> obtain_tree(const Scene& scene, const T
         return store.current();
     }
     if (source.bake) {
-        Status imported = store.import(bake_lights(scene.lights, scene.guid, *source.bake));
+        BakeClientOptions bake = *source.bake;
+        bake.geometry = geometry_the_bake_needs(scene, bake.indirect.method);
+        Status imported = store.import(bake_lights(scene.lights, scene.guid, bake));
         if (!imported) return make_error("bake failed: " + imported.error());
         return store.current();
     }

@@ -7,12 +7,13 @@
 
 #include "lightcuts/material_model.h"
 #include "editor_client/render/occlusion_analysis.h"
+#include "editor_client/scene/surface_geometry.h"
 
 namespace lc::client {
 namespace {
 
 struct LightCensus {
-    size_t count[kLightTypeCount] = {0, 0, 0};
+    size_t count[kLightTypeCount] = {};
     size_t with_range = 0;
     size_t classic = 0;
 
@@ -114,7 +115,8 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         return on;
     };
     size_t points = census.of(LightType::kPoint), spots = census.of(LightType::kSpot),
-           directionals = census.of(LightType::kDirectional);
+           directionals = census.of(LightType::kDirectional),
+           orienteds = census.of(LightType::kOriented);
     effects.point_lights = decide("point lights (inverse-square falloff)", points > 0,
                                   has + plural(points, "point light"), has + "no point lights");
     effects.spot_lights = decide("spot cone attenuation", spots > 0,
@@ -122,6 +124,9 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     effects.directional_lights =
         decide("directional lights", directionals > 0, has + plural(directionals, "directional light"),
                has + "no directional lights");
+    effects.oriented_lights =
+        decide("oriented lights (cosine emitters)", orienteds > 0,
+               has + plural(orienteds, "oriented light"), has + "no oriented lights");
     effects.range_window = decide("range windowing (KHR_lights_punctual)", census.with_range > 0,
                                   plural(census.with_range, "light") + " with a range",
                                   "no point or spot light has a range");
@@ -134,6 +139,18 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     effects.emissive =
         decide("emissive surfaces", emissive, "a drawn material has a non-zero emissive factor",
                "no drawn material emits light");
+    // Area lights light the scene through the tree's oriented leaves, which
+    // the server sampled from the emissive triangles (area_light_sampler.h).
+    const size_t emissive_triangles = emissive_triangle_count(extract_surface_geometry(scene));
+    const size_t samples = tree != nullptr ? orienteds : 0;
+    if (emissive_triangles == 0) {
+        decide("area lights", false, "", "no drawn triangle emits power");
+    } else {
+        decide("area lights", samples > 0,
+               plural(emissive_triangles, "emissive triangle") + ", " + plural(samples, "sample"),
+               plural(emissive_triangles, "emissive triangle") +
+                   " but the tree holds no area-light samples (bake with the scene's geometry)");
+    }
     const std::string shadows = "shadows (a shadow ray per evaluated light or cluster)";
     if (shadow_mode == ShadowMode::kOff) {
         decide(shadows, false, "", "--shadows off: every light is treated as visible (V = 1)");

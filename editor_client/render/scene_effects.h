@@ -24,6 +24,7 @@ struct SceneEffects {
     bool point_lights = false;
     bool spot_lights = false;
     bool directional_lights = false;
+    bool oriented_lights = false;  // cosine emitters: area-light samples
     bool range_window = false;
     bool textures = false;
     bool classic_lights = false;

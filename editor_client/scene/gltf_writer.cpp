@@ -135,6 +135,12 @@ Status validate_lights(std::span<const SceneLight> lights) {
     for (size_t i = 0; i < lights.size(); ++i) {
         Status valid = validate_scene_light(lights[i], i);
         if (!valid) return Error{"cannot write light: " + valid.error()};
+        // KHR_lights_punctual has no cosine emitter; oriented lights are
+        // area-light samples the server makes, never scene lights.
+        if (lights[i].type == LightType::kOriented) {
+            return make_error("cannot write light " + std::to_string(i) +
+                              ": glTF (KHR_lights_punctual) has no oriented light type");
+        }
         if (glm::length(lights[i].direction) <= 0.0f) {
             return make_error("cannot write light " + std::to_string(i) + ": zero direction");
         }

@@ -523,6 +523,71 @@ Scene make_furnished_room_scene() {
     return scene;
 }
 
+namespace {
+
+// A box turned by `angle` radians about the vertical through its centre:
+// six outward-facing quads.
+void add_turned_box(Scene& scene, const glm::vec3& center, const glm::vec3& half, float angle,
+                    int material) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    auto turn = [&](const glm::vec3& v) { return glm::vec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z); };
+    auto corner = [&](int x, int y, int z) {
+        return center + turn(glm::vec3(x ? half.x : -half.x, y ? half.y : -half.y, z ? half.z : -half.z));
+    };
+    add_quad(scene, {corner(0, 0, 0), corner(1, 0, 0), corner(1, 0, 1), corner(0, 0, 1)},
+             glm::vec3(0, -1, 0), material);
+    add_quad(scene, {corner(0, 1, 0), corner(1, 1, 0), corner(1, 1, 1), corner(0, 1, 1)},
+             glm::vec3(0, 1, 0), material);
+    add_quad(scene, {corner(0, 0, 0), corner(1, 0, 0), corner(1, 1, 0), corner(0, 1, 0)},
+             turn(glm::vec3(0, 0, -1)), material);
+    add_quad(scene, {corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1), corner(0, 1, 1)},
+             turn(glm::vec3(0, 0, 1)), material);
+    add_quad(scene, {corner(0, 0, 0), corner(0, 0, 1), corner(0, 1, 1), corner(0, 1, 0)},
+             turn(glm::vec3(-1, 0, 0)), material);
+    add_quad(scene, {corner(1, 0, 0), corner(1, 0, 1), corner(1, 1, 1), corner(1, 1, 0)},
+             turn(glm::vec3(1, 0, 0)), material);
+}
+
+Material diffuse_rgb(glm::vec3 albedo) {
+    Material m = diffuse(1.0f);
+    m.base_color_factor = glm::vec4(albedo, 1.0f);
+    return m;
+}
+
+}  // namespace
+
+Scene make_cornell_emissive_scene() {
+    Scene scene;
+    scene.materials = {diffuse_rgb(kCornellWhite), diffuse_rgb(kCornellRed), diffuse_rgb(kCornellGreen)};
+    Material panel = diffuse_rgb(kCornellWhite);
+    panel.emissive_factor = kCornellPanelEmission;
+    scene.materials.push_back(panel);
+    const float h = kCornellSize / 2.0f, top = kCornellSize;
+    auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 n, int material) {
+        add_quad(scene, {a, b, c, d}, n, material);
+    };
+    // Floor, ceiling and back wall white; left red, right green; open at +Z.
+    quad({-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}, {0, 1, 0}, 0);
+    quad({-h, top, -h}, {h, top, -h}, {h, top, h}, {-h, top, h}, {0, -1, 0}, 0);
+    quad({-h, 0, -h}, {h, 0, -h}, {h, top, -h}, {-h, top, -h}, {0, 0, 1}, 0);
+    quad({-h, 0, -h}, {-h, 0, h}, {-h, top, h}, {-h, top, -h}, {1, 0, 0}, 1);
+    quad({h, 0, -h}, {h, 0, h}, {h, top, h}, {h, top, -h}, {-1, 0, 0}, 2);
+    // The light: a panel just below the ceiling, facing down (Cornell's 130 x
+    // 105 mm in a 555 mm box, scaled).
+    const float px = kCornellSize * 130.0f / 555.0f / 2.0f, pz = kCornellSize * 105.0f / 555.0f / 2.0f;
+    const float py = top - kCornellPanelGap;
+    quad({-px, py, -pz}, {px, py, -pz}, {px, py, pz}, {-px, py, pz}, {0, -1, 0}, 3);
+    // The short and the tall block, turned as in the original.
+    const float unit = kCornellSize / 555.0f;
+    add_turned_box(scene, glm::vec3(80.0f, 82.5f, 75.0f) * unit, glm::vec3(82.5f) * unit, -0.314f, 0);
+    add_turned_box(scene, glm::vec3(-90.0f, 165.0f, -70.0f) * unit, glm::vec3(82.5f, 165.0f, 82.5f) * unit,
+                   0.271f, 0);
+    scene.cameras.push_back(look_at("cornell", glm::vec3(0.0f, h, kCornellSize * 1.9f),
+                                    glm::vec3(0.0f, h, 0.0f), 0.68f));
+    finish(scene);
+    return scene;
+}
+
 Scene make_thesis_fig91_scene() {
     struct Entry {
         float x, y;
@@ -599,17 +664,18 @@ Scene make_thesis_test2_scene() {
 }
 
 std::vector<std::string> named_scene_names() {
-    return {"room", "furnished-room", "thesis-fig91", "thesis-test1", "thesis-test2"};
+    return {"room", "furnished-room", "cornell-emissive", "thesis-fig91", "thesis-test1", "thesis-test2"};
 }
 
 Result<Scene> make_named_scene(std::string_view name) {
     if (name == "room") return make_room_scene();
     if (name == "furnished-room") return make_furnished_room_scene();
+    if (name == "cornell-emissive") return make_cornell_emissive_scene();
     if (name == "thesis-fig91") return make_thesis_fig91_scene();
     if (name == "thesis-test1") return make_thesis_test1_scene();
     if (name == "thesis-test2") return make_thesis_test2_scene();
     return make_error("unknown scene '" + std::string(name) +
-                      "' (expected room, furnished-room, thesis-fig91, thesis-test1 or "
+                      "' (expected room, furnished-room, cornell-emissive, thesis-fig91, thesis-test1 or "
                       "thesis-test2)");
 }
 

@@ -84,6 +84,17 @@ Scene make_room_scene();
 // floor (glossy, material_model.h).
 Scene make_furnished_room_scene();
 
+// The Cornell box lit only by an emissive ceiling panel (no punctual light):
+// its published reflectances, a 2 m box open at +Z, two turned blocks, and a
+// panel of Cornell's proportions kCornellPanelGap below the ceiling.
+inline constexpr float kCornellSize = 2.0f;
+inline constexpr float kCornellPanelGap = 0.005f;
+inline constexpr glm::vec3 kCornellWhite{0.73f, 0.73f, 0.73f};
+inline constexpr glm::vec3 kCornellRed{0.63f, 0.065f, 0.05f};
+inline constexpr glm::vec3 kCornellGreen{0.14f, 0.45f, 0.091f};
+inline constexpr glm::vec3 kCornellPanelEmission{17.0f, 12.0f, 4.0f};
+Scene make_cornell_emissive_scene();
+
 // Thesis Figure 9.1: five point lights of radius (range) 250 at height 150
 // above a floor, with the thesis's positions, brightness, colours and GUIDs.
 Scene make_thesis_fig91_scene();
@@ -93,7 +104,7 @@ Scene make_thesis_test1_scene();
 // Thesis Test 2: five lights in two close pairs and one single light.
 Scene make_thesis_test2_scene();
 
-// "room", "furnished-room", "thesis-fig91", "thesis-test1", "thesis-test2".
+// "room", "furnished-room", "cornell-emissive", "thesis-fig91", "thesis-test1", "thesis-test2".
 std::vector<std::string> named_scene_names();
 Result<Scene> make_named_scene(std::string_view name);
 

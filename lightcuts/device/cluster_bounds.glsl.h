@@ -26,13 +26,14 @@ const float kAngleSlack = 1e-6;  // radians, for a float acos
 struct ClusterShape {
     bool directional;  // the representative's type, which every light shares
     bool spot;
+    bool oriented;     // cosine emitters: the cone holds their normals
     bool leaf;
     real3 bbox_min;    // the lights' positions (directions when directional)
     real3 bbox_max;
     real3 position;    // the representative's
     real range;        // the representative's; <= 0: unbounded
     real radius;       // every light's sphere of influence lies within it around position
-    real3 cone_axis;   // the spots' directions lie within the cone (axis, cone_cos)
+    real3 cone_axis;   // the spots' directions (oriented: normals) lie within the cone (axis, cone_cos)
     real cone_cos;     // -1: every direction
 };
 
@@ -93,6 +94,22 @@ LC_INLINE bool spot_cluster_excluded(LC_IN(ClusterShape) c, real3 x) {
     return acos(clamp(cos_bound, -1.0, 1.0)) > limit + kAngleSlack;
 }
 
+// Upper bound of the emitter cosine (shading.glsl.h's emitter_cosine) over
+// every oriented light of the cluster at x (paper Sec. 4.1): the directions
+// from the lights to x lie in x - box, at least theta_min from the cone axis,
+// and every normal within beta of it, so each angle to a normal is at least
+// theta_min - beta.
+LC_INLINE real oriented_emitter_bound(LC_IN(ClusterShape) c, real3 x) {
+    if (!(c.cone_cos >= -1.0 && c.cone_cos <= 1.0)) return 1.0;
+    real axis_len = length(c.cone_axis);
+    if (!(axis_len > 0.0)) return 1.0;
+    real cos_min_angle = max_cos_to_box(c.cone_axis / axis_len, x - c.bbox_max, x - c.bbox_min);
+    real angle = acos(clamp(cos_min_angle, -1.0, 1.0)) - acos(c.cone_cos) - kAngleSlack;
+    if (angle <= 0.0) return 1.0;
+    if (angle >= kPi / 2.0) return 0.0;
+    return min(1.0, cos(angle) + kAngleSlack);
+}
+
 // Upper bound of G (shading.glsl.h, cosine with the normal included,
 // visibility 1) over every light of the cluster at x with unit normal n.
 LC_INLINE real cluster_geometric_bound(LC_IN(ClusterShape) c, real3 x, real3 n) {
@@ -109,6 +126,7 @@ LC_INLINE real cluster_geometric_bound(LC_IN(ClusterShape) c, real3 x, real3 n) 
     real cos_bound = max_cos_to_box(n, c.bbox_min - x, c.bbox_max - x);
     if (!(cos_bound > 0.0)) return 0.0;
     if (c.spot && spot_cluster_excluded(c, x)) return 0.0;
+    if (c.oriented) cos_bound *= oriented_emitter_bound(c, x);
     return cos_bound * window * inverse_square(dmin2);
 }
 

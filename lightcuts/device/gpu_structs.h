@@ -13,6 +13,7 @@ LC_DEVICE_BEGIN
 LC_CONST uint kLightPoint = 0u;
 LC_CONST uint kLightSpot = 1u;
 LC_CONST uint kLightDirectional = 2u;
+LC_CONST uint kLightOriented = 3u;
 
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;

@@ -6,6 +6,10 @@
 //   point/spot:  G = window(d, range) * max(cos_theta, 0) / max(d^2, kMinDistance^2)
 //                window(d, range) = clamp(1 - (d/range)^4, 0, 1)^2 (KHR_lights_punctual)
 //                spot: G *= clamp((cos_s - cos_outer) / max(cos_inner - cos_outer, 1e-4), 0, 1)^2
+//   oriented:    G as a point light (no spot factor) times the emitter's
+//                cosine max(dot(d, n_e), 0), d the unit direction from the light
+//                to x, n_e its normal (`direction`): a cosine emitter (the
+//                paper's oriented light, a point of an area light)
 //   directional: G = max(cos_theta, 0) (intensity in lux)
 #ifndef LC_DEVICE_SHADING_GLSL_H
 #define LC_DEVICE_SHADING_GLSL_H
@@ -41,6 +45,12 @@ LC_INLINE real spot_scale(real cos_inner, real cos_outer) {
     return 1.0 / max(cos_inner - cos_outer, kSpotMinCosDelta);
 }
 
+// The oriented light's emission factor: its cosine to the light's normal,
+// `from_light` the unit direction from the light to the shaded point.
+LC_INLINE real emitter_cosine(real3 from_light, real3 normal) {
+    return max(dot(from_light, normal), 0.0);
+}
+
 LC_INLINE real spot_attenuation(real cos_spot, real cos_outer, real scale) {
     real a = clamp((cos_spot - cos_outer) * scale, 0.0, 1.0);
     return a * a;
@@ -50,8 +60,9 @@ LC_INLINE real spot_attenuation(real cos_spot, real cos_outer, real scale) {
 struct Emitter {
     bool directional;
     bool spot;
+    bool oriented;
     real3 position;
-    real3 direction;   // where the light travels
+    real3 direction;   // where the light travels; the emitting normal when oriented
     real range;        // <= 0: no window
     real cos_outer;    // spot only, like spot_scale
     real spot_scale;
@@ -77,6 +88,7 @@ LC_INLINE real light_geometry(LC_IN(Emitter) e, real3 x, real3 n, LC_OUT(real3) 
     if (!(cos_theta > 0.0)) return 0.0;
     real g = range_window(d, e.range) * cos_theta * inverse_square(d2);
     if (e.spot) g *= spot_attenuation(dot(-to_light / d, e.direction), e.cos_outer, e.spot_scale);
+    if (e.oriented) g *= emitter_cosine(-to_light / d, e.direction);
     return g;
 }
 

@@ -19,6 +19,7 @@ LC_CONST uint kSpecDirectionalLights = 4u;
 LC_CONST uint kSpecRangeWindow = 5u;
 LC_CONST uint kSpecClassicLights = 6u;
 LC_CONST uint kSpecEmissive = 7u;
+LC_CONST uint kSpecOrientedLights = 21u;
 LC_CONST uint kSpecShadows = 19u;   // shadow_rays.glsl
 LC_CONST uint kSpecSpecular = 20u;  // material_model.glsl
 // cut_view.comp: what it shows.

@@ -1,6 +1,9 @@
 #include "lightmass_server/indirect/indirect_stage.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "lightcuts/guid.h"
 
 namespace lc::bake {
 
@@ -13,6 +16,29 @@ IndirectOptions indirect_options(const IndirectRequest& request, uint64_t seed) 
     options.radiosity.patch_size = request.patch_size;
     options.radiosity.tolerance = request.tolerance;
     return options;
+}
+
+std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
+    std::vector<SceneLight> out;
+    out.reserve(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) {
+        const IndirectLight& bounced = lights[i];
+        glm::vec3 intensity = intensity_along_normal(bounced);
+        float scale = std::max({intensity.x, intensity.y, intensity.z});
+        if (!(scale > 0.0f)) continue;
+        const uint64_t index = i;
+        uint8_t bytes[12] = {'i', 'n', 'd', 'i'};
+        for (int b = 0; b < 8; ++b) bytes[4 + b] = uint8_t(index >> (8 * b));
+        SceneLight light;
+        light.guid = Guid::from_bytes(bytes);
+        light.type = LightType::kOriented;
+        light.position = bounced.position;
+        light.direction = bounced.normal;
+        light.color = intensity / scale;
+        light.intensity = scale;
+        out.push_back(light);
+    }
+    return out;
 }
 
 Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,

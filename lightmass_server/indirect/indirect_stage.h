@@ -38,6 +38,9 @@ struct IndirectStageResult {
     std::vector<glm::vec3> patch_radiosity;
 };
 
+// Oriented (cosine) tree lights, in order, with GUIDs from their index.
+std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights);
+
 // `caster` may be null when the geometry is empty.
 Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,
                                                std::span<const SceneLight> lights, const IndirectOptions& options,

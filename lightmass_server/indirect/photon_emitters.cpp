@@ -62,6 +62,7 @@ PhotonEmitters::PhotonEmitters(const SceneGeometry& geometry, std::span<const Sc
             case LightType::kDirectional:
                 add(false, i, kPi * double(radius_) * double(radius_) * radiant);
                 break;
+            case LightType::kOriented: add(false, i, kPi * radiant); break;
         }
     }
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {
@@ -125,6 +126,15 @@ Photon PhotonEmitters::sample(const double (&u)[5], uint64_t count) const {
                             float(r * std::sin(phi)) * frame.b;
             photon.direction = d;
             photon.flux = glm::vec3(kPi * double(radius_) * double(radius_) * radiant * share);
+            break;
+        }
+        case LightType::kOriented: {
+            // A cosine emitter: cosine-weighted directions carry pi I each.
+            glm::vec3 n = glm::normalize(light.direction);
+            photon.origin = light.position + n * ray_epsilon(2.0f * radius_);
+            photon.direction = to_world(tangent_frame(n), cosine_hemisphere(u[1], u[2]));
+            photon.flux = glm::vec3(kPi * radiant * share);
+            photon.range = light.range;
             break;
         }
     }

@@ -1,7 +1,7 @@
 #pragma once
 // Where the photon tracer's particles come from: every light of the scene
-// (points, spots, directional lights from a disc covering the scene, and
-// emissive triangles), picked in proportion to power.
+// (points, spots, oriented lights, directional lights from a disc covering
+// the scene, and emissive triangles), picked in proportion to power.
 #include <glm/vec3.hpp>
 
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// `bake --radiosity-out FILE`: the solved patches as an ASCII PLY, three
+// `lightmass_server --radiosity-out FILE`: the solved patches as an ASCII PLY, three
 // vertices per patch (patches share no vertices, so each shows its own flat
 // value). Each vertex carries the patch's radiosity B in W/m^2 as floats
 // (radiosity_r/g/b, the numbers to inspect) and as 8-bit red/green/blue

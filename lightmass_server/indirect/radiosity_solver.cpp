@@ -30,6 +30,7 @@ shading::Emitter emitter_for(const SceneLight& light) {
     shading::Emitter e{};
     e.directional = light.type == LightType::kDirectional;
     e.spot = light.type == LightType::kSpot;
+    e.oriented = light.type == LightType::kOriented;
     e.position = glm::dvec3(light.position);
     e.direction = glm::dvec3(light.direction);
     e.range = light.range;

@@ -11,6 +11,7 @@ void LightingPass::specialize(vk::Specialization& spec, const Frame& frame) cons
     spec.set_bool(kSpecPointLights, effects.point_lights)
         .set_bool(kSpecSpotLights, effects.spot_lights)
         .set_bool(kSpecDirectionalLights, effects.directional_lights)
+        .set_bool(kSpecOrientedLights, effects.oriented_lights)
         .set_bool(kSpecRangeWindow, effects.range_window)
         .set_bool(kSpecClassicLights, effects.classic_lights)
         .set_bool(kSpecEmissive, effects.emissive)

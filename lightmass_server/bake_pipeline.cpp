@@ -1,0 +1,79 @@
+#include "lightmass_server/bake_pipeline.h"
+
+#include <optional>
+#include <span>
+#include <string>
+
+#include "lightmass_server/emitters/area_light_sampler.h"
+#include "lightmass_server/indirect/radiosity_ply.h"
+#include "lightmass_server/raycast/ray_caster.h"
+
+namespace lc::bake {
+
+Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
+    auto report = [&](const std::string& stage, double percent) {
+        return !progress || progress(stage, percent);
+    };
+    std::vector<std::string> effects;
+    std::vector<std::string> warnings;
+    std::span<const SceneLight> lights = *inputs.lights;
+    std::vector<SceneLight> with_area_lights;
+    std::optional<RayCaster> caster;
+    if (inputs.geometry) {
+        if (!report("ray caster", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        Result<RayCaster> built = RayCaster::build(*inputs.geometry, inputs.raycast_threads);
+        if (!built) return make_error("ray caster: " + built.error());
+        caster.emplace(std::move(built.value()));
+
+        if (!report("area lights", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        Result<AreaLightSampling> sampled =
+            sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed);
+        if (!sampled) return make_error("area lights: " + sampled.error());
+        if (sampled->budget_raised) {
+            warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
+                               std::to_string(sampled->emissive_triangles) +
+                               " emissive triangles: one sample each");
+        }
+        if (!sampled->lights.empty()) {
+            effects.push_back("area lights: simulated (" +
+                              std::to_string(sampled->emissive_triangles) + " emissive triangles, " +
+                              std::to_string(sampled->lights.size()) + " samples)");
+            with_area_lights.assign(lights.begin(), lights.end());
+            with_area_lights.insert(with_area_lights.end(), sampled->lights.begin(),
+                                    sampled->lights.end());
+            lights = with_area_lights;
+        }
+    }
+    if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
+    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+
+    // Photons leave the emissive triangles themselves, so the scene's own
+    // lights go in, not the area-light samples.
+    const SceneGeometry no_geometry;
+    Result<IndirectStageResult> indirect =
+        run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
+                           *inputs.lights, inputs.indirect, progress);
+    if (!indirect) return indirect.failure();
+    effects.push_back("indirect: " + indirect->census);
+    if (!inputs.radiosity_out.empty() && !indirect->patches.empty()) {
+        Status written = write_radiosity_ply(inputs.radiosity_out, indirect->patches, indirect->patch_radiosity);
+        if (!written) warnings.push_back(written.error());
+    }
+    warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
+    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    std::vector<SceneLight> with_indirect;
+    if (!indirect->lights.empty()) {
+        with_indirect.assign(lights.begin(), lights.end());
+        std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
+        with_indirect.insert(with_indirect.end(), bounced.begin(), bounced.end());
+        lights = with_indirect;
+    }
+
+    Result<BuildResult> built = build_light_tree(lights, inputs.build, progress);
+    if (!built) return built;
+    built->report.effects = std::move(effects);
+    built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());
+    return built;
+}
+
+}  // namespace lc::bake

@@ -1,0 +1,37 @@
+#pragma once
+// One bake from its inputs to the tree: the seam between the session (which
+// collects the channels) and the stages that turn a scene into lights. With
+// geometry, the bake builds one RayCaster (the solvers that trace rays go
+// through it) and samples the emissive triangles into oriented lights; then
+// every light goes to the tree builder. Each stage reports a census line.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
+#include "lightcuts/scene_light.h"
+#include "lightmass_server/indirect/indirect_stage.h"
+#include "lightmass_server/tree_builder.h"
+#include "protocol/messages.h"
+
+namespace lc::bake {
+
+struct BakeInputs {
+    // The scene channel's tree lights (classic lights already left out).
+    std::shared_ptr<const std::vector<SceneLight>> lights;
+    // The geometry channel's surfaces; null when the client sent none.
+    std::shared_ptr<const SceneGeometry> geometry;
+    uint32_t area_lights = kDefaultAreaLights;  // the area-light sample budget
+    BuildOptions build;
+    IndirectOptions indirect;  // bounced light, added to the tree as oriented lights
+    std::string radiosity_out;  // a radiosity bake writes its patches here (PLY); empty: not
+    int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
+};
+
+// A cancelled bake returns an error of kind ErrorKind::kCancelled. The
+// report's effects hold the census (area lights simulated or skipped, why).
+Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress);
+
+}  // namespace lc::bake

@@ -1,0 +1,32 @@
+#pragma once
+// Area lights from emissive triangles (the paper's Sec. 3: an area light
+// becomes oriented point lights). A Lambertian emitter of radiance L and area
+// A emits pi x L x A per channel; each emissive triangle gets a share of the
+// sample budget proportional to that power (largest remainders, then at
+// least one each), its samples stratified over it, each an oriented light (a cosine
+// emitter facing the emitting side) of intensity power / (pi x count), so the
+// samples' intensities sum to the triangle's power exactly (to float rounding).
+#include <cstdint>
+#include <vector>
+
+#include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
+#include "lightcuts/scene_light.h"
+
+namespace lc::bake {
+
+struct AreaLightSampling {
+    std::vector<SceneLight> lights;  // oriented, triangle by triangle in geometry order
+    size_t emissive_triangles = 0;   // non-degenerate triangles with emission > 0
+    // The budget is raised to one sample per emissive triangle when smaller.
+    bool budget_raised = false;
+};
+
+// Deterministic for equal geometry, budget and seed. `budget` >= 1.
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
+                                             uint64_t seed);
+
+// Per channel, pi x L x A: what a triangle of emitted radiance L emits.
+glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& triangle);
+
+}  // namespace lc::bake
