@@ -85,12 +85,12 @@ PY
 # progressive radiosity bounces added to the tree as oriented lights, side by side in one PNG.
 for indirect in vpl radiosity; do
   "$bin/editor_client" bake "$out/cornell.gltf" --server "$server" --builder agglomerative \
-      --area-lights 4096 --indirect "$indirect" --bounces 4 --vpl-count 20000 --patch-size 0.1 \
+      --area-lights 4096 --indirect "$indirect" --bounces 4 --vpl-count 20000 --patch-size 0.3 \
       -o "$out/cornell_$indirect.lcut" --json > "$out/cornell_${indirect}_bake.json"
   "$bin/editor_client" render "$out/cornell.gltf" --tree "$out/cornell_$indirect.lcut" --mode lightcuts \
       --size 256x256 -o "$out/cornell_$indirect.png" --stats "$out/cornell_${indirect}_render.json"
 done
-python3 - "$out" <<'PY'
+/usr/bin/python3 - "$out" <<'PY'
 import json, sys
 import matplotlib
 matplotlib.use("Agg")
