@@ -82,8 +82,8 @@ std::vector<Message> sample_messages() {
                         0xFEEDFACECAFEBEEFull,
                         RepresentativeRule::kThesisFirst,
                         PairingMode::kApproximate,
-                        4096,
-                        {IndirectMethod::kRadiosity, 3, 123456789012ull, 0.125f, 0.002f}};
+                        4096};
+    bake.indirect = {IndirectMethod::kRadiosity, 3, 123456789012ull, 0.125f, 0.002f};
     BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false};
     return {
         HelloMsg{kProtocolVersion, "editor_client 0.1", "s3cret-token"},
