@@ -13,9 +13,12 @@
 #include <string>
 
 #include "lightcuts_generated.h"
+#include "protocol/record_bytes.h"
 
 namespace lc {
 namespace {
+
+using namespace records;
 
 // The wire layouts; a change here is a protocol change (bump the version GUIDs).
 static_assert(sizeof(fb::SceneLightRecord) == 72);
@@ -55,15 +58,6 @@ std::string light_label(size_t index, const Guid& guid) {
 
 std::string node_label(size_t index) { return "node " + std::to_string(index); }
 
-std::string number(double v) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "%g", v);
-    return text;
-}
-
-bool finite3(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 bool non_negative3(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 bool unit_length(const glm::vec3& v) {
     return std::abs(glm::length(v) - 1.0f) <= kUnitLengthTolerance;
@@ -73,36 +67,6 @@ std::string hex(uint32_t v) {
     std::snprintf(text, sizeof(text), "0x%X", v);
     return text;
 }
-std::string vec_text(const glm::vec3& v) {
-    return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
-}
-
-void put_u32(std::vector<uint8_t>& out, uint32_t v) {
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(v >> (8 * i)));
-}
-int32_t get_i32(const uint8_t* p) {
-    const uint32_t u = static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
-                       (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
-    return static_cast<int32_t>(u);
-}
-
-// FlatBuffers structs are their own little-endian wire layout.
-template <typename Struct>
-void append_struct(std::vector<uint8_t>& out, const Struct& s) {
-    const auto* bytes = reinterpret_cast<const uint8_t*>(&s);
-    out.insert(out.end(), bytes, bytes + sizeof(Struct));
-}
-template <typename Struct>
-Struct read_struct(const uint8_t* p) {
-    Struct s;
-    std::memcpy(static_cast<void*>(&s), p, sizeof(Struct));
-    return s;
-}
-
-fb::Guid to_fb(const Guid& g) { return fb::Guid(g.a, g.b, g.c, g.d); }
-Guid from_fb(const fb::Guid& g) { return Guid{g.a(), g.b(), g.c(), g.d()}; }
-fb::Vec3 to_fb(const glm::vec3& v) { return fb::Vec3(v.x, v.y, v.z); }
-glm::vec3 from_fb(const fb::Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 // ---- scene records -----------------------------------------------------------
 

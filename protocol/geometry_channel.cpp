@@ -6,14 +6,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <string>
 
 #include "lightcuts_generated.h"
+#include "protocol/record_bytes.h"
 
 namespace lc {
 namespace {
+
+using namespace records;
 
 // The wire layouts; a change here is a protocol change (bump the version GUID).
 static_assert(sizeof(fb::SurfaceMaterialRecord) == 32);
@@ -24,43 +25,8 @@ constexpr float kUnitLengthTolerance = 1e-3f;
 // A lying count must not make us reserve memory for records that never come.
 constexpr size_t kMaxUpFrontRecords = 1u << 16;
 
-fb::Vec3 to_fb(const glm::vec3& v) { return fb::Vec3(v.x, v.y, v.z); }
-glm::vec3 from_fb(const fb::Vec3& v) { return {v.x(), v.y(), v.z()}; }
-
-std::string number(double v) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "%g", v);
-    return text;
-}
-std::string vec_text(const glm::vec3& v) {
-    return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
-}
-bool finite3(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 bool within3(const glm::vec3& v, float lo, float hi) {
     return v.x >= lo && v.y >= lo && v.z >= lo && v.x <= hi && v.y <= hi && v.z <= hi;
-}
-
-template <typename Struct>
-void append_struct(std::vector<uint8_t>& out, const Struct& s) {
-    const auto* bytes = reinterpret_cast<const uint8_t*>(&s);
-    out.insert(out.end(), bytes, bytes + sizeof(Struct));
-}
-template <typename Struct>
-Struct read_struct(const uint8_t* p) {
-    Struct s;
-    std::memcpy(static_cast<void*>(&s), p, sizeof(Struct));
-    return s;
-}
-void put_i32(std::vector<uint8_t>& out, int32_t v) {
-    const auto u = static_cast<uint32_t>(v);
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(u >> (8 * i)));
-}
-int32_t get_i32(const uint8_t* p) {
-    const uint32_t u = static_cast<uint32_t>(p[0]) | (static_cast<uint32_t>(p[1]) << 8) |
-                       (static_cast<uint32_t>(p[2]) << 16) | (static_cast<uint32_t>(p[3]) << 24);
-    return static_cast<int32_t>(u);
 }
 
 Result<SurfaceMaterial> from_record(const fb::SurfaceMaterialRecord& r, size_t index) {
@@ -133,12 +99,12 @@ uint64_t geometry_channel_bytes(uint64_t materials, uint64_t triangles) {
 std::vector<uint8_t> encode_geometry_channel(const SceneGeometry& geometry) {
     std::vector<uint8_t> out;
     out.reserve(geometry_channel_bytes(geometry.materials.size(), geometry.triangles.size()));
-    put_i32(out, static_cast<int32_t>(geometry.materials.size()));
+    put_u32(out, static_cast<uint32_t>(geometry.materials.size()));
     for (const SurfaceMaterial& m : geometry.materials) {
         append_struct(out, fb::SurfaceMaterialRecord(to_fb(m.base_color), to_fb(m.emission),
                                                      m.metallic, m.roughness));
     }
-    put_i32(out, static_cast<int32_t>(geometry.triangles.size()));
+    put_u32(out, static_cast<uint32_t>(geometry.triangles.size()));
     for (const SurfaceTriangle& t : geometry.triangles) {
         append_struct(out, fb::SurfaceTriangleRecord(
                                to_fb(t.positions[0]), to_fb(t.positions[1]), to_fb(t.positions[2]),

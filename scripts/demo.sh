@@ -68,7 +68,7 @@ PY
     --area-lights 4096 -o "$out/cornell.lcut" --json > "$out/cornell_bake.json"
 for mode in lightcuts reference; do
   "$bin/editor_client" render "$out/cornell.gltf" --tree "$out/cornell.lcut" --mode "$mode" \
-      --size 256x256 -o "$out/cornell_$mode.png" --stats "$out/cornell_$mode.json"
+      --size 192x192 -o "$out/cornell_$mode.png" --stats "$out/cornell_$mode.json"
 done
 python3 - "$out/cornell_bake.json" "$out/cornell_lightcuts.json" <<'PY'
 import json, sys

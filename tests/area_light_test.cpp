@@ -15,6 +15,7 @@
 #include "lightmass_server/bake_pipeline.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "protocol/channel_records.h"
+#include "rectangle_form_factor.h"
 
 namespace lc::bake {
 namespace {
@@ -50,26 +51,6 @@ SceneGeometry floor_under_square(float side, float height, glm::vec3 radiance) {
     const float h = side / 2;
     add_quad(g, {-h, height, -h}, {h * 2, 0, 0}, {0, 0, h * 2}, 1);
     return g;
-}
-
-// SPEC.md §11: the form factor from a point to a rectangle corner-aligned above it.
-double corner_form_factor(double a, double b, double c) {
-    const double X = a / c, Y = b / c;
-    const double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
-    return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * kPi);
-}
-
-// E at (x, 0, z) under the square [-h, h]^2 at height c: four corners, with
-// signed extents for points outside the square's shadow.
-double square_irradiance(double radiance, double h, double c, double x, double z) {
-    double f = 0.0;
-    for (double sx : {-1.0, 1.0})
-        for (double sz : {-1.0, 1.0}) {
-            const double a = sx * h - x, b = sz * h - z;
-            f += (a * sx >= 0 ? 1 : -1) * (b * sz >= 0 ? 1 : -1) *
-                 corner_form_factor(std::abs(a), std::abs(b), c);
-        }
-    return kPi * radiance * f;
 }
 
 SurfacePoint floor_point(double x, double z) {
@@ -179,7 +160,7 @@ TEST(AreaLights, FloorUnderASquareEmitterMatchesTheFormFactor) {
     cuts.error_ratio = 0.005;
     for (const glm::dvec2 xz : {glm::dvec2(0, 0), glm::dvec2(0.3, 0.1), glm::dvec2(0.5, 0.5),
                                 glm::dvec2(1.0, -0.4), glm::dvec2(2.0, 1.5)}) {
-        const double expected = square_irradiance(L, side / 2, height, xz.x, xz.y);
+        const double expected = test::square_irradiance(L, side / 2, height, xz.x, xz.y);
         const SurfacePoint p = floor_point(xz.x, xz.y);
         // Albedo 1: L_out = E / pi.
         const double reference = kPi * shade_tree_leaves(tree, p).x;

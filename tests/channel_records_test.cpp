@@ -372,11 +372,11 @@ TEST(ChannelRecords, BadSceneLightsAreRefusedNamingLightAndField) {
 TEST(ChannelRecords, UnknownSceneTypeAndFlagsAreRefused) {
     auto bytes = encode_scene_channel(sample_lights());
     auto bad_type = bytes;
-    bad_type[4 + 72 + 68] = 3;
+    bad_type[4 + 72 + 68] = 4;  // 3 is oriented, the last known type
     auto decoded = decode_scene_channel(bad_type);
     ASSERT_FALSE(decoded.ok());
     EXPECT_NE(decoded.error().find("light 1 "), std::string::npos) << decoded.error();
-    EXPECT_NE(decoded.error().find("light_type 3"), std::string::npos) << decoded.error();
+    EXPECT_NE(decoded.error().find("light_type 4"), std::string::npos) << decoded.error();
     auto bad_flags = bytes;
     bad_flags[4 + 69] = 0x80;
     decoded = decode_scene_channel(bad_flags);
@@ -482,10 +482,10 @@ TEST(ChannelRecords, BadResultRecordsAreRefusedNamingNodeAndField) {
         {3, "cone_cos", [](auto& b, size_t o) { put_float(b, o + 160, 1.5f); }},
         {3, "not unit length", [](auto& b, size_t o) { put_float(b, o + 40, -0.5f); }},
         {3, "spot cosines", [](auto& b, size_t o) { put_float(b, o + 172, 0.95f); }},
-        {3, "light_type 3",
+        {3, "light_type 4",
          [](auto& b, size_t o) {
-             b[o + 176] = 3;
-             b[o + 17] = 3;
+             b[o + 176] = 4;
+             b[o + 17] = 4;
          }},
         {3, "disagrees", [](auto& b, size_t o) { b[o + 176] = 0; }},
         {3, "says cluster", [](auto& b, size_t o) { b[o + 16] |= 1; }},

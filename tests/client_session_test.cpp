@@ -3,7 +3,10 @@
 // checked by their ErrorKind, never their text.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "editor_client/bake/client_session.h"
@@ -13,6 +16,7 @@
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
 #include "protocol/frame_decoder.h"
+#include "protocol/geometry_channel.h"
 #include "tree_invariants.h"
 
 namespace lc::client {
@@ -252,6 +256,57 @@ TEST(ClientSession, TransportFailureEndsTheBakeOnce) {
     ASSERT_FALSE(outcome);
     EXPECT_EQ(outcome.error(), "connection lost");
     EXPECT_EQ(outcome.error_kind(), ErrorKind::kFailed);
+}
+
+// The channels a session uploads, by name, with their bytes joined.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> uploaded_channels(const std::vector<Message>& messages) {
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> channels;
+    std::map<uint32_t, size_t> by_id;
+    for (const Message& m : messages) {
+        if (auto* open = std::get_if<OpenChannelMsg>(&m)) {
+            by_id[open->channel_id] = channels.size();
+            channels.push_back({open->name, {}});
+        } else if (auto* write = std::get_if<WriteChannelMsg>(&m)) {
+            std::vector<uint8_t>& bytes = channels[by_id.at(write->channel_id)].second;
+            bytes.insert(bytes.end(), write->data.begin(), write->data.end());
+        }
+    }
+    return channels;
+}
+
+TEST(ClientSession, SendsTheGeometryChannelOnlyWhenGiven) {
+    SceneGeometry geometry;
+    geometry.materials.resize(1);
+    geometry.materials[0].emission = {2, 2, 2};
+    SurfaceTriangle t;
+    t.positions[1] = {1, 0, 0};
+    t.positions[2] = {0, 0, 1};
+    t.normals[0] = t.normals[1] = t.normals[2] = {0, 1, 0};
+    geometry.triangles = {t};
+    for (bool with_geometry : {false, true}) {
+        SCOPED_TRACE(with_geometry);
+        ClientSessionOptions options = session_options();
+        options.request.area_lights = with_geometry ? 300u : 0u;
+        if (with_geometry) options.geometry = std::make_shared<const SceneGeometry>(geometry);
+        ClientSession session(scene_lights(), kSceneGuid, options);
+        session.start();
+        drain(session);
+        session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+        const std::vector<Message> upload = drain(session);
+        const auto channels = uploaded_channels(upload);
+        ASSERT_EQ(channels.size(), with_geometry ? 2u : 1u);
+        EXPECT_EQ(channels[0].first, scene_channel_name(kSceneGuid));
+        const BakeRequestMsg& request = std::get<BakeRequestMsg>(upload.back());
+        if (!with_geometry) {
+            EXPECT_TRUE(request.geometry_channel.empty());
+            EXPECT_EQ(request.area_lights, 0u);
+            continue;
+        }
+        EXPECT_EQ(channels[1].first, geometry_channel_name(kSceneGuid));
+        EXPECT_EQ(channels[1].second, encode_geometry_channel(geometry));
+        EXPECT_EQ(request.geometry_channel, geometry_channel_name(kSceneGuid));
+        EXPECT_EQ(request.area_lights, 300u);
+    }
 }
 
 }  // namespace

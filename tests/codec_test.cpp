@@ -42,6 +42,7 @@ bool same(const BakeRequestMsg& x, const BakeRequestMsg& y) {
     return x.bake_id == y.bake_id && x.scene_channel == y.scene_channel && x.builder == y.builder &&
            x.seed == y.seed && x.representative_rule == y.representative_rule &&
            x.pairing == y.pairing && x.exact_pairing_limit == y.exact_pairing_limit &&
+           x.geometry_channel == y.geometry_channel && x.area_lights == y.area_lights &&
            x.indirect.method == y.indirect.method && x.indirect.bounces == y.indirect.bounces &&
            x.indirect.vpl_count == y.indirect.vpl_count && x.indirect.patch_size == y.indirect.patch_size &&
            x.indirect.tolerance == y.indirect.tolerance;
@@ -60,7 +61,8 @@ bool same(const BakeDoneMsg& x, const BakeDoneMsg& y) {
     return x.bake_id == y.bake_id && x.result_channel == y.result_channel &&
            x.node_count == y.node_count && x.leaf_count == y.leaf_count &&
            x.build_ms == y.build_ms && x.pairing_cost == y.pairing_cost &&
-           x.pairing_lower_bound == y.pairing_lower_bound && x.exact == y.exact;
+           x.pairing_lower_bound == y.pairing_lower_bound && x.exact == y.exact &&
+           x.effects == y.effects;
 }
 bool same(const Message& x, const Message& y) {
     if (x.index() != y.index()) return false;
@@ -82,9 +84,12 @@ std::vector<Message> sample_messages() {
                         0xFEEDFACECAFEBEEFull,
                         RepresentativeRule::kThesisFirst,
                         PairingMode::kApproximate,
-                        4096};
+                        4096,
+                        "4C435363656E65466F726D6174000001.0123.geom",
+                        777};
     bake.indirect = {IndirectMethod::kRadiosity, 3, 123456789012ull, 0.125f, 0.002f};
-    BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false};
+    BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false,
+                     {"area lights: simulated (2 emissive triangles, 777 samples)", "second"}};
     return {
         HelloMsg{kProtocolVersion, "editor_client 0.1", "s3cret-token"},
         HelloAckMsg{kProtocolVersion, "lightmass_server 0.1"},

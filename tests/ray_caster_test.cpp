@@ -49,7 +49,7 @@ TEST(RayCaster, HitsTheNearestTriangleAndReportsItsIndex) {
     add_ceiling(g, 2.0f);
     add_ceiling(g, 1.0f);  // triangles 2 and 3 are nearer to the origin below
     auto caster = RayCaster::build(g, 1);
-    ASSERT_TRUE(caster.ok()) << caster.error().message;
+    ASSERT_TRUE(caster.ok()) << caster.error();
     auto hit = caster->intersect({0.75f, 0.0f, 0.25f}, {0, 1, 0}, 0.0f, 100.0f);
     ASSERT_TRUE(hit.has_value());
     EXPECT_NEAR(hit->distance, 1.0f, 1e-6f);

@@ -7,35 +7,19 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "editor_client/render/renderer.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "lightmass_server/bake_pipeline.h"
+#include "rectangle_form_factor.h"
 #include "render_test_support.h"
 
 namespace lc::client {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr float kRadiance = 5.0f, kSide = 1.0f, kHeight = 1.0f, kAlbedo = 0.5f;
-
-double corner_form_factor(double a, double b, double c) {
-    const double X = a / c, Y = b / c;
-    const double sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
-    return (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy)) / (2 * kPi);
-}
-
-double square_irradiance(double x, double z) {
-    const double h = kSide / 2.0;
-    double f = 0.0;
-    for (double sx : {-1.0, 1.0})
-        for (double sz : {-1.0, 1.0}) {
-            const double a = sx * h - x, b = sz * h - z;
-            f += (a * sx >= 0 ? 1 : -1) * (b * sz >= 0 ? 1 : -1) *
-                 corner_form_factor(std::abs(a), std::abs(b), kHeight);
-        }
-    return kPi * kRadiance * f;
-}
 
 Scene panel_over_floor() {
     Scene scene;
@@ -77,6 +61,8 @@ TEST_F(AreaLightRender, FloorMatchesTheFormFactorAndThePanelShowsItsEmission) {
     settings.camera.yfov = 1.3f;
     settings.criterion = CutCriterion::kBound;
     settings.error_ratio = 0.005f;
+    // One lux from straight above: a point's response to it is its f_r.
+    SceneLight unit_sun = test::directional_light({0, -1, 0}, glm::vec3(1.0f), 1.0f);
     for (RenderMode mode : {RenderMode::kReference, RenderMode::kLightcuts}) {
         SCOPED_TRACE(mode == RenderMode::kReference ? "reference" : "lightcuts");
         settings.mode = mode;
@@ -92,7 +78,9 @@ TEST_F(AreaLightRender, FloorMatchesTheFormFactorAndThePanelShowsItsEmission) {
             const glm::dvec3 x(g->position[4 * i], g->position[4 * i + 1], g->position[4 * i + 2]);
             const double radiance = (*hdr)[4 * i];
             if (g->normal[4 * i + 1] > 0.99f && std::abs(x.x) < 3.0 && std::abs(x.z) < 3.0) {
-                const double expected = kAlbedo / kPi * square_irradiance(x.x, x.z);
+                // The floor's f_r (constant at roughness 1) times the closed-form E.
+                const double f_r = shade_reference(std::span(&unit_sun, 1), test::gbuffer_point(*g, i)).x;
+                const double expected = f_r * test::square_irradiance(kRadiance, kSide / 2.0, kHeight, x.x, x.z);
                 EXPECT_NEAR(radiance, expected, tolerance * expected) << "floor at " << x.x << ", " << x.z;
                 ++floor_pixels;
             } else if (g->normal[4 * i + 1] < -0.99f) {

@@ -96,18 +96,25 @@ LC_INLINE bool spot_cluster_excluded(LC_IN(ClusterShape) c, real3 x) {
 
 // Upper bound of the emitter cosine (shading.glsl.h's emitter_cosine) over
 // every oriented light of the cluster at x (paper Sec. 4.1): the directions
-// from the lights to x lie in x - box, at least theta_min from the cone axis,
-// and every normal within beta of it, so each angle to a normal is at least
-// theta_min - beta.
+// from the lights to x lie in x - box, at least theta from the cone axis, and
+// every normal within beta of it, so each angle to a normal is at least
+// theta - beta: the bound is 1 when theta <= beta, else cos(theta - beta),
+// expanded into products (no acos: float and double agree closely), 0 past
+// pi/2.
 LC_INLINE real oriented_emitter_bound(LC_IN(ClusterShape) c, real3 x) {
     if (!(c.cone_cos >= -1.0 && c.cone_cos <= 1.0)) return 1.0;
     real axis_len = length(c.cone_axis);
     if (!(axis_len > 0.0)) return 1.0;
-    real cos_min_angle = max_cos_to_box(c.cone_axis / axis_len, x - c.bbox_max, x - c.bbox_min);
-    real angle = acos(clamp(cos_min_angle, -1.0, 1.0)) - acos(c.cone_cos) - kAngleSlack;
-    if (angle <= 0.0) return 1.0;
-    if (angle >= kPi / 2.0) return 0.0;
-    return min(1.0, cos(angle) + kAngleSlack);
+    real cos_theta =
+        clamp(max_cos_to_box(c.cone_axis / axis_len, x - c.bbox_max, x - c.bbox_min), -1.0, 1.0);
+    if (cos_theta >= c.cone_cos) return 1.0;
+    real sin_theta = sqrt(max(1.0 - cos_theta * cos_theta, 0.0));
+    real sin_beta = sqrt(max(1.0 - c.cone_cos * c.cone_cos, 0.0));
+    real bound = cos_theta * c.cone_cos + sin_theta * sin_beta;
+    // theta - beta is in (0, pi], where the cosine falls: negative past pi/2
+    // (the slack keeps a grazing angle's rounding from zeroing it).
+    if (!(bound > -kAngleSlack)) return 0.0;
+    return clamp(bound * (1.0 + kFewUlps) + kAngleSlack, 0.0, 1.0);
 }
 
 // Upper bound of G (shading.glsl.h, cosine with the normal included,
