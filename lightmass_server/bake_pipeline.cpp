@@ -6,6 +6,7 @@
 
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
+#include "lightmass_server/indirect/radiosity_ply.h"
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
@@ -47,7 +48,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
     if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
 
-    std::vector<SceneLight> with_environment;
+    std::vector<SceneLight> environment_lights;
     if (inputs.environment) {
         if (!report("sampling environment", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
         Result<EnvironmentLights> sampled =
@@ -55,9 +56,36 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         if (!sampled) return sampled.failure();
         effects.push_back(sampled->census);
         if (!report(sampled->census, 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
-        with_environment.assign(lights.begin(), lights.end());
-        with_environment.insert(with_environment.end(), sampled->lights.begin(), sampled->lights.end());
-        lights = with_environment;
+        environment_lights = std::move(sampled->lights);
+    }
+
+    // Photons leave the emissive triangles themselves, so the scene's own
+    // lights and the sky's go in, not the area-light samples.
+    std::vector<SceneLight> photon_sources;
+    if (!environment_lights.empty()) {
+        photon_sources = *inputs.lights;
+        photon_sources.insert(photon_sources.end(), environment_lights.begin(), environment_lights.end());
+    }
+    const SceneGeometry no_geometry;
+    Result<IndirectStageResult> indirect =
+        run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
+                           environment_lights.empty() ? *inputs.lights : photon_sources, inputs.indirect,
+                           progress);
+    if (!indirect) return indirect.failure();
+    effects.push_back("indirect: " + indirect->census);
+    if (!inputs.radiosity_out.empty() && !indirect->patches.empty()) {
+        Status written = write_radiosity_ply(inputs.radiosity_out, indirect->patches, indirect->patch_radiosity);
+        if (!written) warnings.push_back(written.error());
+    }
+    warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
+    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    std::vector<SceneLight> with_more;
+    if (!environment_lights.empty() || !indirect->lights.empty()) {
+        with_more.assign(lights.begin(), lights.end());
+        with_more.insert(with_more.end(), environment_lights.begin(), environment_lights.end());
+        std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
+        with_more.insert(with_more.end(), bounced.begin(), bounced.end());
+        lights = with_more;
     }
 
     Result<BuildResult> built = build_light_tree(lights, inputs.build, progress);

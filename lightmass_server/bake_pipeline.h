@@ -7,12 +7,14 @@
 // light goes to the tree builder. Each stage reports a census line.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "lightcuts/environment.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/messages.h"
 
@@ -28,6 +30,8 @@ struct BakeInputs {
     std::shared_ptr<const Environment> environment;
     uint32_t environment_lights = 0;  // validated by the session; 0: the default
     BuildOptions build;
+    IndirectOptions indirect;  // bounced light, added to the tree as oriented lights
+    std::string radiosity_out;  // a radiosity bake writes its patches here (PLY); empty: not
     int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
 };
 

@@ -66,6 +66,9 @@ int main(int argc, char** argv) {
     app.add_option("--port-file", port_file, "Write the port number to this file once listening");
     app.add_option("--threads", threads, "Bake worker threads")->capture_default_str()->check(CLI::Range(1u, 256u));
     app.add_option("--record", record_dir, "Write every channel received and sent as a dump file here");
+    std::string radiosity_out;
+    app.add_option("--radiosity-out", radiosity_out,
+                   "Write each radiosity bake's patches, with their radiosity per vertex, to this PLY file");
     app.add_option("--token-file", token_file,
                    "Clients must present this token (required to listen off loopback)");
     auto* cert_opt =
@@ -106,6 +109,7 @@ int main(int argc, char** argv) {
     }
     options.bake_threads = threads;
     options.record_dir = record_dir;
+    options.radiosity_out = radiosity_out;
     options.read_timeout = std::chrono::milliseconds(read_timeout_ms);
     options.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
     options.frame_timeout = std::chrono::milliseconds(frame_timeout_ms);

@@ -16,6 +16,8 @@ struct ServerOptions {
     uint16_t port = 0;  // 0: the system picks a free port
     unsigned bake_threads = 1;
     std::filesystem::path record_dir;    // empty: no recording
+    // Each radiosity bake's solved patches as a PLY here (radiosity_ply.h); empty: none.
+    std::filesystem::path radiosity_out;
     std::optional<std::string> token;    // required when host is not loopback
     // PEM files; both set: every connection speaks TLS. Required off loopback.
     std::filesystem::path tls_certificate;

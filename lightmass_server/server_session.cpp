@@ -336,6 +336,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
                  request.bake_id, lights->size(), geometry ? " and geometry" : "", builder_name(build.builder),
                  build.seed);
+    start.inputs.indirect = indirect_options(request.indirect, request.seed);
     start.inputs.lights = std::move(lights);
     start.inputs.geometry = std::move(geometry);
     if (request.area_lights != 0) start.inputs.area_lights = request.area_lights;

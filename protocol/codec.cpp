@@ -80,7 +80,9 @@ Body encode_body(Fbb& fbb, const BakeRequestMsg& m) {
         fb::CreateBakeRequest(fbb, m.bake_id, scene, static_cast<fb::BuilderKind>(m.builder),
                               m.seed, static_cast<fb::RepresentativeRule>(m.representative_rule),
                               static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit,
-                              environment, m.environment_lights, geometry, m.area_lights);
+                              environment, m.environment_lights, geometry, m.area_lights,
+                              static_cast<fb::IndirectMethod>(m.indirect.method), m.indirect.bounces,
+                              m.indirect.vpl_count, m.indirect.patch_size, m.indirect.tolerance);
     return {fb::Message::BakeRequest, table.Union()};
 }
 
@@ -230,6 +232,13 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     if (!enum_in_range(t.pairing())) {
         return bad_enum("BakeRequest.pairing", static_cast<unsigned>(t.pairing()));
     }
+    if (!enum_in_range(t.indirect())) {
+        return bad_enum("BakeRequest.indirect", static_cast<unsigned>(t.indirect()));
+    }
+    if (!std::isfinite(t.patch_size())) return not_finite("BakeRequest.patch_size", t.patch_size());
+    if (!std::isfinite(t.radiosity_tolerance())) {
+        return not_finite("BakeRequest.radiosity_tolerance", t.radiosity_tolerance());
+    }
     BakeRequestMsg m;
     m.bake_id = t.bake_id();
     m.scene_channel = t.scene_channel()->str();
@@ -242,6 +251,11 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     m.environment_lights = t.environment_lights();
     m.geometry_channel = to_string(t.geometry_channel());
     m.area_lights = t.area_lights();
+    m.indirect.method = static_cast<IndirectMethod>(t.indirect());
+    m.indirect.bounces = t.indirect_bounces();
+    m.indirect.vpl_count = t.vpl_count();
+    m.indirect.patch_size = t.patch_size();
+    m.indirect.tolerance = t.radiosity_tolerance();
     return Message{std::move(m)};
 }
 

@@ -16,10 +16,21 @@ inline constexpr Guid kProtocolVersion{0x4C435031u, 0x50726F74u, 0x6F636F6Cu, 0x
 enum class BuilderKind : uint8_t { kOptimalPair = 0, kAgglomerative = 1, kLbvh = 2 };
 enum class RepresentativeRule : uint8_t { kIntensity = 0, kThesisFirst = 1 };
 enum class PairingMode : uint8_t { kExact = 0, kApproximate = 1, kAuto = 2 };
+enum class IndirectMethod : uint8_t { kOff = 0, kVpl = 1, kRadiosity = 2 };
+
+// The bounced light a bake adds to the tree, and its solver's settings.
+struct IndirectRequest {
+    IndirectMethod method = IndirectMethod::kOff;
+    uint32_t bounces = 1;
+    uint64_t vpl_count = 100000;
+    float patch_size = 0.25f;
+    float tolerance = 0.01f;
+};
 
 const char* builder_name(BuilderKind kind);
 const char* representative_rule_name(RepresentativeRule rule);
 const char* pairing_mode_name(PairingMode mode);
+const char* indirect_method_name(IndirectMethod method);
 
 enum class ErrorCode : uint32_t {
     kUnknown = 0,
@@ -74,6 +85,7 @@ struct BakeRequestMsg {
     // Empty: no geometry channel (nothing in the scene needs the surfaces).
     std::string geometry_channel;
     uint32_t area_lights = 0;  // the area-light sample budget; 0: the server's default
+    IndirectRequest indirect;
 };
 struct ProgressMsg {
     uint32_t bake_id = 0;

@@ -31,6 +31,15 @@ const char* pairing_mode_name(PairingMode mode) {
     return "unknown";
 }
 
+const char* indirect_method_name(IndirectMethod method) {
+    switch (method) {
+        case IndirectMethod::kOff: return "off";
+        case IndirectMethod::kVpl: return "vpl";
+        case IndirectMethod::kRadiosity: return "radiosity";
+    }
+    return "unknown";
+}
+
 const char* message_name(const Message& message) {
     return std::visit(
         [](const auto& m) -> const char* {

@@ -110,5 +110,29 @@ for d in render["effects_skipped"]:
     print("  skipped:   %s (%s)" % (d["name"], d["reason"]))
 PY
 
+# Indirect light on the same box (issue 16): direct light only, then VPL (instant radiosity) and
+# progressive radiosity bounces added to the tree as oriented lights, side by side in one PNG.
+for indirect in vpl radiosity; do
+  "$bin/editor_client" bake "$out/cornell.gltf" --server "$server" --builder agglomerative \
+      --area-lights 4096 --indirect "$indirect" --bounces 4 --vpl-count 20000 --patch-size 0.3 \
+      -o "$out/cornell_$indirect.lcut" --json > "$out/cornell_${indirect}_bake.json"
+  "$bin/editor_client" render "$out/cornell.gltf" --tree "$out/cornell_$indirect.lcut" --mode lightcuts \
+      --size 256x256 -o "$out/cornell_$indirect.png" --stats "$out/cornell_${indirect}_render.json"
+done
+/usr/bin/python3 - "$out" <<'PY'
+import json, sys
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.image as mpimg
+import numpy as np
+out = sys.argv[1]
+for indirect in ("vpl", "radiosity"):
+    bake = json.load(open("%s/cornell_%s_bake.json" % (out, indirect)))
+    print("demo: cornell %s bake: %s" % (indirect, "; ".join(bake["effects"])))
+panels = [mpimg.imread("%s/cornell_%s.png" % (out, name)) for name in ("lightcuts", "vpl", "radiosity")]
+mpimg.imsave("%s/cornell_indirect_side_by_side.png" % out, np.concatenate(panels, axis=1))
+print("demo: cornell_indirect_side_by_side.png: direct only | VPL indirect | radiosity indirect")
+PY
+
 echo "demo: images and stats in $out/"
 ls -1 "$out"

@@ -179,8 +179,9 @@ TEST(AreaLights, TreesAreByteIdenticalAtAnyThreadCount) {
     Result<BuildResult> two = run_bake(inputs, nullptr);
     ASSERT_TRUE(one.ok() && two.ok());
     EXPECT_EQ(encode_result_channel(one->tree), encode_result_channel(two->tree));
-    ASSERT_EQ(one->report.effects.size(), 1u);
+    ASSERT_EQ(one->report.effects.size(), 2u);
     EXPECT_EQ(one->report.effects[0], "area lights: simulated (2 emissive triangles, 2000 samples)");
+    EXPECT_EQ(one->report.effects[1], "indirect: skipped: no bounce requested");
 }
 
 TEST(AreaLights, WithoutEmissionOrGeometryTheCensusSaysSkipped) {
@@ -199,8 +200,9 @@ TEST(AreaLights, WithoutEmissionOrGeometryTheCensusSaysSkipped) {
         Result<BuildResult> built = run_bake(inputs, nullptr);
         ASSERT_TRUE(built.ok()) << built.error();
         EXPECT_EQ(built->tree.leaf_count, 1u);
-        ASSERT_EQ(built->report.effects.size(), 1u);
+        ASSERT_EQ(built->report.effects.size(), 2u);
         EXPECT_EQ(built->report.effects[0], "area lights: skipped: no drawn triangle emits power");
+        EXPECT_EQ(built->report.effects[1], "indirect: skipped: no bounce requested");
     }
 }
 

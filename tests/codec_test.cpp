@@ -42,7 +42,10 @@ bool same(const BakeRequestMsg& x, const BakeRequestMsg& y) {
     return x.bake_id == y.bake_id && x.scene_channel == y.scene_channel && x.builder == y.builder &&
            x.seed == y.seed && x.representative_rule == y.representative_rule &&
            x.pairing == y.pairing && x.exact_pairing_limit == y.exact_pairing_limit &&
-           x.geometry_channel == y.geometry_channel && x.area_lights == y.area_lights;
+           x.geometry_channel == y.geometry_channel && x.area_lights == y.area_lights &&
+           x.indirect.method == y.indirect.method && x.indirect.bounces == y.indirect.bounces &&
+           x.indirect.vpl_count == y.indirect.vpl_count && x.indirect.patch_size == y.indirect.patch_size &&
+           x.indirect.tolerance == y.indirect.tolerance;
 }
 bool same(const ProgressMsg& x, const ProgressMsg& y) {
     return x.bake_id == y.bake_id && x.stage == y.stage && x.percent == y.percent;
@@ -84,6 +87,7 @@ std::vector<Message> sample_messages() {
                         4096,
                         "4C435363656E65466F726D6174000001.0123.geom",
                         777};
+    bake.indirect = {IndirectMethod::kRadiosity, 3, 123456789012ull, 0.125f, 0.002f};
     BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false,
                      {"area lights: simulated (2 emissive triangles, 777 samples)", "second"}};
     return {
@@ -297,10 +301,13 @@ TEST(Codec, OutOfRangeEnumsAreRejectedAndNamed) {
     bad_rule.representative_rule = static_cast<RepresentativeRule>(2);
     BakeRequestMsg bad_pairing = base;
     bad_pairing.pairing = static_cast<PairingMode>(250);
+    BakeRequestMsg bad_indirect = base;
+    bad_indirect.indirect.method = static_cast<IndirectMethod>(3);
     const std::vector<std::pair<BakeRequestMsg, std::string>> cases{
         {bad_builder, "BakeRequest.builder has unknown value 3"},
         {bad_rule, "BakeRequest.representative_rule has unknown value 2"},
         {bad_pairing, "BakeRequest.pairing has unknown value 250"},
+        {bad_indirect, "BakeRequest.indirect has unknown value 3"},
     };
     for (const auto& [message, expected] : cases) {
         Result<Message> decoded = decode_message(encode_message(message));
@@ -324,6 +331,11 @@ TEST(Codec, NonFiniteNumbersAreRejected) {
     done.build_ms = 1.0;
     done.pairing_lower_bound = -inf;
     EXPECT_FALSE(decode_message(encode_message(done)).ok());
+    BakeRequestMsg request{.scene_channel = "scene"};
+    request.indirect.patch_size = nan;
+    Result<Message> bad_patch = decode_message(encode_message(request));
+    ASSERT_FALSE(bad_patch.ok());
+    EXPECT_NE(bad_patch.error().find("BakeRequest.patch_size"), std::string::npos) << bad_patch.error();
 }
 
 // Every single-bit corruption of several frames either fails cleanly or yields

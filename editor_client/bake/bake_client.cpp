@@ -305,7 +305,8 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              .exact_pairing_limit = options.exact_pairing_limit,
                                              .environment_lights = options.environment_lights,
                                              // Only a bake with geometry has area lights to sample.
-                                             .area_lights = options.geometry ? options.area_lights : 0u};
+                                             .area_lights = options.geometry ? options.area_lights : 0u,
+                                             .indirect = options.indirect};
     session_options.environment = options.environment;
     session_options.geometry = options.geometry;
     session_options.on_progress = options.on_progress;

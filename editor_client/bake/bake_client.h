@@ -61,6 +61,7 @@ struct BakeClientOptions {
     // effect needs them, see surface_geometry.h's geometry_the_bake_needs).
     std::shared_ptr<const SceneGeometry> geometry;
     uint32_t area_lights = 0;  // area-light sample budget; 0: the server's default
+    IndirectRequest indirect;
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
     // accepts and never answers is given up on after this long.

@@ -52,7 +52,7 @@ void add_bake_command(CLI::App& app) {
 
         BakeClientOptions bake = options->bake.to_options();
         bake.keep_result_channel = !options->output.empty();
-        bake.geometry = geometry_the_bake_needs(*scene);
+        bake.geometry = geometry_the_bake_needs(*scene, bake.indirect.method);
         ProgressDisplay progress(stderr);
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {

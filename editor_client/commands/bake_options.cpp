@@ -45,6 +45,21 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     environment.add_to(cmd);
+    cmd.add_option("--indirect", indirect,
+                   "Bounced light baked into the tree: off, vpl (instant radiosity) or radiosity (patches)")
+        ->check(CLI::IsMember({"off", "vpl", "radiosity"}))
+        ->capture_default_str();
+    cmd.add_option("--bounces", indirect_request.bounces, "vpl: diffuse bounces that leave a light")
+        ->capture_default_str();
+    cmd.add_option("--vpl-count", indirect_request.vpl_count, "vpl: light paths traced (each leaves up to --bounces lights)")
+        ->capture_default_str();
+    cmd.add_option("--patch-size", indirect_request.patch_size, "radiosity: target patch edge, scene units")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    cmd.add_option("--tolerance", indirect_request.tolerance,
+                   "radiosity: stop when this fraction of the power is left unshot")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0f, 0.999f));
 }
 
 BakeClientOptions BakeFlags::to_options() const {
@@ -69,6 +84,10 @@ BakeClientOptions BakeFlags::to_options() const {
     options.connect_timeout_seconds = connect_timeout;
     options.environment = or_fail(environment.load());
     options.environment_lights = environment.lights.value_or(0);
+    static const std::map<std::string, IndirectMethod> methods = {
+        {"off", IndirectMethod::kOff}, {"vpl", IndirectMethod::kVpl}, {"radiosity", IndirectMethod::kRadiosity}};
+    options.indirect = indirect_request;
+    options.indirect.method = methods.at(indirect);
     return options;
 }
 

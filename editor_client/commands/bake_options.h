@@ -24,10 +24,13 @@ struct BakeFlags {
     std::string record_dir;
     double connect_timeout = 10.0;
     EnvironmentFlags environment;
+    std::string indirect = "off";
+    IndirectRequest indirect_request;
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
     // --pairing, --representative, --exact-limit, --seed, --area-lights, --record,
-    // --connect-timeout and the environment flags (environment_flags.h) to a subcommand.
+    // --connect-timeout, the environment flags (environment_flags.h) and the indirect
+    // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
     // Loads the environment, if any; a subcommand ends on a bad one (command_errors.h).

@@ -146,6 +146,10 @@ void draw_bake_panel(EditorSession& session, PanelState& state) {
         ImGui::ProgressBar(std::clamp(progress.percent / 100.0f, 0.0f, 1.0f), ImVec2(-FLT_MIN, 0), text);
         if (ImGui::Button("Cancel")) session.cancel_bake();
     } else {
+        const char* const methods[] = {"off", "VPL (instant radiosity)", "radiosity (patches)"};
+        int method = int(session.indirect());
+        if (ImGui::Combo("indirect light", &method, methods, IM_ARRAYSIZE(methods)))
+            session.set_indirect(IndirectMethod(method));
         ImGui::BeginDisabled(!session.has_server());
         if (ImGui::Button("Build lighting"))
             report(state, session.start_bake(),

@@ -9,6 +9,7 @@
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/light_edit.h"
+#include "editor_client/scene/surface_geometry.h"
 #include "editor_client/scene/scene_guid.h"
 #include "protocol/channel_records.h"
 
@@ -277,6 +278,7 @@ Status EditorSession::start_bake() {
             "no bake server: start the editor with --server HOST:PORT or "
             "--spawn-server");
     BakeClientOptions bake = options_.bake;
+    bake.geometry = geometry_the_bake_needs(scene_, bake.indirect.method);
     if (bake.spawn_server) {
         // One local server for the whole session, started at the first bake.
         if (!spawned_server_) {

@@ -97,6 +97,9 @@ public:
     bool has_server() const;
     // For the status line: "HOST:PORT", "local 127.0.0.1:PORT", or why there is none.
     std::string server_description() const;
+    // The bounced light the next bake adds (the bake panel's choice; --indirect).
+    IndirectMethod indirect() const { return options_.bake.indirect.method; }
+    void set_indirect(IndirectMethod method) { options_.bake.indirect.method = method; }
     // Starts a bake of the current lights in the background.
     Status start_bake();
     void cancel_bake();

@@ -22,7 +22,7 @@ Result<std::shared_ptr<const LightTree>> obtain_tree(const Scene& scene, const T
     }
     if (source.bake) {
         BakeClientOptions bake = *source.bake;
-        bake.geometry = geometry_the_bake_needs(scene);
+        bake.geometry = geometry_the_bake_needs(scene, bake.indirect.method);
         Status imported = store.import(bake_lights(scene.lights, scene.guid, bake));
         if (!imported) return make_error("bake failed: " + imported.error());
         return store.current();

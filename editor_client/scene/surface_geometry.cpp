@@ -129,9 +129,9 @@ size_t emissive_triangle_count(const SceneGeometry& geometry) {
 
 bool emits_power(const SceneGeometry& geometry) { return emissive_triangle_count(geometry) > 0; }
 
-std::shared_ptr<const SceneGeometry> geometry_the_bake_needs(const Scene& scene) {
+std::shared_ptr<const SceneGeometry> geometry_the_bake_needs(const Scene& scene, IndirectMethod indirect) {
     SceneGeometry geometry = extract_surface_geometry(scene);
-    if (!emits_power(geometry)) return nullptr;
+    if (!emits_power(geometry) && indirect == IndirectMethod::kOff) return nullptr;
     return std::make_shared<const SceneGeometry>(std::move(geometry));
 }
 

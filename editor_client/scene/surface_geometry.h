@@ -8,6 +8,7 @@
 
 #include "lightcuts/scene.h"
 #include "lightcuts/scene_geometry.h"
+#include "protocol/messages.h"
 
 namespace lc::client {
 
@@ -23,7 +24,9 @@ bool emits_power(const SceneGeometry& geometry);
 size_t emissive_triangle_count(const SceneGeometry& geometry);
 
 // The geometry a bake of `scene` must send, or null when no effect needs it
-// (today: no drawn triangle emits power), so such a bake sends what it always did.
-std::shared_ptr<const SceneGeometry> geometry_the_bake_needs(const Scene& scene);
+// (no drawn triangle emits power and no indirect light is asked for), so such
+// a bake sends what it always did.
+std::shared_ptr<const SceneGeometry> geometry_the_bake_needs(const Scene& scene,
+                                                             IndirectMethod indirect = IndirectMethod::kOff);
 
 }  // namespace lc::client

@@ -17,7 +17,10 @@ constexpr uint64_t kBusyWorkgroups = 64;
 // per-pixel scratch holds (RenderTargets sizes it for small images), at most
 // one per leaf; 1 on images with workgroups enough.
 uint32_t reference_parts(const Frame& frame) {
-    const uint64_t groups = uint64_t(frame.groups_x()) * frame.groups_y();
+    const uint64_t size = frame.workgroup_size;
+    uint64_t groups = 0;
+    for (const PixelRegion& r : frame.regions) groups += ((r.width + size - 1) / size) * ((r.height + size - 1) / size);
+    groups = std::max<uint64_t>(groups, 1);
     const uint64_t pixels = uint64_t(frame.targets->width) * frame.targets->height;
     const uint64_t scratch = frame.targets->walk_states.size() / sizeof(GpuWalkState);
     const uint64_t parts = std::min({(kBusyWorkgroups + groups - 1) / groups, scratch / pixels,
@@ -29,7 +32,10 @@ void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, const GpuFrameCons
                      uint32_t layers) {
     vkCmdPushConstants(cmd, frame.compute_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                        &constants);
-    vkCmdDispatch(cmd, frame.groups_x(), frame.groups_y(), layers);
+    const uint32_t size = frame.workgroup_size;
+    for (const PixelRegion& r : frame.regions)
+        vkCmdDispatchBase(cmd, r.x / size, r.y / size, 0, (r.width + size - 1) / size,
+                          (r.height + size - 1) / size, layers);
 }
 
 }  // namespace

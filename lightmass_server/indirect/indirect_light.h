@@ -1,0 +1,22 @@
+#pragma once
+// What both indirect solvers produce: bounced light as oriented cosine
+// emitters, independent of how the light tree spells them. The bake turns
+// each into a tree light marked "indirect"; the tests read them directly.
+#include <glm/vec3.hpp>
+
+#include <numbers>
+
+namespace lc::bake {
+
+struct IndirectLight {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};  // unit; the emitter lights its front half-space
+    glm::vec3 power{0.0f};               // radiant flux leaving the point, linear RGB (W)
+};
+
+// A cosine emitter of power P has radiant intensity I(theta) = (P / pi) cos(theta).
+inline glm::vec3 intensity_along_normal(const IndirectLight& light) {
+    return light.power / std::numbers::pi_v<float>;
+}
+
+}  // namespace lc::bake

@@ -1,0 +1,30 @@
+#pragma once
+// The radiosity solver's patches: the scene's triangles, each split into k^2
+// similar triangles (k = ceil(longest edge / target size)).
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
+
+namespace lc::bake {
+
+struct Patch {
+    glm::vec3 vertices[3]{};
+    glm::vec3 centre{0.0f};
+    glm::vec3 normal{0.0f};  // the front side, unit
+    float area = 0.0f;
+    uint32_t triangle = 0;   // the scene triangle it came from
+};
+
+struct PatchMesh {
+    std::vector<Patch> patches;
+    size_t skipped_degenerate = 0;  // triangles with no area make no patch
+};
+
+// Fails, naming the count, when the patches would exceed `max_patches`.
+Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches);
+
+}  // namespace lc::bake

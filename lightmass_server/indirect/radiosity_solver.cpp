@@ -1,0 +1,227 @@
+#include "lightmass_server/indirect/radiosity_solver.h"
+
+#include <tbb/parallel_for.h>
+
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+
+#include "lightcuts/shading_model.h"
+#include "lightmass_server/indirect/photon_emitters.h"
+#include "lightmass_server/indirect/point_polygon_form_factor.h"
+#include "lightmass_server/indirect/surface_sampling.h"
+
+namespace lc::bake {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// Progress at least this often, in steps, besides every whole percent.
+constexpr uint64_t kProgressSteps = 256;
+// Visibility segments stop short of their end point, which sits on the shooter.
+constexpr float kSegmentEnd = 1.0f - 1e-4f;
+
+double mean(glm::dvec3 v) { return (v.x + v.y + v.z) / 3.0; }
+
+shading::Emitter emitter_for(const SceneLight& light) {
+    shading::Emitter e{};
+    e.directional = light.type == LightType::kDirectional;
+    e.spot = light.type == LightType::kSpot;
+    e.oriented = light.type == LightType::kOriented;
+    e.position = glm::dvec3(light.position);
+    e.direction = glm::dvec3(light.direction);
+    e.range = light.range;
+    e.cos_outer = std::cos(double(light.outer_cone_angle));
+    e.spot_scale = shading::spot_scale(std::cos(double(light.inner_cone_angle)), e.cos_outer);
+    return e;
+}
+
+// Points on the shooter the visibility rays aim at: its centre, or the
+// centres of its four midpoint triangles.
+int visibility_targets(const Patch& p, uint32_t samples, float epsilon, glm::vec3 (&out)[4]) {
+    glm::vec3 offset = p.normal * epsilon;
+    if (samples < 4) {
+        out[0] = p.centre + offset;
+        return 1;
+    }
+    const glm::vec3 (&v)[3] = p.vertices;
+    glm::vec3 m01 = 0.5f * (v[0] + v[1]), m12 = 0.5f * (v[1] + v[2]), m20 = 0.5f * (v[2] + v[0]);
+    out[0] = (v[0] + m01 + m20) / 3.0f + offset;
+    out[1] = (m01 + v[1] + m12) / 3.0f + offset;
+    out[2] = (m20 + m12 + v[2]) / 3.0f + offset;
+    out[3] = (m01 + m12 + m20) / 3.0f + offset;
+    return 4;
+}
+
+class Solver {
+public:
+    Solver(const SceneGeometry& geometry, const RayCaster& caster, const RadiosityOptions& options,
+           RadiosityResult& result)
+        : caster_(caster), options_(options), result_(result), patches_(result.mesh.patches) {
+        epsilon_ = ray_epsilon(scene_bounds(geometry).extent());
+        size_t n = patches_.size();
+        radiosity_.resize(n);
+        unshot_.resize(n);
+        albedo_.resize(n);
+        emission_.resize(n);
+        for (size_t j = 0; j < n; ++j) {
+            const SurfaceTriangle& t = geometry.triangles[patches_[j].triangle];
+            if (t.material >= geometry.materials.size()) continue;
+            const SurfaceMaterial& m = geometry.materials[t.material];
+            albedo_[j] = glm::dvec3(diffuse_albedo(m));
+            // A Lambertian emitter of radiance L_e has radiosity pi L_e.
+            emission_[j] = kPi * glm::dvec3(m.emission);
+            radiosity_[j] = unshot_[j] = emission_[j];
+        }
+    }
+
+    // Direct light of a punctual light: E = I G V at each patch centre, reflected at once.
+    void shoot_punctual(const SceneLight& light) {
+        shading::Emitter e = emitter_for(light);
+        glm::dvec3 radiant = glm::dvec3(light.color) * double(light.intensity);
+        tbb::parallel_for(size_t(0), patches_.size(), [&](size_t j) {
+            const Patch& p = patches_[j];
+            glm::dvec3 l;
+            double g = shading::light_geometry(e, glm::dvec3(p.centre), glm::dvec3(p.normal), l);
+            if (!(g > 0.0)) return;
+            glm::vec3 origin = p.centre + p.normal * epsilon_;
+            bool blocked = light.type == LightType::kDirectional
+                               ? caster_.occluded(origin, glm::vec3(l), 0.0f, std::numeric_limits<float>::infinity())
+                               : caster_.occluded(origin, light.position - origin, 0.0f, kSegmentEnd);
+            if (blocked) return;
+            receive(j, albedo_[j] * radiant * g);
+        });
+    }
+
+    double unshot_power() const {
+        double sum = 0.0;
+        for (size_t j = 0; j < patches_.size(); ++j) sum += mean(unshot_[j]) * double(patches_[j].area);
+        return sum;
+    }
+
+    size_t brightest_unshot() const {
+        size_t best = 0;
+        double best_power = -1.0;
+        for (size_t j = 0; j < patches_.size(); ++j) {
+            double power = mean(unshot_[j]) * double(patches_[j].area);
+            if (power > best_power) best_power = power, best = j;
+        }
+        return best;
+    }
+
+    // Patch i gives its unshot radiosity dB to every patch j that sees it:
+    // B_j += rho_j dB F_ji, with F_ji = F(dA_j -> A_i) x visible fraction.
+    void shoot(size_t i) {
+        glm::dvec3 delta = unshot_[i];
+        unshot_[i] = glm::dvec3(0.0);
+        const Patch& shooter = patches_[i];
+        glm::dvec3 corners[3] = {glm::dvec3(shooter.vertices[0]), glm::dvec3(shooter.vertices[1]),
+                                 glm::dvec3(shooter.vertices[2])};
+        glm::vec3 targets[4];
+        int target_count = visibility_targets(shooter, options_.visibility_samples, epsilon_, targets);
+        tbb::parallel_for(size_t(0), patches_.size(), [&](size_t j) {
+            if (j == i || !(mean(albedo_[j]) > 0.0)) return;
+            const Patch& p = patches_[j];
+            // Only the shooter's front side emits.
+            if (!(glm::dot(shooter.normal, p.centre - shooter.centre) > 0.0f)) return;
+            double f = point_triangle_form_factor(glm::dvec3(p.centre), glm::dvec3(p.normal), corners);
+            if (!(f > 0.0)) return;
+            glm::vec3 origin = p.centre + p.normal * epsilon_;
+            int visible = 0;
+            for (int k = 0; k < target_count; ++k) {
+                if (!caster_.occluded(origin, targets[k] - origin, 0.0f, kSegmentEnd)) ++visible;
+            }
+            if (visible > 0) receive(j, albedo_[j] * delta * (f * visible / target_count));
+        });
+    }
+
+    void finish() {
+        result_.radiosity.resize(patches_.size());
+        result_.emission.resize(patches_.size());
+        for (size_t j = 0; j < patches_.size(); ++j) {
+            const Patch& p = patches_[j];
+            result_.radiosity[j] = glm::vec3(radiosity_[j]);
+            result_.emission[j] = glm::vec3(emission_[j]);
+            glm::dvec3 reflected = radiosity_[j] - emission_[j];
+            if (!(mean(reflected) > 0.0)) continue;
+            // Just off the surface, so the renderer's shadow rays leave it.
+            result_.lights.push_back({p.centre + p.normal * epsilon_, p.normal,
+                                      glm::vec3(reflected * double(p.area))});
+        }
+    }
+
+private:
+    void receive(size_t j, glm::dvec3 reflected) {
+        radiosity_[j] += reflected;
+        unshot_[j] += reflected;
+    }
+
+    const RayCaster& caster_;
+    const RadiosityOptions& options_;
+    RadiosityResult& result_;
+    const std::vector<Patch>& patches_;
+    float epsilon_ = 0.0f;
+    std::vector<glm::dvec3> radiosity_, unshot_, albedo_, emission_;
+};
+
+std::string percent_text(double fraction) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g%%", 100.0 * fraction);
+    return text;
+}
+
+}  // namespace
+
+Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const RayCaster& caster,
+                                        std::span<const SceneLight> lights, const RadiosityOptions& options,
+                                        const ProgressFn& progress) {
+    if (!(options.tolerance >= 0.0 && options.tolerance < 1.0)) {
+        return make_error("radiosity tolerance must be in [0, 1), got " + std::to_string(options.tolerance));
+    }
+    auto start = std::chrono::steady_clock::now();
+    auto seconds = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    RadiosityResult result;
+    auto mesh = make_patches(geometry, options.patch_size, options.max_patches);
+    if (!mesh.ok()) return mesh.failure();
+    result.mesh = std::move(mesh).value();
+    Solver solver(geometry, caster, options, result);
+    for (const SceneLight& light : lights) solver.shoot_punctual(light);
+
+    double total = solver.unshot_power();
+    double unshot = total;
+    double reported = -1.0;
+    while (total > 0.0) {
+        double shot = std::clamp(1.0 - unshot / total, 0.0, 1.0);
+        if (std::floor(100.0 * shot) > std::floor(100.0 * reported) || result.steps % kProgressSteps == 0) {
+            reported = std::max(reported, shot);
+            result.convergence.push_back({result.steps, seconds(), shot});
+            if (progress && !progress("radiosity", 100.0 * reported)) {
+                return make_error("radiosity cancelled", ErrorKind::kCancelled);
+            }
+        }
+        if (unshot <= options.tolerance * total) break;
+        if (result.steps >= options.max_steps) {
+            result.converged = false;
+            result.message = "radiosity stopped after its budget of " + std::to_string(options.max_steps) +
+                             " steps with " + percent_text(unshot / total) + " of the power unshot (tolerance " +
+                             percent_text(options.tolerance) +
+                             "); the indirect light is too dark by about that much: raise the step budget or the "
+                             "tolerance, or lower the reflectances";
+            break;
+        }
+        solver.shoot(solver.brightest_unshot());
+        ++result.steps;
+        unshot = solver.unshot_power();
+    }
+    result.unshot_fraction = total > 0.0 ? unshot / total : 0.0;
+    result.convergence.push_back({result.steps, seconds(), 1.0 - result.unshot_fraction});
+    solver.finish();
+    return result;
+}
+
+}  // namespace lc::bake

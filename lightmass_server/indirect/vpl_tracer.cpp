@@ -1,0 +1,91 @@
+#include "lightmass_server/indirect/vpl_tracer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "lightcuts/seeded_mixer.h"
+#include "lightcuts/shading_model.h"
+#include "lightmass_server/indirect/photon_emitters.h"
+#include "lightmass_server/indirect/surface_sampling.h"
+
+namespace lc::bake {
+namespace {
+
+// Particles per task; the tasks of one batch run in parallel, batches in order
+// so progress and cancellation are checked between them.
+constexpr uint64_t kParticlesPerTask = 1024;
+constexpr uint64_t kTasksPerBatch = 64;
+
+// Follows one particle, appending the lights it deposits.
+void trace_particle(const SceneGeometry& geometry, const RayCaster& caster, const PhotonEmitters& emitters,
+                    const VplOptions& options, float epsilon, uint64_t index, std::vector<IndirectLight>& out) {
+    SplitMix64 rng(mix64(options.seed ^ mix64(index + 1)));
+    double u[5];
+    for (double& x : u) x = rng.uniform();
+    Photon photon = emitters.sample(u, options.particle_count);
+    glm::vec3 origin = photon.origin;
+    glm::vec3 direction = photon.direction;
+    glm::vec3 flux = photon.flux;
+    for (uint32_t bounce = 1; bounce <= options.bounces; ++bounce) {
+        auto hit = caster.intersect(origin, direction, 0.0f, std::numeric_limits<float>::infinity());
+        if (!hit) return;
+        if (bounce == 1 && photon.range > 0.0f) {
+            flux *= float(shading::range_window(double(hit->distance), double(photon.range)));
+        }
+        const SurfaceTriangle& t = geometry.triangles[hit->triangle];
+        glm::vec3 n = front_normal(t);
+        if (glm::dot(n, direction) >= 0.0f) return;
+        glm::vec3 albedo =
+            t.material < geometry.materials.size() ? diffuse_albedo(geometry.materials[t.material]) : glm::vec3(0.0f);
+        glm::vec3 reflected = flux * albedo;
+        glm::vec3 position = origin + direction * hit->distance;
+        if (reflected.x + reflected.y + reflected.z > 0.0f) out.push_back({position, n, reflected});
+        // Russian roulette on the albedo's largest channel keeps each path's weight bounded.
+        float survive = std::min(1.0f, std::max({albedo.x, albedo.y, albedo.z}));
+        if (bounce == options.bounces || !(rng.uniform() < double(survive))) return;
+        flux = reflected / survive;
+        origin = position + n * epsilon;
+        direction = glm::normalize(to_world(tangent_frame(n), cosine_hemisphere(rng.uniform(), rng.uniform())));
+    }
+}
+
+}  // namespace
+
+Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& caster,
+                             std::span<const SceneLight> lights, const VplOptions& options,
+                             const ProgressFn& progress) {
+    VplResult result;
+    PhotonEmitters emitters(geometry, lights);
+    if (emitters.empty() || options.particle_count == 0 || options.bounces == 0) return result;
+    result.particles = options.particle_count;
+    result.emitted_power = emitters.total_power();
+    float epsilon = ray_epsilon(scene_bounds(geometry).extent());
+
+    uint64_t task_count = (options.particle_count + kParticlesPerTask - 1) / kParticlesPerTask;
+    std::vector<std::vector<IndirectLight>> per_task(std::min(task_count, kTasksPerBatch));
+    for (uint64_t first = 0; first < task_count; first += kTasksPerBatch) {
+        uint64_t batch = std::min(kTasksPerBatch, task_count - first);
+        tbb::parallel_for(uint64_t(0), batch, [&](uint64_t k) {
+            std::vector<IndirectLight>& out = per_task[k];
+            out.clear();
+            uint64_t begin = (first + k) * kParticlesPerTask;
+            uint64_t end = std::min(options.particle_count, begin + kParticlesPerTask);
+            for (uint64_t i = begin; i < end; ++i) trace_particle(geometry, caster, emitters, options, epsilon, i, out);
+        });
+        for (uint64_t k = 0; k < batch; ++k) {
+            result.lights.insert(result.lights.end(), per_task[k].begin(), per_task[k].end());
+        }
+        double percent = 100.0 * double(first + batch) / double(task_count);
+        if (progress && !progress("indirect", percent)) {
+            return make_error("indirect light tracing cancelled", ErrorKind::kCancelled);
+        }
+    }
+    return result;
+}
+
+}  // namespace lc::bake

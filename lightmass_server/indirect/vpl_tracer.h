@@ -1,0 +1,40 @@
+#pragma once
+// Instant radiosity (Keller 1997; the Lightcuts paper, section 3): particles
+// leave the scene's lights in proportion to power, are traced through the
+// scene's surfaces, and leave an indirect light at every diffuse hit.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "lightcuts/result.h"
+#include "lightcuts/scene_geometry.h"
+#include "lightcuts/scene_light.h"
+#include "lightmass_server/indirect/indirect_light.h"
+#include "lightmass_server/raycast/ray_caster.h"
+#include "lightmass_server/tree_builder.h"
+
+namespace lc::bake {
+
+struct VplOptions {
+    uint64_t particle_count = 100000;  // light paths; each leaves up to `bounces` lights
+    uint32_t bounces = 1;              // diffuse hits that deposit a light
+    uint64_t seed = 0;
+};
+
+struct VplResult {
+    // In particle order, then bounce order: the same bytes at any thread count.
+    std::vector<IndirectLight> lights;
+    uint64_t particles = 0;
+    glm::dvec3 emitted_power{0.0};  // what the particles left the lights with
+};
+
+// Each particle draws from its own counter-based stream (seed, particle index).
+// Surfaces reflect from their front side (the side their normals face), like
+// radiosity patches; a particle that reaches a back face is absorbed.
+// Progress: stage "indirect", percent of particles traced; cancelling (the
+// callback returns false) gives an error of kind ErrorKind::kCancelled.
+Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& caster,
+                             std::span<const SceneLight> lights, const VplOptions& options,
+                             const ProgressFn& progress);
+
+}  // namespace lc::bake
