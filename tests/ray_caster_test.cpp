@@ -2,6 +2,8 @@
 // and a closed box that no ray from inside may escape.
 #include "lightmass_server/raycast/ray_caster.h"
 
+#include "indirect_scenes.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -11,36 +13,12 @@
 namespace lc {
 namespace {
 
-SurfaceTriangle triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material = 0) {
-    SurfaceTriangle t;
-    t.positions[0] = a;
-    t.positions[1] = b;
-    t.positions[2] = c;
-    glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-    t.normals[0] = t.normals[1] = t.normals[2] = n;
-    t.material = material;
-    return t;
-}
+SurfaceTriangle triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) { return test::flat_triangle(a, b, c, 0); }
 
 // The unit square at height y, facing down, as two triangles.
 void add_ceiling(SceneGeometry& g, float y) {
     g.triangles.push_back(triangle({0, y, 0}, {1, y, 0}, {1, y, 1}));
     g.triangles.push_back(triangle({0, y, 0}, {1, y, 1}, {0, y, 1}));
-}
-
-// An axis-aligned box [0,1]^3 of 12 triangles.
-SceneGeometry closed_box() {
-    SceneGeometry g;
-    g.materials.push_back({});
-    glm::vec3 c[8];
-    for (int i = 0; i < 8; ++i) c[i] = glm::vec3(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-    const int faces[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
-                             {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
-    for (const auto& f : faces) {
-        g.triangles.push_back(triangle(c[f[0]], c[f[1]], c[f[2]]));
-        g.triangles.push_back(triangle(c[f[0]], c[f[2]], c[f[3]]));
-    }
-    return g;
 }
 
 TEST(RayCaster, HitsTheNearestTriangleAndReportsItsIndex) {
@@ -105,7 +83,7 @@ TEST(RayCaster, OnlyDegenerateTrianglesGiveACasterThatHitsNothing) {
 }
 
 TEST(RayCaster, NoRayEscapesAClosedBox) {
-    auto caster = RayCaster::build(closed_box());
+    auto caster = RayCaster::build(test::closed_box(SurfaceMaterial{}));
     ASSERT_TRUE(caster.ok());
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
