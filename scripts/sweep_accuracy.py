@@ -295,14 +295,29 @@ def cornell_scene(runner, shared_dir, count):
     return Scene(name, path, count, ["--camera", CORNELL_CAMERA], ["--allow-external-resources"])
 
 
-def lamp_scene(shared_dir):
-    path = os.path.join(shared_dir, "LightsPunctualLamp", "LightsPunctualLamp.gltf")
-    if not os.path.exists(path):
+def lamp_scene(runner, shared_dir):
+    """The lamp's five punctual lights. Its bulb is emissive, and a bake would sample
+    that into area lights of the tree; the sweep measures the punctual-light tree (area
+    lights have their own benchmark, scripts/bench-area-lights.sh), so it bakes and
+    renders a copy whose materials emit nothing, its resources read from ../shared."""
+    source = os.path.join(shared_dir, "LightsPunctualLamp", "LightsPunctualLamp.gltf")
+    if not os.path.exists(source):
         return None
-    with open(path, encoding="utf-8") as f:
+    with open(source, encoding="utf-8") as f:
         gltf = json.load(f)
     lights = len(gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", []))
-    return Scene("LightsPunctualLamp", path, lights, [])
+    path = runner.path("LightsPunctualLamp_no_emission.gltf")
+    here, there = os.path.dirname(os.path.abspath(path)), os.path.dirname(os.path.abspath(source))
+    for material in gltf.get("materials", []):
+        material.pop("emissiveFactor", None)
+        material.pop("emissiveTexture", None)
+        material.get("extensions", {}).pop("KHR_materials_emissive_strength", None)
+    for resource in gltf.get("buffers", []) + gltf.get("images", []):
+        if "uri" in resource and not resource["uri"].startswith("data:"):
+            resource["uri"] = os.path.relpath(os.path.join(there, resource["uri"]), here)
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(gltf, f)
+    return Scene("LightsPunctualLamp", path, lights, [], ["--allow-external-resources"])
 
 
 def fmt(value):
@@ -528,7 +543,7 @@ class Sweep:
         if not os.path.isdir(self.shared_dir):
             say("shared scenes absent (%s): group 'shared' skipped" % self.shared_dir)
         cornell = cornell_scene(self.runner, self.shared_dir, p.shared_lights)
-        lamp = lamp_scene(self.shared_dir)
+        lamp = lamp_scene(self.runner, self.shared_dir)
         for name, scene in (("cornell_box", cornell), ("LightsPunctualLamp", lamp)):
             if scene is None:
                 say("shared scene %s absent: skipped" % name)

@@ -167,9 +167,11 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         plural(glossy_materials, "drawn material") + " with roughness below 1" +
             (glossy_texture ? " or a metallic-roughness texture" : ""),
         "every drawn material has roughness 1, where the lobe is constant and shades as Lambert");
-    // Effects the renderer does not simulate yet, stated so nobody assumes them.
-    decide("indirect lighting (virtual point lights)", false, "",
-           "not implemented yet: direct lighting only");
+    // Bounced light is the server's (bake --indirect): stated so nobody looks for it here.
+    decide("indirect lighting in the renderer", false, "",
+           "the renderer traces no bounce of its own: bounced light is baked on the server "
+           "(bake --indirect vpl|radiosity) into oriented lights of the tree, counted with the "
+           "oriented lights above");
     return effects;
 }
 

@@ -2,7 +2,9 @@
 //   OUT/messages, OUT/frames: one encoded message of every kind, as a frame
 //       body and as a framed stream (the recorded channels carry no frames);
 //   OUT/scene, OUT/result: the payloads of the scene and result channel dumps
-//       under DATA/replay, behind the byte that picks the fuzzers' piece size.
+//       under DATA/replay, behind the byte that picks the fuzzers' piece size;
+//   OUT/geometry, OUT/environment: small geometry and environment channels
+//       (a lit box, a 4 x 2 map, a sun and sky), behind the same byte.
 // The dumps and glTF files themselves are seeds as they are (scripts/fuzz.sh).
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +14,8 @@
 
 #include "protocol/codec.h"
 #include "protocol/dump.h"
+#include "protocol/environment_records.h"
+#include "protocol/geometry_channel.h"
 #include "protocol/frame_decoder.h"
 
 namespace {
@@ -65,6 +69,55 @@ int write_channel_seeds(const std::filesystem::path& data, const std::filesystem
     return 0;
 }
 
+namespace {
+
+void write_behind_piece_bytes(const std::filesystem::path& dir, const std::vector<uint8_t>& payload, int& index) {
+    std::filesystem::create_directories(dir);
+    for (uint8_t piece : {uint8_t(3), uint8_t(37)}) {
+        std::vector<uint8_t> seed = {piece};
+        seed.insert(seed.end(), payload.begin(), payload.end());
+        write(dir / std::to_string(index++), seed);
+    }
+}
+
+// A quad lit by an emissive triangle, one degenerate triangle among them.
+lc::SceneGeometry sample_geometry() {
+    lc::SceneGeometry g;
+    g.materials.push_back({glm::vec3(0.73f), glm::vec3(0.0f), 0.0f, 1.0f});
+    g.materials.push_back({glm::vec3(0.5f), glm::vec3(4.0f, 3.0f, 2.0f), 0.0f, 0.5f});
+    auto triangle = [](glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material) {
+        lc::SurfaceTriangle t;
+        t.positions[0] = a;
+        t.positions[1] = b;
+        t.positions[2] = c;
+        t.normals[0] = t.normals[1] = t.normals[2] = glm::vec3(0, 1, 0);
+        t.material = material;
+        return t;
+    };
+    g.triangles.push_back(triangle({0, 0, 0}, {1, 0, 1}, {1, 0, 0}, 0));
+    g.triangles.push_back(triangle({0, 0, 0}, {0, 0, 1}, {1, 0, 1}, 0));
+    g.triangles.push_back(triangle({0.2f, 1, 0.2f}, {0.8f, 1, 0.2f}, {0.5f, 1, 0.8f}, 1));
+    return g;
+}
+
+void write_surface_seeds(const std::filesystem::path& out) {
+    int index = 0;
+    write_behind_piece_bytes(out / "geometry", lc::encode_geometry_channel(sample_geometry()), index);
+    write_behind_piece_bytes(out / "geometry", lc::encode_geometry_channel(lc::SceneGeometry{}), index);
+    lc::Environment map;
+    map.map.width = 4;
+    map.map.height = 2;
+    for (int i = 0; i < 8; ++i) map.map.texels.push_back(glm::vec3(float(i), 1.0f, 0.5f));
+    map.intensity = 2.0f;
+    map.rotation_deg = 30.0f;
+    write_behind_piece_bytes(out / "environment", lc::encode_environment_channel(map), index);
+    lc::Environment sky;
+    sky.sky = lc::SkyParameters{30.0f, 40.0f, 3.0f};
+    write_behind_piece_bytes(out / "environment", lc::encode_environment_channel(sky), index);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     if (argc != 3) {
         std::fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
@@ -72,6 +125,7 @@ int main(int argc, char** argv) {
     }
     const std::filesystem::path dir = argv[2];
     if (write_channel_seeds(argv[1], dir) != 0) return 1;
+    write_surface_seeds(dir);
     std::filesystem::create_directories(dir / "messages");
     std::filesystem::create_directories(dir / "frames");
     std::vector<uint8_t> stream = {0};  // frame_decoder_fuzz: first byte is the piece size
