@@ -17,8 +17,10 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     };
     std::vector<std::string> effects;
     std::vector<std::string> warnings;
-    std::span<const SceneLight> lights = *inputs.lights;
-    std::vector<SceneLight> with_area_lights;
+    // What the stages add to the scene's lights, in the tree's input order:
+    // area samples, the sky's lights, the bounces. Copied beside the scene's
+    // lights once, at the end, and only when there is any.
+    std::vector<SceneLight> added;
     std::optional<RayCaster> caster;
     if (inputs.geometry) {
         if (!report("ray caster", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
@@ -39,10 +41,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
             effects.push_back("area lights: simulated (" +
                               std::to_string(sampled->emissive_triangles) + " emissive triangles, " +
                               std::to_string(sampled->lights.size()) + " samples)");
-            with_area_lights.assign(lights.begin(), lights.end());
-            with_area_lights.insert(with_area_lights.end(), sampled->lights.begin(),
-                                    sampled->lights.end());
-            lights = with_area_lights;
+            added = std::move(sampled->lights);
         }
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
@@ -62,14 +61,14 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     // Photons leave the emissive triangles themselves, so the scene's own
     // lights and the sky's go in, not the area-light samples.
     std::vector<SceneLight> photon_sources;
-    if (!environment_lights.empty()) {
+    if (!environment_lights.empty() && inputs.indirect.method != IndirectMethod::kOff) {
         photon_sources = *inputs.lights;
         photon_sources.insert(photon_sources.end(), environment_lights.begin(), environment_lights.end());
     }
     const SceneGeometry no_geometry;
     Result<IndirectStageResult> indirect =
         run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
-                           environment_lights.empty() ? *inputs.lights : photon_sources, inputs.indirect,
+                           photon_sources.empty() ? *inputs.lights : photon_sources, inputs.indirect,
                            progress);
     if (!indirect) return indirect.failure();
     effects.push_back("indirect: " + indirect->census);
@@ -79,16 +78,18 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     }
     warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
     if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
-    std::vector<SceneLight> with_more;
-    if (!environment_lights.empty() || !indirect->lights.empty()) {
-        with_more.assign(lights.begin(), lights.end());
-        with_more.insert(with_more.end(), environment_lights.begin(), environment_lights.end());
-        std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
-        with_more.insert(with_more.end(), bounced.begin(), bounced.end());
-        lights = with_more;
-    }
+    added.insert(added.end(), environment_lights.begin(), environment_lights.end());
+    const std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
+    added.insert(added.end(), bounced.begin(), bounced.end());
 
-    Result<BuildResult> built = build_light_tree(lights, inputs.build, progress);
+    std::vector<SceneLight> all_lights;
+    if (!added.empty()) {
+        all_lights.reserve(inputs.lights->size() + added.size());
+        all_lights = *inputs.lights;
+        all_lights.insert(all_lights.end(), added.begin(), added.end());
+    }
+    Result<BuildResult> built =
+        build_light_tree(added.empty() ? *inputs.lights : all_lights, inputs.build, progress);
     if (!built) return built;
     built->report.effects = std::move(effects);
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());
