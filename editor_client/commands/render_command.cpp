@@ -183,9 +183,10 @@ void run_render(const RenderOptions& options) {
     // A bake loaded it already; a tree from a dump was baked with it.
     if (std::shared_ptr<const Environment> environment =
             source.bake ? source.bake->environment : or_fail(options.bake.environment.load())) {
-        size_t scene_tree_lights = 0;
-        for (const SceneLight& light : scene.lights) scene_tree_lights += !light.classic;
-        sky_decision = environment_decision(*environment, tree.get(), scene_tree_lights);
+        size_t scene_directional_lights = 0;
+        for (const SceneLight& light : scene.lights)
+            scene_directional_lights += !light.classic && light.type == LightType::kDirectional;
+        sky_decision = environment_decision(*environment, tree.get(), scene_directional_lights);
         decisions.push_back(*sky_decision);
     }
     for (const EffectDecision& d : decisions)

@@ -9,9 +9,10 @@
 
 namespace lc::client {
 
-// `tree`: the baked tree (null without a tree source); `scene_tree_lights`: the
-// scene's own lights in it (its non-classic lights), the rest came from the sky.
+// `tree`: the baked tree (null without a tree source); `scene_directional_lights`:
+// the scene's own directional lights in it (non-classic); the tree's other
+// directional leaves came from the sky.
 EffectDecision environment_decision(const Environment& environment, const LightTree* tree,
-                                    size_t scene_tree_lights);
+                                    size_t scene_directional_lights);
 
 }  // namespace lc::client
