@@ -20,13 +20,19 @@ work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 export LC_VALIDATION=0  # the benchmark measures the programs, not the validation layers
 
-# One scene for every render case, made and baked by the "before" build so
-# that both builds render the same bytes.
+# One scene for every render case, made by the "before" build so that both
+# builds render the same bytes.
 "$before/editor_client" make-scene furnished-room -o "$work/room.gltf" >/dev/null
 "$before/editor_client" add-lights "$work/room.gltf" --count 4096 --layout random --type point \
   --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity 0.2 --range 0 --seed 7 -o "$work/lit.gltf" >/dev/null
-"$before/editor_client" bake "$work/lit.gltf" --spawn-server --builder agglomerative \
-  -o "$work/lit.lcut" >/dev/null
+# Each build bakes its own copy of the tree: a dump carries its build's schema hash,
+# and a build refuses another schema's dump (the trees' payloads are the same).
+for build in before after; do
+  bin=$before
+  [[ $build == after ]] && bin=$after
+  "$bin/editor_client" bake "$work/lit.gltf" --spawn-server --builder agglomerative \
+    -o "$work/lit.$build.lcut" >/dev/null
+done
 
 row() { echo "$1,$2,$3,$4,$5" >>"$work/rows.csv"; }
 
@@ -48,7 +54,7 @@ PY
 render_case() {  # case build round binary extra-args...
   local case=$1 build=$2 rnd=$3 bin=$4
   shift 4
-  "$bin/editor_client" render "$work/lit.gltf" --tree "$work/lit.lcut" --size 128x128 \
+  "$bin/editor_client" render "$work/lit.gltf" --tree "$work/lit.$build.lcut" --size 128x128 \
     --exposure 0.03 -o "$work/$case.$build.png" --stats "$work/s.json" "$@" >/dev/null 2>&1
   python3 - "$work/s.json" "$case" "$build" "$rnd" >>"$work/rows.csv" <<'PY'
 import json, sys
