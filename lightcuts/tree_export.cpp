@@ -115,13 +115,19 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const Para
     order.push_back(uint32_t(root));
     node_depth.push_back(0);
     exported_index[size_t(root)] = 0;
+    // Leaves sit first in the arena, one per light (build_tree.h): a leaf is
+    // known by its index, so the walk reads only the clusters.
+    const auto is_leaf_index = [&](uint32_t index) { return index < arena.lights.size(); };
     for (size_t head = 0; head < order.size(); ++head) {
-        if (head + kPrefetchAhead < order.size()) {
+        if (head + kPrefetchAhead < order.size() && !is_leaf_index(order[head + kPrefetchAhead])) {
             __builtin_prefetch(&arena.nodes[order[head + kPrefetchAhead]]);
         }
-        const BuildNode& node = arena.nodes[order[head]];
         result.depth = std::max(result.depth, node_depth[head]);
-        if (node.is_leaf()) ++result.tree.leaf_count;
+        if (is_leaf_index(order[head])) {
+            ++result.tree.leaf_count;
+            continue;
+        }
+        const BuildNode& node = arena.nodes[order[head]];
         for (const int32_t child : {node.left, node.right}) {
             if (child == kNoBuildChild) continue;
             exported_index[size_t(child)] = int32_t(order.size());

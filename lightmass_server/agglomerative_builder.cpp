@@ -2,12 +2,14 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/cluster_bvh.h"
 
@@ -124,9 +126,9 @@ double total_cluster_metric(const BuildArena& arena, int32_t root, const MetricP
 Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                          const BuildOptions& options,
                                          const BuildProgressFn& progress, BuildReport& report) {
-    (void)report;  // no per-level statistics: the pairing fields are optimal-pair's
     if (leaves.empty()) return kNoBuildChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
+    BuildPhaseTimer timer(report);
 
     const size_t n = leaves.size();
     const size_t total_merges = n - 1;
@@ -151,6 +153,8 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
     std::vector<uint32_t> hint(capacity, kNoCluster);  // a guess that starts each search
     std::vector<uint32_t> merged_into(capacity, kNoCluster);
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    std::vector<uint64_t> slot_keys;  // (BVH slot, cluster id), to sort the searches by slot
+    timer.lap("agglomerative: clusters and their BVH");
     size_t merges = 0;
     size_t next_progress = 0;
     const size_t progress_step = std::max<size_t>(1, total_merges / 100);
@@ -159,8 +163,13 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
     while (merges < total_merges) {
         // 1. Best partners, in parallel over independent searches, in BVH slot
         // order so that consecutive searches touch the same memory.
-        std::sort(pending.begin(), pending.end(),
-                  [&](uint32_t x, uint32_t y) { return bvh.slot_of(x) < bvh.slot_of(y); });
+        slot_keys.resize(pending.size());
+        for (size_t i = 0; i < pending.size(); ++i) {
+            slot_keys[i] = (uint64_t(bvh.slot_of(pending[i])) << 32) | pending[i];
+        }
+        tbb::parallel_sort(slot_keys.begin(), slot_keys.end());  // slots are unique: deterministic
+        for (size_t i = 0; i < pending.size(); ++i) pending[i] = uint32_t(slot_keys[i]);
+        timer.lap("agglomerative: round bookkeeping");
         for (size_t begin = 0; begin < pending.size(); begin += kSearchChunk) {
             const size_t end = std::min(pending.size(), begin + kSearchChunk);
             tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 256),
@@ -175,6 +184,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
                 return make_error(cancelled_message(merges, total_merges), ErrorKind::kCancelled);
             }
         }
+        timer.lap("agglomerative: best-partner searches");
         for (const uint32_t x : pending) {
             const uint32_t y = nearest[x].id;
             if (y == kNoCluster) continue;
@@ -213,6 +223,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
         next_pending.reserve(2 * pairs.size());
         // The cluster attributes of a round's merges are independent: compute
         // them in parallel into pre-sized arena slots, then adopt them in order.
+        timer.lap("agglomerative: round bookkeeping");
         const size_t first_new = arena.nodes.size();
         arena.nodes.resize(first_new + pairs.size());
         tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024),
@@ -224,6 +235,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
                                                      options.representative_rule, options.seed);
                               }
                           });
+        timer.lap("agglomerative: cluster attributes");
         for (size_t i = 0; i < pairs.size(); ++i) {
             const auto [a, b] = pairs[i];
             last = state.adopt_merge(arena, a, b, uint32_t(first_new + i));
@@ -241,6 +253,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
                 }
             }
         }
+        timer.lap("agglomerative: merges into the BVH");
         // 4. Clusters whose partner just merged away search again, starting
         // from the merged cluster; the merged cluster starts from the best of them.
         for (const auto& [a, b] : pairs) {
@@ -265,10 +278,10 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
                 }
             }
         }
-        std::sort(next_pending.begin(), next_pending.end());
         for (const uint32_t x : next_pending) queued[x] = 0;
         pending.swap(next_pending);
 
+        timer.lap("agglomerative: round bookkeeping");
         // 5. Fresh bounds once enough clusters changed.
         if (double(merges_since_build) >= kRefitFraction * double(bvh.live_count()) &&
             merges < total_merges) {
@@ -283,6 +296,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
             }
             merges_since_build = 0;
         }
+        timer.lap("agglomerative: BVH refits and rebuilds");
     }
     return int32_t(state.arena_of[last]);
 }

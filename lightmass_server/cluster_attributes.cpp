@@ -178,8 +178,7 @@ BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b) {
     return node;
 }
 
-glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node) {
-    const SceneLight& light = arena.representative_light(node);
+glm::dvec3 light_point(const SceneLight& light) {
     return light.type == LightType::kDirectional ? to_dvec3(light.direction)
                                                  : to_dvec3(light.position);
 }

@@ -54,8 +54,13 @@ BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, Repres
 // renderer always refines it.
 BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b);
 
-// The point a node is paired or clustered by: its representative light's
-// position, or its direction for directional lights (a point on the unit sphere).
-glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node);
+// The point a light is paired or clustered by: its position, or its direction
+// for directional lights (a point on the unit sphere).
+glm::dvec3 light_point(const SceneLight& light);
+
+// The point a node is paired or clustered by: its representative light's.
+inline glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node) {
+    return light_point(arena.representative_light(node));
+}
 
 }  // namespace lc::bake

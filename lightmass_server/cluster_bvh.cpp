@@ -87,9 +87,19 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
     leaf_of_slot_.assign(ids.size(), 0);
     if (ids.empty()) return;
 
-    centre_.resize(id_capacity);
-    std::vector<uint32_t> order(ids.begin(), ids.end());
-    for (const uint32_t id : ids) centre_[id] = 0.5 * (set.shapes[id].lo + set.shapes[id].hi);
+    // Each id beside its centre: the splits below compare and move them
+    // together, reading memory in order rather than a centre per id at random.
+    struct Centred {
+        glm::dvec3 centre;
+        uint32_t id;
+    };
+    std::vector<Centred> order(ids.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 1u << 14), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const ClusterShape& shape = set.shapes[ids[i]];
+            order[i] = Centred{0.5 * (shape.lo + shape.hi), ids[i]};
+        }
+    });
 
     // 1. The median splits, one depth at a time: the ranges of one depth are
     // disjoint, so they are split in parallel, each exactly as it would be
@@ -106,8 +116,8 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
         glm::dvec3 lo(std::numeric_limits<double>::max());
         glm::dvec3 hi(std::numeric_limits<double>::lowest());
         for (uint32_t s = r.begin; s < r.end; ++s) {
-            lo = glm::min(lo, centre_[order[s]]);
-            hi = glm::max(hi, centre_[order[s]]);
+            lo = glm::min(lo, order[s].centre);
+            hi = glm::max(hi, order[s].centre);
         }
         const glm::dvec3 extent = hi - lo;
         const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
@@ -115,10 +125,10 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
                                                                       : 2;
         r.mid = r.begin + (r.end - r.begin) / 2;
         std::nth_element(order.begin() + r.begin, order.begin() + r.mid, order.begin() + r.end,
-                         [&](uint32_t a, uint32_t b) {
-                             const double ca = centre_[a][axis];
-                             const double cb = centre_[b][axis];
-                             return ca < cb || (ca == cb && a < b);
+                         [&](const Centred& a, const Centred& b) {
+                             const double ca = a.centre[axis];
+                             const double cb = b.centre[axis];
+                             return ca < cb || (ca == cb && a.id < b.id);
                          });
     };
     std::vector<Range> ranges{{0, uint32_t(order.size())}};
@@ -166,8 +176,8 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
         pending.push_back({left + 1, r.first_child + 1});
     }
     for (uint32_t s = 0; s < order.size(); ++s) {
-        slots_[s] = Slot{set.shapes[order[s]], order[s]};
-        slot_of_[order[s]] = s;
+        slots_[s] = Slot{set.shapes[order[s].id], order[s].id};
+        slot_of_[order[s].id] = s;
     }
     if (set.params.oriented()) cones_.resize(nodes_.size());
     refit(set);

@@ -80,7 +80,6 @@ private:
     std::vector<Slot> slots_;
     std::vector<uint32_t> slot_of_;       // cluster id -> slot
     std::vector<uint32_t> leaf_of_slot_;  // slot -> leaf node
-    std::vector<glm::dvec3> centre_;      // build scratch, by cluster id
 };
 
 }  // namespace lc::bake

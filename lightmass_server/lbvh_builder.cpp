@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 #include <glm/common.hpp>
 
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 
 namespace lc::bake {
@@ -73,19 +75,33 @@ uint32_t split_position(const std::vector<Keyed>& keys, uint32_t begin, uint32_t
 }  // namespace
 
 Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> leaves,
-                                const BuildOptions& options, const BuildProgressFn& progress) {
+                                const BuildOptions& options, const BuildProgressFn& progress,
+                                BuildReport& report) {
     if (leaves.empty()) return kNoBuildChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
+    BuildPhaseTimer timer(report);
 
-    glm::dvec3 lo(std::numeric_limits<double>::max());
-    glm::dvec3 hi(std::numeric_limits<double>::lowest());
-    for (const uint32_t leaf : leaves) {
-        const glm::dvec3 p = representative_point(arena, arena.nodes[leaf]);
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-    }
+    // A leaf is its own representative: its point comes straight from its light.
+    const auto point_of = [&](uint32_t leaf) { return light_point(arena.lights[leaf]); };
+    struct Bounds {
+        glm::dvec3 lo{std::numeric_limits<double>::max()};
+        glm::dvec3 hi{std::numeric_limits<double>::lowest()};
+    };
+    // min and max are exact, so the reduction's order cannot change the bounds.
+    const Bounds bounds = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, leaves.size(), 1u << 14), Bounds{},
+        [&](const tbb::blocked_range<size_t>& range, Bounds b) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                const glm::dvec3 p = point_of(leaves[i]);
+                b.lo = glm::min(b.lo, p);
+                b.hi = glm::max(b.hi, p);
+            }
+            return b;
+        },
+        [](const Bounds& a, const Bounds& b) { return Bounds{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; });
     // One scale for all axes keeps the curve's cells cubic.
-    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const glm::dvec3 size = bounds.hi - bounds.lo;
+    const double extent = std::max({size.x, size.y, size.z});
     const double cells = double((1u << kBitsPerAxis) - 1);
     const glm::dvec3 scale(extent > 0.0 ? cells / extent : 0.0);
 
@@ -93,72 +109,81 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const glm::dvec3 p = representative_point(arena, arena.nodes[leaves[i]]);
-                              keys[i] = Keyed{morton_code(p, lo, scale), leaves[i]};
+                              keys[i] = Keyed{morton_code(point_of(leaves[i]), bounds.lo, scale), leaves[i]};
                           }
                       });
+    timer.lap("lbvh: bounds and Morton codes");
     tbb::parallel_sort(keys.begin(), keys.end());  // a strict total order: deterministic
+    timer.lap("lbvh: sort");
 
-    // Top-down splits with a work list (no recursion), parents before children.
+    // Top-down splits, one depth at a time: the ranges of one depth are
+    // disjoint, so their split positions are searched in parallel; the children
+    // are then appended in order, parents before children (breadth-first, as a
+    // serial work list would number them).
     std::vector<SplitNode> nodes;
     nodes.reserve(2 * leaves.size());
     nodes.push_back(SplitNode{0, uint32_t(keys.size())});
-    for (size_t i = 0; i < nodes.size(); ++i) {
-        const uint32_t begin = nodes[i].begin;
-        const uint32_t end = nodes[i].end;
-        if (end - begin < 2) continue;
-        const uint32_t split = split_position(keys, begin, end);
-        nodes[i].left = int32_t(nodes.size());
-        nodes.push_back(SplitNode{begin, split});
-        nodes[i].right = int32_t(nodes.size());
-        nodes.push_back(SplitNode{split, end});
+    std::vector<size_t> depth_begin{0};  // depth d holds nodes [depth_begin[d], depth_begin[d + 1])
+    std::vector<uint32_t> split_at;
+    while (depth_begin.back() < nodes.size()) {
+        const size_t begin = depth_begin.back();
+        const size_t end = nodes.size();
+        split_at.resize(end - begin);
+        tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 1024), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                const SplitNode& node = nodes[i];
+                // 0 marks a leaf: a split always lies after its range's first key.
+                split_at[i - begin] = node.end - node.begin < 2 ? 0 : split_position(keys, node.begin, node.end);
+            }
+        });
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t split = split_at[i - begin];
+            if (split == 0) continue;
+            const uint32_t range_begin = nodes[i].begin;
+            const uint32_t range_end = nodes[i].end;
+            nodes[i].left = int32_t(nodes.size());
+            nodes.push_back(SplitNode{range_begin, split});
+            nodes[i].right = int32_t(nodes.size());
+            nodes.push_back(SplitNode{split, range_end});
+        }
+        depth_begin.push_back(end);
     }
 
     // Bottom-up cluster attributes, one depth at a time from the deepest: the
     // merges of one depth are independent, so they run in parallel into arena
     // slots fixed in advance (the i-th split node from the end takes the i-th
     // slot), which makes the arena the same at any thread count.
-    std::vector<uint32_t> depth(nodes.size(), 0);
-    uint32_t max_depth = 0;
-    for (size_t i = 0; i < nodes.size(); ++i) {
-        if (nodes[i].left < 0) continue;
-        depth[size_t(nodes[i].left)] = depth[size_t(nodes[i].right)] = depth[i] + 1;
-        max_depth = std::max(max_depth, depth[i] + 1);
-    }
     std::vector<uint32_t> arena_of(nodes.size());
-    std::vector<std::vector<uint32_t>> inner_by_depth(max_depth + 1);
-    const size_t first_slot = arena.nodes.size();
-    size_t slot = first_slot;
+    size_t slot = arena.nodes.size();
     for (size_t i = nodes.size(); i-- > 0;) {
-        if (nodes[i].left < 0) {
-            arena_of[i] = keys[nodes[i].begin].leaf;
-        } else {
-            arena_of[i] = uint32_t(slot++);
-            inner_by_depth[depth[i]].push_back(uint32_t(i));
-        }
+        arena_of[i] = nodes[i].left < 0 ? keys[nodes[i].begin].leaf : uint32_t(slot++);
     }
     arena.nodes.resize(slot);
+    timer.lap("lbvh: splits");
 
     const size_t total_merges = leaves.size() - 1;
     size_t merges = 0;
-    for (uint32_t d = max_depth + 1; d-- > 0;) {
-        const std::vector<uint32_t>& level = inner_by_depth[d];
+    for (size_t d = depth_begin.size() - 1; d-- > 0;) {
         tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, level.size(), 4096), [&](const tbb::blocked_range<size_t>& range) {
-                for (size_t k = range.begin(); k != range.end(); ++k) {
-                    const SplitNode& node = nodes[level[k]];
-                    arena.nodes[arena_of[level[k]]] =
+            tbb::blocked_range<size_t>(depth_begin[d], depth_begin[d + 1], 4096),
+            [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const SplitNode& node = nodes[i];
+                    if (node.left < 0) continue;
+                    arena.nodes[arena_of[i]] =
                         merge_clusters(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
                                        options.representative_rule, options.seed);
                 }
             });
-        merges += level.size();
+        const size_t children = d + 2 < depth_begin.size() ? depth_begin[d + 2] - depth_begin[d + 1] : 0;
+        merges += children / 2;
         if (progress && !progress(double(merges) / double(total_merges))) {
             return make_error("cancelled during the lbvh build (" + std::to_string(merges) + " of " +
                                   std::to_string(total_merges) + " merges done)",
                               ErrorKind::kCancelled);
         }
     }
+    timer.lap("lbvh: cluster attributes");
     return int32_t(arena_of[0]);
 }
 

@@ -17,6 +17,7 @@ namespace lc::bake {
 // Builds the tree over `leaves` (arena indices of one light type, in input
 // order); returns the root's arena index (kNoBuildChild when empty).
 Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> leaves,
-                                const BuildOptions& options, const BuildProgressFn& progress);
+                                const BuildOptions& options, const BuildProgressFn& progress,
+                                BuildReport& report);
 
 }  // namespace lc::bake

@@ -9,6 +9,7 @@ namespace lc::bake {
 
 Server::Server(ServerOptions options)
     : options_(std::move(options)),
+      bake_parallelism_(tbb::global_control::max_allowed_parallelism, std::max(1u, options_.bake_threads)),
       memory_budget_(options_.memory_budget_bytes),
       workers_(std::max(1u, options_.bake_threads)),
       acceptor_(io_),

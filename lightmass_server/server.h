@@ -2,6 +2,8 @@
 // The bake server: accepts TCP connections (TLS when given a certificate) on
 // one I/O thread, runs bakes on a worker pool, stops cleanly on stop() (which
 // SIGINT/SIGTERM call in main).
+#include <tbb/global_control.h>
+
 #include <memory>
 #include <vector>
 
@@ -34,6 +36,9 @@ private:
     awaitable<void> accept_loop();
 
     ServerOptions options_;
+    // The builders' TBB loops share the bake threads' budget: --threads 1 is one
+    // thread in all (TBB would otherwise add a worker per core).
+    tbb::global_control bake_parallelism_;
     // Declared before io_: connections still queued on io_ at destruction use it.
     std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
     // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.

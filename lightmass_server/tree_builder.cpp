@@ -2,6 +2,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <array>
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "lightmass_server/agglomerative_builder.h"
+#include "lightmass_server/build_phase_timer.h"
 #include "lightcuts/build_tree.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/lbvh_builder.h"
@@ -48,35 +50,48 @@ Status validate_options(const BuildOptions& options) {
 }
 
 // The builders trust these; anything else would turn into NaN inside a sum.
+Status check_light(const SceneLight& light, size_t i) {
+    // Named only on failure: a million lights must not cost a million strings.
+    const auto name = [&] { return "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")"; };
+    if (int(light.type) >= kLightTypeCount) {
+        return make_error(name() + " has an unknown type " + std::to_string(int(light.type)));
+    }
+    if (!finite3(light.position) || !finite3(light.direction) || !finite3(light.color)) {
+        return make_error(name() + " has a non-finite position, direction or color");
+    }
+    if (!std::isfinite(light.intensity) || light.intensity < 0.0f) {
+        return make_error(name() + " has an invalid intensity (must be finite and >= 0)");
+    }
+    if (light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f) {
+        return make_error(name() + " has a negative color component");
+    }
+    if (!std::isfinite(light.range) || light.range < 0.0f) {
+        return make_error(name() + " has an invalid range (must be finite and >= 0)");
+    }
+    if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
+        return make_error(name() + " has non-finite spot cone angles");
+    }
+    return Ok{};
+}
+
 Status validate_lights(std::span<const SceneLight> lights) {
     if (lights.size() > kMaxBuildLights) {
         return make_error("too many lights for one tree: " + std::to_string(lights.size()) +
                           " (limit " + std::to_string(kMaxBuildLights) + ")");
     }
-    for (size_t i = 0; i < lights.size(); ++i) {
-        const SceneLight& light = lights[i];
-        // Named only on failure: a million lights must not cost a million strings.
-        const auto name = [&] { return "light " + std::to_string(i) + " (" + light.guid.to_hex() + ")"; };
-        if (int(light.type) >= kLightTypeCount) {
-            return make_error(name() + " has an unknown type " + std::to_string(int(light.type)));
-        }
-        if (!finite3(light.position) || !finite3(light.direction) || !finite3(light.color)) {
-            return make_error(name() + " has a non-finite position, direction or color");
-        }
-        if (!std::isfinite(light.intensity) || light.intensity < 0.0f) {
-            return make_error(name() + " has an invalid intensity (must be finite and >= 0)");
-        }
-        if (light.color.x < 0.0f || light.color.y < 0.0f || light.color.z < 0.0f) {
-            return make_error(name() + " has a negative color component");
-        }
-        if (!std::isfinite(light.range) || light.range < 0.0f) {
-            return make_error(name() + " has an invalid range (must be finite and >= 0)");
-        }
-        if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
-            return make_error(name() + " has non-finite spot cone angles");
-        }
-    }
-    return Ok{};
+    // The first bad light in input order, whichever thread finds which: the
+    // smallest index over the chunks.
+    const size_t first_bad = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, lights.size(), 1u << 14), lights.size(),
+        [&](const tbb::blocked_range<size_t>& range, size_t found) {
+            for (size_t i = range.begin(); i != range.end() && i < found; ++i) {
+                if (!check_light(lights[i], i)) return i;
+            }
+            return found;
+        },
+        [](size_t a, size_t b) { return std::min(a, b); });
+    if (first_bad == lights.size()) return Ok{};
+    return check_light(lights[first_bad], first_bad);
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
@@ -89,8 +104,12 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
                                      const BuildOptions& options, const ProgressFn& progress) {
     const auto start = std::chrono::steady_clock::now();
+    BuildResult result;
+    BuildReport& report = result.report;
+    BuildPhaseTimer timer(report);
     if (Status status = validate_options(options); !status) return make_error(status.error());
     if (Status status = validate_lights(lights); !status) return make_error(status.error());
+    timer.lap("validate lights");
 
     BuildOptions effective = options;
     // A bake request leaves the limit at 0 when the client did not choose one.
@@ -100,14 +119,17 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
     BuildArena arena;
     arena.lights = lights;
     arena.nodes.reserve(2 * lights.size() + kLightTypeCount);
+    arena.nodes.resize(lights.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 1u << 12),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              arena.nodes[i] = make_leaf(lights[i], uint32_t(i));
+                          }
+                      });
     std::array<std::vector<uint32_t>, kLightTypeCount> leaves_by_type;
-    for (uint32_t i = 0; i < lights.size(); ++i) {
-        arena.nodes.push_back(make_leaf(lights[i], i));
-        leaves_by_type[size_t(lights[i].type)].push_back(i);
-    }
+    for (uint32_t i = 0; i < lights.size(); ++i) leaves_by_type[size_t(lights[i].type)].push_back(i);
 
-    BuildResult result;
-    BuildReport& report = result.report;
+    timer.lap("leaves");
     std::vector<uint32_t> roots;
     size_t lights_done = 0;
     for (int t = 0; t < kLightTypeCount; ++t) {
@@ -130,10 +152,11 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
                 root = build_agglomerative_tree(arena, leaves, effective, type_progress, report);
                 break;
             case BuilderKind::kLbvh:
-                root = build_lbvh_tree(arena, leaves, effective, type_progress);
+                root = build_lbvh_tree(arena, leaves, effective, type_progress, report);
                 break;
         }
         if (!root) return root.failure();
+        timer.skip();  // the builder timed its own steps
         roots.push_back(uint32_t(*root));
         lights_done += leaves.size();
     }
@@ -152,7 +175,9 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
         tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 1u << 14),
                           [&](const tbb::blocked_range<size_t>& r) { body(r.begin(), r.end()); });
     };
+    timer.lap("join light types");
     ExportedTree exported = export_light_tree(arena, root, tbb_ranges);
+    timer.lap("export");
     result.tree = std::move(exported.tree);
     report.depth = exported.depth;
     report.build_ms = elapsed_ms(start);

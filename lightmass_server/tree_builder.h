@@ -30,6 +30,12 @@ struct BuildOptions {
 // Stage name and percent in [0, 100]; return false to cancel the build.
 using ProgressFn = std::function<bool(std::string_view stage, double percent)>;
 
+// One step of a build and its wall-clock time (build_phase_timer.h).
+struct BuildPhase {
+    std::string name;
+    double ms = 0.0;
+};
+
 struct BuildReport {
     double build_ms = 0.0;
     // optimal-pair: sum over levels of the chosen pairs' distances, and a lower
@@ -40,6 +46,8 @@ struct BuildReport {
     uint32_t levels = 0;
     uint32_t depth = 0;
     std::vector<std::string> warnings;
+    // Where build_ms went, step by step, in the order the steps first ran.
+    std::vector<BuildPhase> phases;
     // The bake's census (bake_pipeline.h): each effect simulated or skipped, and why.
     std::vector<std::string> effects;
 };

@@ -106,7 +106,7 @@ TEST(AgglomerativeBuilder, BeatsOtherBuildersOnTheClusterMetric) {
     Result<int32_t> a = build_agglomerative_tree(agg, leaves, agglomerative_options(), {}, report);
     BuildArena morton = test::leaf_arena(lights);
     Result<int32_t> p = build_optimal_pair_tree(pair, leaves, BuildOptions{}, {}, report);
-    Result<int32_t> m = build_lbvh_tree(morton, leaves, BuildOptions{}, {});
+    Result<int32_t> m = build_lbvh_tree(morton, leaves, BuildOptions{}, {}, report);
     ASSERT_TRUE(a && p && m);
     expect_build_invariants(morton, *m, leaves);
     const MetricParams params = agglomerative_metric_params(agg, leaves);

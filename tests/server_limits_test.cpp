@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -66,6 +67,24 @@ double cpu_seconds(pid_t pid) {
         if (i == 15) stime = std::stoull(field);
     }
     return double(utime + stime) / double(::sysconf(_SC_CLK_TCK));
+}
+
+// Threads the process has now (/proc/PID/task holds one entry per thread).
+size_t thread_count(pid_t pid) {
+    const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
+    return size_t(std::distance(std::filesystem::directory_iterator(tasks), std::filesystem::directory_iterator{}));
+}
+
+TEST(ServerLimits, OneBakeThreadIsOneThreadForTheBuildersToo) {
+    auto server = start_server({"--threads", "1"});
+    ASSERT_TRUE(server);
+    const size_t idle = thread_count(server->pid());  // the I/O thread and the one bake worker
+    client::BakeClientOptions options = options_for(*server);
+    options.builder = BuilderKind::kAgglomerative;  // parallel loops over many TBB tasks
+    auto outcome = client::bake_lights(lights(40000), kSceneGuid, options);
+    ASSERT_TRUE(outcome.ok()) << outcome.error();
+    // TBB keeps the workers it started asleep in the process: none may appear.
+    EXPECT_EQ(thread_count(server->pid()), idle);
 }
 
 TEST(ServerLimits, OutOfFileDescriptorsBacksOffAndRecovers) {

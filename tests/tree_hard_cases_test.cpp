@@ -90,7 +90,7 @@ void expect_build_invariants_everywhere(const std::vector<SceneLight>& lights) {
                 root = build_agglomerative_tree(arena, leaves, options_for(c), {}, report);
                 break;
             case BuilderKind::kLbvh:
-                root = build_lbvh_tree(arena, leaves, options_for(c), {});
+                root = build_lbvh_tree(arena, leaves, options_for(c), {}, report);
                 break;
         }
         ASSERT_TRUE(root) << root.error();

@@ -82,6 +82,7 @@ void run_build(benchmark::State& state, lc::BuilderKind builder, lc::PairingMode
     state.counters["depth"] = report.depth;
     state.counters["cluster_metric"] = metric;
     state.counters["peak_rss_mb"] = peak_rss_mb();
+    for (const lc::bake::BuildPhase& phase : report.phases) state.counters["ms " + phase.name] = phase.ms;
 }
 
 void optimal_pair_exact(benchmark::State& state) {
