@@ -82,6 +82,7 @@ void ClusterBvh::refit_inner(const ClusterSet& set, uint32_t node_index) {
 void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, size_t id_capacity) {
     nodes_.clear();
     cones_.clear();
+    live_total_ = 0;
     slots_.resize(ids.size());
     slot_of_.assign(id_capacity, kNoCluster);
     leaf_of_slot_.assign(ids.size(), 0);
@@ -192,6 +193,7 @@ void ClusterBvh::refit(const ClusterSet& set) {
             refit_inner(set, uint32_t(i));
         }
     }
+    live_total_ = nodes_.empty() ? 0 : nodes_[0].live;
 }
 
 void ClusterBvh::scan_leaf(const ClusterSet& set, uint32_t a, uint32_t node_index,
@@ -313,9 +315,9 @@ void ClusterBvh::merge(const ClusterSet& set, uint32_t kept, uint32_t removed, u
     const uint32_t removed_slot = slot_of_[removed];
     slots_[removed_slot].id = kNoCluster;
     slot_of_[removed] = kNoCluster;
-    for (int32_t i = int32_t(leaf_of_slot_[removed_slot]); i >= 0; i = nodes_[size_t(i)].parent) {
-        --nodes_[size_t(i)].live;
-    }
+    // Only the leaf's count: an inner node's waits for the next refit (see Node::live).
+    --nodes_[leaf_of_slot_[removed_slot]].live;
+    --live_total_;
 }
 
 }  // namespace lc::bake

@@ -43,7 +43,7 @@ public:
 
     uint32_t slot_of(uint32_t id) const { return slot_of_[id]; }
     size_t slot_count() const { return slots_.size(); }
-    size_t live_count() const { return nodes_.empty() ? 0 : nodes_[0].live; }
+    size_t live_count() const { return live_total_; }
 
 private:
     // Hot data of the search, kept small; orientation bounds live apart.
@@ -53,7 +53,11 @@ private:
         double min_I = 0.0;
         uint32_t first = 0;  // leaf: first slot; inner: left child (right = first + 1)
         uint32_t count = 0;  // leaf: slot count; inner: 0
-        uint32_t live = 0;   // live clusters below
+        // Live clusters below: exact in leaves; in inner nodes as of the last
+        // refit, so possibly too high since. A search then walks into a
+        // subtree that has died and finds nothing there (the same result);
+        // merges save a walk to the root each.
+        uint32_t live = 0;
         int32_t parent = -1;
         bool is_leaf() const { return count > 0; }
     };
@@ -76,6 +80,7 @@ private:
     void scan_leaf(const ClusterSet& set, uint32_t a, uint32_t node, NearestCluster& best) const;
 
     std::vector<Node> nodes_;
+    size_t live_total_ = 0;
     std::vector<ConeBounds> cones_;  // oriented metrics only
     std::vector<Slot> slots_;
     std::vector<uint32_t> slot_of_;       // cluster id -> slot
