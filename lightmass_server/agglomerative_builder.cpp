@@ -73,7 +73,18 @@ ClusterState initial_state(const BuildArena& arena, std::span<const uint32_t> le
     if (state.set.params.oriented()) state.set.cones.reserve(capacity);
     state.arena_of.reserve(capacity);
     state.live.reserve(capacity);
-    for (const uint32_t leaf : leaves) state.add(arena.nodes[leaf], leaf);
+    const size_t n = leaves.size();
+    state.set.shapes.resize(n);
+    if (state.set.params.oriented()) state.set.cones.resize(n);
+    state.arena_of.assign(leaves.begin(), leaves.end());
+    state.live.assign(n, 1);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1u << 12), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const BuildNode& node = arena.nodes[leaves[i]];
+            state.set.shapes[i] = shape_of(node);
+            if (state.set.params.oriented()) state.set.cones[i] = cone_of(node);
+        }
+    });
     return state;
 }
 
