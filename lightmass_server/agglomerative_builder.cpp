@@ -226,7 +226,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
             }
             pairs.emplace_back(std::min(best, nearest[best].id), std::max(best, nearest[best].id));
         }
-        std::sort(pairs.begin(), pairs.end());
+        tbb::parallel_sort(pairs.begin(), pairs.end());  // equal pairs are equal values: deterministic
         pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
         // 3. Merge; the merged cluster takes the first child's BVH slot.

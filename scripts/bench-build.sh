@@ -4,6 +4,8 @@
 # docs/bench/tree_build.csv:
 #   builder, lights, build_ms, peak_rss_mb, bytes_per_light, pairing_cost,
 #   lower_bound, exact, depth, cluster_metric
+# and each build's steps (BuildReport::phases) to docs/bench/tree_build_phases.csv:
+#   builder, lights, phase, ms
 # pairing_cost / lower_bound / exact are the optimal-pair builder's (sums over
 # levels); cluster_metric is the paper's I_C * alpha_C^2 summed over clusters.
 # Usage: scripts/bench-build.sh [build-dir]   (default: build, the default preset)
@@ -28,10 +30,11 @@ for name in $cases; do
     > "$tmp/$(echo "$name" | tr '/:' '__').json"
 done
 
-python3 - "$tmp" "$out" <<'PY'
+python3 - "$tmp" "$out" docs/bench/tree_build_phases.csv <<'PY'
 import csv, glob, json, sys
-tmp, out = sys.argv[1], sys.argv[2]
+tmp, out, phases_out = sys.argv[1], sys.argv[2], sys.argv[3]
 rows = []
+phases = []
 for path in sorted(glob.glob(tmp + "/*.json")):
     with open(path) as f:
         for b in json.load(f)["benchmarks"]:
@@ -47,7 +50,15 @@ for path in sorted(glob.glob(tmp + "/*.json")):
                          "%.6g" % b["lower_bound"] if pairing else "",
                          int(b["exact"]) if pairing else "", int(b["depth"]),
                          "%.6g" % b["cluster_metric"]])
+            for key, value in b.items():
+                if key.startswith("ms "):
+                    phases.append([builder, lights, key[3:], "%.2f" % value])
 rows.sort(key=lambda r: (r[0], r[1]))
+phases.sort(key=lambda r: (r[0], r[1]))
+with open(phases_out, "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["builder", "lights", "phase", "ms"])
+    w.writerows(phases)
 with open(out, "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(["builder", "lights", "build_ms", "peak_rss_mb", "bytes_per_light",
