@@ -78,13 +78,14 @@ ClusterState initial_state(const BuildArena& arena, std::span<const uint32_t> le
     if (state.set.params.oriented()) state.set.cones.resize(n);
     state.arena_of.assign(leaves.begin(), leaves.end());
     state.live.assign(n, 1);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1u << 12), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            const BuildNode& node = arena.nodes[leaves[i]];
-            state.set.shapes[i] = shape_of(node);
-            if (state.set.params.oriented()) state.set.cones[i] = cone_of(node);
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1u << 12),
+                      [&](const tbb::blocked_range<size_t>& range) {
+                          for (size_t i = range.begin(); i != range.end(); ++i) {
+                              const BuildNode& node = arena.nodes[leaves[i]];
+                              state.set.shapes[i] = shape_of(node);
+                              if (state.set.params.oriented()) state.set.cones[i] = cone_of(node);
+                          }
+                      });
     return state;
 }
 
@@ -135,8 +136,8 @@ double total_cluster_metric(const BuildArena& arena, int32_t root, const MetricP
 }
 
 Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint32_t> leaves,
-                                         const BuildOptions& options,
-                                         const BuildProgressFn& progress, BuildReport& report) {
+                                         const BuildOptions& options, const BuildProgressFn& progress,
+                                         BuildReport& report) {
     if (leaves.empty()) return kNoBuildChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
     BuildPhaseTimer timer(report);

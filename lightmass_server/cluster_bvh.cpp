@@ -95,12 +95,13 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
         uint32_t id;
     };
     std::vector<Centred> order(ids.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 1u << 14), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-            const ClusterShape& shape = set.shapes[ids[i]];
-            order[i] = Centred{0.5 * (shape.lo + shape.hi), ids[i]};
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 1u << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                              const ClusterShape& shape = set.shapes[ids[i]];
+                              order[i] = Centred{0.5 * (shape.lo + shape.hi), ids[i]};
+                          }
+                      });
 
     // 1. The median splits, one depth at a time: the ranges of one depth are
     // disjoint, so they are split in parallel, each exactly as it would be

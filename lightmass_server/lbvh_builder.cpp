@@ -76,7 +76,8 @@ uint32_t split_position(const std::vector<Keyed>& keys, uint32_t begin, uint32_t
 // merges read the arena at random: ask for a node's children this many nodes ahead.
 constexpr size_t kPrefetchAhead = 8;
 
-void prefetch_children(const BuildArena& arena, const SplitNode& node, const std::vector<uint32_t>& arena_of) {
+void prefetch_children(const BuildArena& arena, const SplitNode& node,
+                       const std::vector<uint32_t>& arena_of) {
     if (node.left < 0) return;
     for (const int32_t child : {node.left, node.right}) {
         const BuildNode& build_node = arena.nodes[arena_of[size_t(child)]];
@@ -111,7 +112,9 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
             }
             return b;
         },
-        [](const Bounds& a, const Bounds& b) { return Bounds{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)}; });
+        [](const Bounds& a, const Bounds& b) {
+            return Bounds{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
+        });
     // One scale for all axes keeps the curve's cells cubic.
     const glm::dvec3 size = bounds.hi - bounds.lo;
     const double extent = std::max({size.x, size.y, size.z});
@@ -142,13 +145,15 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
         const size_t begin = depth_begin.back();
         const size_t end = nodes.size();
         split_at.resize(end - begin);
-        tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 1024), [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-                const SplitNode& node = nodes[i];
-                // 0 marks a leaf: a split always lies after its range's first key.
-                split_at[i - begin] = node.end - node.begin < 2 ? 0 : split_position(keys, node.begin, node.end);
-            }
-        });
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(begin, end, 1024), [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const SplitNode& node = nodes[i];
+                    // 0 marks a leaf: a split always lies after its range's first key.
+                    split_at[i - begin] =
+                        node.end - node.begin < 2 ? 0 : split_position(keys, node.begin, node.end);
+                }
+            });
         for (size_t i = begin; i < end; ++i) {
             const uint32_t split = split_at[i - begin];
             if (split == 0) continue;
@@ -177,18 +182,18 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     const size_t total_merges = leaves.size() - 1;
     size_t merges = 0;
     for (size_t d = depth_begin.size() - 1; d-- > 0;) {
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(depth_begin[d], depth_begin[d + 1], 4096),
-            [&](const tbb::blocked_range<size_t>& range) {
-                for (size_t i = range.begin(); i != range.end(); ++i) {
-                    if (i + kPrefetchAhead < range.end()) prefetch_children(arena, nodes[i + kPrefetchAhead], arena_of);
-                    const SplitNode& node = nodes[i];
-                    if (node.left < 0) continue;
-                    arena.nodes[arena_of[i]] =
-                        merge_clusters(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
-                                       options.representative_rule, options.seed);
-                }
-            });
+        tbb::parallel_for(tbb::blocked_range<size_t>(depth_begin[d], depth_begin[d + 1], 4096),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  if (i + kPrefetchAhead < range.end())
+                                      prefetch_children(arena, nodes[i + kPrefetchAhead], arena_of);
+                                  const SplitNode& node = nodes[i];
+                                  if (node.left < 0) continue;
+                                  arena.nodes[arena_of[i]] = merge_clusters(
+                                      arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
+                                      options.representative_rule, options.seed);
+                              }
+                          });
         const size_t children = d + 2 < depth_begin.size() ? depth_begin[d + 2] - depth_begin[d + 1] : 0;
         merges += children / 2;
         if (progress && !progress(double(merges) / double(total_merges))) {

@@ -64,7 +64,9 @@ int main(int argc, char** argv) {
     app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
         ->capture_default_str();
     app.add_option("--port-file", port_file, "Write the port number to this file once listening");
-    app.add_option("--threads", threads, "Bake worker threads, the builders' parallel loops included")->capture_default_str()->check(CLI::Range(1u, 256u));
+    app.add_option("--threads", threads, "Bake worker threads, the builders' parallel loops included")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 256u));
     app.add_option("--record", record_dir, "Write every channel received and sent as a dump file here");
     std::string radiosity_out;
     app.add_option("--radiosity-out", radiosity_out,

@@ -9,13 +9,13 @@
 #include <cmath>
 #include <string>
 
+#include "lightcuts/build_tree.h"
+#include "lightcuts/tree_export.h"
 #include "lightmass_server/agglomerative_builder.h"
 #include "lightmass_server/build_phase_timer.h"
-#include "lightcuts/build_tree.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/lbvh_builder.h"
 #include "lightmass_server/optimal_pair_builder.h"
-#include "lightcuts/tree_export.h"
 
 namespace lc::bake {
 namespace {

@@ -72,7 +72,8 @@ double cpu_seconds(pid_t pid) {
 // Threads the process has now (/proc/PID/task holds one entry per thread).
 size_t thread_count(pid_t pid) {
     const std::filesystem::path tasks = "/proc/" + std::to_string(pid) + "/task";
-    return size_t(std::distance(std::filesystem::directory_iterator(tasks), std::filesystem::directory_iterator{}));
+    return size_t(
+        std::distance(std::filesystem::directory_iterator(tasks), std::filesystem::directory_iterator{}));
 }
 
 TEST(ServerLimits, OneBakeThreadIsOneThreadForTheBuildersToo) {

@@ -305,5 +305,19 @@ TEST(TreeHardCases, InvalidInputIsRejectedWithAMessage) {
     EXPECT_NE(unknown.error().find("builder"), std::string::npos) << unknown.error();
 }
 
+TEST(TreeHardCases, TheFirstBadLightIsNamedWhicheverThreadFindsIt) {
+    // Validation runs in parallel chunks of 16,384 lights: with three bad
+    // lights in different chunks, the error names the first in input order,
+    // as the serial check did.
+    std::vector<SceneLight> lights = random_lights(100000, 15, LightType::kPoint);
+    lights[90001].range = -1.0f;
+    lights[40001].intensity = -1.0f;
+    lights[70001].color.x = -1.0f;
+    Result<BuildResult> r = build_light_tree(lights, options_for(kBuilders[0]), {});
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().find("light 40001 "), std::string::npos) << r.error();
+    EXPECT_NE(r.error().find("intensity"), std::string::npos) << r.error();
+}
+
 }  // namespace
 }  // namespace lc::bake
