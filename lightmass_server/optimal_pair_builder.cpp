@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "lightmass_server/approximate_pairing.h"
+#include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/sparse_exact_pairing.h"
 
@@ -33,6 +34,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
                                         const BuildOptions& options,
                                         const BuildProgressFn& progress, BuildReport& report) {
     if (leaves.empty()) return kNoBuildChild;
+    BuildPhaseTimer timer(report);
     const LightType type = arena.nodes[leaves[0]].type;
 
     std::vector<uint32_t> level(leaves.begin(), leaves.end());
@@ -99,6 +101,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
         level.swap(next);
     }
     report.levels = std::max(report.levels, level_number);
+    timer.lap("optimal-pair: levels");
     return int32_t(level[0]);
 }
 

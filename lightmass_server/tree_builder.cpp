@@ -156,7 +156,7 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
                 break;
         }
         if (!root) return root.failure();
-        timer.skip();  // the builder timed its own steps
+        timer.skip();  // each builder times its own steps
         roots.push_back(uint32_t(*root));
         lights_done += leaves.size();
     }
