@@ -119,15 +119,13 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
     BuildArena arena;
     arena.lights = lights;
     arena.nodes.reserve(2 * lights.size() + kLightTypeCount);
-    arena.nodes.resize(lights.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, lights.size(), 1u << 12),
-                      [&](const tbb::blocked_range<size_t>& range) {
-                          for (size_t i = range.begin(); i != range.end(); ++i) {
-                              arena.nodes[i] = make_leaf(lights[i], uint32_t(i));
-                          }
-                      });
+    // Serial: the page faults of the fresh nodes dominate, and filling them in
+    // parallel after a resize touched each twice: 88 against 72 ms at 2^20, idle.
     std::array<std::vector<uint32_t>, kLightTypeCount> leaves_by_type;
-    for (uint32_t i = 0; i < lights.size(); ++i) leaves_by_type[size_t(lights[i].type)].push_back(i);
+    for (uint32_t i = 0; i < lights.size(); ++i) {
+        arena.nodes.push_back(make_leaf(lights[i], i));
+        leaves_by_type[size_t(lights[i].type)].push_back(i);
+    }
 
     timer.lap("leaves");
     std::vector<uint32_t> roots;
