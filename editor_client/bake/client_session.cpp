@@ -59,7 +59,8 @@ std::optional<Message> ClientSession::next_upload_message() {
             if (uploads_.empty()) {
                 upload_start_ = Clock::now();
                 uploads_.push_back({kSceneChannelId, scene_channel_, encode_scene_channel(lights_)});
-                lights_ = {};
+                // A new vector, not `= {}`: that clears and keeps the million lights' capacity.
+                lights_ = std::vector<SceneLight>();
                 if (options_.geometry) {
                     uploads_.push_back({kGeometryChannelId, geometry_channel_,
                                         encode_geometry_channel(*options_.geometry)});
@@ -98,7 +99,7 @@ std::optional<Message> ClientSession::next_upload_message() {
                     }
                 }
             }
-            uploads_ = {};
+            uploads_ = std::vector<UploadChannel>();
             upload_step_ = UploadStep::kDone;
             stage_ = Stage::kBaking;
             outcome_.upload_ms = ms_since(upload_start_);
@@ -200,7 +201,7 @@ void ClientSession::on_bake_message(const Message& m) {
             if (!recorded) return finish(make_error(recorded.error()));
         }
         if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
-        result_bytes_ = {};
+        result_bytes_ = std::vector<uint8_t>();
         if (result_dump_) {
             const Clock::time_point write_start = Clock::now();
             if (Status committed = result_dump_->commit(); !committed) return finish(committed.failure());

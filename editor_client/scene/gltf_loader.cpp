@@ -395,9 +395,10 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
     }
     LC_RETURN_IF_ERROR(parse_with_tinygltf(bytes, resource_folder, warnings_));
     nodes_ = node_table_from(model_);
-    model_.nodes = {};
-    model_.lights = {};
-    model_.scenes = {};
+    // New vectors, not `= {}`: that clears and keeps a million nodes' capacity.
+    model_.nodes = std::vector<tg::Node>();
+    model_.lights = std::vector<tg::Light>();
+    model_.scenes = std::vector<tg::Scene>();
     return Ok{};
 }
 
@@ -1163,6 +1164,11 @@ void Loader::finish_cameras() {
 
 Status Loader::traverse(const std::vector<int>& roots) {
     std::vector<bool> visited(nodes_.nodes.size(), false);
+    // Grown to its size at once: no second copy of a million lights while it grows.
+    const auto light_nodes = std::count_if(nodes_.nodes.begin(), nodes_.nodes.end(), [](const GltfNode& node) {
+        return node.light != LightReference::kNone;
+    });
+    scene_.lights.reserve(size_t(light_nodes));
     std::vector<glm::dmat4> parent_worlds{glm::dmat4(1.0)};  // [0]: the roots' parent
     std::vector<Traversal> stack;
     // Root by root, each subtree depth first: the order of a stack holding every root.
@@ -1271,6 +1277,9 @@ Result<Scene> Loader::build_scene() {
     if (!status) return Error{status.error()};
     status = traverse(*roots);
     if (!status) return Error{status.error()};
+    // The scene has all it needs from the table: a million light nodes'
+    // records go before the GUID checks and the scene GUID allocate theirs.
+    nodes_ = GltfNodeTable{};
     status = check_unique_light_guids();
     if (!status) return Error{status.error()};
     scene_.source = path_;
