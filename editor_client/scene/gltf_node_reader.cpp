@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -277,28 +278,28 @@ std::optional<GltfNodeSplit> read_json(std::string_view json, const ConsumedByte
     std::vector<char> buffer;
     GltfNodeSplit split;
     GltfNodeTable& table = split.table;
+    // Each element of a run read by `read` into a new entry of `entries`.
+    auto append_elements = [&](std::string_view elements, auto& entries, auto&& read) {
+        return for_each_element(parser, buffer, elements, [&](sj::value v) {
+            typename std::remove_reference_t<decltype(entries)>::value_type entry{};
+            if (!read(v, entry)) return false;
+            entries.push_back(entry);
+            return true;
+        });
+    };
     auto read_elements = [&](GltfSection section, std::string_view elements) {
         switch (section) {
             case GltfSection::kNodes:
-                return for_each_element(parser, buffer, elements, [&](sj::value v) {
-                    GltfNode node;
-                    if (!read_node(v, table, node)) return false;
-                    table.nodes.push_back(node);
-                    return true;
-                });
+                return append_elements(elements, table.nodes,
+                                       [&](sj::value v, GltfNode& node) { return read_node(v, table, node); });
             case GltfSection::kScenes:
-                return for_each_element(parser, buffer, elements, [&](sj::value v) {
-                    NumberRange roots{uint32_t(table.scene_roots.size()), 0};
-                    if (!read_scene(v, table, roots)) return false;
-                    table.scenes.push_back(roots);
-                    return true;
+                return append_elements(elements, table.scenes, [&](sj::value v, NumberRange& roots) {
+                    roots.first = uint32_t(table.scene_roots.size());
+                    return read_scene(v, table, roots);
                 });
             case GltfSection::kLights:
-                return for_each_element(parser, buffer, elements, [&](sj::value v) {
-                    GltfPunctualLight light;
-                    if (!read_light(v, table, light)) return false;
-                    table.lights.push_back(light);
-                    return true;
+                return append_elements(elements, table.lights, [&](sj::value v, GltfPunctualLight& light) {
+                    return read_light(v, table, light);
                 });
         }
         return false;
