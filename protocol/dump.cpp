@@ -3,6 +3,7 @@
 // All integers are little-endian.
 #include "dump.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <utility>
 
 #include "codec.h"
 #include "lightcuts/status_macros.h"
@@ -57,52 +59,121 @@ bool read_exact(std::FILE* f, uint8_t* out, size_t size) {
 }  // namespace
 
 Status write_dump(const std::filesystem::path& path, const ChannelDump& dump) {
-    if (dump.channel_name.size() > kMaxChannelNameBytes) {
-        return make_error("channel name of " + std::to_string(dump.channel_name.size()) +
-                          " bytes exceeds the dump limit of " +
-                          std::to_string(kMaxChannelNameBytes));
+    Result<DumpWriter> writer = DumpWriter::open(path, dump.channel_name, dump.payload.size());
+    if (!writer) return writer.failure();
+    LC_RETURN_IF_ERROR(writer->append(dump.payload));
+    return writer->commit();
+}
+
+Result<DumpWriter> DumpWriter::open(const std::filesystem::path& path, const std::string& channel_name,
+                                    uint64_t payload_bytes) {
+    if (channel_name.size() > kMaxChannelNameBytes) {
+        return make_error("channel name of " + std::to_string(channel_name.size()) +
+                          " bytes exceeds the dump limit of " + std::to_string(kMaxChannelNameBytes));
     }
     std::vector<uint8_t> header(kMagic.size());
     std::memcpy(header.data(), kMagic.data(), kMagic.size());
     put_le(header, kDumpVersion, 4);
     put_le(header, schema_hash(), 8);
-    put_le(header, dump.channel_name.size(), 4);
-    for (char c : dump.channel_name) header.push_back(static_cast<uint8_t>(c));
-    put_le(header, dump.payload.size(), 8);
+    put_le(header, channel_name.size(), 4);
+    for (char c : channel_name) header.push_back(static_cast<uint8_t>(c));
+    put_le(header, payload_bytes, 8);
 
     // Readers never see a half-written dump: write a sibling file, then rename.
     static std::atomic<uint64_t> counter{0};
-    std::filesystem::path tmp = path;
-    tmp += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    {
-        File f(std::fopen(tmp.c_str(), "wb"));
-        if (!f) return make_error(system_error("cannot create", tmp));
-        const bool written =
-            std::fwrite(header.data(), 1, header.size(), f.get()) == header.size() &&
-            (dump.payload.empty() || std::fwrite(dump.payload.data(), 1, dump.payload.size(),
-                                                 f.get()) == dump.payload.size()) &&
-            std::fflush(f.get()) == 0 && ::fsync(::fileno(f.get())) == 0;
-        if (!written) {
-            Error error = make_error(system_error("cannot write", tmp));
-            f.reset();
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            return error;
-        }
-        if (std::fclose(f.release()) != 0) {
-            Error error = make_error(system_error("cannot close", tmp));
-            std::error_code ignored;
-            std::filesystem::remove(tmp, ignored);
-            return error;
-        }
+    DumpWriter writer;
+    writer.path_ = path;
+    writer.tmp_ = path;
+    writer.tmp_ += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    writer.payload_bytes_ = payload_bytes;
+    writer.file_ = std::fopen(writer.tmp_.c_str(), "wb");
+    if (!writer.file_) return make_error(system_error("cannot create", writer.tmp_));
+    if (std::fwrite(header.data(), 1, header.size(), writer.file_) != header.size()) {
+        return writer.fail("cannot write");
     }
+    return writer;
+}
+
+DumpWriter::DumpWriter(DumpWriter&& other) noexcept
+    : file_(std::exchange(other.file_, nullptr)),
+      path_(std::move(other.path_)),
+      tmp_(std::move(other.tmp_)),
+      payload_bytes_(other.payload_bytes_),
+      written_(other.written_),
+      flushed_(other.flushed_) {}
+
+DumpWriter& DumpWriter::operator=(DumpWriter&& other) noexcept {
+    if (this != &other) {
+        discard();
+        file_ = std::exchange(other.file_, nullptr);
+        path_ = std::move(other.path_);
+        tmp_ = std::move(other.tmp_);
+        payload_bytes_ = other.payload_bytes_;
+        written_ = other.written_;
+        flushed_ = other.flushed_;
+    }
+    return *this;
+}
+
+DumpWriter::~DumpWriter() { discard(); }
+
+void DumpWriter::discard() {
+    if (!file_) return;
+    std::fclose(file_);
+    file_ = nullptr;
+    std::error_code ignored;
+    std::filesystem::remove(tmp_, ignored);
+}
+
+Error DumpWriter::fail(const std::string& what) {
+    Error error = make_error(system_error(what, tmp_));
+    discard();
+    return error;
+}
+
+Status DumpWriter::append(std::span<const uint8_t> bytes) {
+    if (!file_) return make_error("dump " + path_.string() + " is closed");
+    if (bytes.size() > payload_bytes_ - written_) {
+        discard();
+        return make_error("dump " + path_.string() + " announced " + std::to_string(payload_bytes_) +
+                          " payload bytes and was given more");
+    }
+    if (!bytes.empty() && std::fwrite(bytes.data(), 1, bytes.size(), file_) != bytes.size()) {
+        return fail("cannot write");
+    }
+    written_ += bytes.size();
+    // Start the disk on what has come so far, so that commit's fsync waits for
+    // the last stretch only rather than the whole payload.
+    constexpr uint64_t kWriteBehindBytes = uint64_t{16} << 20;
+    if (written_ - flushed_ >= kWriteBehindBytes) {
+        if (std::fflush(file_) != 0) return fail("cannot write");
+        ::sync_file_range(::fileno(file_), 0, 0, SYNC_FILE_RANGE_WRITE);
+        flushed_ = written_;
+    }
+    return Ok{};
+}
+
+Status DumpWriter::commit() {
+    if (!file_) return make_error("dump " + path_.string() + " is closed");
+    if (written_ != payload_bytes_) {
+        discard();
+        return make_error("dump " + path_.string() + " announced " + std::to_string(payload_bytes_) +
+                          " payload bytes and was given " + std::to_string(written_));
+    }
+    if (std::fflush(file_) != 0 || ::fsync(::fileno(file_)) != 0) return fail("cannot write");
+    const int closed = std::fclose(file_);
+    file_ = nullptr;
     std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
+    if (closed != 0) {
+        Error error = make_error(system_error("cannot close", tmp_));
+        std::filesystem::remove(tmp_, ec);
+        return error;
+    }
+    std::filesystem::rename(tmp_, path_, ec);
     if (ec) {
         std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
-        return make_error("cannot rename " + tmp.string() + " to " + path.string() + ": " +
-                          ec.message());
+        std::filesystem::remove(tmp_, ignored);
+        return make_error("cannot rename " + tmp_.string() + " to " + path_.string() + ": " + ec.message());
     }
     return Ok{};
 }

@@ -15,9 +15,11 @@
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
+#include "protocol/dump.h"
 #include "protocol/environment_records.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/geometry_channel.h"
+#include "test_paths.h"
 #include "tree_invariants.h"
 
 namespace lc::client {
@@ -186,6 +188,42 @@ TEST(ClientSession, KeepsTheRawResultChannelOnlyWhenAsked) {
     EXPECT_TRUE(outcomes[1].result_channel.empty());
     ASSERT_EQ(outcomes[0].tree.nodes.size(), outcomes[1].tree.nodes.size());
     EXPECT_EQ(encode_result_channel(outcomes[1].tree), encode_result_channel(outcomes[0].tree));
+}
+
+// bake -o: the channel goes into the dump as it arrives, the dump appears
+// once the tree is valid, and a bake cut short leaves no dump and no
+// temporary file behind.
+TEST(ClientSession, StreamsTheResultChannelIntoADump) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const std::filesystem::path dir = test::make_temp_dir("client-session-dump");
+    const std::vector<Message> result = result_messages(lights);
+    ClientSessionOptions options = session_options();
+    options.keep_result_channel = false;
+    options.result_dump = dir / "tree.lcut";
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+    for (const Message& message : result) {
+        EXPECT_FALSE(std::filesystem::exists(options.result_dump));
+        session.on_message(message);
+    }
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_TRUE(outcome) << outcome.error();
+    EXPECT_TRUE(outcome->result_channel.empty());
+    Result<ChannelDump> dump = read_dump(options.result_dump);
+    ASSERT_TRUE(dump) << dump.error();
+    EXPECT_EQ(dump->channel_name, lightcuts_result_channel_name());
+    EXPECT_EQ(dump->payload, encode_result_channel(outcome->tree));
+
+    ClientSessionOptions cut_short = session_options();
+    cut_short.result_dump = dir / "cut_short.lcut";
+    ClientSession cancelled(lights, kSceneGuid, cut_short);
+    upload(cancelled);
+    cancelled.on_message(result[0]);  // OpenChannel
+    cancelled.on_message(result[1]);  // the first WriteChannel
+    cancelled.on_message(ErrorMsg{kBake, ErrorCode::kCancelled, "bake 5 cancelled during transfer"});
+    EXPECT_EQ(cancelled.take_result().error_kind(), ErrorKind::kCancelled);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}), 1);
+    std::filesystem::remove_all(dir);
 }
 
 TEST(ClientSession, VersionMismatchIsRefused) {

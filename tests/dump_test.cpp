@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -254,6 +255,60 @@ TEST(Dump, ResultChannelSurvivesADumpRoundTrip) {
     ASSERT_TRUE(decoded.ok()) << decoded.error();
     EXPECT_EQ(decoded->nodes[0].guid, tree.nodes[0].guid);
     EXPECT_EQ(decoded->nodes[0].brightness, 5.0f);
+    fs::remove_all(dir);
+}
+
+// A dump written as its payload arrives is byte for byte the dump written
+// whole, and appears only at commit.
+TEST(Dump, StreamedWriteMatchesTheWholeWrite) {
+    const fs::path dir = test::make_temp_dir("dump-writer");
+    const ChannelDump dump = sample_dump();
+    ASSERT_TRUE(write_dump(dir / "whole.dump", dump).ok());
+    Result<DumpWriter> writer = DumpWriter::open(dir / "streamed.dump", dump.channel_name, dump.payload.size());
+    ASSERT_TRUE(writer.ok()) << writer.error();
+    const std::span<const uint8_t> payload(dump.payload);
+    for (size_t at = 0; at < payload.size(); at += 70) {
+        ASSERT_TRUE(writer->append(payload.subspan(at, std::min<size_t>(70, payload.size() - at))).ok());
+        EXPECT_FALSE(fs::exists(dir / "streamed.dump"));
+    }
+    ASSERT_TRUE(writer->commit().ok());
+    EXPECT_EQ(read_file(dir / "streamed.dump"), read_file(dir / "whole.dump"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 2);
+    fs::remove_all(dir);
+}
+
+// More or fewer bytes than announced, or a writer dropped before commit:
+// no dump, no temporary file, and the earlier dump at the path untouched.
+TEST(Dump, StreamedWriteKeepsTheOldDumpUnlessCommittedWhole) {
+    const fs::path dir = test::make_temp_dir("dump-writer-refusals");
+    const ChannelDump dump = sample_dump();
+    const fs::path path = dir / "x.dump";
+    ASSERT_TRUE(write_dump(path, dump).ok());
+    const std::vector<uint8_t> before = read_file(path);
+    const std::vector<uint8_t> bytes(10, 7);
+    {
+        Result<DumpWriter> longer = DumpWriter::open(path, "other", 9);
+        ASSERT_TRUE(longer.ok());
+        Status appended = longer->append(bytes);
+        ASSERT_FALSE(appended.ok());
+        EXPECT_NE(appended.error().find("announced 9 payload bytes"), std::string::npos) << appended.error();
+        EXPECT_FALSE(longer->commit().ok());
+    }
+    {
+        Result<DumpWriter> shorter = DumpWriter::open(path, "other", 11);
+        ASSERT_TRUE(shorter.ok());
+        ASSERT_TRUE(shorter->append(bytes).ok());
+        Status committed = shorter->commit();
+        ASSERT_FALSE(committed.ok());
+        EXPECT_NE(committed.error().find("was given 10"), std::string::npos) << committed.error();
+    }
+    {
+        Result<DumpWriter> dropped = DumpWriter::open(path, "other", 10);
+        ASSERT_TRUE(dropped.ok());
+        ASSERT_TRUE(dropped->append(bytes).ok());
+    }
+    EXPECT_EQ(read_file(path), before);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
     fs::remove_all(dir);
 }
 

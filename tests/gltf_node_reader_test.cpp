@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -28,10 +29,10 @@ std::string read_text(const std::filesystem::path& path) {
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
-std::optional<GltfNodeSplit> read_nodes(const std::string& bytes) {
-    // No padding: the reader copies.
+std::optional<GltfNodeSplit> read_nodes(const std::string& bytes,
+                                        const ConsumedBytes& on_consumed = {}) {
     return read_gltf_nodes({reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()},
-                           bytes.size());
+                           on_consumed);
 }
 
 // Every named scene, and the room with a thousand lights of every type, some
@@ -148,6 +149,39 @@ TEST_F(GltfNodeReader, UnusualFormsFallBackToTinygltf) {
     ASSERT_TRUE(read_nodes(negative_zero).has_value());
     Result<Scene> scene = load_scene_both_ways(path);
     ASSERT_TRUE(scene.ok()) << scene.error();
+}
+
+// A file of several megabytes is read a run of elements at a time (the
+// parser never indexes it whole): the same lights as tinygltf, and the file's
+// bytes released front to back as the reader goes, .gltf and .glb.
+TEST_F(GltfNodeReader, LargeFilesAreReadInRunsWithTheSameLights) {
+    Scene room = make_room_scene();
+    LightLayoutOptions layout;
+    layout.count = 12000;
+    layout.type = LightTypeChoice::kMixed;
+    layout.seed = 11;
+    layout.box_min = glm::vec3(-2.0f, 0.5f, -2.0f);
+    layout.box_max = glm::vec3(2.0f, 2.5f, 2.0f);
+    Result<std::vector<SceneLight>> lights = generate_lights(layout);
+    ASSERT_TRUE(lights.ok());
+    room.lights = std::move(*lights);
+    for (const char* extension : {".gltf", ".glb"}) {
+        const auto path = dir_ / (std::string("large") + extension);
+        ASSERT_TRUE(write_scene_gltf(room, path).ok());
+        const std::string bytes = read_text(path);
+        ASSERT_GT(bytes.size(), size_t{3} << 20) << "too small to take several runs";
+        std::vector<size_t> consumed;
+        const std::optional<GltfNodeSplit> split =
+            read_nodes(bytes, [&](size_t offset) { consumed.push_back(offset); });
+        ASSERT_TRUE(split.has_value()) << path << " fell back to tinygltf";
+        EXPECT_EQ(split->table.lights.size(), room.lights.size());
+        ASSERT_GE(consumed.size(), 3u) << path;
+        EXPECT_TRUE(std::is_sorted(consumed.begin(), consumed.end()));
+        EXPECT_LE(consumed.back(), bytes.size());
+        Result<Scene> scene = load_scene_both_ways(path);
+        ASSERT_TRUE(scene.ok()) << scene.error();
+        EXPECT_EQ(scene->lights.size(), room.lights.size());
+    }
 }
 
 TEST_F(GltfNodeReader, IsDeterministic) {

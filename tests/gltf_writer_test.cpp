@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -164,6 +165,47 @@ TEST_F(GltfWriter, WholeSceneRoundTripsThroughGltfAndGlb) {
     // Deterministic: writing again gives the same bytes.
     ASSERT_TRUE(write_scene_gltf(scene, dir_ / "again.gltf").ok());
     EXPECT_EQ(read_json(dir_ / "again.gltf"), doc);
+}
+
+std::string read_bytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The light nodes and lights are written an element at a time; the text is
+// what nlohmann gives for the whole document (parsed and dumped again, it is
+// the same bytes), .gltf and .glb, and also when a scene's own string spells
+// the writer's placeholder (then the arrays are made whole first).
+TEST_F(GltfWriter, StreamedLightsAreTheWholeDocumentsText) {
+    Scene scene = sample_scene();
+    for (uint32_t i = 0; i < 50; ++i) {
+        scene.lights.push_back(light(i % 2 ? LightType::kSpot : LightType::kPoint,
+                                     {0.1f * float(i), 1.0f, -0.3f}, {0.0f, -1.0f, 0.1f}, 100 + i));
+    }
+    Scene spelled = scene;
+    spelled.cameras[0].name = "lightcuts-writer:lights";
+    for (const Scene* written : {&scene, &spelled}) {
+        ASSERT_TRUE(write_scene_gltf(*written, dir_ / "streamed.gltf").ok());
+        const std::string text = read_bytes(dir_ / "streamed.gltf");
+        const json doc = json::parse(text);
+        EXPECT_EQ(doc.dump(2) + "\n", text);
+        EXPECT_EQ(doc["extensions"]["KHR_lights_punctual"]["lights"].size(), written->lights.size());
+        Result<Scene> loaded = load_scene(dir_ / "streamed.gltf");
+        ASSERT_TRUE(loaded.ok()) << loaded.error();
+        expect_same_scene(*written, *loaded);
+
+        ASSERT_TRUE(write_scene_gltf(*written, dir_ / "streamed.glb").ok());
+        const std::string glb = read_bytes(dir_ / "streamed.glb");
+        ASSERT_GT(glb.size(), 20u);
+        const uint32_t json_bytes = uint32_t(uint8_t(glb[12])) | uint32_t(uint8_t(glb[13])) << 8 |
+                                    uint32_t(uint8_t(glb[14])) << 16 | uint32_t(uint8_t(glb[15])) << 24;
+        std::string chunk = glb.substr(20, json_bytes);
+        while (!chunk.empty() && chunk.back() == ' ') chunk.pop_back();
+        EXPECT_EQ(json::parse(chunk).dump(), chunk);
+        // The same document but for the buffer, embedded in the .gltf only.
+        EXPECT_EQ(json::parse(chunk)["nodes"], doc["nodes"]);
+        EXPECT_EQ(json::parse(chunk)["extensions"], doc["extensions"]);
+    }
 }
 
 TEST_F(GltfWriter, RejectsInvalidLightsAndMissingFolders) {

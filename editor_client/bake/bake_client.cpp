@@ -313,6 +313,7 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     session_options.on_warning = options.on_warning;
     session_options.recorder = &recorder;
     session_options.keep_result_channel = options.keep_result_channel;
+    session_options.result_dump = options.result_dump;
     ClientSession session(std::move(tree_lights), scene_guid, std::move(session_options));
 
     auto start = Clock::now();

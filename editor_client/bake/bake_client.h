@@ -48,6 +48,9 @@ struct BakeClientOptions {
     std::filesystem::path tls_ca_file;
     std::filesystem::path record_dir;  // when set, every channel's bytes are dumped there
     bool keep_result_channel = true;   // false: BakeOutcome::result_channel stays empty
+    // Non-empty: the result channel is written to this dump (bake -o) as it
+    // arrives, and the dump committed once the whole tree is valid.
+    std::filesystem::path result_dump;
     BuilderKind builder = BuilderKind::kOptimalPair;
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;
@@ -81,6 +84,7 @@ struct BakeOutcome {
     double total_ms = 0.0;
     double upload_ms = 0.0;
     double download_ms = 0.0;
+    double write_ms = 0.0;  // committing the result dump: the fsync of what the stream wrote
 };
 
 // Lights marked classic are not sent: they stay with the client. A failure's

@@ -59,7 +59,8 @@ std::optional<Message> ClientSession::next_upload_message() {
             if (uploads_.empty()) {
                 upload_start_ = Clock::now();
                 uploads_.push_back({kSceneChannelId, scene_channel_, encode_scene_channel(lights_)});
-                lights_ = {};
+                // A new vector, not `= {}`: that clears and keeps the million lights' capacity.
+                lights_ = std::vector<SceneLight>();
                 if (options_.geometry) {
                     uploads_.push_back({kGeometryChannelId, geometry_channel_,
                                         encode_geometry_channel(*options_.geometry)});
@@ -98,7 +99,7 @@ std::optional<Message> ClientSession::next_upload_message() {
                     }
                 }
             }
-            uploads_ = {};
+            uploads_ = std::vector<UploadChannel>();
             upload_step_ = UploadStep::kDone;
             stage_ = Stage::kBaking;
             outcome_.upload_ms = ms_since(upload_start_);
@@ -158,6 +159,11 @@ void ClientSession::on_bake_message(const Message& m) {
         outcome_.result_channel_name = open->name;
         expected_bytes_ = open->total_bytes;
         download_start_ = Clock::now();
+        if (!options_.result_dump.empty()) {
+            Result<DumpWriter> dump = DumpWriter::open(options_.result_dump, open->name, open->total_bytes);
+            if (!dump) return finish(dump.failure());
+            result_dump_.emplace(std::move(dump.value()));
+        }
     } else if (auto* write = std::get_if<WriteChannelMsg>(&m)) {
         if (!result_channel_id_ || write->channel_id != *result_channel_id_)
             return finish(make_error("server wrote to channel " + std::to_string(write->channel_id) +
@@ -166,6 +172,9 @@ void ClientSession::on_bake_message(const Message& m) {
             return finish(make_error("result channel out of order or longer than announced"));
         if (Status s = reader_.consume(write->data); !s) return finish(make_error("result channel: " + s.error()));
         result_received_ += write->data.size();
+        if (result_dump_) {
+            if (Status written = result_dump_->append(write->data); !written) return finish(written.failure());
+        }
         if (options_.keep_result_channel || (options_.recorder && options_.recorder->enabled()))
             result_bytes_.insert(result_bytes_.end(), write->data.begin(), write->data.end());
         if (options_.on_progress && reader_.nodes_expected() > 0) {
@@ -192,7 +201,12 @@ void ClientSession::on_bake_message(const Message& m) {
             if (!recorded) return finish(make_error(recorded.error()));
         }
         if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
-        result_bytes_ = {};
+        result_bytes_ = std::vector<uint8_t>();
+        if (result_dump_) {
+            const Clock::time_point write_start = Clock::now();
+            if (Status committed = result_dump_->commit(); !committed) return finish(committed.failure());
+            outcome_.write_ms = ms_since(write_start);
+        }
         finish(std::move(outcome_));
     } else {
         finish(make_error(std::string("unexpected message from the server: ") + message_name(m)));
@@ -216,6 +230,7 @@ void ClientSession::fail(Error error) {
 void ClientSession::finish(Result<BakeOutcome> result) {
     stage_ = Stage::kFinished;
     outbox_.clear();
+    result_dump_.reset();  // uncommitted: its temporary file goes
     result_.emplace(std::move(result));
 }
 

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@
 #include "lightcuts/scene_light.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
+#include "protocol/dump.h"
 #include "protocol/messages.h"
 
 namespace lc::client {
@@ -40,6 +42,10 @@ struct ClientSessionOptions {
     // False: BakeOutcome::result_channel stays empty; the tree is decoded as
     // the channel streams in, and a million-light channel is 180 MB more.
     bool keep_result_channel = true;
+    // Non-empty: the result channel goes into this dump as it arrives (a
+    // DumpWriter), committed at BakeDone once the tree is valid; a failed bake
+    // leaves no dump and any earlier one at that path untouched.
+    std::filesystem::path result_dump;
     // Sent on the geometry channel after the scene channel when an effect
     // needs the surfaces (surface_geometry.h); null: no geometry channel.
     std::shared_ptr<const SceneGeometry> geometry;
@@ -109,6 +115,7 @@ private:
     BakeOutcome outcome_;
     ResultChannelReader reader_;
     std::vector<uint8_t> result_bytes_;  // kept for the outcome or the recorder
+    std::optional<DumpWriter> result_dump_;
     uint64_t result_received_ = 0;
     std::optional<uint32_t> result_channel_id_;
     uint64_t expected_bytes_ = 0;

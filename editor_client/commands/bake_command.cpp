@@ -16,7 +16,6 @@
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_guid.h"
 #include "editor_client/scene/surface_geometry.h"
-#include "protocol/dump.h"
 
 namespace lc::client {
 namespace {
@@ -51,7 +50,8 @@ void add_bake_command(CLI::App& app) {
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options();
-        bake.keep_result_channel = !options->output.empty();
+        bake.keep_result_channel = false;
+        bake.result_dump = options->output;
         bake.geometry = geometry_the_bake_needs(*scene, bake.indirect.method);
         ProgressDisplay progress(stderr);
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
@@ -66,12 +66,8 @@ void add_bake_command(CLI::App& app) {
         size_t classic = 0;
         for (const SceneLight& l : scene->lights) classic += l.classic ? 1 : 0;
         double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
+        const double write_ms = outcome->write_ms;
         std::string channel = outcome->result_channel_name;
-        const auto write_start = std::chrono::steady_clock::now();
-        if (!options->output.empty())
-            or_fail(write_dump(options->output,
-                               ChannelDump{channel, std::move(outcome->result_channel)}));
-        const double write_ms = ms_since(write_start);
         const auto import_start = std::chrono::steady_clock::now();
         TreeStore store;
         or_fail(store.import(std::move(outcome)));

@@ -27,6 +27,7 @@
 #include <stdexcept>
 
 #include "editor_client/scene/gltf_node_reader.h"
+#include "editor_client/scene/mapped_file.h"
 #include "editor_client/scene/gltf_resource_access.h"
 #include "editor_client/scene/scene_guid.h"
 #include "lightcuts/status_macros.h"
@@ -291,9 +292,12 @@ struct AccessorData {
     bool normalized = false;
 };
 
+// A node waiting to be visited. Its parent's world transform is shared by
+// index (parent_worlds in traverse): a node with a million children, or a
+// scene with a million roots, waits as a million small entries.
 struct Traversal {
     int node = 0;
-    glm::dmat4 parent_world{1.0};
+    uint32_t parent_world = 0;
     uint64_t path_hash = 0;
 };
 
@@ -306,17 +310,16 @@ public:
 
     Result<Scene> load_file();
     // `resource_folder` stands for the scene's folder (gltf_loader.h).
-    // `capacity`: how many bytes from bytes.data() may be read (padding for simdjson).
-    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
-                       size_t capacity);
+    Result<Scene> load(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder);
 
 private:
     Error fail(const std::string& message) const { return Error{path_.string() + ": " + message}; }
     void warn(const std::string& message) { warnings_.push_back(path_.string() + ": " + message); }
 
-    Status read_file(std::vector<uint8_t>& bytes) const;
+    Result<MappedFile> map_file() const;
+    // `on_consumed`: the node reader will not read the bytes before an offset again.
     Status parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
-                 size_t capacity);
+                 const ConsumedBytes& on_consumed = {});
     // tinygltf over `bytes` into model_; its warnings are added to `warnings`.
     Status parse_with_tinygltf(std::span<const uint8_t> bytes,
                                const std::filesystem::path& resource_folder,
@@ -360,23 +363,23 @@ private:
     std::vector<glm::dvec3> camera_forward_;  // per Scene::cameras entry, for finish_cameras()
 };
 
-Status Loader::read_file(std::vector<uint8_t>& bytes) const {
+Result<MappedFile> Loader::map_file() const {
     std::error_code ec;
     if (!std::filesystem::exists(path_, ec)) return fail("file does not exist");
     if (!std::filesystem::is_regular_file(path_, ec)) return fail("not a regular file");
-    std::string error;
-    if (!GltfResourceAccess::read_regular_file(path_, bytes, error)) return fail(error);
-    return Ok{};
+    Result<MappedFile> file = MappedFile::open(path_);
+    if (!file) return fail(file.error());
+    return file;
 }
 
 Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
-                     size_t capacity) {
+                     const ConsumedBytes& on_consumed) {
     if (bytes.empty()) return fail("the file is empty");
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
         return fail("the file is larger than 4 GiB");
     }
     if (options_.stream_nodes) {
-        std::optional<GltfNodeSplit> split = read_gltf_nodes(bytes, capacity);
+        std::optional<GltfNodeSplit> split = read_gltf_nodes(bytes, on_consumed);
         if (split) {
             std::vector<std::string> warnings;
             const auto* remainder = reinterpret_cast<const uint8_t*>(split->remainder.data());
@@ -392,9 +395,10 @@ Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path
     }
     LC_RETURN_IF_ERROR(parse_with_tinygltf(bytes, resource_folder, warnings_));
     nodes_ = node_table_from(model_);
-    model_.nodes = {};
-    model_.lights = {};
-    model_.scenes = {};
+    // New vectors, not `= {}`: that clears and keeps a million nodes' capacity.
+    model_.nodes = std::vector<tg::Node>();
+    model_.lights = std::vector<tg::Light>();
+    model_.scenes = std::vector<tg::Scene>();
     return Ok{};
 }
 
@@ -1160,53 +1164,63 @@ void Loader::finish_cameras() {
 
 Status Loader::traverse(const std::vector<int>& roots) {
     std::vector<bool> visited(nodes_.nodes.size(), false);
+    // Grown to its size at once: no second copy of a million lights while it grows.
+    const auto light_nodes = std::count_if(nodes_.nodes.begin(), nodes_.nodes.end(), [](const GltfNode& node) {
+        return node.light != LightReference::kNone;
+    });
+    scene_.lights.reserve(size_t(light_nodes));
+    std::vector<glm::dmat4> parent_worlds{glm::dmat4(1.0)};  // [0]: the roots' parent
     std::vector<Traversal> stack;
-    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
-        stack.push_back({*it, glm::dmat4(1.0), 0xcbf29ce484222325ull});
-    }
-    while (!stack.empty()) {
-        const Traversal item = stack.back();
-        stack.pop_back();
-        if (visited[size_t(item.node)]) {
-            return fail("node " + std::to_string(item.node) +
-                        " is reached twice from the scene (listed as a root and as a descendant, "
-                        "or listed twice)");
-        }
-        visited[size_t(item.node)] = true;
-        const GltfNode& node = nodes_.nodes[size_t(item.node)];
-
-        Result<glm::dmat4> local = local_transform(item.node);
-        if (!local) return Error{local.error()};
-        const glm::dmat4 world = item.parent_world * *local;
-        if (!all_finite(world)) {
-            return fail("node " + std::to_string(item.node) +
-                        ": its world transform is not finite");
-        }
-        // FNV-1a step over the node index: the path from the root.
-        uint64_t path_hash = item.path_hash;
-        for (int i = 0; i < 4; ++i) {
-            path_hash ^= uint8_t(uint32_t(item.node) >> (8 * i));
-            path_hash *= 0x100000001b3ull;
-        }
-
-        if (node.mesh >= 0) {
-            Status status = add_mesh(item.node, node.mesh, world);
-            if (!status) return status;
-        }
-        if (node.camera >= 0) {
-            if (node.camera >= static_cast<int>(model_.cameras.size())) {
-                return fail("node " + std::to_string(item.node) + " uses camera " +
-                            std::to_string(node.camera) + ", which does not exist");
+    // Root by root, each subtree depth first: the order of a stack holding every root.
+    for (const int root : roots) {
+        stack.push_back({root, 0, 0xcbf29ce484222325ull});
+        while (!stack.empty()) {
+            const Traversal item = stack.back();
+            stack.pop_back();
+            if (visited[size_t(item.node)]) {
+                return fail("node " + std::to_string(item.node) +
+                            " is reached twice from the scene (listed as a root and as a descendant, "
+                            "or listed twice)");
             }
-            add_camera(item.node, node.camera, world);
-        }
-        if (node.light != LightReference::kNone) {
-            Status status = add_light(item.node, world, path_hash);
-            if (!status) return status;
-        }
-        const std::span<const int32_t> children = nodes_.children_of(node);
-        for (auto it = children.rbegin(); it != children.rend(); ++it) {
-            stack.push_back({*it, world, path_hash});
+            visited[size_t(item.node)] = true;
+            const GltfNode& node = nodes_.nodes[size_t(item.node)];
+
+            Result<glm::dmat4> local = local_transform(item.node);
+            if (!local) return Error{local.error()};
+            const glm::dmat4 world = parent_worlds[item.parent_world] * *local;
+            if (!all_finite(world)) {
+                return fail("node " + std::to_string(item.node) +
+                            ": its world transform is not finite");
+            }
+            // FNV-1a step over the node index: the path from the root.
+            uint64_t path_hash = item.path_hash;
+            for (int i = 0; i < 4; ++i) {
+                path_hash ^= uint8_t(uint32_t(item.node) >> (8 * i));
+                path_hash *= 0x100000001b3ull;
+            }
+
+            if (node.mesh >= 0) {
+                Status status = add_mesh(item.node, node.mesh, world);
+                if (!status) return status;
+            }
+            if (node.camera >= 0) {
+                if (node.camera >= static_cast<int>(model_.cameras.size())) {
+                    return fail("node " + std::to_string(item.node) + " uses camera " +
+                                std::to_string(node.camera) + ", which does not exist");
+                }
+                add_camera(item.node, node.camera, world);
+            }
+            if (node.light != LightReference::kNone) {
+                Status status = add_light(item.node, world, path_hash);
+                if (!status) return status;
+            }
+            const std::span<const int32_t> children = nodes_.children_of(node);
+            if (children.empty()) continue;
+            const auto world_index = uint32_t(parent_worlds.size());
+            parent_worlds.push_back(world);
+            for (auto it = children.rbegin(); it != children.rend(); ++it) {
+                stack.push_back({*it, world_index, path_hash});
+            }
         }
     }
     return Ok{};
@@ -1237,18 +1251,20 @@ Result<Scene> Loader::load_file() {
     std::filesystem::path folder = path_.parent_path();
     if (folder.empty()) folder = ".";
     {
-        // The file's bytes go before the scene is built: a million-light file is
-        // hundreds of megabytes that nothing reads after parsing.
-        std::vector<uint8_t> bytes;
-        LC_RETURN_IF_ERROR(read_file(bytes));
-        LC_RETURN_IF_ERROR(parse(bytes, folder, bytes.capacity()));
+        // The file is mapped, its pages released behind the node reader, and
+        // unmapped before the scene is built: a million-light file is hundreds
+        // of megabytes that nothing reads after parsing.
+        Result<MappedFile> file = map_file();
+        if (!file) return file.failure();
+        LC_RETURN_IF_ERROR(parse(file->bytes(), folder,
+                                 [&](size_t offset) { file->release_before(offset); }));
     }
     return build_scene();
 }
 
 Result<Scene> Loader::load(std::span<const uint8_t> bytes,
-                           const std::filesystem::path& resource_folder, size_t capacity) {
-    LC_RETURN_IF_ERROR(parse(bytes, resource_folder, capacity));
+                           const std::filesystem::path& resource_folder) {
+    LC_RETURN_IF_ERROR(parse(bytes, resource_folder));
     return build_scene();
 }
 
@@ -1261,6 +1277,9 @@ Result<Scene> Loader::build_scene() {
     if (!status) return Error{status.error()};
     status = traverse(*roots);
     if (!status) return Error{status.error()};
+    // The scene has all it needs from the table: a million light nodes'
+    // records go before the GUID checks and the scene GUID allocate theirs.
+    nodes_ = GltfNodeTable{};
     status = check_unique_light_guids();
     if (!status) return Error{status.error()};
     scene_.source = path_;
@@ -1304,7 +1323,7 @@ Result<Scene> load_scene_from_memory(std::span<const uint8_t> bytes,
                                      std::vector<std::string>& warnings,
                                      const GltfLoadOptions& options) {
     Loader loader("(memory)", warnings, options);
-    return loader.load(bytes, resource_folder, bytes.size());
+    return loader.load(bytes, resource_folder);
 }
 
 Result<Scene> load_scene(const std::filesystem::path& path, const GltfLoadOptions& options) {

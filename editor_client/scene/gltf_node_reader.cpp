@@ -11,25 +11,18 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_resource_access.h"
+#include "editor_client/scene/gltf_json_sections.h"
 
 namespace lc::client {
 namespace {
 
 namespace sj = simdjson::ondemand;
 using simdjson::SUCCESS;
-
-static_assert(GltfResourceAccess::kReadPadding >= simdjson::SIMDJSON_PADDING);
-
-// The three arrays the reader takes, as text inside the document.
-struct Sections {
-    std::string_view nodes;
-    std::string_view scenes;
-    std::string_view lights;
-};
 
 // tinygltf's JSON (nlohmann) keeps integer tokens as 64-bit integers and
 // converts them when asked for a double: "-0" is +0 there, and here.
@@ -253,129 +246,69 @@ bool read_scene(sj::value value, GltfNodeTable& table, NumberRange& roots) {
     });
 }
 
-// Nothing follows the root value (On-Demand stops reading where we stop).
-bool at_end(sj::document& doc) {
-    return doc.current_location().error() == simdjson::OUT_OF_BOUNDS;
-}
-
-// Runs `read` on each element of the array `text`, a part of the padded document.
+// Parses one run of a section's elements, copied between brackets into a
+// buffer with simdjson's padding, with `read` on each element.
 template <typename Read>
-bool for_each_element(sj::parser& parser, std::string_view text, size_t capacity, Read&& read) {
-    if (text.empty()) return true;
+bool for_each_element(sj::parser& parser, std::vector<char>& buffer, std::string_view elements,
+                      Read&& read) {
+    buffer.resize(elements.size() + 2 + simdjson::SIMDJSON_PADDING);
+    buffer[0] = '[';
+    std::memcpy(buffer.data() + 1, elements.data(), elements.size());
+    buffer[elements.size() + 1] = ']';
     sj::document doc;
-    if (parser.iterate(text.data(), text.size(), capacity).get(doc) != SUCCESS) return false;
+    if (parser.iterate(buffer.data(), elements.size() + 2, buffer.size()).get(doc) != SUCCESS) {
+        return false;
+    }
     sj::array array;
     if (doc.get_array().get(array) != SUCCESS) return false;
     for (auto element : array) {
         sj::value v;
         if (element.get(v) != SUCCESS || !read(v)) return false;
     }
-    return at_end(doc);
+    // Nothing follows the array (On-Demand stops reading where we stop).
+    return doc.current_location().error() == simdjson::OUT_OF_BOUNDS;
 }
 
-// Finds the three arrays; the rest of the document is left to tinygltf.
-bool find_sections(sj::parser& parser, std::string_view json, size_t capacity, Sections& out) {
-    sj::document doc;
-    if (parser.iterate(json.data(), json.size(), capacity).get(doc) != SUCCESS) return false;
-    sj::object root;
-    if (doc.get_object().get(root) != SUCCESS) return false;
-    bool seen_extensions = false;
-    auto take_array = [](sj::value v, std::string_view& text) {
-        sj::array array;
-        return text.empty() && v.get_array().get(array) == SUCCESS &&
-               array.raw_json().get(text) == SUCCESS;
-    };
-    for (auto field_result : root) {
-        sj::field field;
-        std::string_view key;
-        if (std::move(field_result).get(field) != SUCCESS || !read_key(field, key)) return false;
-        if (key == "nodes" && !take_array(field.value(), out.nodes)) return false;
-        if (key == "scenes" && !take_array(field.value(), out.scenes)) return false;
-        if (key == "extensions") {
-            if (seen_extensions) return false;
-            seen_extensions = true;
-            sj::object extensions;
-            if (field.value().get_object().get(extensions) != SUCCESS) return false;
-            for (auto ext_result : extensions) {
-                sj::field ext;
-                std::string_view name;
-                if (std::move(ext_result).get(ext) != SUCCESS || !read_key(ext, name)) return false;
-                if (name != "KHR_lights_punctual") continue;
-                sj::object lights_punctual;
-                if (!out.lights.empty() ||
-                    ext.value().get_object().get(lights_punctual) != SUCCESS) {
-                    return false;
-                }
-                for (auto lp_result : lights_punctual) {
-                    sj::field lp;
-                    std::string_view lp_key;
-                    if (std::move(lp_result).get(lp) != SUCCESS || !read_key(lp, lp_key)) return false;
-                    if (lp_key == "lights" && !take_array(lp.value(), out.lights)) return false;
-                }
-            }
-        }
-    }
-    return at_end(doc);
-}
+// How many bytes of elements the parser indexes at a time: its index is about
+// four bytes per token of one run, not of the whole document.
+constexpr size_t kRunBytes = size_t{1} << 20;
 
-// The document with each section's text replaced by an empty array.
-std::string remainder_without(std::string_view json, const Sections& sections) {
-    std::array<std::string_view, 3> cuts{sections.nodes, sections.scenes, sections.lights};
-    std::sort(cuts.begin(), cuts.end(),
-              [](std::string_view a, std::string_view b) { return a.data() < b.data(); });
-    std::string out;
-    const char* at = json.data();
-    for (std::string_view cut : cuts) {
-        if (cut.empty()) continue;
-        out.append(at, cut.data());
-        out += "[]";
-        at = cut.data() + cut.size();
-    }
-    out.append(at, json.data() + json.size());
-    return out;
-}
-
-std::optional<GltfNodeSplit> read_padded(std::string_view json, size_t capacity) {
+std::optional<GltfNodeSplit> read_json(std::string_view json, const ConsumedBytes& on_consumed) {
     sj::parser parser;
-    Sections sections;
-    if (!find_sections(parser, json, capacity, sections)) return std::nullopt;
-    auto capacity_at = [&](std::string_view part) {
-        return capacity - size_t(part.data() - json.data());
-    };
+    std::vector<char> buffer;
     GltfNodeSplit split;
     GltfNodeTable& table = split.table;
-    const bool ok =
-        for_each_element(parser, sections.nodes, capacity_at(sections.nodes),
-                         [&](sj::value v) {
-                             GltfNode node;
-                             if (!read_node(v, table, node)) return false;
-                             table.nodes.push_back(node);
-                             return true;
-                         }) &&
-        for_each_element(parser, sections.scenes, capacity_at(sections.scenes),
-                         [&](sj::value v) {
-                             NumberRange roots{uint32_t(table.scene_roots.size()), 0};
-                             if (!read_scene(v, table, roots)) return false;
-                             table.scenes.push_back(roots);
-                             return true;
-                         }) &&
-        for_each_element(parser, sections.lights, capacity_at(sections.lights),
-                         [&](sj::value v) {
-                             GltfPunctualLight light;
-                             if (!read_light(v, table, light)) return false;
-                             table.lights.push_back(light);
-                             return true;
-                         });
-    if (!ok) return std::nullopt;
-    split.remainder = remainder_without(json, sections);
+    // Each element of a run read by `read` into a new entry of `entries`.
+    auto append_elements = [&](std::string_view elements, auto& entries, auto&& read) {
+        return for_each_element(parser, buffer, elements, [&](sj::value v) {
+            typename std::remove_reference_t<decltype(entries)>::value_type entry{};
+            if (!read(v, entry)) return false;
+            entries.push_back(entry);
+            return true;
+        });
+    };
+    auto read_elements = [&](GltfSection section, std::string_view elements) {
+        switch (section) {
+            case GltfSection::kNodes:
+                return append_elements(elements, table.nodes,
+                                       [&](sj::value v, GltfNode& node) { return read_node(v, table, node); });
+            case GltfSection::kScenes:
+                return append_elements(elements, table.scenes, [&](sj::value v, NumberRange& roots) {
+                    roots.first = uint32_t(table.scene_roots.size());
+                    return read_scene(v, table, roots);
+                });
+            case GltfSection::kLights:
+                return append_elements(elements, table.lights, [&](sj::value v, GltfPunctualLight& light) {
+                    return read_light(v, table, light);
+                });
+        }
+        return false;
+    };
+    std::optional<std::string> remainder =
+        split_gltf_sections(json, kRunBytes, {read_elements, on_consumed});
+    if (!remainder) return std::nullopt;
+    split.remainder = std::move(*remainder);
     return split;
-}
-
-std::optional<GltfNodeSplit> read_json(std::string_view json, size_t capacity) {
-    if (capacity >= json.size() + simdjson::SIMDJSON_PADDING) return read_padded(json, capacity);
-    const simdjson::padded_string padded(json);
-    return read_padded(std::string_view(padded.data(), padded.size()),
-                       padded.size() + simdjson::SIMDJSON_PADDING);
 }
 
 uint32_t read_u32(const uint8_t* at) {
@@ -394,7 +327,7 @@ constexpr size_t kGlbChunkHeaderBytes = 8;
 // A .glb whose header and JSON chunk are as the specification writes them;
 // the remainder is the same container around the emptied JSON, the chunks
 // after it copied as they are.
-std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, size_t capacity) {
+std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, const ConsumedBytes& on_consumed) {
     constexpr size_t json_at = kGlbHeaderBytes + kGlbChunkHeaderBytes;
     if (file.size() < json_at || read_u32(&file[4]) != kGlbVersion ||
         read_u32(&file[8]) != file.size() || read_u32(&file[16]) != kGlbChunkJson) {
@@ -403,7 +336,9 @@ std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, size_t capa
     const size_t json_bytes = read_u32(&file[12]);
     if (json_bytes > file.size() - json_at) return std::nullopt;
     const std::string_view json(reinterpret_cast<const char*>(file.data()) + json_at, json_bytes);
-    std::optional<GltfNodeSplit> split = read_json(json, capacity - json_at);
+    std::optional<GltfNodeSplit> split = read_json(json, [&](size_t offset) {
+        if (on_consumed) on_consumed(json_at + offset);
+    });
     if (!split) return std::nullopt;
     std::string text = std::move(split->remainder);
     while (text.size() % 4 != 0) text += ' ';
@@ -421,10 +356,11 @@ std::optional<GltfNodeSplit> read_glb(std::span<const uint8_t> file, size_t capa
 
 }  // namespace
 
-std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file, size_t capacity) {
-    if (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0) return read_glb(file, capacity);
+std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file,
+                                             const ConsumedBytes& on_consumed) {
+    if (file.size() >= 4 && std::memcmp(file.data(), "glTF", 4) == 0) return read_glb(file, on_consumed);
     return read_json(std::string_view(reinterpret_cast<const char*>(file.data()), file.size()),
-                     capacity);
+                     on_consumed);
 }
 
 }  // namespace lc::client

@@ -13,6 +13,7 @@
 // messages are the same on both paths.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -28,9 +29,14 @@ struct GltfNodeSplit {
     std::string remainder;
 };
 
-// A .gltf or .glb file's bytes. They must stay readable for `capacity` bytes
-// from their start (capacity >= size + 64: simdjson's padding); otherwise the
-// reader copies the JSON.
-std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file, size_t capacity);
+// Told, as the reader goes, that it will not read the file's bytes before an
+// offset again (the loader releases a mapped file's pages behind it).
+using ConsumedBytes = std::function<void(size_t offset)>;
+
+// A .gltf or .glb file's bytes. The JSON is read in one pass, the three
+// arrays a run of elements at a time (gltf_json_sections.h), so the parser
+// never indexes the whole document.
+std::optional<GltfNodeSplit> read_gltf_nodes(std::span<const uint8_t> file,
+                                             const ConsumedBytes& on_consumed = {});
 
 }  // namespace lc::client

@@ -83,9 +83,6 @@ bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path,
         error = "'" + path.string() + "' is larger than 4 GiB";
         return false;
     }
-    // Room behind the bytes for a parser's padding (simdjson reads 64 bytes past
-    // the end), so a large scene is never copied to make room.
-    out.reserve(size_t(info.st_size) + kReadPadding);
     out.resize(size_t(info.st_size));
     size_t done = 0;
     while (done < out.size()) {

@@ -24,9 +24,7 @@ public:
     const std::vector<std::string>& refusals() const { return refusals_; }
 
     // Reads a regular file without blocking on a FIFO or a device: the file is
-    // opened non-blocking and checked with fstat before a byte is read. `out`
-    // keeps kReadPadding bytes of capacity past its end.
-    static constexpr size_t kReadPadding = 64;
+    // opened non-blocking and checked with fstat before a byte is read.
     static bool read_regular_file(const std::filesystem::path& path,
                                   std::vector<unsigned char>& out, std::string& error);
 

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
 #include <set>
@@ -163,8 +164,7 @@ void remove_extension_name(json& doc, const char* list, const char* name) {
     if (names.empty()) doc.erase(list);
 }
 
-std::vector<uint8_t> encode_glb(const json& doc, std::span<const uint8_t> bin) {
-    std::string text = doc.dump();
+std::vector<uint8_t> encode_glb(std::string text, std::span<const uint8_t> bin) {
     while (text.size() % 4 != 0) text += ' ';
     const size_t bin_padded = (bin.size() + 3) / 4 * 4;
     const size_t total = 12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin_padded);
@@ -185,7 +185,8 @@ std::vector<uint8_t> encode_glb(const json& doc, std::span<const uint8_t> bin) {
     return out;
 }
 
-Status write_file_atomically(const std::filesystem::path& out, std::span<const uint8_t> bytes) {
+Status write_file_atomically(const std::filesystem::path& out,
+                             const std::function<void(std::ostream&)>& write) {
     std::error_code ec;
     const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : ".";
     if (!std::filesystem::is_directory(dir, ec)) {
@@ -197,7 +198,7 @@ Status write_file_atomically(const std::filesystem::path& out, std::span<const u
     {
         std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
         if (!file) return make_error("cannot write " + out.string() + ": cannot create the file");
-        file.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+        write(file);
         file.flush();
         if (!file) {
             file.close();
@@ -213,21 +214,97 @@ Status write_file_atomically(const std::filesystem::path& out, std::span<const u
     return Ok{};
 }
 
+Status write_file_atomically(const std::filesystem::path& out, std::span<const uint8_t> bytes) {
+    return write_file_atomically(out, [&](std::ostream& file) {
+        file.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    });
+}
+
+// The elements of one array written in place of a marker string in the
+// document, one element's JSON at a time: a million lights are never a
+// million nlohmann objects at once (4 GB at 2^20 lights).
+struct StreamedArray {
+    json::json_pointer array;
+    std::string marker;  // the array's last element in `doc` until it is written
+    size_t count = 0;
+    std::function<json(size_t)> element;
+};
+
+// Each marker stands once in the text: no string of the scene's spells one.
+bool markers_stand_alone(const std::string& text, const std::vector<StreamedArray>& arrays) {
+    for (const StreamedArray& array : arrays) {
+        const std::string quoted = json(array.marker).dump();
+        const size_t first = text.find(quoted);
+        if (first == std::string::npos || text.find(quoted, first + 1) != std::string::npos) return false;
+    }
+    return true;
+}
+
+// `doc`'s text as dump(indent) gives it, each marker's array elements in its
+// place, handed to `out` a piece at a time. An element dumped alone is
+// indented from column 0: every line it breaks is moved right to where the
+// marker stood, which is the text dump(indent) gives for the whole array.
+void write_json(json& doc, int indent, const std::vector<StreamedArray>& arrays,
+                const std::function<void(std::string_view)>& out) {
+    std::string text = doc.dump(indent);
+    if (!markers_stand_alone(text, arrays)) {
+        // A scene string that spells a marker: the arrays are made whole in the document.
+        for (const StreamedArray& array : arrays) {
+            json& elements = doc[array.array];
+            elements.erase(elements.size() - 1);
+            for (size_t i = 0; i < array.count; ++i) elements.push_back(array.element(i));
+        }
+        out(doc.dump(indent));
+        return;
+    }
+    std::vector<std::pair<size_t, const StreamedArray*>> places;
+    for (const StreamedArray& array : arrays) {
+        const std::string quoted = json(array.marker).dump();
+        places.emplace_back(text.find(quoted), &array);
+    }
+    std::sort(places.begin(), places.end());
+    size_t at = 0;
+    for (const auto& [place, array] : places) {
+        out(std::string_view(text).substr(at, place - at));
+        const size_t line_start = text.rfind('\n', place) + 1;
+        const std::string break_and_indent = "\n" + text.substr(line_start, place - line_start);
+        for (size_t i = 0; i < array->count; ++i) {
+            if (i > 0) out(indent < 0 ? "," : "," + break_and_indent);
+            std::string element = array->element(i).dump(indent);
+            if (indent >= 0) {
+                for (size_t nl = element.find('\n'); nl != std::string::npos; nl = element.find('\n', nl + 1)) {
+                    element.replace(nl, 1, break_and_indent);
+                    nl += break_and_indent.size() - 1;
+                }
+            }
+            out(element);
+        }
+        at = place + json(array->marker).dump().size();
+    }
+    out(std::string_view(text).substr(at));
+}
+
 // Writes `doc` to `out` as .glb (with `bin` as its binary chunk) or as .gltf
-// (with `bin` embedded as base64 in buffer `bin_buffer`).
+// (with `bin` embedded as base64 in buffer `bin_buffer`), with `arrays`
+// written in place of their markers.
 Status write_document(json doc, std::span<const uint8_t> bin, int bin_buffer,
-                      const std::filesystem::path& out) {
+                      const std::filesystem::path& out, const std::vector<StreamedArray>& arrays = {}) {
     if (is_glb_path(out)) {
-        const std::vector<uint8_t> bytes = encode_glb(doc, bin);
+        std::string text;
+        write_json(doc, -1, arrays, [&](std::string_view piece) { text += piece; });
+        const std::vector<uint8_t> bytes = encode_glb(std::move(text), bin);
         return write_file_atomically(out, bytes);
     }
     if (bin_buffer >= 0) {
         doc["buffers"][size_t(bin_buffer)]["uri"] =
             "data:application/octet-stream;base64," + base64_encode(bin);
     }
-    const std::string text = doc.dump(2) + "\n";
-    return write_file_atomically(
-        out, std::span<const uint8_t>(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
+    return write_file_atomically(out, [&](std::ostream& file) {
+        write_json(doc, 2, arrays, [&](std::string_view piece) {
+            file.write(piece.data(), std::streamsize(piece.size()));
+        });
+        file << "\n";
+    });
 }
 
 // --- Whole-scene writer -------------------------------------------------------
@@ -407,15 +484,20 @@ Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
         scene_nodes.push_back(doc["nodes"].size() - 1);
     }
 
+    std::vector<StreamedArray> streamed;
     if (!scene.lights.empty()) {
-        json lights = json::array();
-        for (size_t i = 0; i < scene.lights.size(); ++i) {
-            lights.push_back(light_json(scene.lights[i], i));
-            doc["nodes"].push_back(light_node_json(scene.lights[i], i));
-            scene_nodes.push_back(doc["nodes"].size() - 1);
-        }
-        doc["extensions"][kLightsExtension] = {{"lights", lights}};
+        // The light nodes follow the others; both arrays are written as they are dumped.
+        const StreamedArray light_nodes{json::json_pointer("/nodes"), "lightcuts-writer:light-nodes",
+                                        scene.lights.size(),
+                                        [&](size_t i) { return light_node_json(scene.lights[i], i); }};
+        const StreamedArray lights{json::json_pointer(std::string("/extensions/") + kLightsExtension + "/lights"),
+                                   "lightcuts-writer:lights", scene.lights.size(),
+                                   [&](size_t i) { return light_json(scene.lights[i], i); }};
+        for (size_t i = 0; i < scene.lights.size(); ++i) scene_nodes.push_back(doc["nodes"].size() + i);
+        doc["nodes"].push_back(light_nodes.marker);
+        doc["extensions"][kLightsExtension] = {{"lights", json::array({lights.marker})}};
         add_extension_used(doc, kLightsExtension);
+        streamed = {light_nodes, lights};
     }
     if (uses_emissive_strength) add_extension_used(doc, kEmissiveStrengthExtension);
 
@@ -428,7 +510,7 @@ Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
         doc["buffers"] = json::array({json::object({{"byteLength", bin.bytes().size()}})});
         bin_buffer = 0;
     }
-    return write_document(std::move(doc), bin.bytes(), bin_buffer, out);
+    return write_document(std::move(doc), bin.bytes(), bin_buffer, out, streamed);
 }
 
 // --- Light replacement in an existing file ---------------------------------------
