@@ -9,11 +9,11 @@
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "lightcuts_generated.h"
-#include "protocol/huge_pages.h"
 #include "protocol/record_bytes.h"
 
 namespace lc {
@@ -126,14 +126,13 @@ public:
         if (reinterpret_cast<uintptr_t>(p) % alignof(ResultRecord) == 0) {
             record_ = reinterpret_cast<const ResultRecord*>(p);
         } else {
-            copy_ = read_struct<ResultRecord>(p);
-            record_ = &copy_;
+            record_ = &copy_.emplace(read_struct<ResultRecord>(p));
         }
     }
     const ResultRecord& operator*() const { return *record_; }
 
 private:
-    ResultRecord copy_;
+    std::optional<ResultRecord> copy_;  // made only for a misaligned record
     const ResultRecord* record_;
 };
 
@@ -311,7 +310,6 @@ void reserve_once_an_eighth_arrives(std::vector<Record>& records, int64_t expect
     if (expected <= 0 || records.capacity() >= static_cast<size_t>(expected)) return;
     if (arriving * kReserveAllAfterFraction >= static_cast<size_t>(expected)) {
         records.reserve(static_cast<size_t>(expected));
-        advise_huge_pages(records.data(), records.capacity() * sizeof(Record));
     }
 }
 
