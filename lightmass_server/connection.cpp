@@ -99,7 +99,7 @@ void Connection::apply(ServerActions actions) {
         std::visit(Overloaded{
                        [&](SendMessage& send) {
                            if (closed_) return;
-                           outbox_.push_back(encode_frame(send.message));
+                           outbox_.push_back(encode_frame_in_place(send.message));
                            wake_writer();
                        },
                        [&](StartBake& start) { start_bake(std::move(start)); },
@@ -192,7 +192,7 @@ awaitable<void> Connection::read_loop() {
 
 awaitable<void> Connection::write_loop() {
     while (!closed_) {
-        std::vector<uint8_t> frame;
+        std::optional<EncodedFrame> frame;
         if (!outbox_.empty()) {
             frame = std::move(outbox_.front());
             outbox_.pop_front();
@@ -204,7 +204,7 @@ awaitable<void> Connection::write_loop() {
                 rearm_deadline();
                 continue;
             }
-            frame = std::move(*next);
+            frame = std::move(next);
         } else if (closing_) {
             // TLS: close_notify, so the peer knows the error it read was the last word.
             co_await transport_.shutdown(kTlsShutdownGrace);
@@ -216,7 +216,8 @@ awaitable<void> Connection::write_loop() {
             co_await wake_.async_wait(ec_token(ec));
             continue;
         }
-        boost::system::error_code ec = co_await transport_.write(asio::buffer(frame));
+        const std::span<const uint8_t> bytes = frame->bytes();
+        boost::system::error_code ec = co_await transport_.write(asio::buffer(bytes.data(), bytes.size()));
         if (ec) {
             close("write failed: " + ec.message());
             co_return;

@@ -19,6 +19,7 @@
 #include "lightmass_server/server_session.h"
 #include "protocol/asio.h"
 #include "protocol/channel_recorder.h"
+#include "protocol/encoded_frame.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/transport.h"
 
@@ -74,7 +75,7 @@ private:
     FrameDecoder decoder_;
     asio::steady_timer wake_;
     asio::steady_timer deadline_timer_;
-    std::deque<std::vector<uint8_t>> outbox_;
+    std::deque<EncodedFrame> outbox_;
     std::optional<ResultStream> stream_;
     std::shared_ptr<std::atomic<bool>> build_cancel_;  // the running build's; null when none
     bool closed_ = false;

@@ -2,13 +2,14 @@
 // Streams a finished tree as the Lightcuts result channel: OpenChannel, the
 // count-prefixed records in bounded WriteChannel chunks, CloseChannel, then
 // BakeDone. Frames are made one at a time, so a 10^6-node tree never exists
-// twice in memory.
+// twice in memory. Each chunk's records are encoded straight into its frame.
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "lightcuts/light_tree.h"
+#include "protocol/encoded_frame.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {
@@ -19,7 +20,7 @@ public:
                  size_t chunk_bytes);
 
     // The next frame to send, or nothing once BakeDone has been produced.
-    std::optional<std::vector<uint8_t>> next_frame();
+    std::optional<EncodedFrame> next_frame();
 
 private:
     enum class Stage { kOpen, kData, kClose, kDone, kFinished };

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <glm/geometric.hpp>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -112,6 +113,27 @@ struct ResultRecord {
     fb::FLightData light;
     fb::FPointLightData point;
     fb::LightcutsNodeRecord node;
+};
+static_assert(sizeof(ResultRecord) == kResultRecordBytes, "the three structs lie back to back");
+
+// A record in the channel bytes, read in place when it is aligned as its
+// structs are, as FlatBuffers reads its structs: copying 180 bytes to the
+// stack and reading fields back across the copy's stores stalled each record
+// on store forwarding. A misaligned record (a span cut anywhere) is copied.
+class RecordAt {
+public:
+    explicit RecordAt(const uint8_t* p) {
+        if (reinterpret_cast<uintptr_t>(p) % alignof(ResultRecord) == 0) {
+            record_ = reinterpret_cast<const ResultRecord*>(p);
+        } else {
+            record_ = &copy_.emplace(read_struct<ResultRecord>(p));
+        }
+    }
+    const ResultRecord& operator*() const { return *record_; }
+
+private:
+    std::optional<ResultRecord> copy_;  // made only for a misaligned record
+    const ResultRecord* record_;
 };
 
 // FLightData.Color is the normalised colour; the exact RGB travels in the node
@@ -375,33 +397,32 @@ std::string short_channel(const char* what, int64_t expected, size_t received,
     return text;
 }
 
+void check_node_range(const LightTree& tree, size_t first, size_t count) {
+    if (first > tree.nodes.size() || count > tree.nodes.size() - first) {
+        throw std::out_of_range("result records: node range outside the tree");
+    }
+}
+
 void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
     if (count > limit) throw std::length_error("channel record count exceeds its limit");
     put_u32(out, static_cast<uint32_t>(count));
 }
 
 // The structure of a tree whose nodes each passed validate_node (child indices
-// in range and after their parent): one parent each, the leaf count, and
-// representatives that are leaves inside their subtree.
-Status validate_tree_structure(const LightTree& tree) {
-    const size_t n = tree.nodes.size();
+// in range and after their parent), from its links: one parent each, the leaf
+// count, and representatives that are leaves inside their subtree.
+Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
+    const size_t n = links.size();
     if (n > kMaxTreeNodes) {
         return make_error("tree has " + std::to_string(n) + " nodes, above the limit of " +
                           std::to_string(kMaxTreeNodes));
     }
-    // One pass over the (large) nodes: parent counts and leaves, and the links
-    // the later passes need, copied into compact arrays. Child ranges (children
-    // after their parent) are validate_node's, already checked.
-    struct Links {
-        int32_t left, right, representative;
-    };
-    std::vector<Links> links(n);
+    // Child ranges (children after their parent) are validate_node's, already checked.
     std::vector<uint8_t> parents(n, 0);
     size_t leaves = 0;
     for (size_t i = 0; i < n; ++i) {
-        const LightTreeNode& node = tree.nodes[i];
-        links[i] = Links{node.left, node.right, node.representative};
-        if (node.is_leaf()) {
+        const NodeLinks& node = links[i];
+        if (node.left == kNoChild) {
             ++leaves;
             if (node.representative != static_cast<int32_t>(i)) {
                 return make_error(node_label(i) + ": a leaf must represent itself, not node " +
@@ -420,8 +441,8 @@ Status validate_tree_structure(const LightTree& tree) {
     for (size_t i = 1; i < n; ++i) {
         if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
     }
-    if (leaves != tree.leaf_count) {
-        return make_error("tree says it has " + std::to_string(tree.leaf_count) + " leaves, its nodes hold " +
+    if (leaves != leaf_count) {
+        return make_error("tree says it has " + std::to_string(leaf_count) + " leaves, its nodes hold " +
                           std::to_string(leaves));
     }
     if (n == 0) return Ok{};
@@ -457,6 +478,17 @@ Status validate_tree_structure(const LightTree& tree) {
     return Ok{};
 }
 
+NodeLinks links_of(const LightTreeNode& node) { return {node.left, node.right, node.representative}; }
+
+// One pass over the (large) nodes, copying the links the checks need into a
+// compact array.
+Status validate_tree_structure(const LightTree& tree) {
+    std::vector<NodeLinks> links;
+    links.reserve(tree.nodes.size());
+    for (const LightTreeNode& node : tree.nodes) links.push_back(links_of(node));
+    return validate_links(links, tree.leaf_count);
+}
+
 }  // namespace
 
 size_t scene_record_bytes() { return kSceneRecordBytes; }
@@ -478,15 +510,23 @@ std::vector<uint8_t> encode_result_prefix(uint32_t node_count) {
 
 void append_result_records(const LightTree& tree, size_t first, size_t count,
                            std::vector<uint8_t>& out) {
-    if (first > tree.nodes.size() || count > tree.nodes.size() - first) {
-        throw std::out_of_range("append_result_records: node range outside the tree");
+    check_node_range(tree, first, count);
+    const size_t start = out.size();
+    out.resize(start + count * kResultRecordBytes);
+    write_result_records(tree, first, count, std::span(out).subspan(start));
+}
+
+void write_result_records(const LightTree& tree, size_t first, size_t count, std::span<uint8_t> out) {
+    check_node_range(tree, first, count);
+    if (out.size() != count * kResultRecordBytes) {
+        throw std::length_error("write_result_records: output is not the size of the records");
     }
-    out.reserve(out.size() + count * kResultRecordBytes);
+    uint8_t* p = out.data();
     for (size_t i = first; i < first + count; ++i) {
         const ResultRecord r = to_record(tree.nodes[i]);
-        append_struct(out, r.light);
-        append_struct(out, r.point);
-        append_struct(out, r.node);
+        p = write_struct(p, r.light);
+        p = write_struct(p, r.point);
+        p = write_struct(p, r.node);
     }
 }
 
@@ -579,19 +619,21 @@ Result<std::vector<SceneLight>> SceneChannelReader::finish() {
 Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("result channel was already refused");
     reserve_once_an_eighth_arrives(nodes_, expected_, nodes_.size() + bytes.size() / kResultRecordBytes);
+    reserve_once_an_eighth_arrives(links_, expected_, links_.size() + bytes.size() / kResultRecordBytes);
     Status status = push_records(
         pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
         [this, bytes](int32_t count) {
             return accept_count(nodes_, count, kMaxTreeNodes, "result", bytes.size() / kResultRecordBytes);
         },
         [this](const uint8_t* p, size_t index) -> Status {
-            ResultRecord r;
-            r.light = read_struct<fb::FLightData>(p);
-            r.point = read_struct<fb::FPointLightData>(p + sizeof(fb::FLightData));
-            r.node = read_struct<fb::LightcutsNodeRecord>(p + sizeof(fb::FLightData) +
-                                                          sizeof(fb::FPointLightData));
-            Status valid = from_record(r, index, static_cast<size_t>(expected_), nodes_.emplace_back());
-            if (!valid) nodes_.pop_back();
+            const RecordAt record(p);
+            LightTreeNode& node = nodes_.emplace_back();
+            Status valid = from_record(*record, index, static_cast<size_t>(expected_), node);
+            if (!valid) {
+                nodes_.pop_back();
+                return valid;
+            }
+            links_.push_back(links_of(node));
             return valid;
         });
     if (!status) {
@@ -610,9 +652,11 @@ Result<LightTree> ResultChannelReader::finish() {
     }
     LightTree tree;
     tree.nodes = std::move(nodes_);
-    for (const LightTreeNode& n : tree.nodes) tree.leaf_count += n.is_leaf() ? 1u : 0u;
-    // Every node's own values were validated as its record arrived.
-    Status valid = validate_tree_structure(tree);
+    for (const NodeLinks& links : links_) tree.leaf_count += links.left == kNoChild ? 1u : 0u;
+    // Every node's own values were validated as its record arrived; the
+    // structure is checked on the links, without reading the nodes again.
+    Status valid = validate_links(links_, tree.leaf_count);
+    links_ = {};
     if (!valid) return make_error(valid.error());
     return tree;
 }

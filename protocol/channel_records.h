@@ -32,6 +32,8 @@ std::vector<uint8_t> encode_result_channel(const LightTree& tree);
 std::vector<uint8_t> encode_result_prefix(uint32_t node_count);
 void append_result_records(const LightTree& tree, size_t first, size_t count,
                            std::vector<uint8_t>& out);
+// The same records written to `out`, which holds exactly count * result_record_bytes().
+void write_result_records(const LightTree& tree, size_t first, size_t count, std::span<uint8_t> out);
 
 // Validates one light: finite values, non-negative colour and intensity,
 // known type, unit direction for oriented lights, 0 <= inner < outer <= pi/2,
@@ -55,6 +57,14 @@ private:
     bool failed_ = false;
 };
 
+// A tree node's links, apart from the node: the structure checks walk these
+// compact arrays instead of the 136-byte nodes.
+struct NodeLinks {
+    int32_t left;
+    int32_t right;
+    int32_t representative;
+};
+
 class ResultChannelReader {
 public:
     Status consume(std::span<const uint8_t> bytes);
@@ -69,6 +79,7 @@ private:
     std::vector<uint8_t> pending_;
     int64_t expected_ = -1;
     std::vector<LightTreeNode> nodes_;
+    std::vector<NodeLinks> links_;  // gathered as the records arrive, for finish()
     bool failed_ = false;
 };
 

@@ -396,11 +396,32 @@ std::span<const uint8_t> build_envelope(Fbb& fbb, const Message& message) {
     return {fbb.GetBufferPointer(), fbb.GetSize()};
 }
 
-// Sized so that a channel chunk never makes the builder regrow.
+// Builder room beyond a message's channel data: more than any envelope's
+// tables, so a channel chunk never makes the builder regrow.
+constexpr size_t kEnvelopeRoomBytes = 256;
+
 size_t initial_builder_bytes(const Message& message) {
-    size_t initial = 256;
+    size_t initial = kEnvelopeRoomBytes;
     if (const auto* write = std::get_if<WriteChannelMsg>(&message)) initial += write->data.size();
     return initial;
+}
+
+// Takes the finished envelope out of `fbb`, the size prefix in front of it.
+EncodedFrame take_frame(Fbb& fbb) {
+    const size_t body_size = fbb.GetSize();
+    size_t reserved = 0;
+    size_t offset = 0;
+    // The builder's default allocator made its buffer with new[].
+    std::unique_ptr<uint8_t[]> storage(fbb.ReleaseRaw(reserved, offset));
+    if (offset < kFrameHeaderBytes) {
+        // The builder grew to fit the body exactly: no room in front, copy once.
+        auto framed = std::make_unique_for_overwrite<uint8_t[]>(kFrameHeaderBytes + body_size);
+        std::memcpy(framed.get() + kFrameHeaderBytes, storage.get() + offset, body_size);
+        storage = std::move(framed);
+        offset = kFrameHeaderBytes;
+    }
+    put_frame_header(body_size, storage.get() + offset - kFrameHeaderBytes);
+    return EncodedFrame(std::move(storage), offset - kFrameHeaderBytes, kFrameHeaderBytes + body_size);
 }
 
 }  // namespace
@@ -415,6 +436,26 @@ std::vector<uint8_t> encode_frame(const Message& message) {
     // Framed straight from the builder: one copy of a chunk, not two.
     Fbb fbb(initial_builder_bytes(message));
     return frame_bytes(build_envelope(fbb, message));
+}
+
+EncodedFrame encode_frame_in_place(const Message& message) {
+    Fbb fbb(initial_builder_bytes(message));
+    build_envelope(fbb, message);
+    return take_frame(fbb);
+}
+
+EncodedFrame encode_write_channel_frame(uint32_t channel_id, uint64_t offset, size_t data_bytes,
+                                        const std::function<void(std::span<uint8_t>)>& write_data) {
+    Fbb fbb(kEnvelopeRoomBytes + data_bytes);
+    // Laid out as CreateVector lays out a copy of the data (encode_body), so
+    // the frame's bytes are encode_frame's.
+    uint8_t* data = nullptr;
+    const auto vector = fbb.CreateUninitializedVector<uint8_t>(data_bytes, &data);
+    // Written now: the pointer is good until the builder next grows.
+    write_data({data, data_bytes});
+    const auto table = fb::CreateWriteChannel(fbb, channel_id, offset, vector);
+    fb::FinishEnvelopeBuffer(fbb, fb::CreateEnvelope(fbb, fb::Message::WriteChannel, table.Union()));
+    return take_frame(fbb);
 }
 
 Result<Message> decode_message(std::span<const uint8_t> body) {

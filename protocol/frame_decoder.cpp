@@ -93,13 +93,18 @@ bool FrameDecoder::consume(std::span<const uint8_t> bytes,
 }
 
 std::vector<uint8_t> frame_bytes(std::span<const uint8_t> body) {
-    if (body.size() > UINT32_MAX) throw std::length_error("frame body does not fit a uint32 size");
-    const auto size = static_cast<uint32_t>(body.size());
     std::vector<uint8_t> out;
     out.reserve(kFrameHeaderBytes + body.size());
-    for (int i = 0; i < 4; ++i) out.push_back(static_cast<uint8_t>(size >> (8 * i)));
+    out.resize(kFrameHeaderBytes);
+    put_frame_header(body.size(), out.data());
     out.insert(out.end(), body.begin(), body.end());
     return out;
+}
+
+void put_frame_header(size_t body_size, uint8_t* out) {
+    if (body_size > UINT32_MAX) throw std::length_error("frame body does not fit a uint32 size");
+    const auto size = static_cast<uint32_t>(body_size);
+    for (size_t i = 0; i < kFrameHeaderBytes; ++i) out[i] = static_cast<uint8_t>(size >> (8 * i));
 }
 
 }  // namespace lc

@@ -41,5 +41,7 @@ private:
 
 // Prepends the size header to an encoded frame body.
 std::vector<uint8_t> frame_bytes(std::span<const uint8_t> body);
+// Writes the size header of a `body_size`-byte body to `out`.
+void put_frame_header(size_t body_size, uint8_t* out);
 
 }  // namespace lc

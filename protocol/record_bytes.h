@@ -22,6 +22,12 @@ void append_struct(std::vector<uint8_t>& out, const Struct& s) {
     const auto* bytes = reinterpret_cast<const uint8_t*>(&s);
     out.insert(out.end(), bytes, bytes + sizeof(Struct));
 }
+// Returns the byte after the struct.
+template <typename Struct>
+uint8_t* write_struct(uint8_t* out, const Struct& s) {
+    std::memcpy(out, &s, sizeof(Struct));
+    return out + sizeof(Struct);
+}
 template <typename Struct>
 Struct read_struct(const uint8_t* p) {
     Struct s;

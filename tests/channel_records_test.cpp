@@ -276,6 +276,29 @@ TEST(ChannelRecords, IncrementalEncoderMatchesWholeEncoder) {
     EXPECT_THROW(append_result_records(tree, 5, 5, bytes), std::out_of_range);
 }
 
+TEST(ChannelRecords, RecordsWrittenInPlaceMatchTheAppendedOnes) {
+    const LightTree tree = thesis_tree();
+    std::vector<uint8_t> appended;
+    append_result_records(tree, 2, 6, appended);
+    std::vector<uint8_t> written(6 * result_record_bytes());
+    write_result_records(tree, 2, 6, written);
+    EXPECT_EQ(written, appended);
+    EXPECT_THROW(write_result_records(tree, 2, 5, written), std::length_error);
+    EXPECT_THROW(write_result_records(tree, 8, 6, written), std::out_of_range);
+}
+
+TEST(ChannelRecords, ResultReaderDecodesRecordsAtAnyAlignment) {
+    const LightTree tree = thesis_tree();
+    const auto bytes = encode_result_channel(tree);
+    for (size_t shift = 0; shift < 8; ++shift) {
+        std::vector<uint8_t> shifted(shift + bytes.size());
+        std::copy(bytes.begin(), bytes.end(), shifted.begin() + static_cast<ptrdiff_t>(shift));
+        auto decoded = decode_result_channel(std::span(shifted).subspan(shift));
+        ASSERT_TRUE(decoded.ok()) << "shift " << shift << ": " << decoded.error();
+        expect_same_tree(tree, *decoded);
+    }
+}
+
 TEST(ChannelRecords, SceneReaderAcceptsEverySplitIntoThreePieces) {
     const auto lights = sample_lights();
     const auto bytes = encode_scene_channel(lights);

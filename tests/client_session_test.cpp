@@ -69,7 +69,7 @@ std::vector<Message> result_messages(const std::vector<SceneLight>& lights) {
     bake::ResultStream stream(tree, 1u << 31, done, 512);
     std::vector<Message> messages;
     while (auto frame = stream.next_frame()) {
-        Result<Message> message = decode_message(std::span<const uint8_t>(*frame).subspan(kFrameHeaderBytes));
+        Result<Message> message = decode_message(frame->bytes().subspan(kFrameHeaderBytes));
         EXPECT_TRUE(message) << message.error();
         messages.push_back(std::move(message.value()));
     }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <openssl/sha.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -133,6 +134,33 @@ TEST(Codec, BodyCarriesFileIdentifierAndFrameCarriesSize) {
         EXPECT_EQ(body.size() % 4, 0u);
         EXPECT_EQ(encode_frame(m), frame_bytes(body));
         EXPECT_EQ(encode_message(m), body) << "encoding must be deterministic";
+    }
+}
+
+TEST(Codec, FramesBuiltInPlaceAreTheSameBytes) {
+    BakeDoneMsg many_effects;
+    // Past the builder's first buffer, so it regrows before the frame is taken.
+    many_effects.effects.assign(64, std::string(100, 'e'));
+    std::vector<Message> messages = sample_messages();
+    for (const Message& m : default_messages()) messages.push_back(m);
+    messages.push_back(many_effects);
+    for (const Message& m : messages) {
+        const std::vector<uint8_t> expected = encode_frame(m);
+        const EncodedFrame frame = encode_frame_in_place(m);
+        EXPECT_TRUE(std::ranges::equal(frame.bytes(), expected)) << message_name(m);
+    }
+}
+
+TEST(Codec, WriteChannelFrameWrittenInPlaceIsTheSameBytes) {
+    for (size_t size : {size_t{0}, size_t{1}, size_t{3}, size_t{180}, size_t{1} << 20}) {
+        WriteChannelMsg write{9, 1234567, std::vector<uint8_t>(size)};
+        for (size_t i = 0; i < size; ++i) write.data[i] = static_cast<uint8_t>(i * 7 + 1);
+        const EncodedFrame frame =
+            encode_write_channel_frame(write.channel_id, write.offset, size, [&](std::span<uint8_t> data) {
+                ASSERT_EQ(data.size(), size);
+                std::copy(write.data.begin(), write.data.end(), data.begin());
+            });
+        EXPECT_TRUE(std::ranges::equal(frame.bytes(), encode_frame(write))) << size << " bytes";
     }
 }
 

@@ -2,8 +2,9 @@
 // bytes, in one run. Usage: stream_throughput_bench RECORDS [RECORDS...]
 // Prints CSV: records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,ratio,peak_rss_mb,
 // client_rss_bytes_per_record, and the CPU time of each side of the protocol
-// run (server_cpu_ms, client_cpu_ms): on a shared machine the wall clock
-// moves with the load, the CPU time much less.
+// run (server_cpu_ms, client_cpu_ms) and of the raw copy (raw_server_cpu_ms,
+// raw_client_cpu_ms): on a shared machine the wall clock moves with the load,
+// the CPU time much less. Both runs are plain TCP over loopback.
 #include <sys/resource.h>
 #include <time.h>
 
@@ -65,7 +66,7 @@ double thread_cpu_ms() {
     return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
-struct ProtocolRun {
+struct Run {
     double wall_ms = 0.0;
     double server_cpu_ms = 0.0;
     double client_cpu_ms = 0.0;
@@ -78,8 +79,8 @@ double peak_rss_mb() {
 }
 
 // Streams `tree` through ResultStream to a client that decodes and validates it.
-ProtocolRun protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
-    ProtocolRun run;
+Run protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
+    Run run;
     lc::asio::io_context io;
     lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
     uint16_t port = acceptor.local_endpoint().port();
@@ -90,7 +91,10 @@ ProtocolRun protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
         done.node_count = static_cast<uint32_t>(tree->nodes.size());
         const double cpu_start = thread_cpu_ms();
         lc::bake::ResultStream stream(tree, 1u << 31, done, lc::kDefaultChunkBytes);
-        while (auto frame = stream.next_frame()) lc::asio::write(socket, lc::asio::buffer(*frame));
+        while (auto frame = stream.next_frame()) {
+            const std::span<const uint8_t> bytes = frame->bytes();
+            lc::asio::write(socket, lc::asio::buffer(bytes.data(), bytes.size()));
+        }
         run.server_cpu_ms = thread_cpu_ms() - cpu_start;
     });
     auto start = Clock::now();
@@ -129,21 +133,26 @@ ProtocolRun protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
     return run;
 }
 
-// The same number of bytes, written and read raw in 1 MiB buffers.
-double raw_ms(uint64_t bytes) {
+// The same number of bytes, written in 1 MiB buffers and read as the protocol
+// client reads, over the same plain TCP loopback (no TLS on either side).
+Run raw_run(uint64_t bytes) {
+    Run run;
     lc::asio::io_context io;
     lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
     uint16_t port = acceptor.local_endpoint().port();
     std::thread server([&] {
         lc::tcp::socket socket = acceptor.accept();
+        const double cpu_start = thread_cpu_ms();
         std::vector<uint8_t> chunk(1u << 20, 0x5A);
         for (uint64_t sent = 0; sent < bytes;) {
             size_t n = static_cast<size_t>(std::min<uint64_t>(chunk.size(), bytes - sent));
             lc::asio::write(socket, lc::asio::buffer(chunk.data(), n));
             sent += n;
         }
+        run.server_cpu_ms = thread_cpu_ms() - cpu_start;
     });
     auto start = Clock::now();
+    const double cpu_start = thread_cpu_ms();
     lc::tcp::socket socket(io);
     socket.connect(lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), port));
     std::vector<uint8_t> buffer(256 * 1024);
@@ -153,9 +162,10 @@ double raw_ms(uint64_t bytes) {
         got += socket.read_some(lc::asio::buffer(buffer), ec);
         if (ec) break;
     }
-    double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    run.client_cpu_ms = thread_cpu_ms() - cpu_start;
     server.join();
-    return ms;
+    return run;
 }
 
 }  // namespace
@@ -163,21 +173,22 @@ double raw_ms(uint64_t bytes) {
 int main(int argc, char** argv) {
     std::printf(
         "records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,"
-        "client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms\n");
+        "client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms,raw_server_cpu_ms,raw_client_cpu_ms\n");
     for (int i = 1; i < argc; ++i) {
         size_t records = std::strtoull(argv[i], nullptr, 10);
         auto tree = std::make_shared<const lc::LightTree>(make_tree(records));
         uint64_t bytes = 4 + tree->nodes.size() * lc::result_record_bytes();
         double rss_before = peak_rss_mb();
-        const ProtocolRun run = protocol_run(tree);
+        const Run run = protocol_run(tree);
         const double p = run.wall_ms;
-        double r = raw_ms(bytes);
+        const Run raw = raw_run(bytes);
+        const double r = raw.wall_ms;
         double mb = static_cast<double>(bytes) / (1024.0 * 1024.0);
         double rss = peak_rss_mb();
-        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f\n", tree->nodes.size(),
+        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f,%.1f,%.1f\n", tree->nodes.size(),
                     static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p,
                     rss, (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()),
-                    run.server_cpu_ms, run.client_cpu_ms);
+                    run.server_cpu_ms, run.client_cpu_ms, raw.server_cpu_ms, raw.client_cpu_ms);
         std::fflush(stdout);
     }
     return 0;
