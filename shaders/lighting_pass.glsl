@@ -3,6 +3,7 @@
 #ifndef LC_LIGHTING_PASS_GLSL
 #define LC_LIGHTING_PASS_GLSL
 
+#include "background.glsl"
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 #include "material_model.glsl"
@@ -52,7 +53,7 @@ vec3 classic_and_emitted_radiance(SurfacePoint p) {
 }
 
 void store_background(ivec2 pixel) {
-    imageStore(hdr_image, pixel, vec4(0.0));
+    imageStore(hdr_image, pixel, vec4(background_radiance(pixel), 0.0));
     imageStore(cut_image, pixel, uvec4(0u));
 }
 
