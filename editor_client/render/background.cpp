@@ -45,6 +45,25 @@ std::vector<GpuEnvironmentTexel> environment_texels(const Environment* environme
     return texels;
 }
 
+glm::dvec3 background_eye_ray(const GpuBackground& background, double x, double y) {
+    return glm::normalize(glm::dvec3(background.ray_at_origin) + x * glm::dvec3(background.ray_step_x) +
+                          y * glm::dvec3(background.ray_step_y));
+}
+
+glm::dvec3 environment_radiance(const Environment& environment, const glm::dvec3& direction) {
+    glm::dvec3 radiance(0.0);
+    if (environment.has_sky()) {
+        const SkyParameters& sky = *environment.sky;
+        radiance = sky_radiance(sky, direction);
+        if (glm::dot(direction, sun_direction(sky)) >= std::cos(sun_angular_radius()))
+            radiance += sun_disc_radiance(sky);
+    } else if (environment.has_map()) {
+        const double rotation = double(environment.rotation_deg) * std::numbers::pi / 180.0;
+        radiance = glm::dvec3(equirect_radiance(environment.map, direction, rotation));
+    }
+    return radiance * double(environment.intensity);
+}
+
 GpuBackground make_gpu_background(const Environment* environment, const RenderSettings& settings,
                                   uint32_t width, uint32_t height, const glm::vec3& bounds_min,
                                   const glm::vec3& bounds_max) {

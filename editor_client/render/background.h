@@ -24,4 +24,11 @@ GpuBackground make_gpu_background(const Environment* environment, const RenderSe
                                   uint32_t width, uint32_t height, const glm::vec3& bounds_min,
                                   const glm::vec3& bounds_max);
 
+// The CPU's side of shaders/background.glsl, for the supersampled CPU
+// methods: the eye ray through image position (x, y) (pixel centres at
+// + 0.5) of the frame `background` was made for, and the environment's
+// radiance along a unit direction.
+glm::dvec3 background_eye_ray(const GpuBackground& background, double x, double y);
+glm::dvec3 environment_radiance(const Environment& environment, const glm::dvec3& direction);
+
 }  // namespace lc::client

@@ -196,6 +196,11 @@ Status Renderer::set_environment(std::shared_ptr<const Environment> environment)
     return Ok{};
 }
 
+GpuBackground Renderer::background(const RenderSettings& settings) const {
+    return make_gpu_background(environment_.get(), settings, settings.width, settings.height,
+                               scene_.bounds_min, scene_.bounds_max);
+}
+
 Status Renderer::validate(const RenderSettings& settings) const {
     ValidationContext context;
     context.has_tree = has_tree_;
@@ -331,9 +336,7 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     timestamps_.reset(cmd);
     timestamps_.write(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, kTsStart);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
-    const GpuBackground background =
-        make_gpu_background(environment_.get(), settings, targets_.width, targets_.height,
-                            scene_.bounds_min, scene_.bounds_max);
+    const GpuBackground background = this->background(settings);
     vkCmdUpdateBuffer(cmd, background_.handle(), 0, sizeof(background), &background);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        kComputeStage, kStorageReadWrite);

@@ -80,6 +80,9 @@ public:
     // default); the tree's lights stand for its light. Waits for the GPU.
     Status set_environment(std::shared_ptr<const Environment> environment);
     const Environment* environment() const { return environment_.get(); }
+    // What a frame with these settings shows where no geometry is hit
+    // (background.h): the environment's parameters and the frame's eye rays.
+    GpuBackground background(const RenderSettings& settings) const;
     const SceneEffects& effects() const { return effects_; }
 
     // Checks settings (render_settings.h's validate, with whether a tree is
