@@ -147,7 +147,9 @@ TEST_F(BackgroundRender, IntensityScalesTheBackgroundAndNoEnvironmentLeavesItBla
         const glm::vec3 expected = with_environment ? 3.0f * L : glm::vec3(0.0f);
         for (uint32_t x = 0; x < kSize; ++x) {
             EXPECT_EQ(hdr_at(*hdr, x, 0), expected) << "column " << x;
-            if (!with_environment) EXPECT_EQ((*display)[4 * x], 0) << "column " << x;
+            if (!with_environment) {
+                EXPECT_EQ((*display)[4 * x], 0) << "column " << x;
+            }
         }
     }
 }

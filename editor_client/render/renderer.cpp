@@ -105,8 +105,8 @@ Status Renderer::create_frame_resources() {
                            vk::MemoryUsage::kDeviceLocal);
     if (!background) return make_error(background.error());
     background_ = std::move(background).value();
-    LC_RETURN_IF_ERROR(upload_storage(environment_texels_,
-                                      std::as_bytes(std::span(environment_texels(nullptr)))));
+    const std::vector<GpuEnvironmentTexel> no_texels = environment_texels(nullptr);
+    LC_RETURN_IF_ERROR(upload_storage(environment_texels_, std::as_bytes(std::span(no_texels))));
 
     Result<vk::TimestampQueryPool> timestamps =
         vk::TimestampQueryPool::create(context_.device(), kTsCount);
@@ -190,8 +190,8 @@ Status Renderer::set_tree(const LightTree* tree) {
 
 Status Renderer::set_environment(std::shared_ptr<const Environment> environment) {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
-    LC_RETURN_IF_ERROR(upload_storage(environment_texels_,
-                                      std::as_bytes(std::span(environment_texels(environment.get())))));
+    const std::vector<GpuEnvironmentTexel> texels = environment_texels(environment.get());
+    LC_RETURN_IF_ERROR(upload_storage(environment_texels_, std::as_bytes(std::span(texels))));
     environment_ = std::move(environment);
     return Ok{};
 }
