@@ -33,12 +33,6 @@ std::shared_ptr<const Environment> afternoon_sky() {
     return environment;
 }
 
-Rgba8Image read_image(const std::filesystem::path& path) {
-    Result<Rgba8Image> image = read_png(path);
-    EXPECT_TRUE(image.ok()) << path << ": " << (image.ok() ? "" : image.error());
-    return image.ok() ? std::move(image).value() : Rgba8Image{};
-}
-
 // Pixels of the top row that show a blue sky (blue clearly above red).
 size_t sky_pixels_in_top_row(const Rgba8Image& image) {
     size_t sky = 0;
@@ -109,7 +103,7 @@ TEST(EditorEnvironment, ScriptedBakeFromTheWindowSendsTheEmissivePanelAndTheSky)
     EXPECT_TRUE(session.tree_matches_scene());
 
     // Above the box the window shows the sky.
-    const Rgba8Image shot = read_image(dir / "sky.png");
+    const Rgba8Image shot = test::read_image(dir / "sky.png");
     EXPECT_EQ(sky_pixels_in_top_row(shot), shot.width);
     EXPECT_EQ(context->validation_message_count(), 0u);
     std::filesystem::remove_all(dir);
@@ -138,7 +132,7 @@ TEST(EditorEnvironment, ViewTakesTheSkyFlagOrTheGltfsEnvironment) {
         text << in.rdbuf();
         EXPECT_EQ(status, 0) << text.str();
         EXPECT_NE(text.str().find(" 0 validation messages"), std::string::npos) << text.str();
-        return read_image(dir / shot);
+        return test::read_image(dir / shot);
     };
     const Rgba8Image black = view("plain.gltf", "", "plain.png");
     EXPECT_EQ(black_pixels_in_top_row(black), black.width);

@@ -22,18 +22,10 @@ namespace {
 
 constexpr uint32_t kSize = 33;  // odd: the centre pixel's eye ray is the camera's axis
 
-Material white() {
-    Material m;
-    m.base_color_factor = glm::vec4(1.0f);
-    m.metallic = 0.0f;
-    m.roughness = 1.0f;
-    return m;
-}
-
 // A wide ground and, with `box`, a unit cube standing on it at the origin.
 Scene ground_scene(bool box) {
     Scene scene;
-    scene.materials = {white()};
+    scene.materials = {test::white_lambert()};
     scene.meshes.push_back(test::make_quad({-50, 0, 50}, {100, 0, 0}, {0, 0, -100}, 0));
     if (box) {
         scene.meshes.push_back(test::make_quad({-0.5f, 0, 0.5f}, {1, 0, 0}, {0, 1, 0}, 0));     // +Z
