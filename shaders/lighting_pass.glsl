@@ -1,5 +1,6 @@
 // What the reference and lightcuts passes share: reading the G-buffer, the
-// classic lights, and storing a pixel with its cut and the frame counters.
+// classic lights, and storing a pixel with its cut and the frame counters, or
+// the background (background.glsl) where no geometry was hit.
 #ifndef LC_LIGHTING_PASS_GLSL
 #define LC_LIGHTING_PASS_GLSL
 

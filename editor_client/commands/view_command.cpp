@@ -2,6 +2,7 @@
 //   [--token-file F] [--script FILE] [--mode M] [--size WxH] [--camera ... | --camera-index I]
 //   [--exposure E] [--frames N --screenshot OUT.png] [--headless] [--no-adaptive] [--no-panels]
 //   [--no-progressive | --frame-budget-ms MS]
+//   [--environment FILE.hdr [--environment-intensity S] [--environment-rotation DEG] | --sky E,A,T]
 // The interactive editor: drag with the left button to orbit, the right button
 // to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts, cuts,
 // cutsize; Esc or Q closes. `--script` runs editor commands through the same
