@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "lightcuts/device/equirect_map.glsl.h"
+
 namespace lc {
 
 Status validate_equirect_size(uint64_t width, uint64_t height) {
@@ -37,10 +39,7 @@ glm::dvec3 equirect_direction(double u, double v, double rotation) {
 
 glm::dvec2 equirect_coordinates(const glm::dvec3& direction, double rotation) {
     const glm::dvec3 d = glm::normalize(direction);
-    const double theta = std::acos(std::clamp(d.y, -1.0, 1.0));
-    double u = (std::atan2(d.z, d.x) - rotation) / (2.0 * std::numbers::pi);
-    u -= std::floor(u);
-    return {u >= 1.0 ? 0.0 : u, theta / std::numbers::pi};
+    return {equirect::equirect_u(d, rotation), equirect::equirect_v(d)};
 }
 
 double equirect_texel_solid_angle(uint32_t y, uint32_t width, uint32_t height) {

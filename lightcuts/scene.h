@@ -8,9 +8,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/scene_light.h"
 
@@ -64,6 +66,10 @@ struct Scene {
     std::vector<Camera> cameras;
     glm::vec3 bounds_min{0.0f};  // of geometry and lights
     glm::vec3 bounds_max{0.0f};
+    // The sky the file names (the client's gltf_environment.h), null: none;
+    // environment_image is its map's file (empty for a sun and sky).
+    std::shared_ptr<const Environment> environment;
+    std::filesystem::path environment_image;
 };
 
 // Whether a mesh blocks light: its material's casts_shadows. A mesh without a

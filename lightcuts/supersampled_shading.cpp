@@ -94,7 +94,10 @@ public:
             for (uint32_t x = image_block.x0; x < image_block.x1; ++x) {
                 for (uint32_t s = 0; s < frame_.spp(); ++s) {
                     const EyeSample& eye = frame_.eye_at(s, x, y);
-                    if (!eye.geometry) continue;
+                    if (!eye.geometry) {
+                        add_background(x, y, eye);
+                        continue;
+                    }
                     ++stats.lightcuts;
                     add(x, y, eye,
                         counted_lightcut(tree_, eye.point, settings_, rays_).radiance);
@@ -128,6 +131,11 @@ private:
                 make_reconstruction_sample(tree_, corner(i, j).point, sample_settings(), rays_));
         }
         return *slot;
+    }
+
+    // A background ray lights nothing: it shows what lies behind the scene.
+    void add_background(uint32_t x, uint32_t y, const EyeSample& eye) {
+        sums_[size_t(y) * frame_.width + x] += eye.emitted;
     }
 
     void add(uint32_t x, uint32_t y, const EyeSample& eye, const glm::dvec3& tree_radiance) {
@@ -195,7 +203,10 @@ private:
         const uint32_t js[4] = {y, y, y + 1, y + 1};
         for (uint32_t s = 0; s < frame_.spp(); ++s) {
             const EyeSample& eye = frame_.eye_at(s, x, y);
-            if (!eye.geometry) continue;
+            if (!eye.geometry) {
+                add_background(x, y, eye);
+                continue;
+            }
             const ReconstructionSample* matching[4];
             double weights[4];
             int count = 0;

@@ -24,7 +24,9 @@ namespace lc {
 struct EyeSample {
     bool geometry = false;  // false: the background (no light)
     SurfacePoint point;
-    glm::dvec3 emitted{0.0};  // the surface's own emission, added as it is
+    // The surface's own emission, added as it is; for the background, the
+    // environment it shows along the ray.
+    glm::dvec3 emitted{0.0};
 };
 
 // The eye rays of a frame: `spp` per pixel, eye ray s of every pixel offset by

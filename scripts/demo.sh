@@ -67,13 +67,15 @@ for mode in reference lightcuts cuts cutsize; do
       -o "$out/room_$mode.png" --float "$out/room_$mode.pfm" --stats "$out/room_$mode.json"
 done
 
-# Open air under a Preetham sun and sky (--sky ELEVATION,AZIMUTH,TURBIDITY): the server samples
-# the sun's disc and the sky into 3,000 directional lights of the tree (the census says so in the
-# bake's progress, the log and the stats); the ground and the boxes cast the sun's shadows.
+# Open air under a Preetham sun and sky, named in the glTF itself (asset.extras.lightcuts_sky:
+# 30 degrees up, azimuth 40, turbidity 3; --sky ELEVATION,AZIMUTH,TURBIDITY would override it): the
+# server samples the sun's disc and the sky into 3,000 directional lights of the tree (the census
+# says so in the bake's progress, the log and the stats); the ground and the boxes cast the sun's
+# shadows, and the sky is the background above the horizon.
 /usr/bin/python3 scripts/make_sky_scene.py "$out/yard.gltf"
-"$bin/editor_client" bake "$out/yard.gltf" --server "$server" --sky 30,40,3 -o "$out/yard.lcut" > /dev/null
-"$bin/editor_client" render "$out/yard.gltf" --tree "$out/yard.lcut" --sky 30,40,3 --size 256x256 \
-    --camera 10,6,10,0,1,0,50 -o "$out/yard_sky.png" --stats "$out/yard_sky.json"
+"$bin/editor_client" bake "$out/yard.gltf" --server "$server" -o "$out/yard.lcut" > /dev/null
+"$bin/editor_client" render "$out/yard.gltf" --tree "$out/yard.lcut" --size 256x256 \
+    --camera 12,2.5,12,0,2,0,55 -o "$out/yard_sky.png" --stats "$out/yard_sky.json"
 python3 - "$out/yard_sky.json" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1]))

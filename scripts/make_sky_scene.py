@@ -1,5 +1,7 @@
-"""Writes the demo's open-air scene: a 40 x 40 m ground and four boxes, no
-lights (the sun and sky light it), as a glTF with an embedded buffer."""
+"""Writes the demo's open-air scene: a 400 x 400 m ground (it reaches almost to
+the horizon) and four boxes, no lights, as a glTF with an embedded buffer.
+The file names its own sun and sky in the asset's extras (lightcuts_sky,
+docs/ARCHITECTURE.md): bake, render and view take it without --sky."""
 import base64
 import json
 import struct
@@ -25,7 +27,7 @@ def box(cx, cz, sx, sy, sz):
 
 
 def main(path):
-    ground = ([[-20, 0, 20], [20, 0, 20], [20, 0, -20], [-20, 0, -20]], (0, 1, 0))
+    ground = ([[-200, 0, 200], [200, 0, 200], [200, 0, -200], [-200, 0, -200]], (0, 1, 0))
     meshes = [([ground], 0), (box(-3, -2, 2, 3, 2), 1), (box(2.5, -3, 1.5, 5, 1.5), 2),
               (box(1, 1.5, 3, 1, 1), 1), (box(-1, 3, 0.8, 2, 0.8), 2)]
     blob = bytearray()
@@ -56,7 +58,8 @@ def main(path):
     materials = [{"pbrMetallicRoughness": {"baseColorFactor": c + [1.0], "metallicFactor": 0.0,
                                            "roughnessFactor": 1.0}}
                  for c in ([0.45, 0.42, 0.38], [0.8, 0.35, 0.25], [0.3, 0.5, 0.75])]
-    gltf = {"asset": {"version": "2.0"}, "scene": 0,
+    sky = {"elevation": 30.0, "azimuth": 40.0, "turbidity": 3.0, "intensity": 1.0}
+    gltf = {"asset": {"version": "2.0", "extras": {"lightcuts_sky": sky}}, "scene": 0,
             "scenes": [{"nodes": list(range(len(gltf_meshes)))}],
             "nodes": [{"mesh": i} for i in range(len(gltf_meshes))],
             "meshes": gltf_meshes, "materials": materials, "accessors": accessors, "bufferViews": views,

@@ -25,6 +25,11 @@ layout(std430, set = 0, binding = kBindBvhNodes) readonly buffer BvhNodes { GpuB
 layout(std430, set = 0, binding = kBindShadowTriangles) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };
 // The walk search's state per pixel between its passes (row-major pixels).
 layout(std430, set = 0, binding = kBindWalkStates) buffer WalkStates { GpuWalkState walk_states[]; };
+// What pixels without geometry show (shaders/background.glsl).
+layout(std430, set = 0, binding = kBindBackground) readonly buffer Background { GpuBackground background; };
+layout(std430, set = 0, binding = kBindEnvironmentTexels) readonly buffer EnvironmentTexels {
+    GpuEnvironmentTexel environment_texels[];
+};
 
 layout(push_constant) uniform FrameConstants { GpuFrameConstants frame; };
 

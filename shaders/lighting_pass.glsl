@@ -1,8 +1,10 @@
 // What the reference and lightcuts passes share: reading the G-buffer, the
-// classic lights, and storing a pixel with its cut and the frame counters.
+// classic lights, and storing a pixel with its cut and the frame counters, or
+// the background (background.glsl) where no geometry was hit.
 #ifndef LC_LIGHTING_PASS_GLSL
 #define LC_LIGHTING_PASS_GLSL
 
+#include "background.glsl"
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 #include "material_model.glsl"
@@ -52,7 +54,7 @@ vec3 classic_and_emitted_radiance(SurfacePoint p) {
 }
 
 void store_background(ivec2 pixel) {
-    imageStore(hdr_image, pixel, vec4(0.0));
+    imageStore(hdr_image, pixel, vec4(background_radiance(pixel), 0.0));
     imageStore(cut_image, pixel, uvec4(0u));
 }
 

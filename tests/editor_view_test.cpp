@@ -60,12 +60,6 @@ std::string editor_script(const std::filesystem::path& dir) {
            "quit\n";
 }
 
-Rgba8Image read_image(const std::filesystem::path& path) {
-    Result<Rgba8Image> image = read_png(path);
-    EXPECT_TRUE(image.ok()) << path << ": " << (image.ok() ? "" : image.error());
-    return image.ok() ? std::move(image).value() : Rgba8Image{};
-}
-
 // Mean absolute difference per RGB channel, in 8-bit levels.
 double mean_difference(const Rgba8Image& a, const Rgba8Image& b) {
     EXPECT_EQ(a.width, b.width);
@@ -83,10 +77,10 @@ double mean_difference(const Rgba8Image& a, const Rgba8Image& b) {
 
 // What every run of the script must have produced in `dir`.
 void check_outputs(const std::filesystem::path& dir, uint32_t width, uint32_t height) {
-    const Rgba8Image before = read_image(dir / "before.png");
-    const Rgba8Image reference = read_image(dir / "reference.png");
-    const Rgba8Image lightcuts = read_image(dir / "lightcuts.png");
-    const Rgba8Image cuts = read_image(dir / "cuts.png");
+    const Rgba8Image before = test::read_image(dir / "before.png");
+    const Rgba8Image reference = test::read_image(dir / "reference.png");
+    const Rgba8Image lightcuts = test::read_image(dir / "lightcuts.png");
+    const Rgba8Image cuts = test::read_image(dir / "cuts.png");
     for (const Rgba8Image* image : {&before, &reference, &lightcuts, &cuts}) {
         EXPECT_EQ(image->width, width);
         EXPECT_EQ(image->height, height);
@@ -241,9 +235,9 @@ TEST(EditorView, EditsReachTheRendererWithoutABake) {
     options.script = &script;
     Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
     ASSERT_TRUE(summary.ok()) << summary.error();
-    const Rgba8Image a = read_image(dir / "a.png");
-    const Rgba8Image b = read_image(dir / "b.png");
-    const Rgba8Image c = read_image(dir / "c.png");
+    const Rgba8Image a = test::read_image(dir / "a.png");
+    const Rgba8Image b = test::read_image(dir / "b.png");
+    const Rgba8Image c = test::read_image(dir / "c.png");
     EXPECT_GT(mean_difference(a, b), 3.0);
     EXPECT_EQ(mean_difference(a, c), 0.0);  // undo restores the exact image
     std::filesystem::remove_all(dir);

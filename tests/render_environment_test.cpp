@@ -19,15 +19,6 @@ namespace {
 constexpr uint32_t kSize = 48;
 constexpr double kPi = std::numbers::pi;
 
-// White, rough, dielectric: Lambert with albedo 1, so radiance is E / pi.
-Material white() {
-    Material m;
-    m.base_color_factor = glm::vec4(1.0f);
-    m.metallic = 0.0f;
-    m.roughness = 1.0f;
-    return m;
-}
-
 std::vector<SceneLight> uniform_environment_lights() {
     Environment environment;
     environment.map = EquirectMap{128, 64, std::vector<glm::vec3>(128 * 64, glm::vec3(1.0f))};
@@ -93,7 +84,7 @@ protected:
 
     static Scene ground_scene(bool wall) {
         Scene scene;
-        scene.materials = {white()};
+        scene.materials = {test::white_lambert()};
         scene.meshes.push_back(test::make_quad({-200, 0, 200}, {400, 0, 0}, {0, 0, -400}, 0));
         if (wall) scene.meshes.push_back(test::make_quad({-1, 0, 0}, {2, 0, 0}, {0, 2, 0}, 0));
         scene.bounds_min = {-200, 0, -200};

@@ -157,6 +157,22 @@ protected:
     std::unique_ptr<vk::Context> context_;
 };
 
+// A PNG the test wrote (empty, and a failure, when it cannot be read).
+inline client::Rgba8Image read_image(const std::filesystem::path& path) {
+    Result<client::Rgba8Image> image = client::read_png(path);
+    EXPECT_TRUE(image.ok()) << path << ": " << (image.ok() ? "" : image.error());
+    return image.ok() ? std::move(image).value() : client::Rgba8Image{};
+}
+
+// White, rough, dielectric: Lambert with albedo 1, so radiance is E / pi.
+inline lc::Material white_lambert() {
+    lc::Material m;
+    m.base_color_factor = glm::vec4(1.0f);
+    m.metallic = 0.0f;
+    m.roughness = 1.0f;
+    return m;
+}
+
 inline lc::Mesh make_quad(const glm::vec3& corner, const glm::vec3& edge_u,
                               const glm::vec3& edge_v, int material) {
     lc::Mesh mesh;

@@ -49,7 +49,7 @@ void add_bake_command(CLI::App& app) {
         const double load_ms = ms_since(load_start);
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
-        BakeClientOptions bake = options->bake.to_options();
+        BakeClientOptions bake = options->bake.to_options(*scene);
         bake.keep_result_channel = false;
         bake.result_dump = options->output;
         bake.geometry = geometry_the_bake_needs(*scene, bake.indirect.method);

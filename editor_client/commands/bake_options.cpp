@@ -62,7 +62,7 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
         ->check(CLI::Range(0.0f, 0.999f));
 }
 
-BakeClientOptions BakeFlags::to_options() const {
+BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     static const std::map<std::string, BuilderKind> builders = {
         {"optimal-pair", BuilderKind::kOptimalPair}, {"agglomerative", BuilderKind::kAgglomerative}, {"lbvh", BuilderKind::kLbvh}};
     static const std::map<std::string, PairingMode> pairings = {
@@ -82,7 +82,7 @@ BakeClientOptions BakeFlags::to_options() const {
     options.seed = seed;
     options.area_lights = area_lights;
     options.connect_timeout_seconds = connect_timeout;
-    options.environment = or_fail(environment.load());
+    options.environment = or_fail(environment.load(scene.environment));
     options.environment_lights = environment.lights.value_or(0);
     static const std::map<std::string, IndirectMethod> methods = {
         {"off", IndirectMethod::kOff}, {"vpl", IndirectMethod::kVpl}, {"radiosity", IndirectMethod::kRadiosity}};

@@ -6,6 +6,7 @@
 
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/commands/environment_flags.h"
+#include "lightcuts/scene.h"
 
 namespace lc::client {
 
@@ -33,8 +34,9 @@ struct BakeFlags {
     // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     void add_to(CLI::App& cmd, bool server_required);
     bool has_server() const { return spawn_server || !server.empty(); }
-    // Loads the environment, if any; a subcommand ends on a bad one (command_errors.h).
-    BakeClientOptions to_options() const;
+    // Loads the environment, the flags' or else the scene's (Scene::environment),
+    // if any; a subcommand ends on a bad one (command_errors.h).
+    BakeClientOptions to_options(const Scene& scene) const;
 };
 
 }  // namespace lc::client

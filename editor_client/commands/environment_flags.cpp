@@ -19,10 +19,15 @@ void EnvironmentFlags::add_to(CLI::App& cmd) {
                        std::to_string(kMaxEnvironmentLights) + ")");
 }
 
-Result<std::shared_ptr<const Environment>> EnvironmentFlags::load() const {
+Result<std::shared_ptr<const Environment>> EnvironmentFlags::load(std::shared_ptr<const Environment> named) const {
     if (!requested()) {
-        if (lights) return make_error("--environment-lights needs --environment or --sky");
-        return std::shared_ptr<const Environment>();
+        if (lights && !named)
+            return make_error("--environment-lights needs --environment or --sky (or an environment in the glTF)");
+        if (lights) {
+            Status count = validate_environment_light_count(*named, *lights);
+            if (!count) return make_error("--" + count.error());
+        }
+        return named;
     }
     auto environment = std::make_shared<Environment>();
     environment->intensity = intensity;

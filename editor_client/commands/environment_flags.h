@@ -24,8 +24,10 @@ struct EnvironmentFlags {
 
     void add_to(CLI::App& cmd);
     bool requested() const { return !file.empty() || !sky.empty(); }
-    // Null when neither --environment nor --sky was given; an error names the problem.
-    Result<std::shared_ptr<const Environment>> load() const;
+    // The flags' environment, or `named` (the scene's, Scene::environment)
+    // when neither --environment nor --sky was given: the flags override the
+    // file. An error names the problem.
+    Result<std::shared_ptr<const Environment>> load(std::shared_ptr<const Environment> named = nullptr) const;
 };
 
 }  // namespace lc::client

@@ -122,7 +122,7 @@ void run_render(const RenderOptions& options) {
     source.dump = options.tree;
     ProgressDisplay progress(stderr);
     if (options.bake.has_server()) {
-        BakeClientOptions bake = options.bake.to_options();
+        BakeClientOptions bake = options.bake.to_options(scene);
         bake.keep_result_channel = false;  // rendered from the decoded tree only
         bake.on_progress = [&](const ProgressMsg& p) { progress.update(p.stage, p.percent); };
         bake.on_warning = [&](const std::string& w) {
@@ -181,8 +181,10 @@ void run_render(const RenderOptions& options) {
     std::vector<EffectDecision> decisions = renderer->effects().decisions;
     std::optional<EffectDecision> sky_decision;
     // A bake loaded it already; a tree from a dump was baked with it.
-    if (std::shared_ptr<const Environment> environment =
-            source.bake ? source.bake->environment : or_fail(options.bake.environment.load())) {
+    const std::shared_ptr<const Environment> environment =
+        source.bake ? source.bake->environment : or_fail(options.bake.environment.load(scene.environment));
+    if (Status shown = renderer->set_environment(environment); !shown) fail(shown.error());
+    if (environment) {
         size_t scene_directional_lights = 0;
         for (const SceneLight& light : scene.lights)
             scene_directional_lights += !light.classic && light.type == LightType::kDirectional;

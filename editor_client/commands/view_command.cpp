@@ -2,12 +2,15 @@
 //   [--token-file F] [--script FILE] [--mode M] [--size WxH] [--camera ... | --camera-index I]
 //   [--exposure E] [--frames N --screenshot OUT.png] [--headless] [--no-adaptive] [--no-panels]
 //   [--no-progressive | --frame-budget-ms MS]
+//   [--environment FILE.hdr [--environment-intensity S] [--environment-rotation DEG] | --sky E,A,T]
 // The interactive editor: drag with the left button to orbit, the right button
 // to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts, cuts,
 // cutsize; Esc or Q closes. `--script` runs editor commands through the same
 // session functions the panels call, one command per frame. The view refines
 // progressively (coarse to fine, in tiles within a GPU budget per frame) unless
 // --no-progressive; with --tree it opens in lightcuts mode, as render does.
+// --environment/--sky (or the glTF's environment) is the background where no
+// geometry is hit, and Build Lighting sends it with the scene's surfaces.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -107,7 +110,11 @@ void run_view(const ViewCommandOptions& options) {
 
     EditorSessionOptions session_options;
     session_options.aspect = float(width) / float(height);
-    if (options.bake.has_server()) session_options.bake = options.bake.to_options();
+    // The environment (the flags', else the glTF's) is the background, and goes with every bake.
+    if (options.bake.has_server())
+        session_options.bake = options.bake.to_options(scene);
+    else
+        session_options.bake.environment = or_fail(options.bake.environment.load(scene.environment));
     EditorSession session(std::move(scene), session_options);
     or_fail(session.set_camera(camera));
     or_fail(session.set_exposure(requested.exposure));

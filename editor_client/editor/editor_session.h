@@ -49,6 +49,8 @@ struct BakeReport {
 class EditorSession {
 public:
     explicit EditorSession(Scene scene, EditorSessionOptions options = {});
+    // The environment bakes send and the view shows as its background (null: none).
+    const std::shared_ptr<const Environment>& environment() const { return options_.bake.environment; }
     ~EditorSession();
     EditorSession(const EditorSession&) = delete;
     EditorSession& operator=(const EditorSession&) = delete;

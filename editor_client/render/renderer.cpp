@@ -8,6 +8,7 @@
 
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
+#include "editor_client/render/background.h"
 #include "editor_client/render/frame_set_layout.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
@@ -98,6 +99,15 @@ Status Renderer::create_frame_resources() {
     if (!counters) return make_error(counters.error());
     counters_ = std::move(counters).value();
 
+    Result<vk::Buffer> background =
+        vk::Buffer::create(context_.device(), sizeof(GpuBackground),
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUsage::kDeviceLocal);
+    if (!background) return make_error(background.error());
+    background_ = std::move(background).value();
+    const std::vector<GpuEnvironmentTexel> no_texels = environment_texels(nullptr);
+    LC_RETURN_IF_ERROR(upload_storage(environment_texels_, std::as_bytes(std::span(no_texels))));
+
     Result<vk::TimestampQueryPool> timestamps =
         vk::TimestampQueryPool::create(context_.device(), kTsCount);
     if (!timestamps) return make_error(timestamps.error());
@@ -178,6 +188,19 @@ Status Renderer::set_tree(const LightTree* tree) {
     return Ok{};
 }
 
+Status Renderer::set_environment(std::shared_ptr<const Environment> environment) {
+    LC_RETURN_IF_ERROR(context_.device().wait_idle());
+    const std::vector<GpuEnvironmentTexel> texels = environment_texels(environment.get());
+    LC_RETURN_IF_ERROR(upload_storage(environment_texels_, std::as_bytes(std::span(texels))));
+    environment_ = std::move(environment);
+    return Ok{};
+}
+
+GpuBackground Renderer::background(const RenderSettings& settings) const {
+    return make_gpu_background(environment_.get(), settings, settings.width, settings.height,
+                               scene_.bounds_min, scene_.bounds_max);
+}
+
 Status Renderer::validate(const RenderSettings& settings) const {
     ValidationContext context;
     context.has_tree = has_tree_;
@@ -244,6 +267,8 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
         .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
         .storage_buffer(kBindWalkStates, targets_.walk_states.handle())
+        .storage_buffer(kBindBackground, background_.handle())
+        .storage_buffer(kBindEnvironmentTexels, environment_texels_.handle())
         .update(context_.device().handle());
     frame_set_dirty_ = false;
 }
@@ -311,6 +336,8 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     timestamps_.reset(cmd);
     timestamps_.write(cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, kTsStart);
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
+    const GpuBackground background = this->background(settings);
+    vkCmdUpdateBuffer(cmd, background_.handle(), 0, sizeof(background), &background);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;

@@ -24,6 +24,7 @@
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
+#include "lightcuts/environment.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
 #include "lightcuts/scene.h"
@@ -75,6 +76,13 @@ public:
     // Replaces the tree (null: none) and re-analyses the effects. Waits for the GPU.
     Status set_tree(const LightTree* tree);
     bool has_tree() const { return has_tree_; }
+    // The environment pixels without geometry show (null: black, the
+    // default); the tree's lights stand for its light. Waits for the GPU.
+    Status set_environment(std::shared_ptr<const Environment> environment);
+    const Environment* environment() const { return environment_.get(); }
+    // What a frame with these settings shows where no geometry is hit
+    // (background.h): the environment's parameters and the frame's eye rays.
+    GpuBackground background(const RenderSettings& settings) const;
     const SceneEffects& effects() const { return effects_; }
 
     // Checks settings (render_settings.h's validate, with whether a tree is
@@ -171,6 +179,9 @@ private:
     vk::Buffer tree_nodes_;
     vk::Buffer classic_lights_;
     vk::Buffer counters_;
+    std::shared_ptr<const Environment> environment_;
+    vk::Buffer background_;          // GpuBackground, rewritten by every frame's commands
+    vk::Buffer environment_texels_;  // GpuEnvironmentTexel
     ShadowBvh shadow_bvh_;
     float shadow_bias_ = 0.0f;
     glm::vec3 last_eye_{0.0f};  // camera of the last frame (read_gbuffer)

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "editor_client/render/background.h"
 #include "editor_client/render/gbuffer_surface.h"
 #include "lightcuts/status_macros.h"
 
@@ -15,6 +16,8 @@ Result<std::vector<EyeSample>> eye_samples(Renderer& renderer, const RenderSetti
     Result<GBufferReadback> g = renderer.read_gbuffer();
     if (!g) return make_error(g.error());
     const bool shadows = renderer.effects().shadows && !renderer.shadow_bvh().empty();
+    const Environment* environment = renderer.environment();
+    const GpuBackground background = renderer.background(settings);
     std::vector<EyeSample> out(size_t(g->width) * g->height);
     for (size_t i = 0; i < out.size(); ++i) {
         out[i].geometry = g->position[4 * i + 3] != 0.0f;
@@ -24,6 +27,11 @@ Result<std::vector<EyeSample>> eye_samples(Renderer& renderer, const RenderSetti
             out[i].point.shadow_bias = renderer.shadow_bias();
         }
         out[i].emitted = {g->emissive[4 * i], g->emissive[4 * i + 1], g->emissive[4 * i + 2]};
+        if (!out[i].geometry && environment != nullptr) {
+            const glm::dvec3 ray =
+                background_eye_ray(background, double(i % g->width) + 0.5, double(i / g->width) + 0.5);
+            out[i].emitted = environment_radiance(*environment, ray);
+        }
     }
     return out;
 }

@@ -27,6 +27,7 @@
 #include <stdexcept>
 
 #include "editor_client/scene/gltf_node_reader.h"
+#include "editor_client/scene/gltf_environment.h"
 #include "editor_client/scene/mapped_file.h"
 #include "editor_client/scene/gltf_resource_access.h"
 #include "editor_client/scene/scene_guid.h"
@@ -340,6 +341,7 @@ private:
     Status add_light(int node_index, const glm::dmat4& world, uint64_t path_hash);
     void add_camera(int node_index, int camera_index, const glm::dmat4& world);
     Status check_unique_light_guids() const;
+    Status read_environment();
     void finish_cameras();
 
     // `expected` names the accepted types for the message; `accepts` checks them
@@ -354,6 +356,7 @@ private:
     std::filesystem::path path_;
     std::vector<std::string>& warnings_;
     GltfLoadOptions options_;
+    std::filesystem::path resource_folder_;  // as parse() was given it
     tg::Model model_;
     // Nodes, scenes and punctual lights: read by gltf_node_reader, or taken
     // from model_ (whose copies are then dropped).
@@ -374,6 +377,7 @@ Result<MappedFile> Loader::map_file() const {
 
 Status Loader::parse(std::span<const uint8_t> bytes, const std::filesystem::path& resource_folder,
                      const ConsumedBytes& on_consumed) {
+    resource_folder_ = resource_folder;
     if (bytes.empty()) return fail("the file is empty");
     if (bytes.size() > std::numeric_limits<unsigned int>::max()) {
         return fail("the file is larger than 4 GiB");
@@ -1268,6 +1272,15 @@ Result<Scene> Loader::load(std::span<const uint8_t> bytes,
     return build_scene();
 }
 
+Status Loader::read_environment() {
+    GltfResourceAccess access(resource_folder_, options_.allow_external_resources);
+    Result<GltfEnvironment> named = read_gltf_environment(model_.asset.extras, access);
+    if (!named) return fail(named.error());
+    scene_.environment = std::move(named->environment);
+    scene_.environment_image = std::move(named->image);
+    return Ok{};
+}
+
 Result<Scene> Loader::build_scene() {
     Status status = validate_node_graph();
     if (!status) return Error{status.error()};
@@ -1281,6 +1294,8 @@ Result<Scene> Loader::build_scene() {
     // records go before the GUID checks and the scene GUID allocate theirs.
     nodes_ = GltfNodeTable{};
     status = check_unique_light_guids();
+    if (!status) return Error{status.error()};
+    status = read_environment();
     if (!status) return Error{status.error()};
     scene_.source = path_;
     update_scene_bounds(scene_);

@@ -14,6 +14,8 @@
 //   and the node path. `extras: {"lightcuts_classic": true}` on the light or the
 //   node marks a classic light.
 // - Cameras (perspective only): eye at the node, looking down its -Z, up its +Y.
+// - An environment map or a sun and sky named in the asset's extras
+//   (gltf_environment.h) becomes Scene::environment.
 #include <cstdint>
 #include <filesystem>
 #include <span>

@@ -98,6 +98,23 @@ bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path,
     return true;
 }
 
+std::filesystem::path GltfResourceAccess::resolve(const std::string& uri) const {
+    const std::filesystem::path path(uri);
+    if (path.is_absolute() || base_dir_.empty()) return path;
+    return std::filesystem::path(base_dir_) / path;
+}
+
+bool GltfResourceAccess::read_resource(const std::filesystem::path& path,
+                                       std::vector<unsigned char>& out, std::string& error) {
+    const size_t refused = refusals_.size();
+    if (!admits(path.string())) {
+        error = refusals_.size() > refused ? "refused: " + refusals_.back()
+                                           : "'" + path.string() + "' does not exist";
+        return false;
+    }
+    return read_regular_file(path, out, error);
+}
+
 bool GltfResourceAccess::exists(const std::string& path, void* self) {
     return static_cast<GltfResourceAccess*>(self)->admits(path);
 }

@@ -20,6 +20,14 @@ public:
     // Callbacks for tinygltf; they refer to this object, which must outlive the load.
     tinygltf::FsCallbacks callbacks();
 
+    // A URI of the file (not a data: URI) as a path: relative ones below the
+    // scene's folder, absolute ones as they are.
+    std::filesystem::path resolve(const std::string& uri) const;
+    // Reads `path` under the same rules as tinygltf's reads (the environment
+    // map a file names, gltf_environment.h); `error` says why not.
+    bool read_resource(const std::filesystem::path& path, std::vector<unsigned char>& out,
+                       std::string& error);
+
     // Why each refused URI was refused, in order ("'../x.bin' lies outside ...").
     const std::vector<std::string>& refusals() const { return refusals_; }
 

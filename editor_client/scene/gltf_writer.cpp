@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "editor_client/scene/gltf_environment.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "protocol/channel_records.h"
 
@@ -386,6 +387,7 @@ Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
     if (!valid) return valid;
     json doc;
     doc["asset"] = {{"version", "2.0"}, {"generator", "lightcuts editor_client"}};
+    put_gltf_environment(scene, std::filesystem::absolute(out).parent_path(), doc["asset"]);
     doc["scene"] = 0;
     doc["scenes"] = json::array({json::object({{"nodes", json::array()}})});
     doc["nodes"] = json::array();
@@ -627,6 +629,15 @@ void rewrite_uris(json& doc, const std::filesystem::path& source,
             std::filesystem::path relative = target.lexically_relative(to);
             if (relative.empty()) relative = target;
             item["uri"] = percent_encode_path(relative.generic_string());
+        }
+    }
+    // The environment's image is a path, not a URI (gltf_environment.h).
+    if (doc.contains("asset") && doc["asset"].is_object() && doc["asset"].contains("extras") &&
+        doc["asset"]["extras"].is_object() && doc["asset"]["extras"].contains(kEnvironmentExtrasKey)) {
+        json& map = doc["asset"]["extras"][kEnvironmentExtrasKey];
+        if (map.is_object() && map.contains("image") && map["image"].is_string()) {
+            const std::filesystem::path image(map["image"].get<std::string>());
+            if (image.is_relative()) map["image"] = path_from(to, from / image);
         }
     }
 }

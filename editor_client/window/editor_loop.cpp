@@ -181,6 +181,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         Renderer::create(context, session.scene(), nullptr, renderer_options);
     if (!created) return make_error(created.error());
     Renderer& renderer = **created;
+    LC_RETURN_IF_ERROR(renderer.set_environment(session.environment()));
     RendererSync sync(renderer, session);
     LC_RETURN_IF_ERROR(sync.update());
     std::optional<ProgressiveRefinement> refinement;

@@ -23,7 +23,9 @@ LC_CONST uint kBindCounters = 10u;
 LC_CONST uint kBindBvhNodes = 11u;
 LC_CONST uint kBindShadowTriangles = 12u;
 LC_CONST uint kBindWalkStates = 13u;
-LC_CONST uint kFrameBindingCount = 14u;
+LC_CONST uint kBindBackground = 14u;         // GpuBackground, rewritten every frame
+LC_CONST uint kBindEnvironmentTexels = 15u;  // GpuEnvironmentTexel, row 0 at the zenith
+LC_CONST uint kFrameBindingCount = 16u;
 
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;

@@ -123,6 +123,40 @@ struct LC_ALIGN16 GpuFrameConstants {
     float pad2 LC_DEFAULT(0.0f);
 };
 
+// GpuBackground::kind: what a pixel without geometry shows.
+LC_CONST uint kBackgroundBlack = 0u;  // no environment
+LC_CONST uint kBackgroundMap = 1u;    // the equirectangular map (kBindEnvironmentTexels)
+LC_CONST uint kBackgroundSky = 2u;    // the Preetham sun and sky (preetham_sky.glsl.h)
+
+// What the lighting passes show where no geometry is hit, rewritten every
+// frame (the camera moves; a storage buffer rather than push constants,
+// whose 128 bytes the passes share). Pixel (x, y)'s eye ray points along
+// ray_at_origin + (x + 0.5) ray_step_x + (y + 0.5) ray_step_y: perspective
+// keeps it affine in the pixel, so the frame's jitter and corner grid fit.
+struct LC_ALIGN16 GpuBackground {
+    vec3 ray_at_origin LC_DEFAULT(vec3(0.0f));  // pixel corner (0, 0), not normalised
+    uint kind LC_DEFAULT(kBackgroundBlack);
+    vec3 ray_step_x LC_DEFAULT(vec3(0.0f));
+    float intensity LC_DEFAULT(1.0f);  // scales the map, the sky and the sun alike
+    vec3 ray_step_y LC_DEFAULT(vec3(0.0f));
+    float rotation LC_DEFAULT(0.0f);  // the map's, radians (equirect_map.glsl.h)
+    vec3 sun_direction LC_DEFAULT(vec3(0.0f, 1.0f, 0.0f));
+    float turbidity LC_DEFAULT(3.0f);
+    vec3 sun_radiance LC_DEFAULT(vec3(0.0f));  // inside the disc, before intensity
+    float sun_cos_radius LC_DEFAULT(1.0f);    // the disc's angular radius, as a cosine
+    uint map_width LC_DEFAULT(0u);
+    uint map_height LC_DEFAULT(0u);
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
+};
+
+// One texel of the environment map as the background reads it (linear RGB
+// radiance), row-major from the zenith row as in lightcuts/equirect_map.h.
+struct LC_ALIGN16 GpuEnvironmentTexel {
+    vec3 radiance LC_DEFAULT(vec3(0.0f));
+    float pad0 LC_DEFAULT(0.0f);
+};
+
 // GpuDrawConstants::flags
 LC_CONST uint kDrawBaseColorTexture = 1u;
 LC_CONST uint kDrawEmissiveTexture = 2u;
