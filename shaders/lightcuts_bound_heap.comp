@@ -85,8 +85,8 @@ vec3 unit_response(int i, SurfacePoint p) {
 Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     max_cut_hit = false;
     radiance = vec3(0.0);
-    Cut cut = Cut(vec3(0.0), 0u, 0u);
-    if (frame.node_count == 0u) return cut;
+    Cut cut = empty_cut();
+    if (frame.node_count == 0u || left_out(tree_nodes[0].flags)) return cut;
     int size = 0;
     vec3 root_unit = unit_response(0, p);
     heap_push(size, node_key(0, p), 0, root_unit);
@@ -119,6 +119,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             // A child with its parent's representative has its parent's
             // response: the evaluation is reused (paper Sec. 4.1).
             GpuTreeNode child_node = tree_nodes[child];
+            if (left_out(child_node.flags)) continue;
             vec3 unit = child_node.representative == parent_representative ? parent_unit
                                                                            : unit_response(child, p);
             total += unit * child_node.intensity;
@@ -127,7 +128,10 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     }
     // The running total drifts; sum afresh.
     for (int k = 0; k < size; ++k) {
-        radiance += heap_unit[k] * tree_nodes[heap_node[k]].intensity;
+        GpuTreeNode node = tree_nodes[heap_node[k]];
+        vec3 contribution = heap_unit[k] * node.intensity;
+        radiance += contribution;
+        tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
         cut.hash += cut_hash_term(uint(heap_node[k]));
     }
     cut.size = uint(size);
@@ -146,6 +150,6 @@ void main() {
     bool max_cut_hit;
     Cut cut = select_cut_bound(p, radiance, max_cut_hit);
     if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
-    radiance += classic_and_emitted_radiance(p);
+    radiance = clamp_indirect(pixel, radiance, cut.indirect) + classic_and_emitted_radiance(p);
     store_pixel(pixel, radiance, cut.size, cut.hash, false);
 }
