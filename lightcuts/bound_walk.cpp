@@ -53,7 +53,8 @@ CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const Cut
             over_lo = tau;
         } else {
             pass.cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
-            const double limit = rule.limit(pass.cut.radiance);
+            // The rule reads the clamped total (device/indirect_clamp.glsl.h).
+            const double limit = rule.limit(result.radiance);
             if (!(pass.worst > limit)) return result;  // the rule holds: not a max-cut hit
             fit_hi = pass.worst;
             if (!bisecting) {

@@ -144,11 +144,23 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     if (left_out(tree.nodes[0], settings)) return result;
     std::vector<CutEntry> heap{make_entry(tree, 0, p, nullptr)};
     glm::dvec3 total = heap.front().estimate;
+    // The cut's indirect leaves (never refined, so only added): the rule reads
+    // the clamped total.
+    const double clamp_ratio = indirect_clamp_ratio(settings.error_ratio);
+    device::IndirectSums leaves = device::no_indirect_sums();
+    const auto add_if_indirect_leaf = [&](const CutEntry& entry) {
+        const LightTreeNode& node = tree.nodes[size_t(entry.node)];
+        if (node.indirect && node.is_leaf()) device::add_indirect_leaf(leaves, entry.estimate);
+    };
+    const auto rule_total = [&] {
+        return leaves.leaves > 0 ? device::clamped_running_total(total, leaves, clamp_ratio) : total;
+    };
+    add_if_indirect_leaf(heap.front());
     while (!heap.empty()) {
         const CutEntry& top = heap.front();
         if (!std::isinf(top.key)) {
             if (!(top.key > 0.0)) break;
-            if (top.key <= rule.limit(total)) break;
+            if (top.key <= rule.limit(rule_total())) break;
             if (heap.size() >= rule.max_cut) {
                 result.max_cut_hit = true;
                 break;
@@ -167,6 +179,7 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
             const bool shares = tree.nodes[size_t(children[c])].representative == representative;
             CutEntry child = make_entry(tree, children[c], p, shares ? &parent.unit : nullptr);
             total += child.estimate;
+            add_if_indirect_leaf(child);
             heap.push_back(child);
             std::push_heap(heap.begin(), heap.end(), heap_less);
         }
@@ -174,7 +187,7 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     // The running total drifts with 1e12 intensity ratios; sum afresh.
     CutTally cut;
     for (const CutEntry& entry : heap) cut.add(entry.node, tree.nodes[size_t(entry.node)], entry.estimate);
-    cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
+    cut.copy_to(result, clamp_ratio);
     if (nodes != nullptr) {
         for (const CutEntry& entry : heap) nodes->push_back({entry.node, entry.estimate});
     }

@@ -8,14 +8,8 @@ double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 
 void CutTally::add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance) {
     radiance += node_radiance;
-    if (node.indirect) {
-        // The paper clamps single lights; clusters are the refinement's.
-        if (node.is_leaf()) {
-            device::add_indirect_leaf(indirect, node_radiance);
-        } else {
-            indirect.clusters += node_radiance;
-        }
-    }
+    // The paper clamps single lights; clusters are the refinement's.
+    device::add_cut_node(indirect, node.indirect, node.is_leaf(), node_radiance);
     size += 1;
     hash += cut_hash_term(uint32_t(node_index));
 }
@@ -26,10 +20,7 @@ void CutTally::copy_to(CutResult& result, double clamp_ratio) const {
     result.cut_hash = hash;
     result.indirect = indirect.largest + indirect.second + indirect.rest + indirect.clusters;
     result.clamped = glm::dvec3(0.0);
-    if (indirect.leaves > 0) {
-        result.clamped = device::indirect_clamp_removed(radiance, indirect, clamp_ratio);
-        result.radiance -= result.clamped;
-    }
+    if (indirect.leaves > 0) result.radiance = device::indirect_clamped(radiance, indirect, clamp_ratio, result.clamped);
 }
 
 double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p) {

@@ -91,12 +91,16 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     vec3 root_unit = unit_response(0, p);
     heap_push(size, node_key(0, p), 0, root_unit);
     vec3 total = root_unit * tree_nodes[0].intensity;
+    // Its indirect leaves, for the clamped total the rule reads.
+    IndirectSums leaves = no_indirect_sums();
+    if (kIndirectClamp && tree_nodes[0].first_child == kEndOfWalk && (tree_nodes[0].flags & kNodeIndirect) != 0u)
+        add_indirect_leaf(leaves, total);
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
         float key = heap_key[0];
         if (!isinf(key)) {
             if (!(key > 0.0)) break;
-            if (key <= kErrorRatio * max(max_channel(total), 0.0)) break;
+            if (key <= kErrorRatio * max(max_channel(clamped_heap_total(total, leaves)), 0.0)) break;
         }
         // A mixed-type junction is refined past max-cut like on the CPU, as
         // long as the array has room.
@@ -123,6 +127,8 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             vec3 unit = child_node.representative == parent_representative ? parent_unit
                                                                            : unit_response(child, p);
             total += unit * child_node.intensity;
+            if (kIndirectClamp && child_node.first_child == kEndOfWalk && (child_node.flags & kNodeIndirect) != 0u)
+                add_indirect_leaf(leaves, unit * child_node.intensity);
             heap_push(size, node_key(child, p), child, unit);
         }
     }

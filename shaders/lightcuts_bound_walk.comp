@@ -79,7 +79,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
 GpuWalkState walk_start() {
     return GpuWalkState(vec3(0.0), 0u, 0u, uintBitsToFloat(0x7f800000u), 0.0, 0.0,
                         kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u, vec3(0.0), 0u,
-                        vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u);
+                        vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u);
 }
 
 // The cut at threshold tau (`shade` false: its size, hash and worst bound
@@ -125,7 +125,7 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
         if (kIndirectClamp) keep_indirect_sums(s, pass.indirect);
         s.size = pass.size;
         s.hash = pass.hash;
-        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+        float limit = kErrorRatio * max(max_channel(clamped_cut_total(pass.radiance, pass.indirect)), 0.0);
         if (!(pass.worst > limit)) {
             s.flags |= kWalkDone | kWalkRuleMet;
             return true;

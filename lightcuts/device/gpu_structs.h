@@ -115,6 +115,8 @@ struct LC_ALIGN16 GpuWalkState {
     vec3 indirect_rest LC_DEFAULT(vec3(0.0f));
     float clamped_energy LC_DEFAULT(0.0f);
     vec3 indirect_clusters LC_DEFAULT(vec3(0.0f));
+    float indirect_rest_max LC_DEFAULT(0.0f);
+    vec3 indirect_others LC_DEFAULT(vec3(0.0f));
     uint pad3 LC_DEFAULT(0u);
 };
 

@@ -11,11 +11,15 @@
 //
 // The cut is not kept (the walks evaluate it as they go), so the two largest
 // indirect leaves (by their largest channel) are kept apart and the others
-// summed; every light in that sum is at most the second's largest channel, m.
-// The sum is scaled by min(1, t / m), which holds each of its lights under t
-// too. The clamp is exact while at most two indirect lights exceed t, and
-// never lets one exceed it (with more, the smaller ones are clamped a little
-// more than they need).
+// summed with the largest channel among them, m. The sum is scaled by
+// min(1, t / m), which holds each of its lights under t too. The clamp is
+// exact while at most two indirect lights exceed t, and never lets one exceed
+// it (with more, the smaller ones are clamped a little more than they need).
+// The rest of the cut is summed apart too: a spike a million times the pixel
+// would leave nothing of it in a difference of floats.
+//
+// The cut's stopping rule (error ratio x the total) reads the clamped total,
+// so that a spike does not coarsen the cut of the light around it.
 #ifndef LC_DEVICE_INDIRECT_CLAMP_GLSL_H
 #define LC_DEVICE_INDIRECT_CLAMP_GLSL_H
 
@@ -30,29 +34,36 @@ struct IndirectSums {
     real3 largest;   // the indirect leaf with the largest channel
     real3 second;    // the next one
     real3 rest;      // the other indirect leaves
+    real rest_max;   // the largest channel of a light in rest
+    real3 others;    // the rest of the cut: direct light and indirect clusters
     real3 clusters;  // indirect clusters: not clamped, counted in the statistics
     uint leaves;     // indirect leaves added
 };
 
 LC_INLINE IndirectSums no_indirect_sums() {
-    return IndirectSums(real3(0.0), real3(0.0), real3(0.0), real3(0.0), 0u);
+    return IndirectSums(real3(0.0), real3(0.0), real3(0.0), 0.0, real3(0.0), real3(0.0), 0u);
 }
 
 LC_INLINE real largest_channel(real3 v) { return max(v.x, max(v.y, v.z)); }
 
 // Keeps the two largest apart: whatever drops out of them joins the rest,
 // so every light in the rest stays at most the second's largest channel.
+LC_INLINE void put_to_rest(LC_INOUT(IndirectSums) s, real3 contribution) {
+    s.rest += contribution;
+    s.rest_max = max(s.rest_max, largest_channel(contribution));
+}
+
 LC_INLINE void place_indirect_leaf(LC_INOUT(IndirectSums) s, real3 contribution) {
     real m = largest_channel(contribution);
     if (m > largest_channel(s.largest)) {
-        s.rest += s.second;
+        put_to_rest(s, s.second);
         s.second = s.largest;
         s.largest = contribution;
     } else if (m > largest_channel(s.second)) {
-        s.rest += s.second;
+        put_to_rest(s, s.second);
         s.second = contribution;
     } else {
-        s.rest += contribution;
+        put_to_rest(s, contribution);
     }
 }
 
@@ -61,11 +72,23 @@ LC_INLINE void add_indirect_leaf(LC_INOUT(IndirectSums) s, real3 contribution) {
     s.leaves += 1u;
 }
 
+// One node of the cut: an indirect leaf is clamped, anything else is the rest.
+LC_INLINE void add_cut_node(LC_INOUT(IndirectSums) s, bool indirect, bool leaf, real3 contribution) {
+    if (indirect && leaf) {
+        add_indirect_leaf(s, contribution);
+        return;
+    }
+    s.others += contribution;
+    if (indirect) s.clusters += contribution;
+}
+
 // Adds another part's sums (reference mode splits the leaves over parts).
 LC_INLINE void merge_indirect_sums(LC_INOUT(IndirectSums) s, LC_IN(IndirectSums) other) {
     place_indirect_leaf(s, other.largest);
     place_indirect_leaf(s, other.second);
     s.rest += other.rest;
+    s.rest_max = max(s.rest_max, other.rest_max);
+    s.others += other.others;
     s.clusters += other.clusters;
     s.leaves += other.leaves;
 }
@@ -97,18 +120,31 @@ LC_INLINE real indirect_clamp_excess(real a, real b, real rest, real m, real t) 
     return excess;
 }
 
-// What the clamp removes from a pixel whose unclamped radiance is `total`
-// (its cut, classic lights and emission), per channel. Zero when no indirect
-// light reaches the threshold, so the pixel is then exactly its total.
-LC_INLINE real3 indirect_clamp_removed(real3 total, LC_IN(IndirectSums) s, real ratio) {
-    real3 others = max(total - s.largest - s.second - s.rest, real3(0.0));
-    real m = largest_channel(s.second);
-    real3 removed = real3(0.0);
+// The cut's radiance with its indirect leaves clamped, from `total`, the
+// cut's unclamped radiance, and its sums; `removed`: what the clamp took, per
+// channel. A channel the clamp leaves alone is exactly its total.
+LC_INLINE real3 indirect_clamped(real3 total, LC_IN(IndirectSums) s, real ratio, LC_OUT(real3) removed) {
+    real3 clamped = total;
+    removed = real3(0.0);
     for (int c = 0; c < 3; ++c) {
-        real t = indirect_clamp_threshold(others[c], s.largest[c], s.second[c], s.rest[c], m, ratio);
-        removed[c] = indirect_clamp_excess(s.largest[c], s.second[c], s.rest[c], m, t);
+        real a = s.largest[c];
+        real b = s.second[c];
+        real t = indirect_clamp_threshold(s.others[c], a, b, s.rest[c], s.rest_max, ratio);
+        removed[c] = indirect_clamp_excess(a, b, s.rest[c], s.rest_max, t);
+        if (removed[c] > 0.0) {
+            real rest_scale = s.rest_max > t ? t / s.rest_max : 1.0;
+            clamped[c] = s.others[c] + min(a, t) + min(b, t) + s.rest[c] * rest_scale;
+        }
     }
-    return removed;
+    return clamped;
+}
+
+// The clamped total of a cut whose sums hold only its indirect leaves (the
+// heap searches, whose other nodes come and go): the rest is total minus them.
+LC_INLINE real3 clamped_running_total(real3 total, IndirectSums s, real ratio) {
+    s.others = max(total - s.largest - s.second - s.rest, real3(0.0));
+    real3 removed;
+    return indirect_clamped(total, s, ratio, removed);
 }
 
 #ifdef __cplusplus
