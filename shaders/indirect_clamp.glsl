@@ -65,13 +65,9 @@ void keep_indirect_sums(inout GpuWalkState state, IndirectSums s) {
 }
 
 void store_indirect_sums(uint index, IndirectSums s) {
-    walk_states[index].indirect_largest = s.largest;
-    walk_states[index].indirect_second = s.second;
-    walk_states[index].indirect_rest = s.rest;
-    walk_states[index].indirect_rest_max = s.rest_max;
-    walk_states[index].indirect_others = s.others;
-    walk_states[index].indirect_clusters = s.clusters;
-    walk_states[index].indirect_leaves = s.leaves;
+    GpuWalkState state = walk_states[index];
+    keep_indirect_sums(state, s);
+    walk_states[index] = state;
 }
 
 #endif
