@@ -39,6 +39,8 @@ constexpr size_t kReserveAllAfterFraction = 8;
 constexpr uint8_t kSceneFlagClassic = 1u << 0;
 constexpr uint32_t kLightFlagCluster = 1u << 0;
 // Every light under the node is bounced light (LightTreeNode::indirect).
+// Documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's
+// hash is in every dump, and the recorded dumps stay valid.
 constexpr uint32_t kLightFlagIndirect = 1u << 1;
 constexpr uint32_t kLightFlagTypeShift = 8;
 constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;

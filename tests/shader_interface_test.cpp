@@ -161,6 +161,8 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kWalkShrink", kSpecWalkShrink},
         {"kWalkMargin", kSpecWalkMargin},
         {"kWalkBisections", kSpecWalkBisections},
+        {"kIndirectClamp", kSpecIndirectClamp},
+        {"kIndirectOff", kSpecIndirectOff},
     };
     return ids;
 }
