@@ -174,17 +174,17 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     }
     const std::string indirect_name = "indirect light (the paper's automatic clamping)";
     const std::string baked = plural(effects.indirect_lights, "indirect light") +
-                              " of the tree (bake --indirect), counted with the oriented lights above";
+                              " of the tree (bake --indirect; among the oriented lights above)";
     if (effects.indirect_lights == 0) {
         decide(indirect_name, false, "",
                "the tree holds no indirect light: bounced light is baked on the server "
                "(bake --indirect vpl|radiosity)");
     } else if (!indirect) {
         effects.indirect_off = true;
-        decide(indirect_name, false, "", "--indirect off: the " + baked + " are left out");
+        decide(indirect_name, false, "", "--indirect off: " + baked + " left out");
     } else {
         effects.indirect_clamp = decide(indirect_name, true,
-                                        baked + ", each clamped to half the error ratio of the pixel's total",
+                                        baked + ": each clamped to half the error ratio of the pixel's total",
                                         "");
     }
     return effects;
