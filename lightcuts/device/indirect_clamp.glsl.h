@@ -40,8 +40,17 @@ struct IndirectSums {
     uint leaves;     // indirect leaves added
 };
 
+// Field by field: C++ compilers before parenthesised aggregates take no GLSL constructor.
 LC_INLINE IndirectSums no_indirect_sums() {
-    return IndirectSums(real3(0.0), real3(0.0), real3(0.0), 0.0, real3(0.0), real3(0.0), 0u);
+    IndirectSums s;
+    s.largest = real3(0.0);
+    s.second = real3(0.0);
+    s.rest = real3(0.0);
+    s.rest_max = 0.0;
+    s.others = real3(0.0);
+    s.clusters = real3(0.0);
+    s.leaves = 0u;
+    return s;
 }
 
 LC_INLINE real largest_channel(real3 v) { return max(v.x, max(v.y, v.z)); }
