@@ -17,9 +17,10 @@ struct Pass {
 // The cut of every node whose bound exceeds tau refined (mixed-type junctions
 // always). The cut is a function of tau alone, so the walk's order does not
 // matter; the shader walks in pre-order.
-Pass walk_pass(const LightTree& tree, const SurfacePoint& p, double tau) {
+Pass walk_pass(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+               double tau) {
     Pass pass;
-    pass.cut = walk_cut(tree, p, [&](int32_t index, const LightTreeNode& node, int child_count) {
+    pass.cut = walk_cut(tree, p, settings, [&](int32_t index, const LightTreeNode& node, int child_count) {
         const double key = error_key(tree, index, child_count, p);
         const bool refine = child_count > 0 && (node.mixed_types || key > tau);
         if (!refine) pass.worst = std::max(pass.worst, key);
@@ -44,15 +45,16 @@ CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     double over_lo = 0.0;  // a tau whose cut exceeded max_cut
     uint32_t bisections_left = kWalkBisections;
     for (uint32_t pass_index = 0; pass_index < kWalkMaxPasses; ++pass_index) {
-        const Pass pass = walk_pass(tree, p, tau);
+        const Pass pass = walk_pass(tree, p, settings, tau);
         result.passes = pass_index + 1;
         // Pass 0 is the per-type roots and always kept, whatever max_cut says.
         if (pass_index > 0 && pass.cut.size > rule.max_cut) {
             bisecting = true;
             over_lo = tau;
         } else {
-            pass.cut.copy_to(result);
-            const double limit = rule.limit(pass.cut.radiance);
+            pass.cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
+            // The rule reads the clamped total (device/indirect_clamp.glsl.h).
+            const double limit = rule.limit(result.radiance);
             if (!(pass.worst > limit)) return result;  // the rule holds: not a max-cut hit
             fit_hi = pass.worst;
             if (!bisecting) {

@@ -30,6 +30,9 @@ struct BuildNode {
     uint32_t min_light_index = 0;
     LightType type = LightType::kPoint;
     bool mixed_types = false;  // junction of per-type trees, always refined
+    // Every light under the node is indirect (SceneLight::indirect): the
+    // builders never join indirect and direct lights below a junction.
+    bool indirect = false;
 
     glm::dvec3 intensity{0.0};  // RGB sum of the leaves' color * intensity
     double brightness = 0.0;    // sum of the leaves' scalar intensity

@@ -60,7 +60,7 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     out.first_child = first_child;
     out.escape = escape;
     out.radius = node.radius;
-    out.flags = (node.mixed_types ? kNodeMixedTypes : 0u) |
+    out.flags = (node.mixed_types ? kNodeMixedTypes : 0u) | (node.indirect ? kNodeIndirect : 0u) |
                 (uint32_t(node.type) << kNodeTypeShift);
     // A cone that excludes nothing, or that nothing can be learnt from,
     // becomes "every direction" (the bound then excludes nothing either).

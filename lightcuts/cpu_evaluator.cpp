@@ -10,6 +10,9 @@
 //   mixed_types junction.
 // - Bound criterion: colours are compared through their largest channel:
 //   a node is refined while max_c(bound_c) > error_ratio * max_c(total_c).
+// - Indirect lights: the cut is chosen from unclamped estimates; then each
+//   indirect leaf on it is clamped to half the error ratio of the cut's total
+//   (device/indirect_clamp.glsl.h), before the classic lights are added.
 #include "lightcuts/cpu_evaluator.h"
 
 #include <glm/geometric.hpp>
@@ -121,14 +124,14 @@ CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
 
 // Refined while p lies strictly inside the node's influence radius (radius < 0:
 // unbounded, always inside), and always at a mixed_types junction.
-CutResult radius_cut(const LightTree& tree, const SurfacePoint& p) {
-    const CutTally cut = walk_cut(tree, p, [&](int32_t, const LightTreeNode& node, int child_count) {
+CutResult radius_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
+    const CutTally cut = walk_cut(tree, p, settings, [&](int32_t, const LightTreeNode& node, int child_count) {
         if (child_count == 0) return false;
         if (node.mixed_types || node.radius < 0.0f) return true;
         return glm::length(p.position - glm::dvec3(node.position)) < double(node.radius);
     });
     CutResult result;
-    cut.copy_to(result);
+    cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
     return result;
 }
 
@@ -138,13 +141,26 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
                          std::vector<CutNodeEstimate>* nodes) {
     const BoundRule rule(settings);
     CutResult result;
+    if (left_out(tree.nodes[0], settings)) return result;
     std::vector<CutEntry> heap{make_entry(tree, 0, p, nullptr)};
     glm::dvec3 total = heap.front().estimate;
+    // The cut's indirect leaves (never refined, so only added): the rule reads
+    // the clamped total.
+    const double clamp_ratio = indirect_clamp_ratio(settings.error_ratio);
+    device::IndirectSums leaves = device::no_indirect_sums();
+    const auto add_if_indirect_leaf = [&](const CutEntry& entry) {
+        const LightTreeNode& node = tree.nodes[size_t(entry.node)];
+        if (node.indirect && node.is_leaf()) device::add_indirect_leaf(leaves, entry.estimate);
+    };
+    const auto rule_total = [&] {
+        return leaves.leaves > 0 ? device::clamped_running_total(total, leaves, clamp_ratio) : total;
+    };
+    add_if_indirect_leaf(heap.front());
     while (!heap.empty()) {
         const CutEntry& top = heap.front();
         if (!std::isinf(top.key)) {
             if (!(top.key > 0.0)) break;
-            if (top.key <= rule.limit(total)) break;
+            if (top.key <= rule.limit(rule_total())) break;
             if (heap.size() >= rule.max_cut) {
                 result.max_cut_hit = true;
                 break;
@@ -158,18 +174,20 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
         int32_t children[2];
         const int child_count = valid_children(tree, parent.node, children);
         for (int c = 0; c < child_count; ++c) {
+            if (left_out(tree.nodes[size_t(children[c])], settings)) continue;
             // The child that shares the representative reuses its evaluation.
             const bool shares = tree.nodes[size_t(children[c])].representative == representative;
             CutEntry child = make_entry(tree, children[c], p, shares ? &parent.unit : nullptr);
             total += child.estimate;
+            add_if_indirect_leaf(child);
             heap.push_back(child);
             std::push_heap(heap.begin(), heap.end(), heap_less);
         }
     }
     // The running total drifts with 1e12 intensity ratios; sum afresh.
     CutTally cut;
-    for (const CutEntry& entry : heap) cut.add(entry.node, entry.estimate);
-    cut.copy_to(result);
+    for (const CutEntry& entry : heap) cut.add(entry.node, tree.nodes[size_t(entry.node)], entry.estimate);
+    cut.copy_to(result, clamp_ratio);
     if (nodes != nullptr) {
         for (const CutEntry& entry : heap) nodes->push_back({entry.node, entry.estimate});
     }
@@ -234,7 +252,7 @@ CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> cla
     CutResult result;
     if (!tree.empty()) {
         if (settings.criterion == CutCriterion::kRadius) {
-            result = radius_cut(tree, p);
+            result = radius_cut(tree, p, settings);
         } else {
             result = settings.search == BoundSearch::kWalk ? bound_walk_cut(tree, p, settings)
                                                            : bound_heap_cut(tree, p, settings);

@@ -47,7 +47,15 @@ struct CutSettings {
     double error_ratio = 0.02;
     uint32_t max_cut = kDefaultMaxCut;
     BoundSearch search = BoundSearch::kWalk;
+    // Indirect lights (LightTreeNode::indirect) on: their leaves are clamped
+    // to half the error ratio of the pixel (device/indirect_clamp.glsl.h);
+    // off: every indirect node is left out of the cut (render --indirect off).
+    bool indirect = true;
 };
+
+// The automatic clamp's ratio: an indirect light contributes at most this
+// fraction of the pixel's total, per channel (the paper's half the error ratio).
+double indirect_clamp_ratio(double error_ratio);
 
 struct CutResult {
     glm::dvec3 radiance{0.0};
@@ -55,6 +63,10 @@ struct CutResult {
     uint32_t cut_hash = 0;     // see cut_hash_term(); equal cuts have equal hashes
     bool max_cut_hit = false;  // the bound criterion stopped at max_cut
     uint32_t passes = 0;       // threshold passes walked (BoundSearch::kWalk)
+    // The cut's indirect light before the clamp, and what the clamp removed
+    // (shade_lightcuts; radiance is already clamped).
+    glm::dvec3 indirect{0.0};
+    glm::dvec3 clamped{0.0};
 };
 
 // Order-independent identity of a cut: the sum (mod 2^32) of cut_hash_term(i)
@@ -97,7 +109,8 @@ struct CutNodeEstimate {
 // samples of reconstruction cuts are made from them).
 CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes = nullptr);
-// Lightcuts over the tree, plus the classic lights shaded one by one.
+// Lightcuts over the tree, plus the classic lights shaded one by one, with the
+// indirect leaves clamped (or indirect light left out, settings.indirect).
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);
 

@@ -6,16 +6,21 @@ namespace lc {
 
 double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 
-void CutTally::add(int32_t node_index, const glm::dvec3& node_radiance) {
+void CutTally::add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance) {
     radiance += node_radiance;
+    // The paper clamps single lights; clusters are the refinement's.
+    device::add_cut_node(indirect, node.indirect, node.is_leaf(), node_radiance);
     size += 1;
     hash += cut_hash_term(uint32_t(node_index));
 }
 
-void CutTally::copy_to(CutResult& result) const {
+void CutTally::copy_to(CutResult& result, double clamp_ratio) const {
     result.radiance = radiance;
     result.cut_size = size;
     result.cut_hash = hash;
+    result.indirect = indirect.largest + indirect.second + indirect.rest + indirect.clusters;
+    result.clamped = glm::dvec3(0.0);
+    if (indirect.leaves > 0) result.radiance = device::indirect_clamped(radiance, indirect, clamp_ratio, result.clamped);
 }
 
 double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p) {
@@ -24,6 +29,8 @@ double error_key(const LightTree& tree, int32_t index, int child_count, const Su
     if (node.mixed_types) return std::numeric_limits<double>::infinity();
     return max_channel(node_contribution_bound(node, p));
 }
+
+double indirect_clamp_ratio(double error_ratio) { return 0.5 * std::max(error_ratio, 0.0); }
 
 BoundRule::BoundRule(const CutSettings& settings)
     : error_ratio(settings.error_ratio >= 0.0 ? settings.error_ratio : 0.0),

@@ -10,21 +10,30 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/device/indirect_clamp.glsl.h"
 
 namespace lc {
 
 double max_channel(const glm::dvec3& v);
 
-// A cut's radiance (cut nodes evaluated as clusters), size and hash.
+// A cut's radiance (cut nodes evaluated as clusters), size and hash, and its
+// indirect light for the clamp.
 struct CutTally {
     glm::dvec3 radiance{0.0};
     uint32_t size = 0;
     uint32_t hash = 0;
+    device::IndirectSums indirect = device::no_indirect_sums();
 
-    void add(int32_t node_index, const glm::dvec3& node_radiance);
-    // The cut's part of a CutResult (max_cut_hit and passes left as they are).
-    void copy_to(CutResult& result) const;
+    void add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance);
+    // The cut's part of a CutResult (max_cut_hit and passes left as they are),
+    // its indirect leaves clamped at `clamp_ratio` of the cut's total.
+    void copy_to(CutResult& result, double clamp_ratio) const;
 };
+
+// Whether a search leaves node out of the cut altogether (render --indirect off).
+inline bool left_out(const LightTreeNode& node, const CutSettings& settings) {
+    return !settings.indirect && node.indirect;
+}
 
 // The bound criterion's key of node `index` with `child_count` valid
 // children: the largest channel of its error bound; 0 for a leaf (exact),
@@ -44,22 +53,24 @@ struct BoundRule {
 
 // The cut that `refine(index, node, child_count)` selects, in pre-order: a
 // node is refined into its valid children or taken as a cluster (shaded at p
-// and tallied). An explicit stack, no recursion: a chain-shaped tree is as
-// deep as it has lights.
+// and tallied); a node left_out() is neither. An explicit stack, no recursion:
+// a chain-shaped tree is as deep as it has lights.
 template <typename Refine>
-CutTally walk_cut(const LightTree& tree, const SurfacePoint& p, Refine&& refine) {
+CutTally walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+                  Refine&& refine) {
     CutTally tally;
     std::vector<int32_t> stack{0};
     while (!stack.empty()) {
         const int32_t index = stack.back();
         stack.pop_back();
         const LightTreeNode& node = tree.nodes[size_t(index)];
+        if (left_out(node, settings)) continue;
         int32_t children[2];
         const int child_count = valid_children(tree, index, children);
         if (refine(index, node, child_count)) {
             for (int c = child_count - 1; c >= 0; --c) stack.push_back(children[c]);
         } else {
-            tally.add(index, shade_node(node, p));
+            tally.add(index, node, shade_node(node, p));
         }
     }
     return tally;

@@ -50,6 +50,7 @@ GpuLight make_gpu_light(const SceneLight& light) {
     gpu.spot_cos_inner = float(cos_inner);
     gpu.spot_cos_outer = float(cos_outer);
     gpu.spot_scale = float(shading::spot_scale(cos_inner, cos_outer));
+    gpu.flags = light.indirect ? kGpuLightIndirect : 0u;
     return gpu;
 }
 
@@ -63,6 +64,7 @@ GpuLight make_gpu_leaf_light(const LightTreeNode& node) {
     gpu.spot_cos_inner = node.spot_cos_inner;
     gpu.spot_cos_outer = node.spot_cos_outer;
     gpu.spot_scale = float(shading::spot_scale(node.spot_cos_inner, node.spot_cos_outer));
+    gpu.flags = node.indirect ? kGpuLightIndirect : 0u;
     return gpu;
 }
 

@@ -42,6 +42,9 @@ struct LightTreeNode {
     // Joins trees of different light types (the paper keeps one tree per type):
     // never used as a cluster, always refined.
     bool mixed_types = false;
+    // Every light under the node is bounced light (SceneLight::indirect); the
+    // tree keeps indirect lights in subtrees of their own.
+    bool indirect = false;
 
     bool is_leaf() const { return left == kNoChild && right == kNoChild; }
 };

@@ -38,6 +38,10 @@ struct SceneLight {
     float outer_cone_angle = std::numbers::pi_v<float> / 4.0f;
     // Classic lights stay out of the tree and are shaded per light.
     bool classic = false;
+    // Bounced light the server's indirect stage made (a VPL or a radiosity
+    // patch): clamped by the renderer, skipped by render --indirect off. Never
+    // on the scene channel: only the server sets it.
+    bool indirect = false;
 };
 
 }  // namespace lc

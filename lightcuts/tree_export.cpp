@@ -83,6 +83,7 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
         out.cone_axis = glm::vec3(node.cone_axis);
         out.cone_cos = export_cone_cos(node.cone_cos);
         out.mixed_types = node.mixed_types;
+        out.indirect = node.indirect;
     }
 }
 

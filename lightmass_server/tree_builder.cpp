@@ -94,6 +94,21 @@ Status validate_lights(std::span<const SceneLight> lights) {
     return check_light(lights[first_bad], first_bad);
 }
 
+// The per-type trees: one per light type, then one per type of the indirect
+// lights, which never share a cluster with direct ones (so the renderer can
+// clamp or skip them by subtree). Direct groups come first, so a tree
+// without indirect lights is built as before.
+constexpr size_t kLightGroupCount = 2 * kLightTypeCount;
+
+size_t light_group(const SceneLight& light) {
+    return size_t(light.type) + (light.indirect ? kLightTypeCount : 0);
+}
+
+std::string light_group_name(size_t group) {
+    const std::string type = light_type_name(LightType(group % kLightTypeCount));
+    return group < kLightTypeCount ? type : "indirect " + type;
+}
+
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
@@ -118,23 +133,23 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
 
     BuildArena arena;
     arena.lights = lights;
-    arena.nodes.reserve(2 * lights.size() + kLightTypeCount);
+    arena.nodes.reserve(2 * lights.size() + kLightGroupCount);
     // Serial: the page faults of the fresh nodes dominate, and filling them in
     // parallel after a resize touched each twice: 88 against 72 ms at 2^20, idle.
-    std::array<std::vector<uint32_t>, kLightTypeCount> leaves_by_type;
+    std::array<std::vector<uint32_t>, kLightGroupCount> leaves_by_group;
     for (uint32_t i = 0; i < lights.size(); ++i) {
         arena.nodes.push_back(make_leaf(lights[i], i));
-        leaves_by_type[size_t(lights[i].type)].push_back(i);
+        leaves_by_group[light_group(lights[i])].push_back(i);
     }
 
     timer.lap("leaves");
     std::vector<uint32_t> roots;
     size_t lights_done = 0;
-    for (int t = 0; t < kLightTypeCount; ++t) {
-        const std::vector<uint32_t>& leaves = leaves_by_type[size_t(t)];
+    for (size_t g = 0; g < kLightGroupCount; ++g) {
+        const std::vector<uint32_t>& leaves = leaves_by_group[g];
         if (leaves.empty()) continue;
         const std::string stage = std::string(builder_name(effective.builder)) + " (" +
-                                  light_type_name(LightType(t)) + " lights)";
+                                  light_group_name(g) + " lights)";
         const double weight = double(leaves.size()) / double(lights.size());
         const double offset = double(lights_done) / double(lights.size());
         const BuildProgressFn type_progress = [&](double fraction) {
@@ -159,7 +174,7 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
         lights_done += leaves.size();
     }
 
-    // One tree per light type, joined under junction nodes (the paper's
+    // One tree per light group, joined under junction nodes (the paper's
     // "conceptually a single larger tree").
     int32_t root = roots.empty() ? kNoBuildChild : int32_t(roots[0]);
     for (size_t i = 1; i < roots.size(); ++i) {

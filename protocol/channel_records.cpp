@@ -39,6 +39,10 @@ constexpr size_t kReserveAllAfterFraction = 8;
 
 constexpr uint8_t kSceneFlagClassic = 1u << 0;
 constexpr uint32_t kLightFlagCluster = 1u << 0;
+// Every light under the node is bounced light (LightTreeNode::indirect).
+// Documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's
+// hash is in every dump, and the recorded dumps stay valid.
+constexpr uint32_t kLightFlagIndirect = 1u << 1;
 constexpr uint32_t kLightFlagTypeShift = 8;
 constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
 constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
@@ -145,6 +149,7 @@ glm::vec3 normalised_color(const LightTreeNode& n) {
 
 ResultRecord to_record(const LightTreeNode& n) {
     const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
+                           (n.indirect ? kLightFlagIndirect : 0u) |
                            (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     const glm::vec3 color = normalised_color(n);
@@ -257,7 +262,7 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
                           " disagrees with the node record's light_type " +
                           std::to_string(r.node.light_type()));
     }
-    if ((flags & ~(kLightFlagCluster | kLightFlagTypeMask)) != 0) {
+    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagTypeMask)) != 0) {
         return make_error(who() + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
     }
     if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
@@ -284,6 +289,7 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
     n.cone_axis = from_fb(r.node.cone_axis());
     n.cone_cos = r.node.cone_cos();
     n.mixed_types = (r.node.flags() & kNodeFlagMixedTypes) != 0;
+    n.indirect = (flags & kLightFlagIndirect) != 0;
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {
@@ -434,6 +440,14 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
             if (++parents[static_cast<size_t>(child)] > 1) {
                 return make_error(node_label(static_cast<size_t>(child)) + " has more than one parent");
             }
+        }
+        // The renderer clamps and skips by this flag: it must hold for every light below.
+        const bool children_indirect = tree.nodes[static_cast<size_t>(node.left)].indirect &&
+                                       tree.nodes[static_cast<size_t>(node.right)].indirect;
+        if (node.indirect != children_indirect) {
+            return make_error(node_label(i) + ": indirect flag " + (node.indirect ? "set" : "clear") +
+                              " but its children are " + (children_indirect ? "both" : "not both") +
+                              " indirect");
         }
     }
     // Children always follow their parent, so a node without a parent other

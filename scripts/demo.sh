@@ -131,6 +131,9 @@ out = sys.argv[1]
 for indirect in ("vpl", "radiosity"):
     bake = json.load(open("%s/cornell_%s_bake.json" % (out, indirect)))
     print("demo: cornell %s bake: %s" % (indirect, "; ".join(bake["effects"])))
+    render = json.load(open("%s/cornell_%s_render.json" % (out, indirect)))
+    print("demo: cornell %s render: %d indirect lights, clamped energy %.3g%%" %
+          (indirect, render["indirect_lights"], 100.0 * render["clamped_energy_fraction"]))
 panels = [mpimg.imread("%s/cornell_%s.png" % (out, name)) for name in ("lightcuts", "vpl", "radiosity")]
 mpimg.imsave("%s/cornell_indirect_side_by_side.png" % out, np.concatenate(panels, axis=1))
 print("demo: cornell_indirect_side_by_side.png: direct only | VPL indirect | radiosity indirect")

@@ -1,14 +1,13 @@
 // The paper's error-bound criterion (Sec. 4), shared by its two searches
 // (lightcuts_bound_walk.comp, lightcuts_bound_heap.comp): a node is refined
 // while its error bound exceeds kErrorRatio x the cut's total estimate,
-// colours compared through their largest channel like cpu_evaluator.cpp.
+// colours compared through their largest channel like cpu_evaluator.cpp
+// (kErrorRatio comes with the indirect clamp, indirect_clamp.glsl).
 #ifndef LC_BOUND_CRITERION_GLSL
 #define LC_BOUND_CRITERION_GLSL
 
 #include "cluster_bounds.glsl"
 #include "lightcuts_pass.glsl"
-
-layout(constant_id = kSpecErrorRatio) const float kErrorRatio = 0.02;
 
 float max_channel(vec3 v) { return max(v.x, max(v.y, v.z)); }
 

@@ -85,18 +85,22 @@ vec3 unit_response(int i, SurfacePoint p) {
 Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     max_cut_hit = false;
     radiance = vec3(0.0);
-    Cut cut = Cut(vec3(0.0), 0u, 0u);
-    if (frame.node_count == 0u) return cut;
+    Cut cut = empty_cut();
+    if (frame.node_count == 0u || left_out(tree_nodes[0].flags)) return cut;
     int size = 0;
     vec3 root_unit = unit_response(0, p);
     heap_push(size, node_key(0, p), 0, root_unit);
     vec3 total = root_unit * tree_nodes[0].intensity;
+    // Its indirect leaves, for the clamped total the rule reads.
+    IndirectSums leaves = no_indirect_sums();
+    if (kIndirectClamp && tree_nodes[0].first_child == kEndOfWalk && (tree_nodes[0].flags & kNodeIndirect) != 0u)
+        add_indirect_leaf(leaves, total);
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
         float key = heap_key[0];
         if (!isinf(key)) {
             if (!(key > 0.0)) break;
-            if (key <= kErrorRatio * max(max_channel(total), 0.0)) break;
+            if (key <= kErrorRatio * max(max_channel(clamped_heap_total(total, leaves)), 0.0)) break;
         }
         // A mixed-type junction is refined past max-cut like on the CPU, as
         // long as the array has room.
@@ -119,15 +123,21 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             // A child with its parent's representative has its parent's
             // response: the evaluation is reused (paper Sec. 4.1).
             GpuTreeNode child_node = tree_nodes[child];
+            if (left_out(child_node.flags)) continue;
             vec3 unit = child_node.representative == parent_representative ? parent_unit
                                                                            : unit_response(child, p);
             total += unit * child_node.intensity;
+            if (kIndirectClamp && child_node.first_child == kEndOfWalk && (child_node.flags & kNodeIndirect) != 0u)
+                add_indirect_leaf(leaves, unit * child_node.intensity);
             heap_push(size, node_key(child, p), child, unit);
         }
     }
     // The running total drifts; sum afresh.
     for (int k = 0; k < size; ++k) {
-        radiance += heap_unit[k] * tree_nodes[heap_node[k]].intensity;
+        GpuTreeNode node = tree_nodes[heap_node[k]];
+        vec3 contribution = heap_unit[k] * node.intensity;
+        radiance += contribution;
+        tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
         cut.hash += cut_hash_term(uint(heap_node[k]));
     }
     cut.size = uint(size);
@@ -146,6 +156,6 @@ void main() {
     bool max_cut_hit;
     Cut cut = select_cut_bound(p, radiance, max_cut_hit);
     if (max_cut_hit) atomicAdd(counters.max_cut_hits, 1u);
-    radiance += classic_and_emitted_radiance(p);
+    radiance = clamp_indirect(pixel, radiance, cut.indirect) + classic_and_emitted_radiance(p);
     store_pixel(pixel, radiance, cut.size, cut.hash, false);
 }

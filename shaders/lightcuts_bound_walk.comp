@@ -27,6 +27,7 @@ struct WalkPass {
     uint hash;
     float worst;    // largest bound among the cut's non-leaf nodes
     bool over;      // the cut would exceed max-cut: the pass is abandoned
+    IndirectSums indirect;  // the cut's indirect nodes, for the clamp
 };
 
 // One step of a pass; like radius_walk_step, the subgroup shares the walk and
@@ -41,6 +42,10 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
     // One load of the node per step: llvmpipe gathers every field per lane,
     // and loads in different branches are not merged.
     GpuTreeNode node = tree_nodes[i];
+    if (!waiting && left_out(node.flags)) {
+        waiting = true;
+        resume = node.escape;
+    }
     bool refine = false;
     if (!waiting) {
         bool leaf = node.first_child == kEndOfWalk;
@@ -55,7 +60,11 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 pass.over = true;
                 resume = kEndOfWalk;
             } else {
-                if (shade) pass.radiance += light_radiance(cluster_light(node), p);
+                if (shade) {
+                    vec3 contribution = light_radiance(cluster_light(node), p);
+                    pass.radiance += contribution;
+                    tally_indirect(pass.indirect, node.flags, leaf, contribution);
+                }
                 pass.size += 1u;
                 pass.hash += cut_hash_term(uint(i));
                 pass.worst = max(pass.worst, key);
@@ -69,13 +78,14 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
 // Where pass 0 starts: tau = +inf keeps the per-type roots.
 GpuWalkState walk_start() {
     return GpuWalkState(vec3(0.0), 0u, 0u, uintBitsToFloat(0x7f800000u), 0.0, 0.0,
-                        kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u);
+                        kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u, vec3(0.0), 0u,
+                        vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u);
 }
 
 // The cut at threshold tau (`shade` false: its size, hash and worst bound
 // only). False when the walk or a ray of it was cut short.
 bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
-    pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false);
+    pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false, no_indirect_sums());
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;  // an empty tree: an empty cut
     bool waiting = false;
     int resume = kEndOfWalk;
@@ -112,9 +122,10 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
         s.over_lo = s.tau;
     } else {
         s.radiance = pass.radiance;
+        if (kIndirectClamp) keep_indirect_sums(s, pass.indirect);
         s.size = pass.size;
         s.hash = pass.hash;
-        float limit = kErrorRatio * max(max_channel(pass.radiance), 0.0);
+        float limit = kErrorRatio * max(max_channel(clamped_cut_total(pass.radiance, pass.indirect)), 0.0);
         if (!(pass.worst > limit)) {
             s.flags |= kWalkDone | kWalkRuleMet;
             return true;
@@ -186,7 +197,8 @@ void bound_walk_dispatch(ivec2 pixel) {
     bool loop_limit_stop = (s.flags & kWalkLoopStop) != 0u;
     // Stopped by max-cut, or still refining after the last pass.
     if ((s.flags & kWalkRuleMet) == 0u && !loop_limit_stop) atomicAdd(counters.max_cut_hits, 1u);
-    store_pixel(pixel, s.radiance + classic_and_emitted_radiance(p), s.size, s.hash,
+    vec3 radiance = clamp_indirect(pixel, s.radiance, indirect_sums_of(s));
+    store_pixel(pixel, radiance + classic_and_emitted_radiance(p), s.size, s.hash,
                 loop_limit_stop);
 }
 

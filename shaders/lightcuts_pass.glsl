@@ -17,7 +17,10 @@ struct Cut {
     vec3 radiance;  // sum over cut nodes of f_r * I_C * color * G * V
     uint size;
     uint hash;
+    IndirectSums indirect;  // its indirect nodes, for the clamp
 };
+
+Cut empty_cut() { return Cut(vec3(0.0), 0u, 0u, no_indirect_sums()); }
 
 // A node evaluated as a cluster: its representative leaf light with the
 // cluster's intensity.
@@ -27,8 +30,10 @@ GpuLight cluster_light(GpuTreeNode node) {
     return light;
 }
 
-void add_to_cut(inout Cut cut, uint node_index, GpuLight cluster, SurfacePoint p) {
-    cut.radiance += light_radiance(cluster, p);
+void add_to_cut(inout Cut cut, uint node_index, GpuTreeNode node, SurfacePoint p) {
+    vec3 contribution = light_radiance(cluster_light(node), p);
+    cut.radiance += contribution;
+    tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
     cut.size += 1u;
     cut.hash += cut_hash_term(node_index);
 }

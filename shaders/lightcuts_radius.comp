@@ -34,9 +34,13 @@ bool refine_by_radius(int i, vec3 x) {
 void radius_walk_step(inout int i, inout bool waiting, inout int resume, inout Cut cut, SurfacePoint p) {
     if (i == kEndOfWalk) return;  // i is the same on every lane of the subgroup
     if (waiting && i == resume) waiting = false;
+    if (!waiting && left_out(tree_nodes[i].flags)) {
+        waiting = true;
+        resume = tree_nodes[i].escape;
+    }
     bool refine = !waiting && refine_by_radius(i, p.position);
     if (!waiting && !refine) {
-        add_to_cut(cut, uint(i), cluster_light(tree_nodes[i]), p);
+        add_to_cut(cut, uint(i), tree_nodes[i], p);
         waiting = true;
         resume = tree_nodes[i].escape;
     }
@@ -45,7 +49,7 @@ void radius_walk_step(inout int i, inout bool waiting, inout int resume, inout C
 
 // `cut_short`: the walk did not reach its end (the device's loop limit).
 Cut select_cut_radius(SurfacePoint p, out bool cut_short) {
-    Cut cut = Cut(vec3(0.0), 0u, 0u);
+    Cut cut = empty_cut();
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;
     bool waiting = false;
     int resume = kEndOfWalk;
@@ -74,6 +78,6 @@ void main() {
     }
     bool walk_cut_short;
     Cut cut = select_cut_radius(p, walk_cut_short);
-    store_pixel(pixel, cut.radiance + classic_and_emitted_radiance(p), cut.size, cut.hash,
-                walk_cut_short);
+    store_pixel(pixel, clamp_indirect(pixel, cut.radiance, cut.indirect) + classic_and_emitted_radiance(p),
+                cut.size, cut.hash, walk_cut_short);
 }

@@ -7,6 +7,7 @@
 #include "background.glsl"
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
+#include "indirect_clamp.glsl"
 #include "material_model.glsl"
 #include "shadow_rays.glsl"
 

@@ -14,6 +14,12 @@
 // per-pixel scratch (walk_states[z * pixels + pixel].radiance; no walk runs in
 // a reference frame), and a last dispatch with no leaves (light_begin ==
 // light_end) adds the parts in order and stores the pixel.
+//
+// A tree with indirect lights (indirect_clamp.glsl) clamps them like the
+// lightcuts passes, so that their error is measured against a clamped
+// reference: every indirect leaf is tallied (the sums kept beside the partial
+// sum), and the classic lights and emission join only after the clamp, in
+// the dispatch that stores the pixel. --indirect off leaves them out.
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
@@ -33,12 +39,54 @@ vec3 leaves_radiance(uint begin, uint end, SurfacePoint p) {
     return radiance;
 }
 
+// One leaf of a tree with indirect lights: tallied for the clamp, or left out.
+void add_leaf(inout vec3 radiance, inout IndirectSums s, uint i, SurfacePoint p) {
+    bool indirect = (leaf_lights[i].flags & kGpuLightIndirect) != 0u;
+    if (kIndirectOff && indirect) return;
+    vec3 contribution = light_radiance(leaf_lights[i], p);
+    radiance += contribution;
+    if (kIndirectClamp) add_cut_node(s, indirect, true, contribution);
+}
+
+vec3 leaves_radiance_tallied(uint begin, uint end, inout IndirectSums s, SurfacePoint p) {
+    vec3 radiance = vec3(0.0);
+    uint i = begin;
+    for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
+        add_leaf(radiance, s, i, p);
+        add_leaf(radiance, s, i + 1u, p);
+        add_leaf(radiance, s, i + 2u, p);
+        add_leaf(radiance, s, i + 3u, p);
+    }
+    for (; i < end; ++i) add_leaf(radiance, s, i, p);
+    return radiance;
+}
+
+// A tree with indirect lights: the leaves [begin, end) onto `previous`, the
+// part's partial sum, whose indirect sums walk_states[at] keeps.
+vec3 indirect_leaves_onto(vec3 previous, uint at, bool first, uint begin, uint end,
+                          out IndirectSums s, SurfacePoint p) {
+    s = first ? no_indirect_sums() : indirect_sums_of(walk_states[at]);
+    vec3 radiance = previous + leaves_radiance_tallied(begin, end, s, p);
+    if (kIndirectClamp) store_indirect_sums(at, s);
+    return radiance;
+}
+
 // One part: the dispatch's leaves onto the pixel's sum in the HDR image.
 void sum_onto_the_image(ivec2 pixel, SurfacePoint p) {
     const bool first = frame.light_begin == 0u;
     const bool last = frame.light_end >= frame.leaf_count;
-    vec3 radiance = leaves_radiance(frame.light_begin, min(frame.light_end, frame.leaf_count), p);
-    radiance += first ? classic_and_emitted_radiance(p) : imageLoad(hdr_image, pixel).rgb;
+    const uint end = min(frame.light_end, frame.leaf_count);
+    vec3 radiance;
+    if (kIndirectClamp || kIndirectOff) {
+        const uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+        const vec3 previous = first ? vec3(0.0) : imageLoad(hdr_image, pixel).rgb;
+        IndirectSums s;
+        radiance = indirect_leaves_onto(previous, index, first, frame.light_begin, end, s, p);
+        if (last) radiance = clamp_indirect(pixel, radiance, s) + classic_and_emitted_radiance(p);
+    } else {
+        radiance = leaves_radiance(frame.light_begin, end, p);
+        radiance += first ? classic_and_emitted_radiance(p) : imageLoad(hdr_image, pixel).rgb;
+    }
     if (last) {
         // Every leaf is in the "cut"; the hash is not needed for reference pixels.
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
@@ -65,6 +113,17 @@ void main() {
     const uint pixel_index = uint(pixel.y) * frame.width + uint(pixel.x);
     if (frame.light_begin == frame.light_end) {
         if (gl_WorkGroupID.z != 0u) return;
+        if (kIndirectClamp || kIndirectOff) {
+            vec3 radiance = vec3(0.0);
+            IndirectSums s = no_indirect_sums();
+            for (uint z = 0u; z < parts; ++z) {
+                radiance += walk_states[z * pixels + pixel_index].radiance;
+                if (kIndirectClamp) merge_indirect_sums(s, indirect_sums_of(walk_states[z * pixels + pixel_index]));
+            }
+            radiance = clamp_indirect(pixel, radiance, s) + classic_and_emitted_radiance(p);
+            store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
+            return;
+        }
         vec3 radiance = classic_and_emitted_radiance(p);
         for (uint z = 0u; z < parts; ++z) radiance += walk_states[z * pixels + pixel_index].radiance;
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
@@ -74,8 +133,15 @@ void main() {
     const uint begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
     const uint end = min(begin + part, frame.light_end);
     const uint at = gl_WorkGroupID.z * pixels + pixel_index;
-    vec3 radiance = leaves_radiance(begin, end, p);
-    if (frame.light_begin != 0u) radiance = walk_states[at].radiance + radiance;
+    vec3 radiance;
+    if (kIndirectClamp || kIndirectOff) {
+        const vec3 previous = frame.light_begin != 0u ? walk_states[at].radiance : vec3(0.0);
+        IndirectSums s;
+        radiance = indirect_leaves_onto(previous, at, frame.light_begin == 0u, begin, end, s, p);
+    } else {
+        radiance = leaves_radiance(begin, end, p);
+        if (frame.light_begin != 0u) radiance = walk_states[at].radiance + radiance;
+    }
     walk_states[at].radiance = radiance;
     flush_pixel_counters(false);
 }

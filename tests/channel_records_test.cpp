@@ -34,7 +34,7 @@ bool same_node(const LightTreeNode& x, const LightTreeNode& y) {
            x.intensity == y.intensity && x.brightness == y.brightness && x.radius == y.radius &&
            x.falloff_exponent == y.falloff_exponent && x.bbox_min == y.bbox_min &&
            x.bbox_max == y.bbox_max && x.cone_axis == y.cone_axis && x.cone_cos == y.cone_cos &&
-           x.mixed_types == y.mixed_types;
+           x.mixed_types == y.mixed_types && x.indirect == y.indirect;
 }
 
 void expect_same_tree(const LightTree& x, const LightTree& y) {

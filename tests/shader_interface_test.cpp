@@ -46,7 +46,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuLight, position), LC_FIELD(GpuLight, range), LC_FIELD(GpuLight, direction),
            LC_FIELD(GpuLight, type), LC_FIELD(GpuLight, intensity),
            LC_FIELD(GpuLight, spot_cos_outer), LC_FIELD(GpuLight, spot_cos_inner),
-           LC_FIELD(GpuLight, spot_scale), LC_FIELD(GpuLight, pad0), LC_FIELD(GpuLight, pad1)}}},
+           LC_FIELD(GpuLight, spot_scale), LC_FIELD(GpuLight, flags), LC_FIELD(GpuLight, pad1)}}},
         {"GpuTreeNode",
          {sizeof(GpuTreeNode),
           {LC_FIELD(GpuTreeNode, intensity), LC_FIELD(GpuTreeNode, representative),
@@ -66,7 +66,12 @@ const std::map<std::string, CppStruct>& cpp_structs() {
            LC_FIELD(GpuWalkState, hash), LC_FIELD(GpuWalkState, tau),
            LC_FIELD(GpuWalkState, fit_hi), LC_FIELD(GpuWalkState, over_lo),
            LC_FIELD(GpuWalkState, flags), LC_FIELD(GpuWalkState, passes),
-           LC_FIELD(GpuWalkState, pad1), LC_FIELD(GpuWalkState, pad2)}}},
+           LC_FIELD(GpuWalkState, pad1), LC_FIELD(GpuWalkState, pad2),
+           LC_FIELD(GpuWalkState, indirect_largest), LC_FIELD(GpuWalkState, indirect_leaves),
+           LC_FIELD(GpuWalkState, indirect_second), LC_FIELD(GpuWalkState, indirect_energy),
+           LC_FIELD(GpuWalkState, indirect_rest), LC_FIELD(GpuWalkState, clamped_energy),
+           LC_FIELD(GpuWalkState, indirect_clusters), LC_FIELD(GpuWalkState, indirect_rest_max),
+           LC_FIELD(GpuWalkState, indirect_others), LC_FIELD(GpuWalkState, pad3)}}},
         {"GpuFrameConstants",
          {sizeof(GpuFrameConstants),
           {LC_FIELD(GpuFrameConstants, width), LC_FIELD(GpuFrameConstants, height),
@@ -170,6 +175,8 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kWalkShrink", kSpecWalkShrink},
         {"kWalkMargin", kSpecWalkMargin},
         {"kWalkBisections", kSpecWalkBisections},
+        {"kIndirectClamp", kSpecIndirectClamp},
+        {"kIndirectOff", kSpecIndirectOff},
     };
     return ids;
 }

@@ -6,7 +6,7 @@
 
 namespace lc::client {
 
-void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
+void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
     auto* server_opt = cmd.add_option("--server", server, "Bake on the server at HOST:PORT");
     auto* spawn_opt = cmd.add_flag("--spawn-server", spawn_server, "Start a local lightmass_server for this bake");
     server_opt->excludes(spawn_opt);
@@ -45,10 +45,20 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     environment.add_to(cmd);
-    cmd.add_option("--indirect", indirect,
-                   "Bounced light baked into the tree: off, vpl (instant radiosity) or radiosity (patches)")
-        ->check(CLI::IsMember({"off", "vpl", "radiosity"}))
-        ->capture_default_str();
+    if (renders) {
+        indirect = "on";
+        cmd.add_option("--indirect", indirect,
+                       "Bounced light: on (the tree's indirect lights, clamped; a bake adds none), off "
+                       "(direct light only: none baked, the tree's left out), or baked and shown: vpl "
+                       "(instant radiosity) or radiosity (patches)")
+            ->check(CLI::IsMember({"on", "off", "vpl", "radiosity"}))
+            ->capture_default_str();
+    } else {
+        cmd.add_option("--indirect", indirect,
+                       "Bounced light baked into the tree: off, vpl (instant radiosity) or radiosity (patches)")
+            ->check(CLI::IsMember({"off", "vpl", "radiosity"}))
+            ->capture_default_str();
+    }
     cmd.add_option("--bounces", indirect_request.bounces, "vpl: diffuse bounces that leave a light")
         ->capture_default_str();
     cmd.add_option("--vpl-count", indirect_request.vpl_count, "vpl: light paths traced (each leaves up to --bounces lights)")
@@ -85,7 +95,8 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     options.environment = or_fail(environment.load(scene.environment));
     options.environment_lights = environment.lights.value_or(0);
     static const std::map<std::string, IndirectMethod> methods = {
-        {"off", IndirectMethod::kOff}, {"vpl", IndirectMethod::kVpl}, {"radiosity", IndirectMethod::kRadiosity}};
+        {"off", IndirectMethod::kOff}, {"on", IndirectMethod::kOff}, {"vpl", IndirectMethod::kVpl},
+        {"radiosity", IndirectMethod::kRadiosity}};
     options.indirect = indirect_request;
     options.indirect.method = methods.at(indirect);
     return options;

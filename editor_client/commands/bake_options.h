@@ -32,7 +32,12 @@ struct BakeFlags {
     // --pairing, --representative, --exact-limit, --seed, --area-lights, --record,
     // --connect-timeout, the environment flags (environment_flags.h) and the indirect
     // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
-    void add_to(CLI::App& cmd, bool server_required);
+    // `renders`: the subcommand also renders, and its --indirect takes `on` (the
+    // default: bake no bounce, shade the tree's indirect lights); `off` then
+    // also leaves the tree's indirect lights out of the render.
+    void add_to(CLI::App& cmd, bool server_required, bool renders = false);
+    // The tree's indirect lights are shaded (render --indirect anything but off).
+    bool renders_indirect() const { return indirect != "off"; }
     bool has_server() const { return spawn_server || !server.empty(); }
     // Loads the environment, the flags' or else the scene's (Scene::environment),
     // if any; a subcommand ends on a bad one (command_errors.h).

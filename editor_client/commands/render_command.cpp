@@ -1,6 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--shadows auto|on|off]
+//   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
@@ -176,6 +177,7 @@ void run_render(const RenderOptions& options) {
     vk::Context context = or_fail(vk::Context::create(context_options));
     RendererOptions renderer_options;
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
+    renderer_options.indirect = options.bake.renders_indirect();
     std::unique_ptr<Renderer> renderer =
         or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
     std::vector<EffectDecision> decisions = renderer->effects().decisions;
@@ -288,6 +290,15 @@ void run_render(const RenderOptions& options) {
                      "warning: the device's loop limit cut %llu pixels' cut search short; they "
                      "keep their last complete pass (counted in loop_limit_stops)\n",
                      (unsigned long long)stats.loop_limit_stops);
+    if (!stats.indirect.empty()) {
+        if (stats.indirect == "on") {
+            std::printf("indirect: simulated (%llu indirect lights of the tree, clamped energy %.3g%%)\n",
+                        (unsigned long long)stats.indirect_lights, 100.0 * stats.clamped_fraction());
+        } else {
+            std::printf("indirect: skipped (--indirect off: %llu indirect lights of the tree left out)\n",
+                        (unsigned long long)stats.indirect_lights);
+        }
+    }
     if (stats.has_error_stats)
         std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
                     "over %.3f, max %.4f, %llu max-cut hits\n",
@@ -315,7 +326,7 @@ void add_render_command(CLI::App& app) {
     add_gltf_load_flags(*cmd, options->gltf);
     auto* tree =
         cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
-    options->bake.add_to(*cmd, /*server_required=*/false);
+    options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode,
                     "reference, lightcuts, cuts, cutsize or error (relative error of lightcuts "

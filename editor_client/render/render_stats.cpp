@@ -41,6 +41,13 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["shadow_triangles"] = s.shadow_triangles;
     j["shadow_bvh_nodes"] = s.shadow_bvh_nodes;
     if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
+    if (!s.indirect.empty()) {
+        j["indirect"] = s.indirect;
+        j["indirect_lights"] = s.indirect_lights;
+        j["indirect_energy"] = s.indirect_energy;
+        j["clamped_energy"] = s.clamped_energy;
+        j["clamped_energy_fraction"] = s.clamped_fraction();
+    }
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;

@@ -51,6 +51,14 @@ struct RenderStats {
     uint32_t shadow_triangles = 0;
     uint32_t shadow_bvh_nodes = 0;
     uint32_t reference_dispatches = 0;  // reference mode: dispatches the leaves were split over
+    // The tree's indirect lights: on (clamped) or off, their leaves, and the
+    // indirect light on the pixels' cuts before the clamp and what the clamp
+    // removed (summed over pixels and channels).
+    std::string indirect;  // empty without indirect lights
+    uint64_t indirect_lights = 0;
+    double indirect_energy = 0.0;
+    double clamped_energy = 0.0;
+    double clamped_fraction() const { return indirect_energy > 0.0 ? clamped_energy / indirect_energy : 0.0; }
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;
     double rel_err_mean = 0.0;

@@ -67,7 +67,9 @@ Result<RenderTargets> RenderTargets::create(const vk::Device& device, uint32_t w
     constexpr VkDeviceSize kReferenceScratch = 4096;
     Result<vk::Buffer> walk_states = vk::Buffer::create(
         device, std::max(VkDeviceSize(width) * height, kReferenceScratch) * sizeof(GpuWalkState),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUsage::kDeviceLocal);
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUsage::kDeviceLocal);
     if (!walk_states) return make_error(walk_states.error());
     targets.walk_states = std::move(walk_states).value();
     return targets;

@@ -173,7 +173,7 @@ Status Renderer::set_tree(const LightTree* tree) {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     LC_RETURN_IF_ERROR(upload_lights(tree));
     has_tree_ = tree != nullptr;
-    SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows);
+    SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most
     // light edits leave them as they were, and the BVH stays.
     const bool same_occluders = bvh_nodes_ && effects.occluders == effects_.occluders;
@@ -338,6 +338,8 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
     const GpuBackground background = this->background(settings);
     vkCmdUpdateBuffer(cmd, background_.handle(), 0, sizeof(background), &background);
+    // The clamp's per-pixel statistics: background pixels keep their zeros.
+    if (effects_.indirect_clamp) vkCmdFillBuffer(cmd, targets_.walk_states.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;
@@ -441,6 +443,11 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.shadow_rays = (uint64_t(counters->shadow_rays_high) << 32) | counters->shadow_rays;
     stats.shadow_triangles = shadow_bvh_.stats().triangles;
     stats.shadow_bvh_nodes = shadow_bvh_.stats().nodes;
+    if (effects_.indirect_lights > 0) {
+        stats.indirect = effects_.indirect_off ? "off" : "on";
+        stats.indirect_lights = effects_.indirect_lights;
+    }
+    if (effects_.indirect_clamp) LC_RETURN_IF_ERROR(read_clamped_energy(stats));
     if (settings.mode == RenderMode::kReference) {
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(leaf_count_, 1u) + chunk - 1) / chunk;
@@ -510,6 +517,23 @@ Result<std::vector<uint8_t>> Renderer::read_display() const {
     Result<std::vector<std::byte>> bytes = read_image(targets_.display);
     if (!bytes) return make_error(bytes.error());
     return reinterpret_texels<uint8_t>(*bytes);
+}
+
+Status Renderer::read_clamped_energy(RenderStats& stats) const {
+    Result<std::vector<std::byte>> bytes =
+        targets_.walk_states.read_back(context_.device(), context_.command_pool());
+    if (!bytes) return make_error(bytes.error());
+    const size_t pixels = size_t(targets_.width) * targets_.height;
+    if (bytes->size() < pixels * sizeof(GpuWalkState))
+        return make_error("the walk states hold fewer entries than the image has pixels");
+    // Summed in pixel order: the same frame gives the same numbers.
+    for (size_t i = 0; i < pixels; ++i) {
+        GpuWalkState state;
+        std::memcpy(&state, bytes->data() + i * sizeof(GpuWalkState), sizeof(state));
+        stats.indirect_energy += double(state.indirect_energy);
+        stats.clamped_energy += double(state.clamped_energy);
+    }
+    return Ok{};
 }
 
 Result<std::vector<uint32_t>> Renderer::read_cuts() const {

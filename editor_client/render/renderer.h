@@ -41,6 +41,8 @@ namespace lc::client {
 struct RendererOptions {
     uint32_t workgroup_size = 8;  // compute workgroups are size x size
     ShadowMode shadows = ShadowMode::kAuto;  // auto: the scene analysis decides
+    // The tree's indirect lights: on (clamped) or off (left out; render --indirect off).
+    bool indirect = true;
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
@@ -123,6 +125,9 @@ public:
     Result<std::vector<float>> read_hdr() const;        // RGBA float per pixel
     Result<std::vector<uint8_t>> read_display() const;  // RGBA8 per pixel
     Result<std::vector<uint32_t>> read_cuts() const;    // (size, hash) per pixel
+    // The indirect light before the clamp and what it removed, over the
+    // frame's pixels (walk_states; effects_.indirect_clamp only).
+    Status read_clamped_energy(RenderStats& stats) const;
     Result<GBufferReadback> read_gbuffer() const;
 
     const vk::Image& display_image() const { return targets_.display; }

@@ -45,7 +45,7 @@ std::vector<EffectDecision> SceneEffects::skipped() const {
 }
 
 SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
-                                   ShadowMode shadow_mode) {
+                                   ShadowMode shadow_mode, bool indirect) {
     LightCensus census;
     // Where the shaded lights are: cluster representatives are leaves, so the
     // leaves (or the scene lights) and the classic lights are every position.
@@ -167,11 +167,26 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         plural(glossy_materials, "drawn material") + " with roughness below 1" +
             (glossy_texture ? " or a metallic-roughness texture" : ""),
         "every drawn material has roughness 1, where the lobe is constant and shades as Lambert");
-    // Bounced light is the server's (bake --indirect): stated so nobody looks for it here.
-    decide("indirect lighting in the renderer", false, "",
-           "the renderer traces no bounce of its own: bounced light is baked on the server "
-           "(bake --indirect vpl|radiosity) into oriented lights of the tree, counted with the "
-           "oriented lights above");
+    // Bounced light is the server's (bake --indirect): the renderer traces no
+    // bounce of its own, it clamps or leaves out the tree's indirect lights.
+    if (tree != nullptr) {
+        for (const LightTreeNode& node : tree->nodes) effects.indirect_lights += node.is_leaf() && node.indirect;
+    }
+    const std::string indirect_name = "indirect light (the paper's automatic clamping)";
+    const std::string baked = plural(effects.indirect_lights, "indirect light") +
+                              " of the tree (bake --indirect; among the oriented lights above)";
+    if (effects.indirect_lights == 0) {
+        decide(indirect_name, false, "",
+               "the tree holds no indirect light: bounced light is baked on the server "
+               "(bake --indirect vpl|radiosity)");
+    } else if (!indirect) {
+        effects.indirect_off = true;
+        decide(indirect_name, false, "", "--indirect off: " + baked + " left out");
+    } else {
+        effects.indirect_clamp = decide(indirect_name, true,
+                                        baked + ": each clamped to half the error ratio of the pixel's total",
+                                        "");
+    }
     return effects;
 }
 

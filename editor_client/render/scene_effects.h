@@ -31,6 +31,10 @@ struct SceneEffects {
     bool emissive = false;
     bool shadows = false;  // shadow rays (visibility) for tree and classic lights
     bool specular = false;  // the glossy lobe (material_model.h)
+    // The tree's indirect lights (bake --indirect): clamped, or left out.
+    bool indirect_clamp = false;
+    bool indirect_off = false;
+    uint64_t indirect_lights = 0;  // indirect leaves of the tree
     // What shadow rays test: three vertices per triangle (occlusion_analysis.h).
     std::vector<glm::vec3> occluders;
 
@@ -44,8 +48,9 @@ struct SceneEffects {
 // the scene's non-classic lights are what reference mode evaluates. Classic
 // lights always come from the scene. `shadows`: auto simulates visibility when
 // a surface may hide a light (occlusion_analysis.h); on and off are the user's.
+// `indirect`: the tree's indirect lights are clamped (true) or left out.
 SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
-                                   ShadowMode shadows = ShadowMode::kAuto);
+                                   ShadowMode shadows = ShadowMode::kAuto, bool indirect = true);
 
 // [{name, reason}, ...]
 nlohmann::json effects_json(const std::vector<EffectDecision>& decisions);

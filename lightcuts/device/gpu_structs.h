@@ -18,10 +18,14 @@ LC_CONST uint kLightOriented = 3u;
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;
 
-// GpuTreeNode::flags: kNodeMixedTypes, and the node's LightType from bit
-// kNodeTypeShift on.
+// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, and the node's
+// LightType from bit kNodeTypeShift on.
 LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
+LC_CONST uint kNodeIndirect = 2u;    // every light below is indirect (LightTreeNode::indirect)
 LC_CONST uint kNodeTypeShift = 8u;
+
+// GpuLight::flags
+LC_CONST uint kGpuLightIndirect = 1u;  // bounced light: clamped (indirect_clamp.glsl.h)
 
 // One light, as the shading model evaluates it (shading_model.h): the leaf
 // lights (every tree node's representative among them) and the classic lights.
@@ -35,7 +39,7 @@ struct LC_ALIGN16 GpuLight {
     float spot_cos_inner LC_DEFAULT(1.0f);
     // 1 / max(cos_inner - cos_outer, kSpotMinCosDelta), precomputed (shading_model.h).
     float spot_scale LC_DEFAULT(1.0f);
-    uint pad0 LC_DEFAULT(0u);
+    uint flags LC_DEFAULT(0u);  // kGpuLight*
     uint pad1 LC_DEFAULT(0u);
 };
 
@@ -56,7 +60,7 @@ struct LC_ALIGN16 GpuTreeNode {
     float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
     uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
     float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
-    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | type << kNodeTypeShift
+    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | type << kNodeTypeShift
 };
 
 // Counters the lighting pass accumulates with atomics (reset every frame).
@@ -99,6 +103,21 @@ struct LC_ALIGN16 GpuWalkState {
     uint passes LC_DEFAULT(0u);      // passes completed
     uint pad1 LC_DEFAULT(0u);
     uint pad2 LC_DEFAULT(0u);
+    // The last cut's indirect lights (device::IndirectSums, indirect_clamp.glsl.h),
+    // clamped when the pixel is stored; reference mode keeps its partial sums
+    // here between dispatches. Written only when the tree has indirect lights.
+    vec3 indirect_largest LC_DEFAULT(vec3(0.0f));
+    uint indirect_leaves LC_DEFAULT(0u);
+    vec3 indirect_second LC_DEFAULT(vec3(0.0f));
+    // The stored pixel's indirect light before the clamp and what the clamp
+    // removed, summed over the channels (render stats: the clamped energy).
+    float indirect_energy LC_DEFAULT(0.0f);
+    vec3 indirect_rest LC_DEFAULT(vec3(0.0f));
+    float clamped_energy LC_DEFAULT(0.0f);
+    vec3 indirect_clusters LC_DEFAULT(vec3(0.0f));
+    float indirect_rest_max LC_DEFAULT(0.0f);
+    vec3 indirect_others LC_DEFAULT(vec3(0.0f));
+    uint pad3 LC_DEFAULT(0u);
 };
 
 // Push constants shared by the compute passes.

@@ -5,8 +5,8 @@
 //     evaluator is the double-precision ground truth);
 //   GLSL's built-ins (abs, clamp, dot, length, max, min, acos, exp2, pow,
 //     sqrt) come from glm and <cmath> under the same names in lc::device;
-//   LC_INLINE, LC_CONST, LC_IN(T), LC_OUT(T) spell what differs: inline
-//     functions and constants, read-only and out parameters.
+//   LC_INLINE, LC_CONST, LC_IN(T), LC_OUT(T), LC_INOUT(T) spell what differs:
+//     inline functions and constants, read-only, out and in-out parameters.
 // Write literals as decimals (1.0, not 1): GLSL converts neither way.
 #ifndef LC_DEVICE_REAL_MATH_GLSL_H
 #define LC_DEVICE_REAL_MATH_GLSL_H
@@ -52,6 +52,7 @@ inline real copysign_one(real x) { return std::copysign(1.0, x); }
 #define LC_CONST inline constexpr
 #define LC_IN(T) const T&
 #define LC_OUT(T) T&
+#define LC_INOUT(T) T&
 
 #else  // GLSL
 
@@ -61,6 +62,7 @@ inline real copysign_one(real x) { return std::copysign(1.0, x); }
 #define LC_CONST const
 #define LC_IN(T) T
 #define LC_OUT(T) out T
+#define LC_INOUT(T) inout T
 
 const float kFewUlps = 1e-6;
 

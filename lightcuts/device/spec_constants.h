@@ -28,7 +28,8 @@ LC_CONST uint kCutViewCuts = 0u;     // each distinct cut a colour
 LC_CONST uint kCutViewCutSize = 1u;  // heatmap of cut sizes
 // gbuffer.frag: sample the material's textures.
 LC_CONST uint kSpecTextures = 10u;
-// The bound criterion (lightcuts_bound_walk.comp, lightcuts_bound_heap.comp).
+// The bound criterion (lightcuts_bound_walk.comp, lightcuts_bound_heap.comp);
+// the error ratio also sets every lighting pass's indirect clamp.
 LC_CONST uint kSpecErrorRatio = 11u;  // float bits
 LC_CONST uint kSpecMaxCut = 12u;      // the heap's capacity
 LC_CONST uint kSpecWalkMaxCut = 14u;
@@ -36,6 +37,9 @@ LC_CONST uint kSpecWalkMaxPasses = 15u;
 LC_CONST uint kSpecWalkShrink = 16u;  // float bits
 LC_CONST uint kSpecWalkMargin = 17u;  // float bits
 LC_CONST uint kSpecWalkBisections = 18u;
+// Indirect lights in the tree (shaders/indirect_clamp.glsl): clamped, or left out.
+LC_CONST uint kSpecIndirectClamp = 22u;
+LC_CONST uint kSpecIndirectOff = 23u;
 
 LC_DEVICE_END
 

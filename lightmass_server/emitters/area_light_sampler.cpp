@@ -11,6 +11,7 @@
 
 #include "lightcuts/guid.h"
 #include "lightcuts/seeded_mixer.h"
+#include "lightmass_server/indirect/surface_sampling.h"
 
 namespace lc::bake {
 namespace {
@@ -74,14 +75,6 @@ glm::dvec2 square_to_triangle(double u, double v) {
     return {u - b1, b1};
 }
 
-// The emitting side: the face normal, turned to agree with the shading normals.
-glm::dvec3 emitting_normal(const SurfaceTriangle& t) {
-    glm::dvec3 n = glm::normalize(glm::dvec3(triangle_cross(t)));
-    const glm::dvec3 shading = glm::dvec3(t.normals[0]) + glm::dvec3(t.normals[1]) + glm::dvec3(t.normals[2]);
-    if (glm::dot(n, shading) < 0.0) n = -n;
-    return n;
-}
-
 Guid sample_guid(uint32_t triangle, uint32_t sample) {
     const uint8_t bytes[12] = {'a',
                                'r',
@@ -128,7 +121,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
         const SurfaceTriangle& t = geometry.triangles[e.triangle];
         const glm::dvec3 p0(t.positions[0]), e1 = glm::dvec3(t.positions[1]) - p0,
                          e2 = glm::dvec3(t.positions[2]) - p0;
-        const glm::dvec3 normal = emitting_normal(t);
+        const glm::dvec3 normal = front_normal<double>(t);
         // Radiant intensity along the normal: power / pi shared by the samples.
         const glm::dvec3 intensity = e.power / (std::numbers::pi * double(e.samples));
         const double scale = std::max({intensity.x, intensity.y, intensity.z});

@@ -36,6 +36,7 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
         light.direction = bounced.normal;
         light.color = intensity / scale;
         light.intensity = scale;
+        light.indirect = true;
         out.push_back(light);
     }
     return out;

@@ -65,11 +65,15 @@ inline glm::vec3 uniform_triangle_point(const glm::vec3 (&p)[3], double u1, doub
 }
 
 // The side a triangle reflects and emits from: its winding normal, turned
-// to agree with the vertex normals the scene gave.
-inline glm::vec3 front_normal(const SurfaceTriangle& t) {
-    glm::vec3 n = glm::normalize(triangle_cross(t));
-    glm::vec3 shading = t.normals[0] + t.normals[1] + t.normals[2];
-    return glm::dot(n, shading) < 0.0f ? -n : n;
+// to agree with the vertex normals the scene gave. Float for the bounces;
+// double for the area-light samples (emitters/area_light_sampler), whose tree
+// bytes depend on it.
+template <typename Real = float>
+glm::vec<3, Real> front_normal(const SurfaceTriangle& t) {
+    using Vec = glm::vec<3, Real>;
+    Vec n = glm::normalize(Vec(triangle_cross(t)));
+    Vec shading = Vec(t.normals[0]) + Vec(t.normals[1]) + Vec(t.normals[2]);
+    return glm::dot(n, shading) < Real(0) ? -n : n;
 }
 
 // Lambertian albedo of a material: metals reflect no diffuse light.

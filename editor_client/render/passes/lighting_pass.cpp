@@ -1,5 +1,7 @@
 #include "editor_client/render/passes/lighting_pass.h"
 
+#include <bit>
+
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
 #include "editor_client/vk/barriers.h"
@@ -16,7 +18,13 @@ void LightingPass::specialize(vk::Specialization& spec, const Frame& frame) cons
         .set_bool(kSpecClassicLights, effects.classic_lights)
         .set_bool(kSpecEmissive, effects.emissive)
         .set_bool(kSpecShadows, frame.shadows)
-        .set_bool(kSpecSpecular, effects.specular);
+        .set_bool(kSpecSpecular, effects.specular)
+        .set_bool(kSpecIndirectClamp, effects.indirect_clamp)
+        .set_bool(kSpecIndirectOff, effects.indirect_off);
+    // The clamp's ratio is half the error ratio (the bound passes set it anyway);
+    // without indirect lights the constant stays out of the pipeline's key.
+    if (effects.indirect_clamp)
+        spec.set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(frame.settings->error_ratio));
 }
 
 void LightingPass::record(VkCommandBuffer cmd, const Frame& frame) const {

@@ -1,0 +1,73 @@
+// Indirect light in the lighting passes: the automatic clamp of its leaves
+// (lightcuts/device/indirect_clamp.glsl.h, mirrored by cpu_evaluator.cpp) and
+// render --indirect off, which leaves every indirect node out. Both constants
+// are false for a tree without indirect lights, which then shades as before.
+#ifndef LC_INDIRECT_CLAMP_GLSL
+#define LC_INDIRECT_CLAMP_GLSL
+
+#include "frame_bindings.glsl"
+#include "lightcuts/device/indirect_clamp.glsl.h"
+
+layout(constant_id = kSpecIndirectClamp) const bool kIndirectClamp = false;
+layout(constant_id = kSpecIndirectOff) const bool kIndirectOff = false;
+// The bound criterion's error ratio; the clamp's ratio is half of it.
+layout(constant_id = kSpecErrorRatio) const float kErrorRatio = 0.02;
+
+bool left_out(uint node_flags) { return kIndirectOff && (node_flags & kNodeIndirect) != 0u; }
+
+// One cut node's contribution, kept for the clamp.
+void tally_indirect(inout IndirectSums s, uint node_flags, bool leaf, vec3 contribution) {
+    if (kIndirectClamp) add_cut_node(s, (node_flags & kNodeIndirect) != 0u, leaf, contribution);
+}
+
+// The cut's total as the stopping rule reads it: clamped.
+vec3 clamped_cut_total(vec3 total, IndirectSums s) {
+    if (!kIndirectClamp || s.leaves == 0u) return total;
+    vec3 removed;
+    return indirect_clamped(total, s, 0.5 * kErrorRatio, removed);
+}
+
+// The same for the heap, whose sums hold only its indirect leaves.
+vec3 clamped_heap_total(vec3 total, IndirectSums leaves) {
+    if (!kIndirectClamp || leaves.leaves == 0u) return total;
+    return clamped_running_total(total, leaves, 0.5 * kErrorRatio);
+}
+
+// The cut's radiance with its indirect leaves clamped. The pixel's indirect
+// light and what the clamp removed stay in walk_states for the render stats.
+vec3 clamp_indirect(ivec2 pixel, vec3 cut_radiance, IndirectSums s) {
+    if (!kIndirectClamp) return cut_radiance;
+    vec3 removed = vec3(0.0);
+    vec3 clamped = cut_radiance;
+    if (s.leaves > 0u) clamped = indirect_clamped(cut_radiance, s, 0.5 * kErrorRatio, removed);
+    uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+    vec3 indirect = s.largest + s.second + s.rest + s.clusters;
+    walk_states[index].indirect_energy = indirect.x + indirect.y + indirect.z;
+    walk_states[index].clamped_energy = removed.x + removed.y + removed.z;
+    return clamped;
+}
+
+// The sums kept in a pixel's GpuWalkState between dispatches.
+IndirectSums indirect_sums_of(GpuWalkState state) {
+    return IndirectSums(state.indirect_largest, state.indirect_second, state.indirect_rest,
+                        state.indirect_rest_max, state.indirect_others, state.indirect_clusters,
+                        state.indirect_leaves);
+}
+
+void keep_indirect_sums(inout GpuWalkState state, IndirectSums s) {
+    state.indirect_largest = s.largest;
+    state.indirect_second = s.second;
+    state.indirect_rest = s.rest;
+    state.indirect_rest_max = s.rest_max;
+    state.indirect_others = s.others;
+    state.indirect_clusters = s.clusters;
+    state.indirect_leaves = s.leaves;
+}
+
+void store_indirect_sums(uint index, IndirectSums s) {
+    GpuWalkState state = walk_states[index];
+    keep_indirect_sums(state, s);
+    walk_states[index] = state;
+}
+
+#endif

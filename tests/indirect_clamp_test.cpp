@@ -1,0 +1,425 @@
+// The paper's automatic clamping of indirect light (lightcuts/device/
+// indirect_clamp.glsl.h): the formula against a brute-force fixed point, the
+// CPU evaluator and every GPU lighting pass on a VPL 1 mm from a wall (no
+// pixel above the clamp, no NaN), the GPU against the CPU on a clamped scene,
+// and render --indirect off against a tree baked without indirect light.
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "editor_client/render/renderer.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/device/indirect_clamp.glsl.h"
+#include "lightmass_server/tree_builder.h"
+#include "protocol/channel_records.h"
+#include "render_test_support.h"
+
+namespace lc {
+namespace {
+
+constexpr double kErrorRatio = 0.02;
+constexpr double kRatio = 0.01;  // the clamp: half the error ratio
+
+struct Clamped {
+    glm::dvec3 total{0.0};    // before the clamp
+    glm::dvec3 clamped{0.0};  // after
+    device::IndirectSums sums = device::no_indirect_sums();
+};
+
+Clamped clamp_of(const glm::dvec3& others, const std::vector<glm::dvec3>& leaves) {
+    Clamped c;
+    c.total = others;
+    device::add_cut_node(c.sums, false, false, others);
+    for (const glm::dvec3& leaf : leaves) {
+        device::add_cut_node(c.sums, true, true, leaf);
+        c.total += leaf;
+    }
+    glm::dvec3 removed;
+    c.clamped = device::indirect_clamped(c.total, c.sums, kRatio, removed);
+    return c;
+}
+
+// The paper's clamp with every light clamped on its own: the largest t with
+// t = ratio x (others + sum min(L_i, t)), by bisection (the right side minus t
+// is positive below the fixed point and negative above it).
+double ideal_clamped_total(double others, const std::vector<double>& leaves) {
+    auto total_at = [&](double t) {
+        double sum = others;
+        for (double l : leaves) sum += std::min(l, t);
+        return sum;
+    };
+    double lo = 0.0, hi = total_at(1e300);
+    for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (kRatio * total_at(mid) > mid ? lo : hi) = mid;
+    }
+    return total_at(lo);
+}
+
+TEST(IndirectClampFormula, OneSpikeAddsAtMostTheRatioOfThePixel) {
+    const glm::dvec3 others(1.0, 2.0, 3.0);
+    const Clamped c = clamp_of(others, {glm::dvec3(1e6, 5e5, 1e-3)});
+    for (int ch = 0; ch < 2; ++ch) {
+        // The spike ends at ratio x the clamped total: others / (1 - ratio).
+        EXPECT_NEAR(c.clamped[ch], others[ch] / (1.0 - kRatio), 1e-12 * others[ch]);
+        EXPECT_LE(c.clamped[ch] - others[ch], kRatio * c.clamped[ch] * (1.0 + 1e-12));
+    }
+    EXPECT_EQ(c.clamped.z, c.total.z) << "a channel the spike does not dominate is left alone";
+}
+
+TEST(IndirectClampFormula, LightsUnderTheThresholdAreLeftExactlyAlone) {
+    std::vector<glm::dvec3> leaves(300, glm::dvec3(1e-3, 2e-3, 5e-4));
+    const Clamped c = clamp_of(glm::dvec3(1.0), leaves);
+    EXPECT_EQ(c.clamped, c.total);
+    const Clamped none = clamp_of(glm::dvec3(0.3, 0.2, 0.1), {});
+    EXPECT_EQ(none.clamped, none.total);
+    EXPECT_EQ(none.sums.leaves, 0u);
+}
+
+TEST(IndirectClampFormula, TwoSpikesMatchTheIdealClampAndMoreAreNeverUnderClamped) {
+    std::mt19937_64 rng(16);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int trial = 0; trial < 200; ++trial) {
+        const int spikes = 1 + trial % 12;
+        std::vector<glm::dvec3> leaves;
+        for (int i = 0; i < 40; ++i) leaves.push_back(glm::dvec3(1e-4 * unit(rng)));
+        for (int i = 0; i < spikes; ++i) leaves.push_back(glm::dvec3(0.02 + 10.0 * unit(rng) * unit(rng)));
+        std::shuffle(leaves.begin(), leaves.end(), rng);
+        const double others = 0.5 + unit(rng);
+        const Clamped c = clamp_of(glm::dvec3(others), leaves);
+        std::vector<double> values;
+        for (const glm::dvec3& l : leaves) values.push_back(l.x);
+        const double ideal = ideal_clamped_total(others, values);
+        ASSERT_TRUE(std::isfinite(c.clamped.x));
+        EXPECT_GE(c.clamped.x, others * (1.0 - 1e-12));
+        EXPECT_LE(c.clamped.x, c.total.x);
+        if (spikes <= 2) {
+            EXPECT_NEAR(c.clamped.x, ideal, 1e-9 * ideal) << "trial " << trial;
+        } else {
+            EXPECT_LE(c.clamped.x, ideal * (1.0 + 1e-9)) << "trial " << trial;
+        }
+        // No light, clamped, exceeds the threshold, which is ratio x the clamped total.
+        const double t = device::indirect_clamp_threshold(c.sums.others.x, c.sums.largest.x, c.sums.second.x,
+                                                          c.sums.rest.x, c.sums.rest_max, kRatio);
+        EXPECT_LE(t, kRatio * c.clamped.x * (1.0 + 1e-9)) << "trial " << trial;
+    }
+}
+
+// ---- the tree and the CPU evaluator ------------------------------------------
+
+// Direct light in the floor scene (render_test_support.h), a VPL 1 mm in front
+// of the back wall (z = -5) facing it, and, with `bounced`, 300 dim VPLs on
+// the floor: the indirect lights of a bake.
+std::vector<SceneLight> direct_lights() {
+    std::vector<SceneLight> lights = {
+        test::point_light({-1.0f, 3.0f, -2.0f}, {1.0f, 0.9f, 0.8f}, 12.0f),
+        test::point_light({1.5f, 2.0f, -3.5f}, {0.6f, 0.7f, 1.0f}, 6.0f),
+        test::spot_light({0.0f, 4.0f, -3.0f}, {0.0f, -1.0f, -0.3f}, {1.0f, 1.0f, 0.9f}, 20.0f, 0.2f, 0.6f),
+    };
+    for (uint32_t i = 0; i < lights.size(); ++i) test::set_unit_guid(lights[i], i);
+    return lights;
+}
+
+constexpr glm::vec3 kSpikePosition{0.1f, 1.0f, -5.0f + 0.001f};
+
+std::vector<SceneLight> lights_with_indirect(bool bounced) {
+    std::vector<SceneLight> lights = direct_lights();
+    SceneLight spike = test::oriented_light(kSpikePosition, {0.0f, 0.0f, -1.0f}, {1.0f, 0.8f, 0.6f}, 2.0f);
+    spike.indirect = true;
+    test::set_unit_guid(spike, 100);
+    lights.push_back(spike);
+    if (bounced) {
+        std::mt19937_64 rng(7);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        for (uint32_t i = 0; i < 300; ++i) {
+            SceneLight vpl = test::oriented_light({-4.0f + 8.0f * u(rng), 0.0f, -4.9f + 9.0f * u(rng)},
+                                                  {0.0f, 1.0f, 0.0f}, {0.8f, 0.7f, 0.6f}, 0.01f * u(rng));
+            vpl.indirect = true;
+            test::set_unit_guid(vpl, 200 + i);
+            lights.push_back(vpl);
+        }
+    }
+    return lights;
+}
+
+LightTree build(const std::vector<SceneLight>& lights) {
+    Result<bake::BuildResult> built = bake::build_light_tree(lights, bake::BuildOptions{}, nullptr);
+    EXPECT_TRUE(built.ok()) << built.error();
+    return built.ok() ? built->tree : LightTree{};
+}
+
+TEST(IndirectTree, IndirectLightsHaveSubtreesOfTheirOwnAndTravelOnTheWire) {
+    const LightTree tree = build(lights_with_indirect(true));
+    ASSERT_TRUE(validate_tree(tree).ok()) << validate_tree(tree).error();
+    size_t indirect_leaves = 0, indirect_clusters = 0;
+    for (const LightTreeNode& node : tree.nodes) {
+        if (node.is_leaf()) {
+            indirect_leaves += node.indirect;
+            continue;
+        }
+        const bool both = tree.nodes[size_t(node.left)].indirect && tree.nodes[size_t(node.right)].indirect;
+        EXPECT_EQ(node.indirect, both);
+        // Only junctions join indirect with direct light: no cluster mixes them.
+        if (!node.mixed_types) {
+            EXPECT_EQ(node.indirect, tree.nodes[size_t(node.left)].indirect);
+        }
+        indirect_clusters += node.indirect;
+    }
+    EXPECT_EQ(indirect_leaves, 301u);
+    EXPECT_EQ(indirect_clusters, 300u);
+
+    Result<LightTree> decoded = decode_result_channel(encode_result_channel(tree));
+    ASSERT_TRUE(decoded.ok()) << decoded.error();
+    for (size_t i = 0; i < tree.nodes.size(); ++i) EXPECT_EQ(decoded->nodes[i].indirect, tree.nodes[i].indirect);
+
+    // A cluster that calls itself indirect over a direct child is refused.
+    LightTree bad = tree;
+    for (LightTreeNode& node : bad.nodes) {
+        if (node.mixed_types) {
+            node.indirect = true;
+            break;
+        }
+    }
+    EXPECT_FALSE(decode_result_channel(encode_result_channel(bad)).ok());
+}
+
+TEST(IndirectTree, TreesWithoutIndirectLightsKeepTheirBytes) {
+    const LightTree tree = build(direct_lights());
+    for (const LightTreeNode& node : tree.nodes) EXPECT_FALSE(node.indirect);
+    const std::vector<uint8_t> bytes = encode_result_channel(tree);
+    for (size_t i = 0; i < tree.nodes.size(); ++i) {
+        uint32_t flags = 0;
+        std::memcpy(&flags, bytes.data() + 4 + i * result_record_bytes() + 16, sizeof flags);
+        EXPECT_EQ(flags & 2u, 0u) << "node " << i;
+    }
+}
+
+// Points on the wall near the spike and on the floor: the spike dominates the first.
+std::vector<SurfacePoint> wall_and_floor_points() {
+    std::vector<SurfacePoint> points;
+    for (double dx : {0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.5}) {
+        SurfacePoint p;
+        p.position = {0.1 + dx, 1.0 + 0.5 * dx, -5.0};
+        p.normal = {0.0, 0.0, 1.0};
+        p.albedo = {0.3, 0.5, 0.9};
+        points.push_back(p);
+    }
+    for (double x : {-2.0, 0.0, 2.0}) {
+        SurfacePoint p;
+        p.position = {x, 0.0, -4.0};
+        p.normal = {0.0, 1.0, 0.0};
+        p.albedo = {0.8, 0.7, 0.6};
+        points.push_back(p);
+    }
+    return points;
+}
+
+std::vector<CutSettings> every_search() {
+    CutSettings radius;
+    CutSettings walk;
+    walk.criterion = CutCriterion::kBound;
+    walk.error_ratio = kErrorRatio;
+    CutSettings heap = walk;
+    heap.search = BoundSearch::kHeap;
+    return {radius, walk, heap};
+}
+
+TEST(IndirectClampCpu, AVplOneMillimetreFromAWallAddsAtMostTheRatio) {
+    const LightTree tree = build(lights_with_indirect(false));
+    for (CutSettings settings : every_search()) {
+        // The bound searches' cuts of the direct light may differ by the error
+        // ratio between the two (the spike, clamped, still raises the total).
+        const double margin = settings.criterion == CutCriterion::kBound ? 2.0 * kErrorRatio : 1e-9;
+        for (const SurfacePoint& p : wall_and_floor_points()) {
+            const CutResult on = shade_lightcuts(tree, {}, p, settings);
+            settings.indirect = false;
+            const CutResult off = shade_lightcuts(tree, {}, p, settings);
+            settings.indirect = true;
+            for (int ch = 0; ch < 3; ++ch) {
+                ASSERT_TRUE(std::isfinite(on.radiance[ch]));
+                // The spike is the only indirect light: what it adds is at most
+                // ratio x the pixel, so the pixel at most the rest / (1 - ratio).
+                EXPECT_LE(on.radiance[ch], off.radiance[ch] / (1.0 - kRatio) * (1.0 + margin) + 1e-300);
+                EXPECT_GE(on.radiance[ch], off.radiance[ch] * (1.0 - margin));
+            }
+        }
+        const CutResult at_spike = shade_lightcuts(tree, {}, wall_and_floor_points()[0], settings);
+        EXPECT_GT(device::largest_channel(at_spike.clamped), 1e3) << "the spike was not clamped";
+        EXPECT_GT(device::largest_channel(at_spike.indirect), device::largest_channel(at_spike.clamped));
+    }
+}
+
+TEST(IndirectClampCpu, IndirectOffEqualsATreeWithoutIndirectLights) {
+    const LightTree with = build(lights_with_indirect(true));
+    const LightTree without = build(direct_lights());
+    for (CutSettings settings : every_search()) {
+        settings.indirect = false;
+        for (const SurfacePoint& p : wall_and_floor_points()) {
+            const glm::dvec3 a = shade_lightcuts(with, {}, p, settings).radiance;
+            const glm::dvec3 b = shade_lightcuts(without, {}, p, settings).radiance;
+            for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(a[ch], b[ch], 1e-12 * std::abs(b[ch]));
+        }
+    }
+}
+
+// ---- the GPU passes ---------------------------------------------------------
+
+constexpr uint32_t kSize = 48;
+
+class IndirectClampGpu : public test::VulkanTest {
+protected:
+    void SetUp() override {
+        test::VulkanTest::SetUp();
+        if (IsSkipped()) return;
+        scene_ = test::make_floor_scene();
+        settings_.width = settings_.height = kSize;
+        // Close to the wall, so that pixels fall within centimetres of the spike.
+        settings_.camera.eye = {0.1f, 1.0f, -3.5f};
+        settings_.camera.target = {0.1f, 0.9f, -5.0f};
+        settings_.camera.yfov = 0.9f;
+        settings_.error_ratio = float(kErrorRatio);
+    }
+
+    std::unique_ptr<client::Renderer> renderer(const LightTree& tree, bool indirect = true) {
+        client::RendererOptions options;
+        options.indirect = indirect;
+        Result<std::unique_ptr<client::Renderer>> r = client::Renderer::create(*context_, scene_, &tree, options);
+        EXPECT_TRUE(r.ok()) << r.error();
+        return r.ok() ? std::move(r).value() : nullptr;
+    }
+
+    struct Frame {
+        client::RenderStats stats;
+        std::vector<float> hdr;
+        client::GBufferReadback gbuffer;
+    };
+
+    Frame render(client::Renderer& r, client::RenderMode mode, CutCriterion criterion,
+                 BoundSearch search = BoundSearch::kWalk) {
+        client::RenderSettings s = settings_;
+        s.mode = mode;
+        s.criterion = criterion;
+        s.bound_search = search;
+        Frame f;
+        Result<client::RenderStats> stats = r.render(s);
+        EXPECT_TRUE(stats.ok()) << stats.error();
+        if (!stats.ok()) return f;
+        f.stats = *stats;
+        f.hdr = r.read_hdr().value();
+        f.gbuffer = r.read_gbuffer().value();
+        return f;
+    }
+
+    struct Mode {
+        client::RenderMode mode;
+        CutCriterion criterion;
+        BoundSearch search;
+        const char* name;
+    };
+    static std::vector<Mode> every_mode() {
+        return {{client::RenderMode::kReference, CutCriterion::kRadius, BoundSearch::kWalk, "reference"},
+                {client::RenderMode::kLightcuts, CutCriterion::kRadius, BoundSearch::kWalk, "radius"},
+                {client::RenderMode::kLightcuts, CutCriterion::kBound, BoundSearch::kWalk, "bound walk"},
+                {client::RenderMode::kLightcuts, CutCriterion::kBound, BoundSearch::kHeap, "bound heap"}};
+    }
+
+    Scene scene_;
+    client::RenderSettings settings_;
+};
+
+TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode) {
+    const LightTree tree = build(lights_with_indirect(false));
+    std::unique_ptr<client::Renderer> on = renderer(tree, true);
+    std::unique_ptr<client::Renderer> off = renderer(tree, false);
+    ASSERT_TRUE(on && off);
+    for (const Mode& m : every_mode()) {
+        const Frame a = render(*on, m.mode, m.criterion, m.search);
+        const Frame b = render(*off, m.mode, m.criterion, m.search);
+        ASSERT_EQ(a.hdr.size(), b.hdr.size());
+        EXPECT_EQ(a.stats.nonfinite_pixels, 0u) << m.name;
+        EXPECT_EQ(a.stats.indirect, "on");
+        EXPECT_EQ(b.stats.indirect, "off");
+        EXPECT_GT(a.stats.clamped_energy, 0.0) << m.name << ": the spike was not clamped";
+        EXPECT_GT(a.stats.clamped_fraction(), 0.5) << m.name;
+        EXPECT_LE(a.stats.clamped_fraction(), 1.0) << m.name;
+        size_t geometry = 0;
+        for (size_t i = 0; i < a.hdr.size(); i += 4) {
+            if (a.gbuffer.position[i + 3] == 0.0f) continue;
+            ++geometry;
+            for (int ch = 0; ch < 3; ++ch) {
+                ASSERT_TRUE(std::isfinite(a.hdr[i + ch]));
+                EXPECT_LE(a.hdr[i + ch], b.hdr[i + ch] / (1.0f - float(kRatio)) * (1.0f + 1e-4f) + 1e-7f)
+                    << m.name << ", pixel " << i / 4 << " channel " << ch;
+            }
+        }
+        EXPECT_GT(geometry, size_t(kSize) * kSize / 2) << m.name;
+    }
+}
+
+TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
+    const LightTree tree = build(lights_with_indirect(true));
+    std::unique_ptr<client::Renderer> r = renderer(tree);
+    ASSERT_TRUE(r);
+    for (const Mode& m : every_mode()) {
+        const Frame f = render(*r, m.mode, m.criterion, m.search);
+        CutSettings cpu_settings;
+        cpu_settings.criterion = m.criterion;
+        cpu_settings.search = m.search;
+        cpu_settings.error_ratio = kErrorRatio;
+        size_t compared = 0, within = 0;
+        double clamped_cpu = 0.0, indirect_cpu = 0.0;
+        for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+            if (f.gbuffer.position[4 * i + 3] == 0.0f) continue;
+            const SurfacePoint p = test::gbuffer_point(f.gbuffer, i);
+            // Reference mode: every leaf is on the cut, as in the radius walk of
+            // this tree (its oriented lights have no range, so every cluster is refined).
+            CutSettings s = cpu_settings;
+            if (m.mode == client::RenderMode::kReference) s.criterion = CutCriterion::kRadius;
+            const CutResult cpu = shade_lightcuts(tree, {}, p, s);
+            clamped_cpu += cpu.clamped.x + cpu.clamped.y + cpu.clamped.z;
+            indirect_cpu += cpu.indirect.x + cpu.indirect.y + cpu.indirect.z;
+            ++compared;
+            bool close = true;
+            for (int ch = 0; ch < 3; ++ch) {
+                const double err = std::abs(double(f.hdr[4 * i + ch]) - cpu.radiance[ch]);
+                close = close && err <= 1e-3 * std::abs(cpu.radiance[ch]) + 1e-7;
+            }
+            within += close;
+        }
+        ASSERT_GT(compared, 0u);
+        std::printf("  %s: %zu of %zu pixels within 1e-3, clamped energy GPU %.4g CPU %.4g\n", m.name, within,
+                    compared, f.stats.clamped_energy, clamped_cpu);
+        // The bound searches may choose another cut where float and double
+        // straddle a threshold; the exhaustive cuts may not.
+        const bool exhaustive = m.criterion == CutCriterion::kRadius;
+        EXPECT_GE(double(within), (exhaustive ? 1.0 : 0.97) * double(compared)) << m.name;
+        EXPECT_NEAR(f.stats.clamped_energy, clamped_cpu, (exhaustive ? 1e-2 : 0.05) * clamped_cpu) << m.name;
+        EXPECT_NEAR(f.stats.indirect_energy, indirect_cpu, (exhaustive ? 1e-2 : 0.05) * indirect_cpu) << m.name;
+    }
+}
+
+TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
+    const LightTree with = build(lights_with_indirect(true));
+    const LightTree without = build(direct_lights());
+    std::unique_ptr<client::Renderer> off = renderer(with, false);
+    std::unique_ptr<client::Renderer> direct = renderer(without);
+    ASSERT_TRUE(off && direct);
+    for (const Mode& m : every_mode()) {
+        const Frame a = render(*off, m.mode, m.criterion, m.search);
+        const Frame b = render(*direct, m.mode, m.criterion, m.search);
+        ASSERT_EQ(a.hdr.size(), b.hdr.size());
+        EXPECT_TRUE(b.stats.indirect.empty());
+        for (size_t i = 0; i < a.hdr.size(); ++i)
+            EXPECT_NEAR(a.hdr[i], b.hdr[i], 1e-5f * std::abs(b.hdr[i]) + 1e-9f) << m.name << ", value " << i;
+    }
+}
+
+}  // namespace
+}  // namespace lc
