@@ -156,6 +156,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kWalkShrink", kSpecWalkShrink},
         {"kWalkMargin", kSpecWalkMargin},
         {"kWalkBisections", kSpecWalkBisections},
+        {"kWalkShareCuts", kSpecWalkShareCuts},
     };
     return ids;
 }

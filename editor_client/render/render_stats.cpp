@@ -41,6 +41,8 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["shadow_triangles"] = s.shadow_triangles;
     j["shadow_bvh_nodes"] = s.shadow_bvh_nodes;
     if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
+    j["submissions"] = s.submissions;
+    if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;

@@ -36,6 +36,8 @@ LC_CONST uint kSpecWalkMaxPasses = 15u;
 LC_CONST uint kSpecWalkShrink = 16u;  // float bits
 LC_CONST uint kSpecWalkMargin = 17u;  // float bits
 LC_CONST uint kSpecWalkBisections = 18u;
+// The walk search refines one cut for every lane of a subgroup (RenderSettings::share_cuts).
+LC_CONST uint kSpecWalkShareCuts = 22u;
 
 LC_DEVICE_END
 
