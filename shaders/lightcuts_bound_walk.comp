@@ -9,9 +9,11 @@
 // next dispatch, the search kept per pixel in walk_states between them.
 // Mirrors bound_walk_cut() in bound_walk.cpp. With kWalkShareCuts the lanes
 // of a subgroup (neighbouring pixels) share one cut: a node is refined when
-// its bound exceeds the threshold of any lane still walking, so each lane's
-// cut refines at least as far as its own would, and every lane shades the
-// same node and traces its ray to the same light in the same step.
+// its bound exceeds the threshold of any lane still walking, so in each pass
+// a lane's cut refines at least as far as its own at that threshold, and
+// every lane shades the same node and traces its ray to the same light in
+// the same step. Each lane still stops under its own rule (a finer cut may
+// meet it a pass earlier).
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"

@@ -273,8 +273,9 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
 
 TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
     // A budget of one light evaluation puts every dispatch in a submission of
-    // its own (the leaves, then the parts' sum of this small image): the same
-    // bytes and counts as one submission.
+    // its own (the leaves, then the parts' sum of this small image, whose
+    // four workgroups split the leaves in layers): the same bytes and counts
+    // as one submission.
     Result<std::unique_ptr<Renderer>> whole = Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(whole.ok()) << whole.error();
     RendererOptions split_options;
@@ -283,6 +284,7 @@ TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
         Renderer::create(*context_, scene_, &tree_, split_options);
     ASSERT_TRUE(split.ok()) << split.error();
     settings_.mode = RenderMode::kReference;
+    settings_.width = settings_.height = 16;
     Result<RenderStats> one = (*whole)->render(settings_);
     Result<RenderStats> several = (*split)->render(settings_);
     ASSERT_TRUE(one.ok() && several.ok());
