@@ -13,6 +13,9 @@
 #   gpu_E            the GPU lightcuts frame (walk search) at E = 0.02, 0.005;
 #   shared_E         the same with --share-cuts (one cut per subgroup of 8
 #                    neighbouring pixels, coherent shadow rays);
+#   shared_0.005_maxcut2500
+#                    shared_0.005 with max cut 2,500: at E = 0.005 the pixels
+#                    over 2% are those whose cut stopped at max cut 1,000;
 #   gpu_noshadow, shared_noshadow
 #                    gpu_0.02 and shared_0.02 with --shadows off: the walk,
 #                    its bounds and the cluster shading without a ray;
@@ -64,6 +67,7 @@ for lights in ${counts//,/ }; do
     render "shared_$e" --mode lightcuts --error "$e" --share-cuts
     render "reconstruction_$e" --mode lightcuts --error "$e" --spp 1 --spp-method reconstruction
   done
+  render shared_0.005_maxcut2500 --mode lightcuts --error 0.005 --share-cuts --max-cut 2500
   render gpu_noshadow --mode lightcuts --error 0.02 --shadows off
   render shared_noshadow --mode lightcuts --error 0.02 --shadows off --share-cuts
 done

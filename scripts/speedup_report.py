@@ -31,6 +31,7 @@ METHODS = {
     "gpu_0.02": "gpu", "shared_0.02": "gpu shared cuts", "reconstruction_0.02": "reconstruction",
     "gpu_0.005": "gpu", "shared_0.005": "gpu shared cuts",
     "reconstruction_0.005": "reconstruction",
+    "shared_0.005_maxcut2500": "gpu shared cuts, max cut 2500",
     "gpu_noshadow": "gpu, no shadow rays", "shared_noshadow": "gpu shared cuts, no shadow rays",
 }
 COLUMNS = ["lights", "size", "method", "error_ratio", "reference_ms", "reference_stride",
@@ -88,7 +89,8 @@ def main():
             rows.append(row)
     write_rows(args.csv, COLUMNS, rows)
 
-    shown = [r for r in rows if r["method"] in ("gpu", "gpu shared cuts", "reconstruction")]
+    shown = [r for r in rows if r["method"] in ("gpu", "gpu shared cuts", "reconstruction",
+                                                "gpu shared cuts, max cut 2500")]
     labels = [f"{r['method']}\n{int(r['lights']):,}, E={float(r['error_ratio']):g}" for r in shown]
     fig, axes = plt.subplots(1, 2, figsize=(13, 3.8))
     axes[0].bar(labels, [r["speedup"] for r in shown], color="#4878a8")
