@@ -37,16 +37,7 @@ TEST(PixelStride, DividesTheSidesAndMovesTheEyeRays) {
     EXPECT_FALSE(strided_settings(settings, 2).ok()) << "an offset of its own";
 }
 
-class StridedReference : public ::testing::Test {
-protected:
-    void SetUp() override { LC_REQUIRE_VULKAN(context_); }
-    void TearDown() override {
-        if (context_) {
-            EXPECT_EQ(context_->validation_message_count(), 0u);
-        }
-    }
-    std::unique_ptr<vk::Context> context_;
-};
+using StridedReference = test::VulkanTest;
 
 TEST_F(StridedReference, ShadesTheFullFramesPixels) {
     Scene scene = make_furnished_room_scene();

@@ -28,10 +28,11 @@ struct Frame {
     std::vector<uint32_t> cuts;  // (size, hash) per pixel
 };
 
-class SharedCuts : public ::testing::Test {
+class SharedCuts : public test::VulkanTest {
 protected:
     void SetUp() override {
-        LC_REQUIRE_VULKAN(context_);
+        VulkanTest::SetUp();
+        if (!context_) return;
         scene_ = make_furnished_room_scene();
         scene_.lights = test::room_lights(1500, 23, LightTypeChoice::kPoint, 0.8f);
         tree_ = test::agglomerative_tree(scene_.lights);
@@ -44,11 +45,6 @@ protected:
         settings_.criterion = CutCriterion::kBound;
         settings_.bound_search = BoundSearch::kWalk;
     }
-    void TearDown() override {
-        if (context_) {
-            EXPECT_EQ(context_->validation_message_count(), 0u);
-        }
-    }
     Frame render(const RenderSettings& settings) {
         Frame f;
         Result<RenderStats> stats = renderer_->render(settings);
@@ -59,7 +55,6 @@ protected:
         f.cuts = renderer_->read_cuts().value();
         return f;
     }
-    std::unique_ptr<vk::Context> context_;
     Scene scene_;
     LightTree tree_;
     std::unique_ptr<Renderer> renderer_;
