@@ -15,6 +15,7 @@ strided copy (reference_check) is one more row: its scaled time against the
 full one, and its pixels' error against the full reference's (rounding only).
 """
 import argparse
+import csv
 import json
 import os
 import sys
@@ -48,9 +49,15 @@ def scaled_ms(stats):
 
 def main():
     parser = argparse.ArgumentParser()
-    for flag in ("--work", "--counts", "--size", "--csv", "--plot"):
+    parser.add_argument("--replot", action="store_true", help="only draw --plot from --csv")
+    for flag in ("--work", "--counts", "--size"):
+        parser.add_argument(flag)
+    for flag in ("--csv", "--plot"):
         parser.add_argument(flag, required=True)
     args = parser.parse_args()
+    if args.replot:
+        replot(args.csv, args.plot)
+        return
     rows = []
     for lights in args.counts.split(","):
         base = os.path.join(args.work, lights)
@@ -88,26 +95,38 @@ def main():
                                          ref["geometry_pixels"], stride))
             rows.append(row)
     write_rows(args.csv, COLUMNS, rows)
+    plot(rows, args.size, args.plot)
 
-    shown = [r for r in rows if r["method"] in ("gpu", "gpu shared cuts", "reconstruction",
-                                                "gpu shared cuts, max cut 2500")]
-    labels = [f"{r['method']}\n{int(r['lights']):,}, E={float(r['error_ratio']):g}" for r in shown]
-    fig, axes = plt.subplots(1, 2, figsize=(13, 3.8))
-    axes[0].bar(labels, [r["speedup"] for r in shown], color="#4878a8")
+
+SHORT = {"gpu": "walk", "gpu shared cuts": "shared", "reconstruction": "reconstr.",
+         "gpu shared cuts, max cut 2500": "shared, K 2500"}
+
+
+def plot(rows, size, path):
+    shown = [r for r in rows if r["method"] in SHORT]
+    labels = [f"{SHORT[r['method']]} {int(r['lights']) // 1024}k E={float(r['error_ratio']):g}"
+              for r in shown]
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.6))
+    axes[0].bar(labels, [float(r["speedup"]) for r in shown], color="#4878a8")
     axes[0].set_ylabel("speed-up over the reference")
     axes[0].set_yscale("log")
-    axes[1].bar(labels, [100 * r["within_2pct"] for r in shown], color="#58a848")
+    axes[1].bar(labels, [100 * float(r["within_2pct"]) for r in shown], color="#58a848")
     axes[1].set_ylabel("% lit pixels within 2%")
     axes[1].set_ylim(50, 100)
     for ax in axes:
-        ax.tick_params(axis="x", labelsize=6)
-    strided = ", ".join(f"{r['lights']}: reference at every {r['reference_stride']}th pixel"
-                        for r in rows if r["method"] == "gpu" and r["error_ratio"] == 0.02
-                        and r["reference_stride"] > 1)
-    fig.suptitle(f"furnished room, volume lights, {args.size}, 1 spp (lavapipe / CPU, 2 cores)"
-                 + (f"\n({strided})" if strided else ""), fontsize=9)
+        ax.tick_params(axis="x", labelsize=7, labelrotation=60)
+    strided = sorted({f"{r['lights']} lights: reference at every {r['reference_stride']}th pixel"
+                      for r in shown if int(r["reference_stride"]) > 1})
+    fig.suptitle(f"furnished room, volume lights, {size}, 1 spp (lavapipe / CPU, 2 cores)"
+                 + (f"\n({'; '.join(strided)})" if strided else ""), fontsize=9)
     fig.tight_layout()
-    fig.savefig(args.plot, dpi=110)
+    fig.savefig(path, dpi=110)
+
+
+def replot(csv_path, plot_path):
+    """The plot again from a written CSV (its size column)."""
+    rows = list(csv.DictReader(open(csv_path)))
+    plot(rows, rows[0]["size"], plot_path)
 
 
 if __name__ == "__main__":
