@@ -7,7 +7,13 @@
 // the previous pass's cut and counts in counters.max_cut_hits) or the passes
 // run out. A pass that llvmpipe's loop limit cuts short runs again in the
 // next dispatch, the search kept per pixel in walk_states between them.
-// Mirrors bound_walk_cut() in bound_walk.cpp.
+// Mirrors bound_walk_cut() in bound_walk.cpp. With kWalkShareCuts the lanes
+// of a subgroup (neighbouring pixels) share one cut: a node is refined when
+// its bound exceeds the threshold of any lane still walking, so in each pass
+// a lane's cut refines at least as far as its own at that threshold, and
+// every lane shades the same node and traces its ray to the same light in
+// the same step. Each lane still stops under its own rule (a finer cut may
+// meet it a pass earlier).
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"
@@ -19,6 +25,7 @@ layout(constant_id = kSpecWalkMaxPasses) const uint kWalkMaxPasses = 12u;
 layout(constant_id = kSpecWalkShrink) const float kWalkShrink = 512.0;
 layout(constant_id = kSpecWalkMargin) const float kWalkMargin = 0.8;
 layout(constant_id = kSpecWalkBisections) const uint kWalkBisections = 6u;
+layout(constant_id = kSpecWalkShareCuts) const bool kWalkShareCuts = false;
 
 // One threshold pass of one lane.
 struct WalkPass {
@@ -54,6 +61,9 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
         if (!leaf && !mixed)
             key = cluster_error_bound(node, p);
         refine = !leaf && (mixed || key > tau);
+        // The lanes here all stand at node i (a lane that took an ancestor
+        // as a cluster is waiting, and sits this vote out).
+        if (kWalkShareCuts) refine = subgroupAny(refine);
         if (!refine) {
             waiting = true;
             if (limit_size && pass.size >= kWalkMaxCut) {
@@ -202,8 +212,18 @@ void bound_walk_dispatch(ivec2 pixel) {
                 loop_limit_stop);
 }
 
+// With shared cuts (on 8x8 workgroups: Renderer::validate), a subgroup of 8
+// lanes covers a 4x2 block of pixels instead of a row of 8: closer points,
+// so a shared cut refines less far beyond each pixel's own.
+ivec2 pixel_of_invocation() {
+    if (!kWalkShareCuts) return ivec2(gl_GlobalInvocationID.xy);
+    uint i = gl_LocalInvocationIndex;
+    uvec2 local = uvec2(((i >> 3u) & 1u) * 4u + (i & 3u), (i >> 4u) * 2u + ((i >> 2u) & 1u));
+    return ivec2(gl_WorkGroupID.xy * 8u + local);
+}
+
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = pixel_of_invocation();
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
     bound_walk_dispatch(pixel);
 }

@@ -22,6 +22,10 @@ const float kShadowRayFar = 1e30;
 bool g_shadow_walk_cut_short = false;
 // Rays this invocation traced; added to the frame's counter once per pixel.
 uint g_shadow_rays = 0u;
+// The triangle that last hid a light from this invocation's point, tested
+// before the walk: the rays of one point (and of a subgroup sharing a cut)
+// tend to meet the same occluder. -1: none yet.
+int g_last_occluder = -1;
 
 // Slab test in the ray's parameter. A zero direction component was replaced
 // by a tiny one (no 0 * inf); the far distance is widened by a few ulps so a
@@ -71,7 +75,10 @@ void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
     for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
         if (k < count) {
             GpuShadowTriangle tri = shadow_triangles[first + k];
-            if (enter && ray_hits_triangle(origin, direction, t_max, tri)) hit = true;
+            if (enter && ray_hits_triangle(origin, direction, t_max, tri)) {
+                hit = true;
+                g_last_occluder = int(first + k);
+            }
         }
     }
     i = node.escape;
@@ -83,6 +90,8 @@ bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
     vec3 inv_direction = 1.0 / safe;
     int i = 0;
     bool hit = !searching;
+    if (searching && g_last_occluder >= 0)
+        hit = ray_hits_triangle(origin, direction, t_max, shadow_triangles[g_last_occluder]);
     // Every node is visited at most once; the bound only guards a corrupt upload.
     for (uint step = 0u; i != kEndOfWalk && subgroupAny(!hit) && step < frame.bvh_node_count;
          step += kShadowUnroll) {

@@ -271,6 +271,33 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
     EXPECT_GT(stats->reference_dispatches, 1u);
 }
 
+TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
+    // A budget of one light evaluation puts every dispatch in a submission of
+    // its own (the leaves, then the parts' sum of this small image, whose
+    // four workgroups split the leaves in layers): the same bytes and counts
+    // as one submission.
+    Result<std::unique_ptr<Renderer>> whole = Renderer::create(*context_, scene_, &tree_);
+    ASSERT_TRUE(whole.ok()) << whole.error();
+    RendererOptions split_options;
+    split_options.reference_evaluations_per_submission = 1;
+    Result<std::unique_ptr<Renderer>> split =
+        Renderer::create(*context_, scene_, &tree_, split_options);
+    ASSERT_TRUE(split.ok()) << split.error();
+    settings_.mode = RenderMode::kReference;
+    settings_.width = settings_.height = 16;
+    Result<RenderStats> one = (*whole)->render(settings_);
+    Result<RenderStats> several = (*split)->render(settings_);
+    ASSERT_TRUE(one.ok() && several.ok());
+    EXPECT_EQ(one->submissions, 1u);
+    EXPECT_GT(several->submissions, 1u);
+    EXPECT_EQ((*whole)->read_hdr().value(), (*split)->read_hdr().value());
+    EXPECT_EQ(one->shadow_rays, several->shadow_rays);
+    EXPECT_GT(several->shadow_rays, 0u);
+    EXPECT_EQ(one->geometry_pixels, several->geometry_pixels);
+    EXPECT_EQ(several->nonfinite_pixels, 0u);
+    EXPECT_GT(several->render_ms, 0.0);
+}
+
 TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     // Worst case for the dispatch split: a stack of triangles whose boxes
     // every near-vertical ray enters but whose triangles it misses (each

@@ -177,6 +177,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kWalkBisections", kSpecWalkBisections},
         {"kIndirectClamp", kSpecIndirectClamp},
         {"kIndirectOff", kSpecIndirectOff},
+        {"kWalkShareCuts", kSpecWalkShareCuts},
     };
     return ids;
 }

@@ -1,18 +1,21 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
-//   [--error E] [--max-cut K] [--bound-search walk|heap] [--shadows auto|on|off]
+//   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
+//   [--pixel-stride K]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
 // --compare-reference) also renders the reference and measures lightcuts
 // against it (error_stats.h). Without --exposure the exposure is automatic.
 // --spp shades N jittered eye rays per pixel (supersampled_render.h); the
-// reference it is compared against has the same eye rays.
+// reference it is compared against has the same eye rays. --pixel-stride K
+// renders the reference at every K-th pixel in x and y only (pixel_stride.h):
+// an image of (W/K)x(H/K) in a K^2-th of the time.
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -31,6 +34,7 @@
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
 #include "editor_client/render/image_io.h"
+#include "editor_client/render/pixel_stride.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
@@ -53,6 +57,7 @@ struct RenderOptions {
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
     std::string bound_search = "walk";
+    bool share_cuts = false;
     std::string shadows = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
@@ -69,6 +74,7 @@ struct RenderOptions {
     std::string spp_method = "gpu";
     uint64_t spp_seed = kDefaultSppSeed;
     uint32_t threads = 2;
+    uint32_t pixel_stride = 1;
 };
 
 // The scene's classic lights (shaded one by one besides the tree).
@@ -150,6 +156,7 @@ void run_render(const RenderOptions& options) {
     std::optional<BoundSearch> search = parse_bound_search(options.bound_search);
     if (!search) fail("unknown --bound-search '" + options.bound_search + "' (walk, heap)");
     settings.bound_search = *search;
+    settings.share_cuts = options.share_cuts;
     auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
@@ -168,6 +175,14 @@ void run_render(const RenderOptions& options) {
     if (!options.sweep_csv.empty() && sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
     if (compare && !mode_needs_tree(settings.mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
+    if (options.pixel_stride > 1) {
+        if (settings.mode != RenderMode::kReference || options.spp > 1 ||
+            options.spp_method != "gpu")
+            fail("--pixel-stride renders the reference alone (--mode reference, no --spp)");
+        settings = or_fail(strided_settings(settings, options.pixel_stride));
+        width = settings.width;
+        height = settings.height;
+    }
 
     std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
     progress.finish();
@@ -227,6 +242,7 @@ void run_render(const RenderOptions& options) {
     RenderedFrame rendered =
         render_frame(*renderer, settings, supersampled ? &spp : nullptr, tree.get(), classic);
     RenderStats stats = std::move(rendered.stats);
+    stats.pixel_stride = options.pixel_stride;
     std::vector<uint8_t> display = std::move(rendered.display);
     std::vector<float> hdr = std::move(rendered.hdr);
     stats.exposure = settings.exposure;
@@ -351,6 +367,9 @@ void add_render_command(CLI::App& app) {
                     "paper's largest-bound-first order); both stop under the same rule")
         ->check(CLI::IsMember({"walk", "heap"}))
         ->capture_default_str();
+    cmd->add_flag("--share-cuts", options->share_cuts,
+                  "Bound criterion, walk search: one cut per subgroup of neighbouring pixels "
+                  "(8 on lavapipe), refined until it meets every one of their bounds");
     cmd->add_option("--shadows", options->shadows,
                     "Shadow rays: auto (simulated when a surface may hide a light; the stats "
                     "JSON says why), on or off")
@@ -390,6 +409,11 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
         ->check(CLI::Range(1u, 256u))
+        ->capture_default_str();
+    cmd->add_option("--pixel-stride", options->pixel_stride,
+                    "Reference mode: render every K-th pixel in x and y only (the same work per "
+                    "pixel; K must divide both sides): a (W/K)x(H/K) image in a K^2-th of the time")
+        ->check(CLI::Range(1u, 64u))
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

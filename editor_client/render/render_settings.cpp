@@ -160,6 +160,9 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.bound_search != BoundSearch::kWalk && settings.bound_search != BoundSearch::kHeap)
         return make_error("unknown bound search " +
                           std::to_string(static_cast<int>(settings.bound_search)));
+    if (settings.share_cuts && mode_needs_tree(settings.mode) &&
+        (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk))
+        return make_error("shared cuts need the bound criterion's walk search");
     const float ratio = settings.error_ratio;
     if (!std::isfinite(ratio) || ratio < context.min_error_ratio || ratio > context.max_error_ratio)
         return make_error("error ratio " + number_text(ratio) + " is outside [" +

@@ -61,6 +61,10 @@ struct RenderSettings {
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
     BoundSearch bound_search = BoundSearch::kWalk;  // how the bound criterion finds the cut
+    // The walk search refines one cut per subgroup of neighbouring pixels,
+    // fine enough for each of them (Lin and Yuksel 2020's cut sharing, here
+    // deterministic): coherent shadow rays, each pixel stopping under its own rule.
+    bool share_cuts = false;
     // Where each pixel's eye ray passes, in pixels from the pixel's centre
     // (supersampling's jitter; each component in [-0.5, 0.5]).
     glm::vec2 pixel_offset{0.0f};

@@ -48,6 +48,8 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["clamped_energy"] = s.clamped_energy;
         j["clamped_energy_fraction"] = s.clamped_fraction();
     }
+    j["submissions"] = s.submissions;
+    if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;

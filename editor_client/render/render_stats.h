@@ -59,6 +59,10 @@ struct RenderStats {
     double indirect_energy = 0.0;
     double clamped_energy = 0.0;
     double clamped_fraction() const { return indirect_energy > 0.0 ? clamped_energy / indirect_energy : 0.0; }
+    uint32_t submissions = 1;           // command buffers the frame was submitted in
+    // Every pixel_stride-th pixel in x and y was rendered (render --pixel-stride): the
+    // image holds only those, and its time is theirs.
+    uint32_t pixel_stride = 1;
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;
     double rel_err_mean = 0.0;

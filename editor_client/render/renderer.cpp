@@ -10,6 +10,7 @@
 #include "lightcuts/device/spec_constants.h"
 #include "editor_client/render/background.h"
 #include "editor_client/render/frame_set_layout.h"
+#include "editor_client/render/passes/reference_pass.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
 #include "protocol/channel_records.h"
@@ -25,6 +26,26 @@ enum Timestamp : uint32_t {
     kTsOutput = 3,
     kTsCount = 4
 };
+
+// One submission's counters added to the frame's.
+void add_counters(GpuFrameCounters& sum, const GpuFrameCounters& part) {
+    sum.max_cut = std::max(sum.max_cut, part.max_cut);
+    sum.nonfinite_pixels += part.nonfinite_pixels;
+    sum.geometry_pixels += part.geometry_pixels;
+    sum.max_cut_hits += part.max_cut_hits;
+    sum.loop_limit_stops += part.loop_limit_stops;
+    const uint64_t rays = ((uint64_t(sum.shadow_rays_high) << 32) | sum.shadow_rays) +
+                          ((uint64_t(part.shadow_rays_high) << 32) | part.shadow_rays);
+    sum.shadow_rays = uint32_t(rays);
+    sum.shadow_rays_high = uint32_t(rays >> 32);
+}
+
+void add_timings(PassTimings& sum, const PassTimings& part) {
+    sum.gbuffer_ms += part.gbuffer_ms;
+    sum.lighting_ms += part.lighting_ms;
+    sum.output_ms += part.output_ms;
+    sum.total_ms += part.total_ms;
+}
 
 template <typename T>
 std::vector<T> reinterpret_texels(const std::vector<std::byte>& bytes) {
@@ -205,6 +226,11 @@ Status Renderer::validate(const RenderSettings& settings) const {
     ValidationContext context;
     context.has_tree = has_tree_;
     LC_RETURN_IF_ERROR(client::validate(settings, context));
+    // The shared walk lays a subgroup over a 4x2 block of an 8x8 workgroup.
+    if (settings.share_cuts && mode_needs_tree(settings.mode) && options_.workgroup_size != 8)
+        return make_error("shared cuts need 8x8 workgroups, not " +
+                          std::to_string(options_.workgroup_size) + "x" +
+                          std::to_string(options_.workgroup_size));
     return check_loop_budget(settings);
 }
 
@@ -322,6 +348,12 @@ Status Renderer::record(VkCommandBuffer cmd, const RenderSettings& settings) {
 
 Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& settings,
                                 std::span<const PixelRegion> regions, bool continues_image) {
+    return record_frame(cmd, settings, regions, continues_image, DispatchRange{});
+}
+
+Status Renderer::record_frame(VkCommandBuffer cmd, const RenderSettings& settings,
+                              std::span<const PixelRegion> regions, bool continues_image,
+                              DispatchRange reference_dispatches) {
     LC_RETURN_IF_ERROR(validate(settings));
     LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
     Result<bool> remade = ensure_targets(settings.width, settings.height);
@@ -329,6 +361,7 @@ Status Renderer::record_regions(VkCommandBuffer cmd, const RenderSettings& setti
     if (*remade && continues_image)
         return make_error("the image to continue was lost: another size was rendered since");
     Frame frame = make_frame(settings);
+    frame.reference_dispatches = reference_dispatches;
     Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, continues_image);
     if (!passes) return make_error(passes.error());
     last_eye_ = settings.camera.eye;
@@ -404,11 +437,32 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     if (auto passes = prepare_passes(make_frame(settings)); !passes)
         return make_error(passes.error());
 
+    const PixelRegion whole{0, 0, settings.width, settings.height};
+    std::vector<DispatchRange> submissions{DispatchRange{}};
+    if (settings.mode == RenderMode::kReference) {
+        Frame frame = make_frame(settings);
+        frame.regions = std::span(&whole, 1);
+        submissions =
+            reference_submissions(frame, options_.reference_evaluations_per_submission);
+    }
+
     auto start = std::chrono::steady_clock::now();
-    Status recorded = Ok{};
-    LC_RETURN_IF_ERROR(context_.command_pool().run_one_time(
-        context_.device(), [&](VkCommandBuffer cmd) { recorded = record(cmd, settings); }));
-    LC_RETURN_IF_ERROR(recorded);
+    PassTimings timings;
+    GpuFrameCounters counters;
+    for (size_t s = 0; s < submissions.size(); ++s) {
+        Status recorded = Ok{};
+        LC_RETURN_IF_ERROR(context_.command_pool().run_one_time(
+            context_.device(), [&](VkCommandBuffer cmd) {
+                recorded = record_frame(cmd, settings, std::span(&whole, 1), s > 0, submissions[s]);
+            }));
+        LC_RETURN_IF_ERROR(recorded);
+        Result<PassTimings> part_timings = read_timings();
+        if (!part_timings) return make_error(part_timings.error());
+        add_timings(timings, *part_timings);
+        Result<GpuFrameCounters> part_counters = read_counters();
+        if (!part_counters) return make_error(part_counters.error());
+        add_counters(counters, *part_counters);
+    }
     double wall_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
@@ -424,23 +478,20 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     stats.nodes = node_count_;
     stats.tree_depth = tree_depth_;
     stats.wall_ms = wall_ms;
+    stats.submissions = uint32_t(submissions.size());
 
-    Result<PassTimings> timings = read_timings();
-    if (!timings) return make_error(timings.error());
-    stats.render_ms = timings->total_ms;
-    stats.gbuffer_ms = timings->gbuffer_ms;
-    stats.lighting_ms = timings->lighting_ms;
-    stats.output_ms = timings->output_ms;
+    stats.render_ms = timings.total_ms;
+    stats.gbuffer_ms = timings.gbuffer_ms;
+    stats.lighting_ms = timings.lighting_ms;
+    stats.output_ms = timings.output_ms;
 
-    Result<GpuFrameCounters> counters = read_counters();
-    if (!counters) return make_error(counters.error());
-    stats.max_cut = counters->max_cut;
-    stats.geometry_pixels = counters->geometry_pixels;
-    stats.nonfinite_pixels = counters->nonfinite_pixels;
-    stats.max_cut_hits = counters->max_cut_hits;
-    stats.loop_limit_stops = counters->loop_limit_stops;
+    stats.max_cut = counters.max_cut;
+    stats.geometry_pixels = counters.geometry_pixels;
+    stats.nonfinite_pixels = counters.nonfinite_pixels;
+    stats.max_cut_hits = counters.max_cut_hits;
+    stats.loop_limit_stops = counters.loop_limit_stops;
     stats.shadows = traces_shadows();
-    stats.shadow_rays = (uint64_t(counters->shadow_rays_high) << 32) | counters->shadow_rays;
+    stats.shadow_rays = (uint64_t(counters.shadow_rays_high) << 32) | counters.shadow_rays;
     stats.shadow_triangles = shadow_bvh_.stats().triangles;
     stats.shadow_bvh_nodes = shadow_bvh_.stats().nodes;
     if (effects_.indirect_lights > 0) {

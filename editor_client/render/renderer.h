@@ -43,6 +43,10 @@ struct RendererOptions {
     ShadowMode shadows = ShadowMode::kAuto;  // auto: the scene analysis decides
     // The tree's indirect lights: on (clamped) or off (left out; render --indirect off).
     bool indirect = true;
+    // A headless reference frame is submitted in runs of its dispatches, each
+    // at most this many light evaluations (with their shadow rays): on
+    // lavapipe under load about 2.5 minutes, well within a fence wait (600 s).
+    uint64_t reference_evaluations_per_submission = uint64_t(1) << 27;
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
@@ -108,7 +112,8 @@ public:
                          std::span<const PixelRegion> regions);
     uint32_t workgroup_size() const { return options_.workgroup_size; }
 
-    // Headless: records, submits, waits, and gathers statistics.
+    // Headless: records, submits, waits, and gathers statistics (a long
+    // reference over several submissions, its timings and counters summed).
     Result<RenderStats> render(const RenderSettings& settings);
     // Headless: rasterises the G-buffer alone (no lighting, no output) for
     // read_gbuffer(), e.g. the eye rays of a supersampled frame.
@@ -167,6 +172,10 @@ private:
     Result<std::array<FramePass*, 3>> prepare_regions(Frame& frame, std::span<const PixelRegion> regions,
                                                       bool continues_image);
     Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
+    // record_regions with the run of the reference's dispatches to record.
+    Status record_frame(VkCommandBuffer cmd, const RenderSettings& settings,
+                        std::span<const PixelRegion> regions, bool continues_image,
+                        DispatchRange reference_dispatches);
 
     const vk::Context& context_;
     const Scene& scene_;

@@ -40,6 +40,8 @@ LC_CONST uint kSpecWalkBisections = 18u;
 // Indirect lights in the tree (shaders/indirect_clamp.glsl): clamped, or left out.
 LC_CONST uint kSpecIndirectClamp = 22u;
 LC_CONST uint kSpecIndirectOff = 23u;
+// The walk search refines one cut for every lane of a subgroup (RenderSettings::share_cuts).
+LC_CONST uint kSpecWalkShareCuts = 24u;
 
 LC_DEVICE_END
 

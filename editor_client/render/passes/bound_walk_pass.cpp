@@ -17,7 +17,8 @@ void BoundWalkPass::specialize(vk::Specialization& spec, const Frame& frame) con
         .set_uint(kSpecWalkMaxPasses, kWalkMaxPasses)
         .set_uint(kSpecWalkShrink, std::bit_cast<uint32_t>(kWalkShrink))
         .set_uint(kSpecWalkMargin, std::bit_cast<uint32_t>(kWalkMargin))
-        .set_uint(kSpecWalkBisections, kWalkBisections);
+        .set_uint(kSpecWalkBisections, kWalkBisections)
+        .set_bool(kSpecWalkShareCuts, frame.settings->share_cuts);
 }
 
 void BoundWalkPass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const {

@@ -18,6 +18,14 @@
 
 namespace lc::client {
 
+// A run of a pass's dispatches, by their index in the pass's sequence.
+struct DispatchRange {
+    uint32_t begin = 0;
+    uint32_t end = UINT32_MAX;
+
+    bool contains(uint32_t index) const { return index >= begin && index < end; }
+};
+
 struct Frame {
     const RenderSettings* settings = nullptr;
     const RenderTargets* targets = nullptr;
@@ -34,6 +42,9 @@ struct Frame {
     // The lighting and output images keep what earlier regions wrote (the
     // G-buffer is not redrawn); otherwise the frame starts a new image.
     bool continues_image = false;
+    // The reference's dispatches this recording makes: a long reference is
+    // split over several submissions (Renderer::render), each a run of them.
+    DispatchRange reference_dispatches;
 };
 
 class FramePass {

@@ -44,24 +44,55 @@ std::span<const uint32_t> ReferencePass::module(const Frame&) const {
     return spirv_words(reference_comp_spv);
 }
 
-void ReferencePass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const {
-    // Each dispatch adds its leaves to the previous dispatches' sums; each of
-    // its parts stays within the loop budget.
+ReferenceWork reference_work(const Frame& frame) {
     const uint32_t parts = reference_parts(frame);
+    const uint64_t leaf_count = frame.constants.leaf_count;
+    const uint64_t per_dispatch = uint64_t(frame.reference_chunk) * parts;
+    uint64_t pixels = 0;
+    for (const PixelRegion& r : frame.regions) pixels += r.pixels();
+    ReferenceWork work;
+    // At least one dispatch, even without leaves (the classic lights and emission).
+    work.dispatches = uint32_t(std::max<uint64_t>((leaf_count + per_dispatch - 1) / per_dispatch, 1)) +
+                      (parts > 1 ? 1u : 0u);
+    work.evaluations_per_dispatch = pixels * std::min(per_dispatch, std::max<uint64_t>(leaf_count, 1));
+    return work;
+}
+
+std::vector<DispatchRange> reference_submissions(const Frame& frame,
+                                                 uint64_t evaluations_per_submission) {
+    const ReferenceWork work = reference_work(frame);
+    const uint64_t per_submission = std::max<uint64_t>(
+        evaluations_per_submission / std::max<uint64_t>(work.evaluations_per_dispatch, 1), 1);
+    std::vector<DispatchRange> runs;
+    for (uint64_t begin = 0; begin < work.dispatches; begin += per_submission)
+        runs.push_back({uint32_t(begin),
+                        uint32_t(std::min<uint64_t>(begin + per_submission, work.dispatches))});
+    return runs;
+}
+
+void ReferencePass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const {
+    // Each dispatch adds its leaves to the previous dispatches' sums (those of
+    // an earlier submission too); each of its parts stays within the loop budget.
+    const uint32_t parts = reference_parts(frame);
+    const DispatchRange range = frame.reference_dispatches;
     GpuFrameConstants constants = frame.constants;
     const uint32_t leaf_count = constants.leaf_count;
     const uint64_t per_dispatch = uint64_t(frame.reference_chunk) * parts;
     uint32_t begin = 0;
+    uint32_t index = 0;
     do {
         constants.light_begin = begin;
         constants.light_end = uint32_t(std::min<uint64_t>(leaf_count, begin + per_dispatch));
-        if (begin > 0)
-            vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
-                               kStorageReadWrite);
-        dispatch_layers(cmd, frame, constants, parts);
+        if (range.contains(index)) {
+            if (begin > 0)
+                vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
+                                   kStorageReadWrite);
+            dispatch_layers(cmd, frame, constants, parts);
+        }
         begin = constants.light_end;
+        ++index;
     } while (begin < leaf_count);
-    if (parts > 1) {
+    if (parts > 1 && range.contains(index)) {
         // The parts' sums, added in order.
         vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
                            kStorageReadWrite);

@@ -1,0 +1,92 @@
+// Strided frames (pixel_stride.h): pixel (i, j) of a frame rendered with
+// stride K shades the eye ray of pixel (K i, K j) of the full frame, so a
+// strided reference measures the full one's pixels in a K^2-th of the work.
+// The G-buffer is rasterised at other sample positions (the same points up to
+// float rounding), so the shading agrees within float tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "editor_client/render/pixel_stride.h"
+#include "editor_client/render/renderer.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+TEST(PixelStride, DividesTheSidesAndMovesTheEyeRays) {
+    RenderSettings settings;
+    settings.width = 256;
+    settings.height = 128;
+    Result<RenderSettings> same = strided_settings(settings, 1);
+    ASSERT_TRUE(same.ok());
+    EXPECT_EQ(same->width, 256u);
+    EXPECT_EQ(same->pixel_offset.x, 0.0f);
+    Result<RenderSettings> strided = strided_settings(settings, 4);
+    ASSERT_TRUE(strided.ok()) << strided.error();
+    EXPECT_EQ(strided->width, 64u);
+    EXPECT_EQ(strided->height, 32u);
+    EXPECT_FLOAT_EQ(strided->pixel_offset.x, -0.375f);
+    EXPECT_FLOAT_EQ(strided->pixel_offset.y, -0.375f);
+    EXPECT_TRUE(validate(*strided).ok());
+    EXPECT_FALSE(strided_settings(settings, 3).ok()) << "3 does not divide 256";
+    EXPECT_FALSE(strided_settings(settings, 0).ok());
+    settings.pixel_offset = {0.25f, 0.0f};
+    EXPECT_FALSE(strided_settings(settings, 2).ok()) << "an offset of its own";
+}
+
+using StridedReference = test::VulkanTest;
+
+TEST_F(StridedReference, ShadesTheFullFramesPixels) {
+    Scene scene = make_furnished_room_scene();
+    scene.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
+    LightTree tree = test::agglomerative_tree(scene.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    ASSERT_TRUE((*renderer)->effects().shadows);
+    RenderSettings full;
+    full.mode = RenderMode::kReference;
+    full.width = full.height = 64;
+    full.camera = test::furnished_room_camera();
+    Result<RenderStats> full_stats = (*renderer)->render(full);
+    ASSERT_TRUE(full_stats.ok()) << full_stats.error();
+    const std::vector<float> full_hdr = (*renderer)->read_hdr().value();
+    for (uint32_t stride : {2u, 4u}) {
+        SCOPED_TRACE(testing::Message() << "stride " << stride);
+        RenderSettings strided = strided_settings(full, stride).value();
+        Result<RenderStats> stats = (*renderer)->render(strided);
+        ASSERT_TRUE(stats.ok()) << stats.error();
+        const std::vector<float> hdr = (*renderer)->read_hdr().value();
+        size_t geometry = 0, agree = 0, background_mismatch = 0, strided_lit = 0;
+        for (uint32_t j = 0; j < strided.height; ++j)
+            for (uint32_t i = 0; i < strided.width; ++i) {
+                const size_t at = 4 * (size_t(j) * strided.width + i);
+                const size_t full_at = 4 * (size_t(stride * j) * full.width + stride * i);
+                const bool lit = hdr[at + 3] != 0.0f, full_lit = full_hdr[full_at + 3] != 0.0f;
+                background_mismatch += lit != full_lit;
+                strided_lit += lit;
+                if (!full_lit) continue;
+                ++geometry;
+                bool close = true;
+                for (int c = 0; c < 3; ++c) {
+                    const double want = full_hdr[full_at + c];
+                    close = close && std::abs(double(hdr[at + c]) - want) <= 1e-3 * want + 1e-7;
+                }
+                agree += close;
+            }
+        std::printf("  stride %u: %zu of %zu geometry pixels agree, %zu coverage mismatches\n",
+                    stride, agree, geometry, background_mismatch);
+        EXPECT_GT(geometry, size_t(strided.width) * strided.height / 2);
+        // A shadow edge or silhouette through a pixel centre may fall either
+        // way under another rounding; the rest is the same work.
+        EXPECT_GE(agree, geometry * 97 / 100);
+        EXPECT_LE(background_mismatch, 1u);
+        EXPECT_EQ(stats->geometry_pixels, strided_lit);
+        EXPECT_GT(stats->shadow_rays, 0u);
+    }
+}
+
+}  // namespace
+}  // namespace lc::client
