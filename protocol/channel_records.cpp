@@ -442,8 +442,8 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
             }
         }
         // The renderer clamps and skips by this flag: it must hold for every light below.
-        const bool children_indirect = tree.nodes[static_cast<size_t>(node.left)].indirect &&
-                                       tree.nodes[static_cast<size_t>(node.right)].indirect;
+        const bool children_indirect = links[static_cast<size_t>(node.left)].indirect &&
+                                       links[static_cast<size_t>(node.right)].indirect;
         if (node.indirect != children_indirect) {
             return make_error(node_label(i) + ": indirect flag " + (node.indirect ? "set" : "clear") +
                               " but its children are " + (children_indirect ? "both" : "not both") +
@@ -492,7 +492,7 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
     return Ok{};
 }
 
-NodeLinks links_of(const LightTreeNode& node) { return {node.left, node.right, node.representative}; }
+NodeLinks links_of(const LightTreeNode& node) { return {node.left, node.right, node.representative, node.indirect}; }
 
 // One pass over the (large) nodes, copying the links the checks need into a
 // compact array.

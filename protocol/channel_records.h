@@ -63,6 +63,7 @@ struct NodeLinks {
     int32_t left;
     int32_t right;
     int32_t representative;
+    bool indirect;  // the renderer clamps and skips whole subtrees by it
 };
 
 class ResultChannelReader {
