@@ -182,16 +182,17 @@ bool ServerSession::on_write_channel(WriteChannelMsg& write) {
         incoming_.erase(it);
         return true;
     };
-    if (scene.received + write.data.size() > scene.total_bytes)
+    const std::span<const uint8_t> data = write.bytes();
+    if (scene.received + data.size() > scene.total_bytes)
         return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
     Status consumed =
-        scene.environment ? scene.environment_reader.consume(write.data)
-        : scene.geometry  ? scene.geometry_reader.consume(write.data)
-                          : scene.reader.consume(write.data);
+        scene.environment ? scene.environment_reader.consume(data)
+        : scene.geometry  ? scene.geometry_reader.consume(data)
+                          : scene.reader.consume(data);
     if (!consumed) return refuse(consumed.error());
-    scene.received += write.data.size();
+    scene.received += data.size();
     if (options_.record_channels)
-        scene.recorded.insert(scene.recorded.end(), write.data.begin(), write.data.end());
+        scene.recorded.insert(scene.recorded.end(), data.begin(), data.end());
     return true;
 }
 

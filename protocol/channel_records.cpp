@@ -632,19 +632,24 @@ Result<std::vector<SceneLight>> SceneChannelReader::finish() {
 
 Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     if (failed_) return make_error("result channel was already refused");
-    reserve_once_an_eighth_arrives(nodes_, expected_, nodes_.size() + bytes.size() / kResultRecordBytes);
-    reserve_once_an_eighth_arrives(links_, expected_, links_.size() + bytes.size() / kResultRecordBytes);
+    const bool keep_nodes = import_ == TreeImport::kNodes;
+    const size_t arriving = links_.size() + bytes.size() / kResultRecordBytes;
+    if (keep_nodes) reserve_once_an_eighth_arrives(nodes_, expected_, arriving);
+    reserve_once_an_eighth_arrives(links_, expected_, arriving);
+    // Validation decodes each record into a node either way; without nodes to
+    // keep, into this one, which stays in cache, instead of a fresh 136 bytes.
+    LightTreeNode scratch;
     Status status = push_records(
-        pending_, expected_, nodes_.size(), kResultRecordBytes, bytes,
+        pending_, expected_, links_.size(), kResultRecordBytes, bytes,
         [this, bytes](int32_t count) {
-            return accept_count(nodes_, count, kMaxTreeNodes, "result", bytes.size() / kResultRecordBytes);
+            return accept_count(links_, count, kMaxTreeNodes, "result", bytes.size() / kResultRecordBytes);
         },
-        [this](const uint8_t* p, size_t index) -> Status {
+        [&](const uint8_t* p, size_t index) -> Status {
             const RecordAt record(p);
-            LightTreeNode& node = nodes_.emplace_back();
+            LightTreeNode& node = keep_nodes ? nodes_.emplace_back() : (scratch = LightTreeNode{});
             Status valid = from_record(*record, index, static_cast<size_t>(expected_), node);
             if (!valid) {
-                nodes_.pop_back();
+                if (keep_nodes) nodes_.pop_back();
                 return valid;
             }
             links_.push_back(links_of(node));
@@ -658,21 +663,34 @@ Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     return status;
 }
 
-Result<LightTree> ResultChannelReader::finish() {
+Status ResultChannelReader::finish_structure() {
     if (failed_) return make_error("result channel was already refused");
-    failed_ = true;  // either refused now or spent: the nodes move out
-    if (expected_ < 0 || nodes_.size() != static_cast<size_t>(expected_) || !pending_.empty()) {
-        return make_error(short_channel("result", expected_, nodes_.size(), pending_.size()));
+    failed_ = true;  // either refused now or spent
+    if (expected_ < 0 || links_.size() != static_cast<size_t>(expected_) || !pending_.empty()) {
+        return make_error(short_channel("result", expected_, links_.size(), pending_.size()));
     }
-    LightTree tree;
-    tree.nodes = std::move(nodes_);
-    for (const NodeLinks& links : links_) tree.leaf_count += links.left == kNoChild ? 1u : 0u;
+    leaf_count_ = 0;
+    for (const NodeLinks& links : links_) leaf_count_ += links.left == kNoChild ? 1u : 0u;
     // Every node's own values were validated as its record arrived; the
     // structure is checked on the links, without reading the nodes again.
-    Status valid = validate_links(links_, tree.leaf_count);
-    links_ = {};
+    Status valid = validate_links(links_, leaf_count_);
+    links_ = std::vector<NodeLinks>();
+    return valid;
+}
+
+Result<LightTree> ResultChannelReader::finish() {
+    if (import_ != TreeImport::kNodes) return make_error("result channel reader kept no nodes to finish a tree");
+    Status valid = finish_structure();
     if (!valid) return make_error(valid.error());
+    LightTree tree;
+    tree.nodes = std::move(nodes_);
+    tree.leaf_count = leaf_count_;
     return tree;
+}
+
+Status ResultChannelReader::finish_validation() {
+    if (import_ != TreeImport::kValidateOnly) return make_error("result channel reader keeps nodes: finish() the tree");
+    return finish_structure();
 }
 
 Result<std::vector<SceneLight>> decode_scene_channel(std::span<const uint8_t> bytes) {

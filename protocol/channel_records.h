@@ -66,21 +66,38 @@ struct NodeLinks {
     bool indirect;  // the renderer clamps and skips whole subtrees by it
 };
 
+// What a ResultChannelReader keeps of each record once it passed validation.
+enum class TreeImport {
+    kNodes,         // the decoded tree: a LightTreeNode per record, for rendering and the editor
+    kValidateOnly,  // only the links the structure check needs: for `bake`, which writes the dump
+};
+
 class ResultChannelReader {
 public:
+    explicit ResultChannelReader(TreeImport import = TreeImport::kNodes) : import_(import) {}
+
     Status consume(std::span<const uint8_t> bytes);
     // Checks the count, then the structure: child indices in range and greater
     // than the parent's (breadth-first order), every node but the root with one
     // parent, representatives are leaves inside the node's subtree, values finite.
+    // Only for TreeImport::kNodes.
     Result<LightTree> finish();
-    size_t nodes_received() const { return nodes_.size(); }
+    // The same checks for TreeImport::kValidateOnly; the tree is then known
+    // valid, its records are not kept.
+    Status finish_validation();
+    size_t nodes_received() const { return links_.size(); }
     int64_t nodes_expected() const { return expected_; }
+    uint32_t leaf_count() const { return leaf_count_; }
 
 private:
+    Status finish_structure();
+
+    TreeImport import_;
     std::vector<uint8_t> pending_;
     int64_t expected_ = -1;
-    std::vector<LightTreeNode> nodes_;
-    std::vector<NodeLinks> links_;  // gathered as the records arrive, for finish()
+    std::vector<LightTreeNode> nodes_;  // TreeImport::kNodes only
+    std::vector<NodeLinks> links_;      // gathered as the records arrive, for the structure check
+    uint32_t leaf_count_ = 0;
     bool failed_ = false;
 };
 

@@ -59,7 +59,8 @@ Body encode_body(Fbb& fbb, const OpenChannelMsg& m) {
 }
 
 Body encode_body(Fbb& fbb, const WriteChannelMsg& m) {
-    auto data = fbb.CreateVector(m.data);
+    const std::span<const uint8_t> bytes = m.bytes();
+    auto data = fbb.CreateVector(bytes.data(), bytes.size());
     return {fb::Message::WriteChannel,
             fb::CreateWriteChannel(fbb, m.channel_id, m.offset, data).Union()};
 }
@@ -207,9 +208,9 @@ Result<Message> decode_table(const fb::OpenChannel& t, ExtentTracker& extent) {
 
 Result<Message> decode_table(const fb::WriteChannel& t, ExtentTracker& extent) {
     extent.vector(t.data());
-    WriteChannelMsg m{t.channel_id(), t.offset(), {}};
-    // Copied out: the frame buffer is released once the message is decoded.
-    if (t.data()) m.data.assign(t.data()->begin(), t.data()->end());
+    WriteChannelMsg m{t.channel_id(), t.offset(), {}, {}};
+    // A view for now: decode_body copies it out unless its caller keeps the frame.
+    if (t.data()) m.in_frame = {t.data()->data(), t.data()->size()};
     return Message{std::move(m)};
 }
 
@@ -402,7 +403,7 @@ constexpr size_t kEnvelopeRoomBytes = 256;
 
 size_t initial_builder_bytes(const Message& message) {
     size_t initial = kEnvelopeRoomBytes;
-    if (const auto* write = std::get_if<WriteChannelMsg>(&message)) initial += write->data.size();
+    if (const auto* write = std::get_if<WriteChannelMsg>(&message)) initial += write->bytes().size();
     return initial;
 }
 
@@ -458,7 +459,17 @@ EncodedFrame encode_write_channel_frame(uint32_t channel_id, uint64_t offset, si
     return take_frame(fbb);
 }
 
-Result<Message> decode_message(std::span<const uint8_t> body) {
+namespace {
+
+// Moves a WriteChannel's data out of the frame into the message.
+void copy_channel_data_out(Message& message) {
+    if (auto* write = std::get_if<WriteChannelMsg>(&message); write && !write->in_frame.empty()) {
+        write->data.assign(write->in_frame.begin(), write->in_frame.end());
+        write->in_frame = {};
+    }
+}
+
+Result<Message> decode_body(std::span<const uint8_t> body, bool channel_data_in_frame) {
     if (body.size() < kEnvelopeHeaderBytes + sizeof(flatbuffers::uoffset_t)) {
         return malformed("frame of " + std::to_string(body.size()) +
                          " bytes is too short for an Envelope");
@@ -495,8 +506,17 @@ Result<Message> decode_message(std::span<const uint8_t> body) {
         return malformed("Envelope of " + std::to_string(body.size()) +
                          " bytes failed FlatBuffers verification");
     }
-    return decode_verified(buf, body.size());
+    Result<Message> message = decode_verified(buf, body.size());
+    // A view into the aligned copy would outlive it.
+    if (message && (!channel_data_in_frame || aligned_copy)) copy_channel_data_out(*message);
+    return message;
 }
+
+}  // namespace
+
+Result<Message> decode_message(std::span<const uint8_t> body) { return decode_body(body, false); }
+
+Result<Message> decode_message_in_frame(std::span<const uint8_t> body) { return decode_body(body, true); }
 
 uint64_t schema_hash() { return detail::kSchemaHash; }
 

@@ -26,6 +26,10 @@ EncodedFrame encode_frame_in_place(const Message& message);
 EncodedFrame encode_write_channel_frame(uint32_t channel_id, uint64_t offset, size_t data_bytes,
                                         const std::function<void(std::span<uint8_t>)>& write_data);
 Result<Message> decode_message(std::span<const uint8_t> body);
+// The same, but a WriteChannel's data is read where it lies in `body`
+// (WriteChannelMsg::in_frame), not copied out: for a reader that handles each
+// message before it lets go of the frame, as the result stream's client does.
+Result<Message> decode_message_in_frame(std::span<const uint8_t> body);
 
 // A stable hash of lightcuts.fbs (first 16 hex digits of its SHA-256, computed
 // at configure time); dumps carry it so a stale dump fails loudly.

@@ -1,6 +1,6 @@
 // Push parser for size-prefixed frames. The announced size is checked against
-// the cap before any memory is reserved, and the body grows only as bytes
-// actually arrive, so a lying header cannot make us allocate the cap.
+// the cap before any memory is reserved, and the body grows only as reads ask
+// for room, so a lying header cannot make us allocate the cap.
 #include "frame_decoder.h"
 
 #include <algorithm>
@@ -38,58 +38,80 @@ bool FrameDecoder::consume(std::span<const uint8_t> bytes,
                            std::vector<std::vector<uint8_t>>& frames) {
     size_t pos = 0;
     while (state_ != State::kFailed && pos < bytes.size()) {
-        if (state_ == State::kReadingHeader) {
-            const size_t take = std::min(kFrameHeaderBytes - header_filled_, bytes.size() - pos);
-            std::copy_n(bytes.data() + pos, take, header_ + header_filled_);
-            header_filled_ += take;
-            pos += take;
-            if (header_filled_ < kFrameHeaderBytes) break;
+        const std::span<uint8_t> into = read_buffer(bytes.size() - pos);
+        std::copy_n(bytes.data() + pos, into.size(), into.data());
+        pos += into.size();
+        commit(into.size(), frames);
+    }
+    return state_ != State::kFailed;
+}
 
-            const uint32_t size = read_u32_le(header_);
-            if (size == 0) {
-                error_ = "malformed frame: header announces an empty frame (0 bytes)";
-                state_ = State::kFailed;
-                break;
-            }
-            if (size > max_frame_bytes_) {
-                error_ = "malformed frame: header announces " + std::to_string(size) +
-                         " bytes, above the limit of " + std::to_string(max_frame_bytes_) +
-                         " bytes";
-                state_ = State::kFailed;
-                break;
-            }
-            body_.clear();
-            body_.reserve(std::min<size_t>(size, kInitialBodyReserve));
-            body_filled_ = 0;
-            state_ = State::kReadingBody;
-            continue;
+std::span<uint8_t> FrameDecoder::read_buffer(size_t max_bytes) {
+    if (state_ == State::kReadingHeader) {
+        return {header_ + header_filled_, std::min(kFrameHeaderBytes - header_filled_, max_bytes)};
+    }
+    if (state_ == State::kFailed) return {};
+    const size_t end = std::min<size_t>(body_expected_, body_filled_ + max_bytes);
+    if (body_.size() < end) {
+        if (body_.capacity() < end) {
+            body_.reserve(std::min<size_t>(body_expected_, std::max(end, kReserveArrivedFactor * body_filled_)));
         }
+        body_.resize(end);
+    }
+    return {body_.data() + body_filled_, end - body_filled_};
+}
 
-        // kReadingBody
-        const size_t expected = read_u32_le(header_);
-        const size_t take = std::min(expected - body_filled_, bytes.size() - pos);
-        if (body_.capacity() < body_filled_ + take) {
-            body_.reserve(std::min(expected, kReserveArrivedFactor * (body_filled_ + take)));
+bool FrameDecoder::commit(size_t n, std::vector<std::vector<uint8_t>>& frames) {
+    if (state_ == State::kReadingHeader) {
+        if (n > kFrameHeaderBytes - header_filled_) throw std::out_of_range("FrameDecoder: commit past the header");
+        header_filled_ += n;
+        if (header_filled_ == kFrameHeaderBytes) start_body();
+    } else if (state_ == State::kReadingBody) {
+        if (body_filled_ + n > std::min<size_t>(body_.size(), body_expected_)) {
+            throw std::out_of_range("FrameDecoder: commit past the read buffer");
         }
-        body_.insert(body_.end(), bytes.data() + pos, bytes.data() + pos + take);
-        body_filled_ += take;
-        pos += take;
-        if (body_filled_ == expected) {
+        body_filled_ += n;
+        if (body_filled_ == body_expected_) {
+            body_.resize(body_expected_);
             frames.push_back(std::move(body_));
-            body_ = {};
+            body_ = std::vector<uint8_t>();
             body_filled_ = 0;
             header_filled_ = 0;
             state_ = State::kReadingHeader;
         }
     }
-    if (state_ == State::kFailed) {
-        // Nothing more is parsed on this connection; release what we held.
-        body_ = {};
-        body_filled_ = 0;
-        header_filled_ = 0;
-        return false;
+    return state_ != State::kFailed;
+}
+
+void FrameDecoder::recycle(std::vector<uint8_t>&& frame) {
+    if (state_ != State::kFailed && frame.capacity() > spare_.capacity()) spare_ = std::move(frame);
+}
+
+void FrameDecoder::start_body() {
+    const uint32_t size = read_u32_le(header_);
+    if (size == 0) return fail("malformed frame: header announces an empty frame (0 bytes)");
+    if (size > max_frame_bytes_) {
+        return fail("malformed frame: header announces " + std::to_string(size) + " bytes, above the limit of " +
+                    std::to_string(max_frame_bytes_) + " bytes");
     }
-    return true;
+    body_expected_ = size;
+    // A recycled frame keeps its size: the bytes a read lands on are not
+    // zeroed first. Its capacity was a real frame's, not this header's word.
+    body_ = std::move(spare_);
+    spare_ = std::vector<uint8_t>();
+    if (body_.capacity() == 0) body_.reserve(std::min<size_t>(size, kInitialBodyReserve));
+    body_filled_ = 0;
+    state_ = State::kReadingBody;
+}
+
+void FrameDecoder::fail(std::string error) {
+    error_ = std::move(error);
+    state_ = State::kFailed;
+    // Nothing more is parsed on this connection; release what we held.
+    body_ = std::vector<uint8_t>();
+    spare_ = std::vector<uint8_t>();
+    body_filled_ = 0;
+    header_filled_ = 0;
 }
 
 std::vector<uint8_t> frame_bytes(std::span<const uint8_t> body) {

@@ -24,18 +24,34 @@ public:
     // an empty frame; error() then names the problem.
     bool consume(std::span<const uint8_t> bytes, std::vector<std::vector<uint8_t>>& frames);
 
+    // The same parser for a reader that reads the socket straight into the
+    // frame: read_buffer() is where the next read should land (the rest of the
+    // header, or up to `max_bytes` of the body being read), commit(n) accepts
+    // the first n bytes written there. A body is sized to what the reads ask
+    // for, never to what a header announces. Empty while failed.
+    std::span<uint8_t> read_buffer(size_t max_bytes);
+    bool commit(size_t n, std::vector<std::vector<uint8_t>>& frames);
+    // Hands a frame's storage back once its message is handled: the next body
+    // reuses it instead of faulting in new pages.
+    void recycle(std::vector<uint8_t>&& frame);
+
     State state() const { return state_; }
     const std::string& error() const { return error_; }
     // Bytes of a partial frame held right now (header or body).
     size_t buffered_bytes() const;
 
 private:
+    void start_body();
+    void fail(std::string error);
+
     uint32_t max_frame_bytes_;
     State state_ = State::kReadingHeader;
     uint8_t header_[kFrameHeaderBytes] = {};
     size_t header_filled_ = 0;
+    uint32_t body_expected_ = 0;
     std::vector<uint8_t> body_;
     size_t body_filled_ = 0;
+    std::vector<uint8_t> spare_;  // a handled frame's storage, for the next body
     std::string error_;
 };
 

@@ -2,6 +2,7 @@
 // Our own view of the wire messages. Only protocol/codec.cpp sees the
 // FlatBuffers-generated code; everything else uses these types.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -62,7 +63,12 @@ struct OpenChannelMsg {
 struct WriteChannelMsg {
     uint32_t channel_id = 0;
     uint64_t offset = 0;
-    std::vector<uint8_t> data;
+    std::vector<uint8_t> data;  // the bytes, owned: what a sender builds, what decode_message copies out
+    // decode_message_in_frame leaves `data` empty and points here into the
+    // frame instead: the message is handled before its frame goes.
+    std::span<const uint8_t> in_frame;
+
+    std::span<const uint8_t> bytes() const { return in_frame.empty() ? std::span<const uint8_t>(data) : in_frame; }
 };
 struct CloseChannelMsg {
     uint32_t channel_id = 0;

@@ -475,9 +475,19 @@ TEST(ChannelRecords, ShortAndOverlongChannelsAreRefused) {
     EXPECT_NE(tree.error().find("after its 9 records"), std::string::npos) << tree.error();
 }
 
+// The reader that keeps no nodes (bake's) refuses what the decoding one refuses, with the same words.
+std::string validate_only_error(std::span<const uint8_t> bytes) {
+    ResultChannelReader reader(TreeImport::kValidateOnly);
+    Status status = reader.consume(bytes);
+    if (status) status = reader.finish_validation();
+    return status ? std::string("(accepted)") : status.error();
+}
+
 std::string result_error(const std::vector<uint8_t>& bytes) {
     auto decoded = decode_result_channel(bytes);
-    return decoded.ok() ? std::string("(accepted)") : decoded.error();
+    const std::string error = decoded.ok() ? std::string("(accepted)") : decoded.error();
+    EXPECT_EQ(validate_only_error(bytes), error);
+    return error;
 }
 
 TEST(ChannelRecords, BadResultRecordsAreRefusedNamingNodeAndField) {
@@ -607,6 +617,36 @@ TEST(ChannelRecords, ValidateTreeRefusesBrokenStructure) {
     LightTree same_child = thesis_tree();
     same_child.nodes[3].right = 7;
     EXPECT_NE(tree_error(same_child).find("both children"), std::string::npos);
+}
+
+TEST(ChannelRecords, ValidateOnlyReaderChecksTheStructureAndKeepsNoNodes) {
+    const LightTree good = thesis_tree();
+    const auto bytes = encode_result_channel(good);
+    ResultChannelReader reader(TreeImport::kValidateOnly);
+    // Split mid-record: the partial record waits for the rest, as in the decoding reader.
+    ASSERT_TRUE(reader.consume(std::span(bytes).first(400)).ok());
+    ASSERT_TRUE(reader.consume(std::span(bytes).subspan(400)).ok());
+    EXPECT_EQ(reader.nodes_received(), good.nodes.size());
+    ASSERT_TRUE(reader.finish_validation().ok());
+    EXPECT_EQ(reader.leaf_count(), good.leaf_count);
+    EXPECT_FALSE(reader.finish().ok());  // it kept no tree to hand out
+
+    LightTree two_parents = thesis_tree();
+    two_parents.nodes[2].left = 3;
+    LightTree rep_outside = thesis_tree();
+    rep_outside.nodes[2].representative = 7;
+    LightTree indirect_mixed = thesis_tree();
+    indirect_mixed.nodes[3].indirect = true;
+    for (const LightTree& broken : {two_parents, rep_outside, indirect_mixed}) {
+        const auto broken_bytes = encode_result_channel(broken);
+        const std::string error = result_error(broken_bytes);
+        EXPECT_NE(error, "(accepted)");
+        EXPECT_EQ(validate_only_error(broken_bytes), error);
+    }
+
+    ResultChannelReader decoding;
+    ASSERT_TRUE(decoding.consume(bytes).ok());
+    EXPECT_FALSE(decoding.finish_validation().ok());  // a decoding reader hands out its tree with finish()
 }
 
 // Breadth-first chain: node 2k is a cluster {2k+1 (leaf), 2k+2}, the last node a leaf.

@@ -3,6 +3,8 @@
 // checked by their ErrorKind, never their text.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <map>
 #include <memory>
 #include <string>
@@ -188,6 +190,46 @@ TEST(ClientSession, KeepsTheRawResultChannelOnlyWhenAsked) {
     EXPECT_TRUE(outcomes[1].result_channel.empty());
     ASSERT_EQ(outcomes[0].tree.nodes.size(), outcomes[1].tree.nodes.size());
     EXPECT_EQ(encode_result_channel(outcomes[1].tree), encode_result_channel(outcomes[0].tree));
+}
+
+// bake: the tree is validated as it arrives and never decoded into nodes;
+// the dump holds the same channel, and a bad record still fails the bake.
+TEST(ClientSession, ValidatesWithoutDecodingTheTreeWhenAsked) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const std::filesystem::path dir = test::make_temp_dir("client-session-validate-only");
+    const std::vector<Message> result = result_messages(lights);
+    ClientSessionOptions options = session_options();
+    options.keep_result_channel = false;
+    options.decode_tree = false;
+    options.result_dump = dir / "tree.lcut";
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+    for (const Message& message : result) session.on_message(message);
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_TRUE(outcome) << outcome.error();
+    EXPECT_TRUE(outcome->tree.nodes.empty());
+    Result<ChannelDump> dump = read_dump(options.result_dump);
+    ASSERT_TRUE(dump) << dump.error();
+    Result<LightTree> tree = decode_result_channel(dump->payload);
+    ASSERT_TRUE(tree) << tree.error();
+    EXPECT_EQ(tree->nodes.size(), 2 * lights.size() - 1);
+
+    std::vector<Message> corrupted = result;
+    auto first_write = std::find_if(corrupted.begin(), corrupted.end(),
+                                    [](const Message& m) { return std::holds_alternative<WriteChannelMsg>(m); });
+    ASSERT_NE(first_write, corrupted.end());
+    std::get<WriteChannelMsg>(*first_write).data.at(4 + 18) = 1;  // node 0's light_flags: an unknown bit
+    options.result_dump = dir / "refused.lcut";
+    ClientSession refusing(lights, kSceneGuid, options);
+    upload(refusing);
+    for (const Message& message : corrupted) {
+        if (refusing.finished()) break;
+        refusing.on_message(message);
+    }
+    Result<BakeOutcome> refused = refusing.take_result();
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().find("node 0: FLightData.light_flags"), std::string::npos) << refused.error();
+    EXPECT_FALSE(std::filesystem::exists(options.result_dump));
 }
 
 // bake -o: the channel goes into the dump as it arrives, the dump appears

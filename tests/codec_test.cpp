@@ -177,6 +177,29 @@ TEST(Codec, WriteChannelDataIsCopiedOut) {
     EXPECT_EQ(std::get<WriteChannelMsg>(*decoded).data, write.data);
 }
 
+TEST(Codec, WriteChannelDecodedInFrameIsAViewOfTheFrame) {
+    WriteChannelMsg write{3, 77, std::vector<uint8_t>(4096)};
+    for (size_t i = 0; i < write.data.size(); ++i) write.data[i] = static_cast<uint8_t>(i * 13);
+    const auto body = encode_message(write);
+    Result<Message> decoded = decode_message_in_frame(body);
+    ASSERT_TRUE(decoded.ok()) << decoded.error();
+    const auto& in_frame = std::get<WriteChannelMsg>(*decoded);
+    EXPECT_TRUE(in_frame.data.empty());
+    EXPECT_GE(in_frame.in_frame.data(), body.data());
+    EXPECT_LE(in_frame.in_frame.data() + in_frame.in_frame.size(), body.data() + body.size());
+    EXPECT_TRUE(std::ranges::equal(in_frame.bytes(), write.data));
+    EXPECT_EQ(in_frame.channel_id, 3u);
+    EXPECT_EQ(in_frame.offset, 77u);
+
+    // A misaligned frame is read from an aligned copy, which goes: the data is copied out.
+    std::vector<uint8_t> shifted(body.size() + 1);
+    std::copy(body.begin(), body.end(), shifted.begin() + 1);
+    Result<Message> copied = decode_message_in_frame(std::span(shifted).subspan(1));
+    ASSERT_TRUE(copied.ok()) << copied.error();
+    EXPECT_TRUE(std::get<WriteChannelMsg>(*copied).in_frame.empty());
+    EXPECT_EQ(std::get<WriteChannelMsg>(*copied).data, write.data);
+}
+
 TEST(Codec, DecodesMisalignedInput) {
     for (const Message& m : sample_messages()) {
         const auto body = encode_message(m);

@@ -3,10 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <new>
 #include <random>
+#include <stdexcept>
 
 // Records the largest single allocation while armed, so tests can prove that a
 // header announcing a huge frame does not make the decoder allocate it.
@@ -215,6 +217,82 @@ TEST(FrameDecoder, EmptyPushIsHarmless) {
     Frames frames;
     EXPECT_TRUE(decoder.consume({}, frames));
     EXPECT_EQ(decoder.state(), FrameDecoder::State::kReadingHeader);
+}
+
+// Reads land in read_buffer(); a read may fill less than it was offered.
+void read_into(FrameDecoder& decoder, std::span<const uint8_t> stream, std::mt19937& rng, Frames& frames) {
+    size_t pos = 0;
+    while (pos < stream.size()) {
+        const std::span<uint8_t> into = decoder.read_buffer(1 + rng() % 1000);
+        ASSERT_FALSE(into.empty());
+        const size_t n = std::min<size_t>({into.size(), 1 + rng() % into.size(), stream.size() - pos});
+        std::copy_n(stream.data() + pos, n, into.data());
+        pos += n;
+        ASSERT_TRUE(decoder.commit(n, frames));
+    }
+}
+
+TEST(FrameDecoder, ReadsStraightIntoTheFrameBody) {
+    std::mt19937 rng(99);
+    std::vector<std::vector<uint8_t>> bodies;
+    for (int i = 0; i < 200; ++i) bodies.push_back(pattern(1 + rng() % 3000, static_cast<uint8_t>(i)));
+    std::vector<std::vector<uint8_t>> framed;
+    for (const auto& b : bodies) framed.push_back(frame_bytes(b));
+    FrameDecoder decoder;
+    Frames frames;
+    read_into(decoder, concat(framed), rng, frames);
+    EXPECT_EQ(frames, bodies);
+    EXPECT_EQ(decoder.state(), FrameDecoder::State::kReadingHeader);
+}
+
+TEST(FrameDecoder, ReadBufferNeverReachesPastTheFrame) {
+    FrameDecoder decoder;
+    Frames frames;
+    const auto framed = frame_bytes(pattern(10, 0));
+    std::span<uint8_t> into = decoder.read_buffer(1000);
+    ASSERT_EQ(into.size(), kFrameHeaderBytes);  // the header first: the next frame's bytes stay in the socket
+    std::copy_n(framed.data(), kFrameHeaderBytes, into.data());
+    ASSERT_TRUE(decoder.commit(kFrameHeaderBytes, frames));
+    into = decoder.read_buffer(1000);
+    ASSERT_EQ(into.size(), 10u);
+    std::copy_n(framed.data() + kFrameHeaderBytes, 10, into.data());
+    ASSERT_TRUE(decoder.commit(10, frames));
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0], pattern(10, 0));
+}
+
+TEST(FrameDecoder, LyingHeaderCostsAtMostOneRead) {
+    FrameDecoder decoder;
+    Frames frames;
+    const auto announced = header(kDefaultMaxFrameBytes);
+    std::copy(announced.begin(), announced.end(), decoder.read_buffer(4).data());
+    ASSERT_TRUE(decoder.commit(4, frames));
+    g_largest_allocation = 0;
+    g_tracking = true;
+    const std::span<uint8_t> into = decoder.read_buffer(256 * 1024);
+    g_tracking = false;
+    EXPECT_EQ(into.size(), 256u * 1024u);
+    EXPECT_LE(g_largest_allocation.load(), 256u * 1024u);
+}
+
+TEST(FrameDecoder, RecycledFrameStorageHoldsTheNextBody) {
+    FrameDecoder decoder;
+    Frames frames;
+    ASSERT_TRUE(decoder.consume(frame_bytes(pattern(5000, 1)), frames));
+    ASSERT_EQ(frames.size(), 1u);
+    const uint8_t* storage = frames[0].data();
+    decoder.recycle(std::move(frames[0]));
+    frames.clear();
+    ASSERT_TRUE(decoder.consume(frame_bytes(pattern(3000, 2)), frames));
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0].data(), storage);
+    EXPECT_EQ(frames[0], pattern(3000, 2));
+}
+
+TEST(FrameDecoder, CommitPastTheReadBufferThrows) {
+    FrameDecoder decoder;
+    Frames frames;
+    EXPECT_THROW(decoder.commit(5, frames), std::out_of_range);
 }
 
 }  // namespace

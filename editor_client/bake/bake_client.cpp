@@ -215,27 +215,31 @@ std::string BakeConnection::hello_failure(const std::string& what) const {
 }
 
 awaitable<void> BakeConnection::read_loop() {
-    std::vector<uint8_t> buffer(256 * 1024);
+    // The socket is read straight into the frame being decoded, and a result
+    // chunk's records are read where they lie in that frame: no copy of either.
+    constexpr size_t kReadBytes = 256 * 1024;
     std::vector<std::vector<uint8_t>> frames;
     while (!session_.finished()) {
         boost::system::error_code ec;
-        size_t n = co_await transport_.read_some(asio::buffer(buffer), ec);
+        const std::span<uint8_t> into = decoder_.read_buffer(kReadBytes);
+        size_t n = co_await transport_.read_some(asio::buffer(into.data(), into.size()), ec);
         if (session_.finished()) break;
         if (ec) {
             fail(is_peer_closed(ec) ? "the server closed the connection" : "connection lost: " + ec.message());
             break;
         }
         size_t keep = std::min(n, first_bytes_.size() < 2 ? 2 - first_bytes_.size() : 0);
-        first_bytes_.insert(first_bytes_.end(), buffer.data(), buffer.data() + keep);
+        first_bytes_.insert(first_bytes_.end(), into.data(), into.data() + keep);
         frames.clear();
-        bool framing_ok = decoder_.consume({buffer.data(), n}, frames);
+        bool framing_ok = decoder_.commit(n, frames);
         for (auto& frame : frames) {
-            Result<Message> message = decode_message(frame);
+            Result<Message> message = decode_message_in_frame(frame);
             if (!message) {
                 fail("malformed frame from the server: " + message.error());
                 break;
             }
             session_.on_message(message.value());
+            decoder_.recycle(std::move(frame));
             check_cancel();
             if (session_.finished()) break;
         }
@@ -313,6 +317,7 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     session_options.on_warning = options.on_warning;
     session_options.recorder = &recorder;
     session_options.keep_result_channel = options.keep_result_channel;
+    session_options.decode_tree = options.decode_tree;
     session_options.result_dump = options.result_dump;
     ClientSession session(std::move(tree_lights), scene_guid, std::move(session_options));
 

@@ -48,6 +48,9 @@ struct BakeClientOptions {
     std::filesystem::path tls_ca_file;
     std::filesystem::path record_dir;  // when set, every channel's bytes are dumped there
     bool keep_result_channel = true;   // false: BakeOutcome::result_channel stays empty
+    // False: the tree is validated as it arrives and not kept (BakeOutcome::tree
+    // stays empty), for a client that needs it only in the dump.
+    bool decode_tree = true;
     // Non-empty: the result channel is written to this dump (bake -o) as it
     // arrives, and the dump committed once the whole tree is valid.
     std::filesystem::path result_dump;
@@ -85,6 +88,7 @@ struct BakeOutcome {
     double upload_ms = 0.0;
     double download_ms = 0.0;
     double write_ms = 0.0;  // committing the result dump: the fsync of what the stream wrote
+    double import_ms = 0.0;  // the tree's structure check once its last record arrived
 };
 
 // Lights marked classic are not sent: they stay with the client. A failure's

@@ -31,7 +31,8 @@ ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_g
       scene_channel_(scene_channel_name(scene_guid)),
       environment_channel_(environment_channel_name(scene_guid)),
       geometry_channel_(options.geometry ? geometry_channel_name(scene_guid) : std::string()),
-      options_(std::move(options)) {}
+      options_(std::move(options)),
+      reader_(options_.decode_tree ? TreeImport::kNodes : TreeImport::kValidateOnly) {}
 
 void ClientSession::start() {
     if (stage_ != Stage::kConnecting) return;
@@ -168,15 +169,16 @@ void ClientSession::on_bake_message(const Message& m) {
         if (!result_channel_id_ || write->channel_id != *result_channel_id_)
             return finish(make_error("server wrote to channel " + std::to_string(write->channel_id) +
                                      " which is not open"));
-        if (write->offset != result_received_ || result_received_ + write->data.size() > expected_bytes_)
+        const std::span<const uint8_t> data = write->bytes();
+        if (write->offset != result_received_ || result_received_ + data.size() > expected_bytes_)
             return finish(make_error("result channel out of order or longer than announced"));
-        if (Status s = reader_.consume(write->data); !s) return finish(make_error("result channel: " + s.error()));
-        result_received_ += write->data.size();
+        if (Status s = reader_.consume(data); !s) return finish(make_error("result channel: " + s.error()));
+        result_received_ += data.size();
         if (result_dump_) {
-            if (Status written = result_dump_->append(write->data); !written) return finish(written.failure());
+            if (Status written = result_dump_->append(data); !written) return finish(written.failure());
         }
         if (options_.keep_result_channel || (options_.recorder && options_.recorder->enabled()))
-            result_bytes_.insert(result_bytes_.end(), write->data.begin(), write->data.end());
+            result_bytes_.insert(result_bytes_.end(), data.begin(), data.end());
         if (options_.on_progress && reader_.nodes_expected() > 0) {
             float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
                         static_cast<float>(reader_.nodes_expected());
@@ -188,12 +190,19 @@ void ClientSession::on_bake_message(const Message& m) {
         channel_closed_ = true;
     } else if (auto* done = std::get_if<BakeDoneMsg>(&m)) {
         if (!channel_closed_) return finish(make_error("BakeDone arrived before the result channel was closed"));
-        Result<LightTree> tree = reader_.finish();
-        if (!tree) return finish(make_error("result channel: " + tree.error()));
-        if (tree->nodes.size() != done->node_count)
+        const size_t node_count = reader_.nodes_received();
+        const Clock::time_point import_start = Clock::now();
+        if (options_.decode_tree) {
+            Result<LightTree> tree = reader_.finish();
+            if (!tree) return finish(make_error("result channel: " + tree.error()));
+            outcome_.tree = std::move(tree.value());
+        } else if (Status valid = reader_.finish_validation(); !valid) {
+            return finish(make_error("result channel: " + valid.error()));
+        }
+        outcome_.import_ms = ms_since(import_start);
+        if (node_count != done->node_count)
             return finish(make_error("BakeDone announces " + std::to_string(done->node_count) +
-                                     " nodes, channel held " + std::to_string(tree->nodes.size())));
-        outcome_.tree = std::move(tree.value());
+                                     " nodes, channel held " + std::to_string(node_count)));
         outcome_.done = *done;
         outcome_.download_ms = ms_since(download_start_);
         if (options_.recorder && options_.recorder->enabled()) {

@@ -42,6 +42,10 @@ struct ClientSessionOptions {
     // False: BakeOutcome::result_channel stays empty; the tree is decoded as
     // the channel streams in, and a million-light channel is 180 MB more.
     bool keep_result_channel = true;
+    // False: every record and the tree's structure are validated as they
+    // arrive and nothing of them is kept (BakeOutcome::tree stays empty): for
+    // `bake`, which needs the tree only valid, in the dump.
+    bool decode_tree = true;
     // Non-empty: the result channel goes into this dump as it arrives (a
     // DumpWriter), committed at BakeDone once the tree is valid; a failed bake
     // leaves no dump and any earlier one at that path untouched.

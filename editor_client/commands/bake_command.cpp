@@ -7,7 +7,6 @@
 #include <memory>
 
 #include "editor_client/bake/bake_client.h"
-#include "editor_client/bake/tree_store.h"
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
@@ -51,6 +50,8 @@ void add_bake_command(CLI::App& app) {
 
         BakeClientOptions bake = options->bake.to_options(*scene);
         bake.keep_result_channel = false;
+        // The tree goes no further than the dump: validated as it arrives, never decoded into nodes.
+        bake.decode_tree = false;
         bake.result_dump = options->output;
         bake.geometry = geometry_the_bake_needs(*scene, bake.indirect.method);
         ProgressDisplay progress(stderr);
@@ -67,11 +68,8 @@ void add_bake_command(CLI::App& app) {
         for (const SceneLight& l : scene->lights) classic += l.classic ? 1 : 0;
         double upload_ms = outcome->upload_ms, download_ms = outcome->download_ms, total_ms = outcome->total_ms;
         const double write_ms = outcome->write_ms;
+        const double import_ms = outcome->import_ms;
         std::string channel = outcome->result_channel_name;
-        const auto import_start = std::chrono::steady_clock::now();
-        TreeStore store;
-        or_fail(store.import(std::move(outcome)));
-        const double import_ms = ms_since(import_start);
         if (options->json) {
             nlohmann::json j;
             j["scene"] = options->scene;

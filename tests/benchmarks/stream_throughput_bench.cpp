@@ -4,7 +4,9 @@
 // client_rss_bytes_per_record, and the CPU time of each side of the protocol
 // run (server_cpu_ms, client_cpu_ms) and of the raw copy (raw_server_cpu_ms,
 // raw_client_cpu_ms): on a shared machine the wall clock moves with the load,
-// the CPU time much less. Both runs are plain TCP over loopback.
+// the CPU time much less. Both runs are plain TCP over loopback. The protocol
+// run is `bake`'s client, which validates the tree and keeps none of it; the
+// decoded_* columns are a second run that keeps the nodes (editor, render).
 #include <sys/resource.h>
 #include <time.h>
 
@@ -78,8 +80,10 @@ double peak_rss_mb() {
     return static_cast<double>(usage.ru_maxrss) / 1024.0;
 }
 
-// Streams `tree` through ResultStream to a client that decodes and validates it.
-Run protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
+// Streams `tree` through ResultStream to a client that reads as bake_client
+// does (straight into the frame, records read in the frame) and validates
+// every record and the structure, keeping the decoded nodes or not.
+Run protocol_run(const std::shared_ptr<const lc::LightTree>& tree, lc::TreeImport import) {
     Run run;
     lc::asio::io_context io;
     lc::tcp::acceptor acceptor(io, lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), 0));
@@ -102,31 +106,33 @@ Run protocol_run(const std::shared_ptr<const lc::LightTree>& tree) {
     lc::tcp::socket socket(io);
     socket.connect(lc::tcp::endpoint(lc::asio::ip::make_address("127.0.0.1"), port));
     lc::FrameDecoder decoder;
-    lc::ResultChannelReader reader;
-    std::vector<uint8_t> buffer(256 * 1024);
+    lc::ResultChannelReader reader(import);
     std::vector<std::vector<uint8_t>> frames;
     bool finished = false;
     while (!finished) {
         boost::system::error_code ec;
-        size_t n = socket.read_some(lc::asio::buffer(buffer), ec);
+        const std::span<uint8_t> into = decoder.read_buffer(256 * 1024);
+        size_t n = socket.read_some(lc::asio::buffer(into.data(), into.size()), ec);
         if (ec) break;
         frames.clear();
-        decoder.consume({buffer.data(), n}, frames);
+        if (!decoder.commit(n, frames)) std::abort();
         for (auto& f : frames) {
-            auto message = lc::decode_message(f);
+            auto message = lc::decode_message_in_frame(f);
             if (!message) std::abort();
             if (auto* w = std::get_if<lc::WriteChannelMsg>(&message.value())) {
-                if (!reader.consume(w->data)) std::abort();
+                if (!reader.consume(w->bytes())) std::abort();
             } else if (std::holds_alternative<lc::BakeDoneMsg>(message.value())) {
                 finished = true;
             }
+            decoder.recycle(std::move(f));
         }
     }
-    auto received = reader.finish();
+    const size_t received = reader.nodes_received();
+    const bool valid = import == lc::TreeImport::kNodes ? reader.finish().ok() : reader.finish_validation().ok();
     run.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     run.client_cpu_ms = thread_cpu_ms() - cpu_start;
     server.join();
-    if (!received || received->nodes.size() != tree->nodes.size()) {
+    if (!valid || received != tree->nodes.size()) {
         std::fprintf(stderr, "stream failed\n");
         std::exit(1);
     }
@@ -173,22 +179,32 @@ Run raw_run(uint64_t bytes) {
 int main(int argc, char** argv) {
     std::printf(
         "records,channel_bytes,protocol_ms,protocol_mb_s,raw_ms,raw_mb_s,raw_over_protocol,peak_rss_mb,"
-        "client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms,raw_server_cpu_ms,raw_client_cpu_ms\n");
+        "client_rss_bytes_per_record,server_cpu_ms,client_cpu_ms,raw_server_cpu_ms,raw_client_cpu_ms,"
+        "decoded_ms,decoded_client_cpu_ms,decoded_rss_bytes_per_record\n");
     for (int i = 1; i < argc; ++i) {
         size_t records = std::strtoull(argv[i], nullptr, 10);
         auto tree = std::make_shared<const lc::LightTree>(make_tree(records));
         uint64_t bytes = 4 + tree->nodes.size() * lc::result_record_bytes();
+        // The protocol columns are `bake`'s client: every record validated, none kept.
         double rss_before = peak_rss_mb();
-        const Run run = protocol_run(tree);
+        const Run run = protocol_run(tree, lc::TreeImport::kValidateOnly);
         const double p = run.wall_ms;
+        double rss = peak_rss_mb();
         const Run raw = raw_run(bytes);
         const double r = raw.wall_ms;
+        // The decoded columns are the editor's and render's: the tree kept as nodes.
+        const double rss_before_decoded = peak_rss_mb();
+        const Run decoded = protocol_run(tree, lc::TreeImport::kNodes);
+        const double rss_decoded = peak_rss_mb();
         double mb = static_cast<double>(bytes) / (1024.0 * 1024.0);
-        double rss = peak_rss_mb();
-        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f,%.1f,%.1f\n", tree->nodes.size(),
-                    static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r, mb / (r / 1000.0), r / p,
-                    rss, (rss - rss_before) * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size()),
-                    run.server_cpu_ms, run.client_cpu_ms, raw.server_cpu_ms, raw.client_cpu_ms);
+        const auto per_record = [&](double grown_mb) {
+            return grown_mb * 1024.0 * 1024.0 / static_cast<double>(tree->nodes.size());
+        };
+        std::printf("%zu,%llu,%.1f,%.1f,%.1f,%.1f,%.2f,%.1f,%.0f,%.1f,%.1f,%.1f,%.1f,%.1f,%.1f,%.0f\n",
+                    tree->nodes.size(), static_cast<unsigned long long>(bytes), p, mb / (p / 1000.0), r,
+                    mb / (r / 1000.0), r / p, rss, per_record(rss - rss_before), run.server_cpu_ms,
+                    run.client_cpu_ms, raw.server_cpu_ms, raw.client_cpu_ms, decoded.wall_ms,
+                    decoded.client_cpu_ms, per_record(rss_decoded - rss_before_decoded));
         std::fflush(stdout);
     }
     return 0;

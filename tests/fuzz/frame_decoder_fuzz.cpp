@@ -1,5 +1,6 @@
 // FrameDecoder: any byte stream, pushed whole or in pieces of any size, gives
-// the same frames and the same verdict; every frame is within the cap; framing
+// the same frames and the same verdict, also read straight into the frame
+// (read_buffer, commit) with each handled frame's storage recycled; every frame is within the cap; framing
 // the frames again reproduces exactly the bytes they came from.
 #include <algorithm>
 #include <cstdint>
@@ -31,6 +32,25 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                                    piece_frames);
     }
     check(whole_ok == pieces_ok, "the verdict does not depend on how the bytes arrive");
+
+    lc::FrameDecoder reader(kMaxFrameBytes);
+    std::vector<std::vector<uint8_t>> read_frames;
+    std::vector<std::vector<uint8_t>> ready;
+    bool read_ok = true;
+    for (size_t at = 0; at < input.size() && read_ok;) {
+        const std::span<uint8_t> into = reader.read_buffer(stride);
+        const size_t n = std::min(into.size(), input.size() - at);
+        std::copy_n(input.data() + at, n, into.data());
+        at += n;
+        ready.clear();
+        read_ok = reader.commit(n, ready);
+        for (std::vector<uint8_t>& frame : ready) {
+            read_frames.push_back(frame);
+            reader.recycle(std::move(frame));
+        }
+    }
+    check(read_ok == whole_ok, "reading into the frame gives the same verdict");
+    check(read_frames == whole_frames, "reading into the frame gives the same frames");
     check(whole_frames == piece_frames, "the frames do not depend on how the bytes arrive");
     check(whole_ok == (whole.state() != lc::FrameDecoder::State::kFailed),
           "consume() returns false exactly when the decoder failed");

@@ -1,5 +1,6 @@
 // Result channel reader: any payload, pushed whole or in pieces, gives the same
-// verdict; decode, encode and decode again agree (issue 14, item 5: a node the
+// verdict, with the nodes kept or only validated (bake's reader); decode,
+// encode and decode again agree (issue 14, item 5: a node the
 // encoder cannot write finitely must be refused at the first decode).
 #include <algorithm>
 #include <cstdint>
@@ -23,6 +24,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     }
     const bool pieces_decoded = pieces_ok && reader.finish().ok();
     check(whole.ok() == pieces_decoded, "the verdict does not depend on how the bytes arrive");
+    lc::ResultChannelReader validator(lc::TreeImport::kValidateOnly);
+    lc::Status validated = validator.consume(input);
+    if (validated) validated = validator.finish_validation();
+    check(whole.ok() == validated.ok(), "validating without keeping nodes gives the same verdict");
     if (!whole) return 0;
 
     check(lc::validate_tree(*whole).ok(), "a decoded tree is valid");
