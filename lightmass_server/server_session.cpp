@@ -185,14 +185,12 @@ bool ServerSession::on_write_channel(WriteChannelMsg& write) {
     const std::span<const uint8_t> data = write.bytes();
     if (scene.received + data.size() > scene.total_bytes)
         return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
-    Status consumed =
-        scene.environment ? scene.environment_reader.consume(data)
-        : scene.geometry  ? scene.geometry_reader.consume(data)
-                          : scene.reader.consume(data);
+    Status consumed = scene.environment ? scene.environment_reader.consume(data)
+                      : scene.geometry  ? scene.geometry_reader.consume(data)
+                                        : scene.reader.consume(data);
     if (!consumed) return refuse(consumed.error());
     scene.received += data.size();
-    if (options_.record_channels)
-        scene.recorded.insert(scene.recorded.end(), data.begin(), data.end());
+    if (options_.record_channels) scene.recorded.insert(scene.recorded.end(), data.begin(), data.end());
     return true;
 }
 

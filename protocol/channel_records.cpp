@@ -679,7 +679,8 @@ Status ResultChannelReader::finish_structure() {
 }
 
 Result<LightTree> ResultChannelReader::finish() {
-    if (import_ != TreeImport::kNodes) return make_error("result channel reader kept no nodes to finish a tree");
+    if (import_ != TreeImport::kNodes)
+        return make_error("result channel reader kept no nodes to finish a tree");
     Status valid = finish_structure();
     if (!valid) return make_error(valid.error());
     LightTree tree;
@@ -689,7 +690,8 @@ Result<LightTree> ResultChannelReader::finish() {
 }
 
 Status ResultChannelReader::finish_validation() {
-    if (import_ != TreeImport::kValidateOnly) return make_error("result channel reader keeps nodes: finish() the tree");
+    if (import_ != TreeImport::kValidateOnly)
+        return make_error("result channel reader keeps nodes: finish() the tree");
     return finish_structure();
 }
 

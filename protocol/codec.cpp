@@ -514,9 +514,13 @@ Result<Message> decode_body(std::span<const uint8_t> body, bool channel_data_in_
 
 }  // namespace
 
-Result<Message> decode_message(std::span<const uint8_t> body) { return decode_body(body, false); }
+Result<Message> decode_message(std::span<const uint8_t> body) {
+    return decode_body(body, false);
+}
 
-Result<Message> decode_message_in_frame(std::span<const uint8_t> body) { return decode_body(body, true); }
+Result<Message> decode_message_in_frame(std::span<const uint8_t> body) {
+    return decode_body(body, true);
+}
 
 uint64_t schema_hash() { return detail::kSchemaHash; }
 

@@ -9,10 +9,10 @@
 namespace lc {
 namespace {
 
-// Up-front reservation for a body; larger bodies grow as their bytes arrive,
-// to at most this many times the bytes that arrived: a lying header still costs
-// little, and a 1 MiB chunk read 256 KiB at a time is copied once, not regrown
-// four times.
+// Up-front reservation for a body; larger bodies grow as reads ask for room,
+// to at most this many times the bytes that arrived (or one read's room): a
+// lying header still costs little, and a 1 MiB chunk read 256 KiB at a time
+// is copied once, not regrown four times.
 constexpr size_t kInitialBodyReserve = 64u * 1024u;
 constexpr size_t kReserveArrivedFactor = 8;
 
@@ -54,7 +54,8 @@ std::span<uint8_t> FrameDecoder::read_buffer(size_t max_bytes) {
     const size_t end = std::min<size_t>(body_expected_, body_filled_ + max_bytes);
     if (body_.size() < end) {
         if (body_.capacity() < end) {
-            body_.reserve(std::min<size_t>(body_expected_, std::max(end, kReserveArrivedFactor * body_filled_)));
+            body_.reserve(
+                std::min<size_t>(body_expected_, std::max(end, kReserveArrivedFactor * body_filled_)));
         }
         body_.resize(end);
     }
@@ -63,7 +64,8 @@ std::span<uint8_t> FrameDecoder::read_buffer(size_t max_bytes) {
 
 bool FrameDecoder::commit(size_t n, std::vector<std::vector<uint8_t>>& frames) {
     if (state_ == State::kReadingHeader) {
-        if (n > kFrameHeaderBytes - header_filled_) throw std::out_of_range("FrameDecoder: commit past the header");
+        if (n > kFrameHeaderBytes - header_filled_)
+            throw std::out_of_range("FrameDecoder: commit past the header");
         header_filled_ += n;
         if (header_filled_ == kFrameHeaderBytes) start_body();
     } else if (state_ == State::kReadingBody) {
@@ -91,8 +93,8 @@ void FrameDecoder::start_body() {
     const uint32_t size = read_u32_le(header_);
     if (size == 0) return fail("malformed frame: header announces an empty frame (0 bytes)");
     if (size > max_frame_bytes_) {
-        return fail("malformed frame: header announces " + std::to_string(size) + " bytes, above the limit of " +
-                    std::to_string(max_frame_bytes_) + " bytes");
+        return fail("malformed frame: header announces " + std::to_string(size) +
+                    " bytes, above the limit of " + std::to_string(max_frame_bytes_) + " bytes");
     }
     body_expected_ = size;
     // A recycled frame keeps its size: the bytes a read lands on are not

@@ -68,7 +68,9 @@ struct WriteChannelMsg {
     // frame instead: the message is handled before its frame goes.
     std::span<const uint8_t> in_frame;
 
-    std::span<const uint8_t> bytes() const { return in_frame.empty() ? std::span<const uint8_t>(data) : in_frame; }
+    std::span<const uint8_t> bytes() const {
+        return in_frame.empty() ? std::span<const uint8_t>(data) : in_frame;
+    }
 };
 struct CloseChannelMsg {
     uint32_t channel_id = 0;

@@ -215,8 +215,9 @@ TEST(ClientSession, ValidatesWithoutDecodingTheTreeWhenAsked) {
     EXPECT_EQ(tree->nodes.size(), 2 * lights.size() - 1);
 
     std::vector<Message> corrupted = result;
-    auto first_write = std::find_if(corrupted.begin(), corrupted.end(),
-                                    [](const Message& m) { return std::holds_alternative<WriteChannelMsg>(m); });
+    auto first_write = std::find_if(corrupted.begin(), corrupted.end(), [](const Message& m) {
+        return std::holds_alternative<WriteChannelMsg>(m);
+    });
     ASSERT_NE(first_write, corrupted.end());
     std::get<WriteChannelMsg>(*first_write).data.at(4 + 18) = 1;  // node 0's light_flags: an unknown bit
     options.result_dump = dir / "refused.lcut";

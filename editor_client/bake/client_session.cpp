@@ -26,7 +26,8 @@ ErrorKind outcome_of(ErrorCode code) {
 
 }  // namespace
 
-ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_guid, ClientSessionOptions options)
+ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_guid,
+                             ClientSessionOptions options)
     : lights_(std::move(lights)),
       scene_channel_(scene_channel_name(scene_guid)),
       environment_channel_(environment_channel_name(scene_guid)),

@@ -128,7 +128,8 @@ Run protocol_run(const std::shared_ptr<const lc::LightTree>& tree, lc::TreeImpor
         }
     }
     const size_t received = reader.nodes_received();
-    const bool valid = import == lc::TreeImport::kNodes ? reader.finish().ok() : reader.finish_validation().ok();
+    const bool valid =
+        import == lc::TreeImport::kNodes ? reader.finish().ok() : reader.finish_validation().ok();
     run.wall_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     run.client_cpu_ms = thread_cpu_ms() - cpu_start;
     server.join();
