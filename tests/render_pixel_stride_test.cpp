@@ -59,28 +59,46 @@ TEST(TileStride, TakesTheMiddleTileOfEveryBlockAndGathersThem) {
     EXPECT_EQ(gathered[16 * 7 + 15], 23u * 64 + 55) << "the second tile's last pixel";
 }
 
-using StridedReference = test::VulkanTest;
+// The furnished room's full reference frame (64x64, shadows on), which the
+// strided frames are compared with.
+class StridedReference : public test::VulkanTest {
+protected:
+    void render_full() {
+        scene_ = make_furnished_room_scene();
+        scene_.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
+        tree_ = test::agglomerative_tree(scene_.lights);
+        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+        ASSERT_TRUE(renderer.ok()) << renderer.error();
+        renderer_ = std::move(renderer).value();
+        ASSERT_TRUE(renderer_->effects().shadows);
+        full_.mode = RenderMode::kReference;
+        full_.width = full_.height = 64;
+        full_.camera = test::furnished_room_camera();
+        Result<RenderStats> stats = renderer_->render(full_);
+        ASSERT_TRUE(stats.ok()) << stats.error();
+        full_stats_ = *stats;
+        full_hdr_ = renderer_->read_hdr().value();
+    }
+
+    Scene scene_;
+    LightTree tree_;
+    std::unique_ptr<Renderer> renderer_;
+    RenderSettings full_;
+    RenderStats full_stats_;
+    std::vector<float> full_hdr_;
+};
 
 TEST_F(StridedReference, TilesAreTheFullFramesPixelsExactly) {
-    Scene scene = make_furnished_room_scene();
-    scene.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
-    ASSERT_TRUE((*renderer)->effects().shadows);
-    RenderSettings full;
-    full.mode = RenderMode::kReference;
-    full.width = full.height = 64;
-    full.camera = test::furnished_room_camera();
-    Result<RenderStats> full_stats = (*renderer)->render(full);
-    ASSERT_TRUE(full_stats.ok()) << full_stats.error();
-    const std::vector<float> full_hdr = (*renderer)->read_hdr().value();
+    ASSERT_NO_FATAL_FAILURE(render_full());
+    Renderer* renderer = renderer_.get();
+    const RenderSettings& full = full_;
+    const std::vector<float>& full_hdr = full_hdr_;
     for (uint32_t stride : {2u, 4u}) {
         SCOPED_TRACE(testing::Message() << "tile stride " << stride);
         const std::vector<PixelRegion> tiles = strided_tiles(64, 64, 8, stride).value();
-        Result<RenderStats> stats = (*renderer)->render(full, tiles);
+        Result<RenderStats> stats = renderer->render(full, tiles);
         ASSERT_TRUE(stats.ok()) << stats.error();
-        const std::vector<float> hdr = (*renderer)->read_hdr().value();
+        const std::vector<float> hdr = renderer->read_hdr().value();
         const std::vector<float> gathered = gather_tiles(std::span<const float>(hdr), 64, 4, tiles, stride);
         const std::vector<float> expected = gather_tiles(std::span<const float>(full_hdr), 64, 4, tiles, stride);
         ASSERT_EQ(gathered.size(), size_t(64 / stride) * (64 / stride) * 4);
@@ -92,32 +110,23 @@ TEST_F(StridedReference, TilesAreTheFullFramesPixelsExactly) {
         EXPECT_EQ(differ, 0u) << "the same G-buffer and the same sums";
         EXPECT_GT(lit, gathered.size() / 4 / 2);
         EXPECT_EQ(stats->geometry_pixels, lit) << "the counters see the tiles only";
-        EXPECT_EQ(stats->avg_cut, double((*renderer)->leaf_count())) << "over the tiles' pixels";
+        EXPECT_EQ(stats->avg_cut, double(renderer->leaf_count())) << "over the tiles' pixels";
         EXPECT_GT(stats->shadow_rays, 0u);
-        EXPECT_LT(stats->shadow_rays, full_stats->shadow_rays);
+        EXPECT_LT(stats->shadow_rays, full_stats_.shadow_rays);
     }
 }
 
 TEST_F(StridedReference, ShadesTheFullFramesPixels) {
-    Scene scene = make_furnished_room_scene();
-    scene.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
-    ASSERT_TRUE((*renderer)->effects().shadows);
-    RenderSettings full;
-    full.mode = RenderMode::kReference;
-    full.width = full.height = 64;
-    full.camera = test::furnished_room_camera();
-    Result<RenderStats> full_stats = (*renderer)->render(full);
-    ASSERT_TRUE(full_stats.ok()) << full_stats.error();
-    const std::vector<float> full_hdr = (*renderer)->read_hdr().value();
+    ASSERT_NO_FATAL_FAILURE(render_full());
+    Renderer* renderer = renderer_.get();
+    const RenderSettings& full = full_;
+    const std::vector<float>& full_hdr = full_hdr_;
     for (uint32_t stride : {2u, 4u}) {
         SCOPED_TRACE(testing::Message() << "stride " << stride);
         RenderSettings strided = strided_settings(full, stride).value();
-        Result<RenderStats> stats = (*renderer)->render(strided);
+        Result<RenderStats> stats = renderer->render(strided);
         ASSERT_TRUE(stats.ok()) << stats.error();
-        const std::vector<float> hdr = (*renderer)->read_hdr().value();
+        const std::vector<float> hdr = renderer->read_hdr().value();
         size_t geometry = 0, agree = 0, background_mismatch = 0, strided_lit = 0;
         for (uint32_t j = 0; j < strided.height; ++j)
             for (uint32_t i = 0; i < strided.width; ++i) {
