@@ -102,7 +102,8 @@ public:
         : columns_(blocks.width + 1), slots_(size_t(columns_) * (blocks.height + 1)),
           users_(slots_.size()) {
         for (uint32_t b = 0; b < blocks.count(); ++b) {
-            for_each_corner(blocks[b], [&](size_t at) { users_[at].fetch_add(1, std::memory_order_relaxed); });
+            for_each_corner(blocks[b],
+                            [&](size_t at) { users_[at].fetch_add(1, std::memory_order_relaxed); });
         }
     }
     ~CornerSamples() {
@@ -111,8 +112,8 @@ public:
     CornerSamples(const CornerSamples&) = delete;
     CornerSamples& operator=(const CornerSamples&) = delete;
 
-    // The sample at corner (i, j), made by `make` (which counts into `stats`
-    // and `rays` only when its sample is the one kept).
+    // The sample at corner (i, j), made by `make` into a ray count of its
+    // own; `stats` and `rays` count it only when it is the one kept.
     template <typename Make>
     const ReconstructionSample& at(uint32_t i, uint32_t j, SupersampleStats& stats,
                                    ShadowRayCount& rays, Make&& make) {
@@ -144,6 +145,7 @@ private:
     }
 
     uint32_t columns_;
+    // Owned: set once by at(), deleted by release() or the destructor.
     std::vector<std::atomic<ReconstructionSample*>> slots_;
     std::vector<std::atomic<uint32_t>> users_;
 };

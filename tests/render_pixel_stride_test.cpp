@@ -99,8 +99,10 @@ TEST_F(StridedReference, TilesAreTheFullFramesPixelsExactly) {
         Result<RenderStats> stats = renderer->render(full, tiles);
         ASSERT_TRUE(stats.ok()) << stats.error();
         const std::vector<float> hdr = renderer->read_hdr().value();
-        const std::vector<float> gathered = gather_tiles(std::span<const float>(hdr), 64, 4, tiles, stride);
-        const std::vector<float> expected = gather_tiles(std::span<const float>(full_hdr), 64, 4, tiles, stride);
+        const std::vector<float> gathered =
+            gather_tiles(std::span<const float>(hdr), 64, 4, tiles, stride);
+        const std::vector<float> expected =
+            gather_tiles(std::span<const float>(full_hdr), 64, 4, tiles, stride);
         ASSERT_EQ(gathered.size(), size_t(64 / stride) * (64 / stride) * 4);
         size_t lit = 0, differ = 0;
         for (size_t i = 0; i < gathered.size(); i += 4) {
