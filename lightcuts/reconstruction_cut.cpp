@@ -10,6 +10,7 @@
 
 #include "lightcuts/cut_traversal.h"
 #include "lightcuts/material_model.h"
+#include "lightcuts/shadow_ray.h"
 
 namespace lc {
 namespace {
@@ -71,13 +72,18 @@ SurfacePoint without_occluders(const SurfacePoint& p) {
 }
 
 // A cluster evaluated as a lightcut does (Eq. 2), its shadow ray counted.
+// The shaded value with visibility is the open one times V in {0, 1}
+// (cpu_evaluator's unit_response), so the ray is traced on its own.
 glm::dvec3 evaluate_cluster(const LightTreeNode& node, const SurfacePoint& p,
                             const SurfacePoint& open, ShadowRayCount& rays) {
     const glm::dvec3 unshadowed = shade_node(node, open);
     if (max_channel(unshadowed) <= 0.0) return glm::dvec3(0.0);
     if (p.occluders == nullptr) return unshadowed;
     ++rays.rays;
-    return shade_node(node, p);
+    const double visible =
+        light_visibility(*p.occluders, p.shadow_bias, node.type, glm::dvec3(node.position),
+                         glm::dvec3(node.direction), p.position, p.normal);
+    return visible > 0.0 ? unshadowed : glm::dvec3(0.0);
 }
 
 // Where one sample's record of a walked node is: its own slot, or below the
@@ -108,9 +114,13 @@ CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const C
     std::vector<CutNodeEstimate> cut;
     const CutResult result = bound_heap_cut(tree, p, settings, &cut);
     if (p.occluders != nullptr) {
+        // A node lit through its shadow ray had a ray; only a dark one is
+        // shaded again, open, to tell a blocked ray from no ray.
         const SurfacePoint open = without_occluders(p);
         for (const CutNodeEstimate& entry : cut) {
-            if (max_channel(shade_node(tree.nodes[size_t(entry.node)], open)) > 0.0) ++rays.rays;
+            if (max_channel(entry.estimate) > 0.0 ||
+                max_channel(shade_node(tree.nodes[size_t(entry.node)], open)) > 0.0)
+                ++rays.rays;
         }
     }
     if (nodes != nullptr) *nodes = std::move(cut);
@@ -140,6 +150,11 @@ ReconstructionSample make_reconstruction_sample(const LightTree& tree, const Sur
     };
     std::vector<Pending> stack{{0, -1, 0}};
     std::vector<glm::dvec3> L, d;  // per record: the estimate and its direction
+    // A binary tree's nodes on and above a cut of n nodes: at most 2n - 1.
+    const size_t records = 2 * cut.size();
+    sample.nodes.reserve(records);
+    L.reserve(records);
+    d.reserve(records);
     while (!stack.empty()) {
         const Pending next = stack.back();
         stack.pop_back();

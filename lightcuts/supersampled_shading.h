@@ -1,8 +1,9 @@
 #pragma once
 // Shading a supersampled image (several jittered eye rays per pixel, averaged
 // into the pixel) either with one lightcut per eye ray, or with the paper's
-// reconstruction cuts (Sec. 7): the image in 16x16 blocks that share no
-// samples, each started as 4x4 blocks with lightcut samples at their corners;
+// reconstruction cuts (Sec. 7): the image in 16x16 blocks, each started as
+// 4x4 blocks with lightcut samples at their corners (a corner on the edge of
+// two image blocks is computed once and shared: the image is the same);
 // a block whose eye rays and corners do not match (material, normals within
 // 30 degrees, the cone test for local shadowing) splits into four, down to a
 // pixel, where an eye ray takes the corners that match it (two at least) or
@@ -56,6 +57,7 @@ struct SupersampleStats {
     uint64_t lightcuts = 0;            // lightcuts computed (samples, or every eye ray)
     uint64_t reconstruction_cuts = 0;  // eye rays shaded by reconstruction cuts
     uint64_t pixel_blocks = 0;         // blocks split down to one pixel
+    double cpu_ms = 0.0;               // the workers' CPU time (user + system), summed
 };
 
 // The mean radiance of each pixel's eye rays (row-major), with the classic

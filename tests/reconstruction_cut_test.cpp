@@ -192,6 +192,35 @@ TEST(SupersampledShading, TheImageDoesNotDependOnTheWorkers) {
     EXPECT_EQ(one.lightcuts, three.lightcuts);
 }
 
+TEST(SupersampledShading, ImageBlocksShareTheSamplesOnTheirEdges) {
+    // One material, no occluders: no block splits, so the lightcuts are the
+    // start grid's corners, each once (the 2x2 image blocks' own corners
+    // would be 4 x 25).
+    FloorScene scene = floor_scene();
+    SupersampledFrame frame;
+    frame.width = frame.height = kSide;
+    frame.offsets = {glm::dvec2(0.0)};
+    auto uniform_floor = [&](double u, double v) {
+        EyeSample e = floor_at(scene, u, v);
+        e.point.albedo = glm::dvec3(0.6);
+        e.point.occluders = nullptr;
+        return e;
+    };
+    for (uint32_t y = 0; y < kSide; ++y)
+        for (uint32_t x = 0; x < kSide; ++x) frame.eye.push_back(uniform_floor(x + 0.5, y + 0.5));
+    for (uint32_t j = 0; j <= kSide; ++j)
+        for (uint32_t i = 0; i <= kSide; ++i) frame.corners.push_back(uniform_floor(i, j));
+    for (uint32_t workers : {1u, 2u, 5u}) {
+        SupersampleStats stats;
+        shade_supersampled(scene.tree, {}, frame, bound_settings(0.02),
+                           SupersampleShading::kReconstructionCuts, workers, stats);
+        const uint64_t corners_across = kSide / 4 + 1;
+        EXPECT_EQ(stats.lightcuts, corners_across * corners_across) << workers << " workers";
+        EXPECT_EQ(stats.reconstruction_cuts, uint64_t(kSide) * kSide);
+        EXPECT_GT(stats.cpu_ms, 0.0);
+    }
+}
+
 TEST(JitteredOffsets, OnePerStratumSeededAndInsideThePixel) {
     const std::vector<glm::dvec2> a = jittered_offsets(16, 5);
     EXPECT_EQ(a, jittered_offsets(16, 5));

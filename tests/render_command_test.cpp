@@ -210,6 +210,48 @@ TEST_F(RenderCommand, SupersamplingIsDeterministicAndCountsItsWork) {
     EXPECT_LE(stats["rel_err_mean"].get<double>(), 0.05);
 }
 
+TEST_F(RenderCommand, TileStrideWritesTheFullReferencesTilesAndSaysSo) {
+    // --tile-stride 2 on 64x48: the middle 8x8 tile of every 2x2 block of
+    // tiles, side by side in a 32x24 image, each pixel the full frame's.
+    auto render_reference = [&](const std::string& tag, const std::string& flags) {
+        CommandRun r = run(scene_path_.string() + " --mode reference --size 64x48 " + flags +
+                               " -o " + (dir_ / (tag + ".png")).string() + " --float " +
+                               (dir_ / (tag + ".pfm")).string() + " --stats " +
+                               (dir_ / (tag + ".json")).string(),
+                           dir_);
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        std::ifstream json(dir_ / (tag + ".json"));
+        return std::pair{read_pfm(dir_ / (tag + ".pfm")), nlohmann::json::parse(json)};
+    };
+    auto [full, full_stats] = render_reference("full", "");
+    auto [tiles, stats] = render_reference("tiles", "--tile-stride 2");
+    ASSERT_TRUE(full.ok() && tiles.ok());
+    ASSERT_EQ(tiles->width, 32u);
+    ASSERT_EQ(tiles->height, 24u);
+    EXPECT_EQ(stats["pixel_stride"], 2);
+    EXPECT_EQ(stats["stride_tile"], 8);
+    EXPECT_EQ(stats["width"], 32);
+    EXPECT_FALSE(full_stats.contains("stride_tile"));
+    size_t differ = 0;
+    for (uint32_t y = 0; y < 24; ++y)
+        for (uint32_t x = 0; x < 32; ++x) {
+            // Tile (i, j) of the strided image is tile (2i + 1, 2j + 1) of the full one.
+            const uint32_t fx = (2 * (x / 8) + 1) * 8 + x % 8, fy = (2 * (y / 8) + 1) * 8 + y % 8;
+            const size_t at = 3 * (size_t(y) * 32 + x), full_at = 3 * (size_t(fy) * 64 + fx);
+            for (int c = 0; c < 3; ++c) differ += tiles->rgb[at + c] != full->rgb[full_at + c];
+        }
+    EXPECT_EQ(differ, 0u);
+
+    std::filesystem::path png = dir_ / "x.png";
+    const std::string reference = scene_path_.string() + " --mode reference --size 64x48 ";
+    CommandRun both = run(reference + "--tile-stride 2 --pixel-stride 2 -o " + png.string(), dir_);
+    EXPECT_NE(both.exit_code, 0);
+    EXPECT_NE(both.output.find("not both"), std::string::npos) << both.output;
+    CommandRun uneven = run(reference + "--tile-stride 4 -o " + png.string(), dir_);
+    EXPECT_NE(uneven.exit_code, 0);
+    EXPECT_NE(uneven.output.find("does not divide"), std::string::npos) << uneven.output;
+}
+
 TEST_F(RenderCommand, ErrorsNameTheProblem) {
     std::filesystem::path png = dir_ / "x.png";
     CommandRun no_tree = run(scene_path_.string() + " --mode lightcuts -o " + png.string(), dir_);

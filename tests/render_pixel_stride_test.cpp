@@ -2,7 +2,9 @@
 // stride K shades the eye ray of pixel (K i, K j) of the full frame, so a
 // strided reference measures the full one's pixels in a K^2-th of the work.
 // The G-buffer is rasterised at other sample positions (the same points up to
-// float rounding), so the shading agrees within float tolerance.
+// float rounding), so the shading agrees within float tolerance. A frame
+// strided over tiles renders the middle 8x8 tile of every KxK block of tiles
+// over the full frame's G-buffer: exactly the full frame's pixels.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,28 +39,96 @@ TEST(PixelStride, DividesTheSidesAndMovesTheEyeRays) {
     EXPECT_FALSE(strided_settings(settings, 2).ok()) << "an offset of its own";
 }
 
-using StridedReference = test::VulkanTest;
+TEST(TileStride, TakesTheMiddleTileOfEveryBlockAndGathersThem) {
+    Result<std::vector<PixelRegion>> tiles = strided_tiles(64, 32, 8, 4);
+    ASSERT_TRUE(tiles.ok()) << tiles.error();
+    ASSERT_EQ(tiles->size(), 2u);
+    EXPECT_EQ((*tiles)[0], (PixelRegion{16, 16, 8, 8}));
+    EXPECT_EQ((*tiles)[1], (PixelRegion{48, 16, 8, 8}));
+    EXPECT_EQ(strided_tiles(64, 32, 8, 1)->size(), 32u) << "stride 1: every tile";
+    EXPECT_FALSE(strided_tiles(64, 40, 8, 4).ok()) << "32 does not divide 40";
+    EXPECT_FALSE(strided_tiles(64, 32, 8, 0).ok());
+    // Each pixel's value is its index in the full 64x32 image.
+    std::vector<uint32_t> image(64 * 32);
+    for (uint32_t i = 0; i < image.size(); ++i) image[i] = i;
+    const std::vector<uint32_t> gathered = gather_tiles(std::span<const uint32_t>(image), 64, 1, *tiles, 4);
+    ASSERT_EQ(gathered.size(), 16u * 8u);
+    EXPECT_EQ(gathered[0], 16u * 64 + 16) << "the first tile's first pixel";
+    EXPECT_EQ(gathered[7], 16u * 64 + 23);
+    EXPECT_EQ(gathered[8], 16u * 64 + 48) << "the second tile beside it";
+    EXPECT_EQ(gathered[16 * 7 + 15], 23u * 64 + 55) << "the second tile's last pixel";
+}
+
+// The furnished room's full reference frame (64x64, shadows on), which the
+// strided frames are compared with.
+class StridedReference : public test::VulkanTest {
+protected:
+    void render_full() {
+        scene_ = make_furnished_room_scene();
+        scene_.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
+        tree_ = test::agglomerative_tree(scene_.lights);
+        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+        ASSERT_TRUE(renderer.ok()) << renderer.error();
+        renderer_ = std::move(renderer).value();
+        ASSERT_TRUE(renderer_->effects().shadows);
+        full_.mode = RenderMode::kReference;
+        full_.width = full_.height = 64;
+        full_.camera = test::furnished_room_camera();
+        Result<RenderStats> stats = renderer_->render(full_);
+        ASSERT_TRUE(stats.ok()) << stats.error();
+        full_stats_ = *stats;
+        full_hdr_ = renderer_->read_hdr().value();
+    }
+
+    Scene scene_;
+    LightTree tree_;
+    std::unique_ptr<Renderer> renderer_;
+    RenderSettings full_;
+    RenderStats full_stats_;
+    std::vector<float> full_hdr_;
+};
+
+TEST_F(StridedReference, TilesAreTheFullFramesPixelsExactly) {
+    ASSERT_NO_FATAL_FAILURE(render_full());
+    Renderer* renderer = renderer_.get();
+    const RenderSettings& full = full_;
+    const std::vector<float>& full_hdr = full_hdr_;
+    for (uint32_t stride : {2u, 4u}) {
+        SCOPED_TRACE(testing::Message() << "tile stride " << stride);
+        const std::vector<PixelRegion> tiles = strided_tiles(64, 64, 8, stride).value();
+        Result<RenderStats> stats = renderer->render(full, tiles);
+        ASSERT_TRUE(stats.ok()) << stats.error();
+        const std::vector<float> hdr = renderer->read_hdr().value();
+        const std::vector<float> gathered =
+            gather_tiles(std::span<const float>(hdr), 64, 4, tiles, stride);
+        const std::vector<float> expected =
+            gather_tiles(std::span<const float>(full_hdr), 64, 4, tiles, stride);
+        ASSERT_EQ(gathered.size(), size_t(64 / stride) * (64 / stride) * 4);
+        size_t lit = 0, differ = 0;
+        for (size_t i = 0; i < gathered.size(); i += 4) {
+            lit += expected[i + 3] != 0.0f;
+            for (int c = 0; c < 4; ++c) differ += gathered[i + c] != expected[i + c];
+        }
+        EXPECT_EQ(differ, 0u) << "the same G-buffer and the same sums";
+        EXPECT_GT(lit, gathered.size() / 4 / 2);
+        EXPECT_EQ(stats->geometry_pixels, lit) << "the counters see the tiles only";
+        EXPECT_EQ(stats->avg_cut, double(renderer->leaf_count())) << "over the tiles' pixels";
+        EXPECT_GT(stats->shadow_rays, 0u);
+        EXPECT_LT(stats->shadow_rays, full_stats_.shadow_rays);
+    }
+}
 
 TEST_F(StridedReference, ShadesTheFullFramesPixels) {
-    Scene scene = make_furnished_room_scene();
-    scene.lights = test::room_lights(300, 29, LightTypeChoice::kPoint, 2.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
-    ASSERT_TRUE(renderer.ok()) << renderer.error();
-    ASSERT_TRUE((*renderer)->effects().shadows);
-    RenderSettings full;
-    full.mode = RenderMode::kReference;
-    full.width = full.height = 64;
-    full.camera = test::furnished_room_camera();
-    Result<RenderStats> full_stats = (*renderer)->render(full);
-    ASSERT_TRUE(full_stats.ok()) << full_stats.error();
-    const std::vector<float> full_hdr = (*renderer)->read_hdr().value();
+    ASSERT_NO_FATAL_FAILURE(render_full());
+    Renderer* renderer = renderer_.get();
+    const RenderSettings& full = full_;
+    const std::vector<float>& full_hdr = full_hdr_;
     for (uint32_t stride : {2u, 4u}) {
         SCOPED_TRACE(testing::Message() << "stride " << stride);
         RenderSettings strided = strided_settings(full, stride).value();
-        Result<RenderStats> stats = (*renderer)->render(strided);
+        Result<RenderStats> stats = renderer->render(strided);
         ASSERT_TRUE(stats.ok()) << stats.error();
-        const std::vector<float> hdr = (*renderer)->read_hdr().value();
+        const std::vector<float> hdr = renderer->read_hdr().value();
         size_t geometry = 0, agree = 0, background_mismatch = 0, strided_lit = 0;
         for (uint32_t j = 0; j < strided.height; ++j)
             for (uint32_t i = 0; i < strided.width; ++i) {

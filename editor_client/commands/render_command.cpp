@@ -6,7 +6,7 @@
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
-//   [--pixel-stride K]
+//   [--pixel-stride K | --tile-stride K]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -15,9 +15,12 @@
 // --spp shades N jittered eye rays per pixel (supersampled_render.h); the
 // reference it is compared against has the same eye rays. --pixel-stride K
 // renders the reference at every K-th pixel in x and y only (pixel_stride.h):
-// an image of (W/K)x(H/K) in a K^2-th of the time.
+// an image of (W/K)x(H/K) in a K^2-th of the time; --tile-stride K renders
+// every K-th 8x8 tile instead (strided_tiles), its pixels' neighbours those
+// of the full frame, gathered into an image of the same size.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -47,6 +50,10 @@
 namespace lc::client {
 namespace {
 
+// The side of a tile of --tile-stride: the renderer's workgroup, so a
+// subgroup's pixels are the full frame's neighbours.
+constexpr uint32_t kStrideTile = 8;
+
 struct RenderOptions {
     std::string scene;
     GltfLoadOptions gltf;
@@ -75,6 +82,7 @@ struct RenderOptions {
     uint64_t spp_seed = kDefaultSppSeed;
     uint32_t threads = 2;
     uint32_t pixel_stride = 1;
+    uint32_t tile_stride = 1;
 };
 
 // The scene's classic lights (shaded one by one besides the tree).
@@ -93,12 +101,23 @@ struct RenderedFrame {
     std::vector<uint8_t> display;
 };
 
+// `tiles` (not empty: a reference strided over tiles) renders those alone and
+// gathers them into an image of (W/K)x(H/K), K the tiles' stride.
 RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
                            const SupersampleRequest* spp, const LightTree* tree,
-                           std::span<const SceneLight> classic) {
+                           std::span<const SceneLight> classic,
+                           std::span<const PixelRegion> tiles = {}, uint32_t tile_stride = 1) {
     // Timings are of the work alone, not of lavapipe compiling the shaders.
     if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
     RenderedFrame out;
+    if (!tiles.empty()) {
+        out.stats = or_fail(renderer.render(settings, tiles));
+        const std::vector<uint8_t> display = or_fail(renderer.read_display());
+        const std::vector<float> hdr = or_fail(renderer.read_hdr());
+        out.display = gather_tiles(std::span(display), settings.width, 4, tiles, tile_stride);
+        out.hdr = gather_tiles(std::span(hdr), settings.width, 4, tiles, tile_stride);
+        return out;
+    }
     out.stats = or_fail(renderer.render(settings));
     if (spp == nullptr) {
         out.display = or_fail(renderer.read_display());
@@ -116,6 +135,7 @@ RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
     out.stats.spp_method = spp_method_name(spp->method);
     out.stats.lightcuts_computed = image.cpu.lightcuts;
     out.stats.reconstruction_cuts = image.cpu.reconstruction_cuts;
+    out.stats.shading_cpu_ms = image.cpu.cpu_ms;
     return out;
 }
 
@@ -175,13 +195,24 @@ void run_render(const RenderOptions& options) {
     if (!options.sweep_csv.empty() && sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
     if (compare && !mode_needs_tree(settings.mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
-    if (options.pixel_stride > 1) {
+    if (options.pixel_stride > 1 || options.tile_stride > 1) {
         if (settings.mode != RenderMode::kReference || options.spp > 1 ||
             options.spp_method != "gpu")
-            fail("--pixel-stride renders the reference alone (--mode reference, no --spp)");
+            fail("--pixel-stride and --tile-stride render the reference alone (--mode reference, "
+                 "no --spp)");
+        if (options.pixel_stride > 1 && options.tile_stride > 1)
+            fail("--pixel-stride or --tile-stride, not both");
+    }
+    if (options.pixel_stride > 1) {
         settings = or_fail(strided_settings(settings, options.pixel_stride));
         width = settings.width;
         height = settings.height;
+    }
+    std::vector<PixelRegion> tiles;
+    if (options.tile_stride > 1) {
+        tiles = or_fail(strided_tiles(width, height, kStrideTile, options.tile_stride));
+        width /= options.tile_stride;
+        height /= options.tile_stride;
     }
 
     std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
@@ -239,10 +270,13 @@ void run_render(const RenderOptions& options) {
             fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
     }
     const std::vector<SceneLight> classic = classic_lights_of(scene);
-    RenderedFrame rendered =
-        render_frame(*renderer, settings, supersampled ? &spp : nullptr, tree.get(), classic);
+    RenderedFrame rendered = render_frame(*renderer, settings, supersampled ? &spp : nullptr,
+                                          tree.get(), classic, tiles, options.tile_stride);
     RenderStats stats = std::move(rendered.stats);
-    stats.pixel_stride = options.pixel_stride;
+    stats.pixel_stride = std::max(options.pixel_stride, options.tile_stride);
+    if (options.tile_stride > 1) stats.stride_tile = kStrideTile;
+    stats.width = width;
+    stats.height = height;
     std::vector<uint8_t> display = std::move(rendered.display);
     std::vector<float> hdr = std::move(rendered.hdr);
     stats.exposure = settings.exposure;
@@ -413,6 +447,13 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--pixel-stride", options->pixel_stride,
                     "Reference mode: render every K-th pixel in x and y only (the same work per "
                     "pixel; K must divide both sides): a (W/K)x(H/K) image in a K^2-th of the time")
+        ->check(CLI::Range(1u, 64u))
+        ->capture_default_str();
+    cmd->add_option("--tile-stride", options->tile_stride,
+                    "Reference mode: render every K-th 8x8 tile in x and y only, the middle one "
+                    "of each KxK block of tiles (neighbouring pixels stay neighbours, as in the "
+                    "full frame; 8K must divide both sides): a (W/K)x(H/K) image of the tiles in "
+                    "a K^2-th of the time")
         ->check(CLI::Range(1u, 64u))
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,

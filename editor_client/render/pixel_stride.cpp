@@ -24,4 +24,21 @@ Result<RenderSettings> strided_settings(const RenderSettings& settings, uint32_t
     return strided;
 }
 
+Result<std::vector<PixelRegion>> strided_tiles(uint32_t width, uint32_t height, uint32_t tile,
+                                               uint32_t stride) {
+    if (stride == 0 || tile == 0)
+        return make_error("tile stride 0 or tile 0: both must be at least 1");
+    const uint32_t block = stride * tile;
+    if (width % block != 0 || height % block != 0)
+        return make_error("a stride of " + std::to_string(stride) + " tiles of " +
+                          std::to_string(tile) + " pixels does not divide the " +
+                          std::to_string(width) + "x" + std::to_string(height) + " image");
+    std::vector<PixelRegion> tiles;
+    const uint32_t middle = (stride / 2) * tile;
+    for (uint32_t y = 0; y < height; y += block)
+        for (uint32_t x = 0; x < width; x += block)
+            tiles.push_back({x + middle, y + middle, tile, tile});
+    return tiles;
+}
+
 }  // namespace lc::client

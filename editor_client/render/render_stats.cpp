@@ -50,6 +50,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     }
     j["submissions"] = s.submissions;
     if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
+    if (s.stride_tile > 1) j["stride_tile"] = s.stride_tile;
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;
@@ -68,6 +69,7 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["spp_method"] = s.spp_method;
         j["lightcuts_computed"] = s.lightcuts_computed;
         j["reconstruction_cuts"] = s.reconstruction_cuts;
+        if (s.spp_method != "gpu") j["shading_cpu_ms"] = s.shading_cpu_ms;
         if (s.has_error_stats) {
             j["frac_over_2pct"] = s.frac_over_2pct;
             j["reference_shadow_rays"] = s.reference_shadow_rays;

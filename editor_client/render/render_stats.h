@@ -63,6 +63,9 @@ struct RenderStats {
     // Every pixel_stride-th pixel in x and y was rendered (render --pixel-stride): the
     // image holds only those, and its time is theirs.
     uint32_t pixel_stride = 1;
+    // Not 1: the stride was over tiles of this many pixels a side (render
+    // --tile-stride), each rendered whole; the image holds the tiles side by side.
+    uint32_t stride_tile = 1;
     // Lightcuts against the reference rendered in the same run (error_stats.h).
     bool has_error_stats = false;
     double rel_err_mean = 0.0;
@@ -79,6 +82,7 @@ struct RenderStats {
     std::string spp_method = "gpu";
     uint64_t lightcuts_computed = 0;
     uint64_t reconstruction_cuts = 0;
+    double shading_cpu_ms = 0.0;  // CPU methods: the workers' CPU time (render_ms is wall)
     double exposure = 1.0;       // the exposure the PNG was tone-mapped with
     bool auto_exposure = false;
     uint32_t validation_messages = 0;

@@ -430,18 +430,24 @@ Status Renderer::warm_up(const RenderSettings& settings) {
 }
 
 Result<RenderStats> Renderer::render(const RenderSettings& settings) {
+    const PixelRegion whole{0, 0, settings.width, settings.height};
+    return render(settings, std::span(&whole, 1));
+}
+
+Result<RenderStats> Renderer::render(const RenderSettings& settings,
+                                     std::span<const PixelRegion> regions) {
     LC_RETURN_IF_ERROR(validate(settings));
+    LC_RETURN_IF_ERROR(check_regions(regions, settings.width, settings.height));
     // Build targets and pipelines before the clock starts: wall_ms is the frame.
     if (Result<bool> remade = ensure_targets(settings.width, settings.height); !remade)
         return make_error(remade.error());
     if (auto passes = prepare_passes(make_frame(settings)); !passes)
         return make_error(passes.error());
 
-    const PixelRegion whole{0, 0, settings.width, settings.height};
     std::vector<DispatchRange> submissions{DispatchRange{}};
     if (settings.mode == RenderMode::kReference) {
         Frame frame = make_frame(settings);
-        frame.regions = std::span(&whole, 1);
+        frame.regions = regions;
         submissions =
             reference_submissions(frame, options_.reference_evaluations_per_submission);
     }
@@ -453,7 +459,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
         Status recorded = Ok{};
         LC_RETURN_IF_ERROR(context_.command_pool().run_one_time(
             context_.device(), [&](VkCommandBuffer cmd) {
-                recorded = record_frame(cmd, settings, std::span(&whole, 1), s > 0, submissions[s]);
+                recorded = record_frame(cmd, settings, regions, s > 0, submissions[s]);
             }));
         LC_RETURN_IF_ERROR(recorded);
         Result<PassTimings> part_timings = read_timings();
@@ -514,9 +520,14 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings) {
     uint64_t cut_sum = 0;
     std::vector<uint32_t> geometry_cuts;  // for the percentile: pixels with a cut
     geometry_cuts.reserve(cuts->size() / 2);
-    for (size_t i = 0; i < cuts->size(); i += 2) {
-        cut_sum += (*cuts)[i];  // 0 on background
-        if ((*cuts)[i] > 0) geometry_cuts.push_back((*cuts)[i]);
+    for (const PixelRegion& r : regions) {
+        for (uint32_t y = r.y; y < r.y + r.height; ++y) {
+            for (uint32_t x = r.x; x < r.x + r.width; ++x) {
+                const uint32_t cut = (*cuts)[2 * (size_t(y) * settings.width + x)];
+                cut_sum += cut;  // 0 on background
+                if (cut > 0) geometry_cuts.push_back(cut);
+            }
+        }
     }
     if (!geometry_cuts.empty()) {
         const size_t rank = (geometry_cuts.size() * 99) / 100;

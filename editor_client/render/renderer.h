@@ -115,6 +115,9 @@ public:
     // Headless: records, submits, waits, and gathers statistics (a long
     // reference over several submissions, its timings and counters summed).
     Result<RenderStats> render(const RenderSettings& settings);
+    // The same over `regions` of the image only (record_regions' rules; a new
+    // image), its statistics over their pixels: a reference strided over tiles.
+    Result<RenderStats> render(const RenderSettings& settings, std::span<const PixelRegion> regions);
     // Headless: rasterises the G-buffer alone (no lighting, no output) for
     // read_gbuffer(), e.g. the eye rays of a supersampled frame.
     Status render_gbuffer(const RenderSettings& settings);
