@@ -56,7 +56,7 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
         if (i + 2 * kPrefetchAhead < end) {
             const uint32_t ahead = order[i + 2 * kPrefetchAhead];
             if (arena.is_leaf_index(ahead)) {
-                __builtin_prefetch(&arena.lights[ahead]);
+                prefetch_light(arena.lights[ahead]);
             } else {
                 prefetch_build_node(arena.nodes[ahead]);
             }
@@ -64,7 +64,7 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
         if (i + kPrefetchAhead < end) {
             const uint32_t ahead = order[i + kPrefetchAhead];
             const uint32_t representative = arena.representative_of(ahead);
-            __builtin_prefetch(&arena.lights[representative]);
+            prefetch_light(arena.lights[representative]);
             __builtin_prefetch(&exported_index[representative]);
         }
         const BuildNode node = arena.node(order[i]);

@@ -52,7 +52,7 @@ BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, Repres
 inline void prefetch_representative_lights(const BuildArena& arena, uint32_t a, uint32_t b) {
     for (const uint32_t child : {a, b}) {
         // A leaf represents itself; a cluster's node says who represents it.
-        __builtin_prefetch(&arena.lights[arena.representative_of(child)].position);
+        prefetch_light(arena.lights[arena.representative_of(child)]);
     }
 }
 
@@ -60,7 +60,7 @@ inline void prefetch_representative_lights(const BuildArena& arena, uint32_t a, 
 // light, or a cluster's node.
 inline void prefetch_merge_input(const BuildArena& arena, uint32_t index) {
     if (arena.is_leaf_index(index)) {
-        __builtin_prefetch(&arena.lights[index]);
+        prefetch_light(arena.lights[index]);
     } else {
         prefetch_build_node(arena.nodes[index]);
     }
