@@ -46,26 +46,35 @@ float export_cone_cos(double cone_cos) {
 }
 
 // Nodes [begin, end) of the breadth-first `order`, converted into `out_nodes`.
+// A node's children sit side by side in that order, from first_child[i].
 void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
-                   const std::vector<int32_t>& exported_index, size_t begin, size_t end,
-                   std::vector<LightTreeNode>& out_nodes) {
+                   const std::vector<int32_t>& first_child, const std::vector<int32_t>& exported_index,
+                   size_t begin, size_t end, std::vector<LightTreeNode>& out_nodes) {
     for (size_t i = begin; i < end; ++i) {
-        // The node two strides ahead, then (once it has arrived) what it points at.
+        // The node two strides ahead (a leaf's light), then (once it has
+        // arrived) what it points at.
         if (i + 2 * kPrefetchAhead < end) {
-            __builtin_prefetch(&arena.nodes[order[i + 2 * kPrefetchAhead]]);
+            const uint32_t ahead = order[i + 2 * kPrefetchAhead];
+            if (arena.is_leaf_index(ahead)) {
+                prefetch_light(arena.lights[ahead]);
+            } else {
+                prefetch_build_node(arena.nodes[ahead]);
+            }
         }
         if (i + kPrefetchAhead < end) {
-            const uint32_t representative = arena.nodes[order[i + kPrefetchAhead]].representative;
-            __builtin_prefetch(&arena.lights[representative]);
+            const uint32_t ahead = order[i + kPrefetchAhead];
+            const uint32_t representative = arena.representative_of(ahead);
+            prefetch_light(arena.lights[representative]);
             __builtin_prefetch(&exported_index[representative]);
         }
-        const BuildNode& node = arena.nodes[order[i]];
+        const BuildNode node = arena.node(order[i]);
         const SceneLight& light = arena.representative_light(node);
         LightTreeNode& out = out_nodes[i];
         out.guid = node.guid;
         out.type = node.type;
-        out.left = node.left == kNoBuildChild ? kNoChild : exported_index[size_t(node.left)];
-        out.right = node.right == kNoBuildChild ? kNoChild : exported_index[size_t(node.right)];
+        const bool has_left = node.left != kNoBuildChild;
+        out.left = has_left ? first_child[i] : kNoChild;
+        out.right = node.right == kNoBuildChild ? kNoChild : first_child[i] + (has_left ? 1 : 0);
         out.representative = exported_index[node.representative];
 
         out.position = light.position;
@@ -107,40 +116,43 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const Para
     ExportedTree result;
     if (root < 0) return result;
 
-    // Breadth-first order and each arena node's exported index.
+    // Breadth-first order, where each exported node's children start, and
+    // each leaf's exported index (the representatives are leaves).
     std::vector<uint32_t> order;
     order.reserve(arena.nodes.size());
-    std::vector<int32_t> exported_index(arena.nodes.size(), kNoChild);
-    std::vector<uint32_t> node_depth;
-    node_depth.reserve(arena.nodes.size());
+    std::vector<int32_t> first_child;
+    first_child.reserve(arena.nodes.size());
+    std::vector<int32_t> exported_index(arena.lights.size(), kNoChild);
     order.push_back(uint32_t(root));
-    node_depth.push_back(0);
-    exported_index[size_t(root)] = 0;
     // Leaves sit first in the arena, one per light (build_tree.h): a leaf is
     // known by its index, so the walk reads only the clusters.
-    const auto is_leaf_index = [&](uint32_t index) { return index < arena.lights.size(); };
+    const auto is_leaf_index = [&](uint32_t index) { return arena.is_leaf_index(index); };
+    // The depth grows by one each time the walk passes the end of a level.
+    size_t level_end = 1;
     for (size_t head = 0; head < order.size(); ++head) {
+        if (head == level_end) {
+            ++result.depth;
+            level_end = order.size();
+        }
         if (head + kPrefetchAhead < order.size() && !is_leaf_index(order[head + kPrefetchAhead])) {
             __builtin_prefetch(&arena.nodes[order[head + kPrefetchAhead]]);
         }
-        result.depth = std::max(result.depth, node_depth[head]);
+        first_child.push_back(int32_t(order.size()));
         if (is_leaf_index(order[head])) {
+            exported_index[order[head]] = int32_t(head);
             ++result.tree.leaf_count;
             continue;
         }
         const BuildNode& node = arena.nodes[order[head]];
         for (const int32_t child : {node.left, node.right}) {
-            if (child == kNoBuildChild) continue;
-            exported_index[size_t(child)] = int32_t(order.size());
-            order.push_back(uint32_t(child));
-            node_depth.push_back(node_depth[head] + 1);
+            if (child != kNoBuildChild) order.push_back(uint32_t(child));
         }
     }
 
     LightTree& tree = result.tree;
     tree.nodes.resize(order.size());
     const auto convert = [&](size_t begin, size_t end) {
-        convert_nodes(arena, order, exported_index, begin, end, tree.nodes);
+        convert_nodes(arena, order, first_child, exported_index, begin, end, tree.nodes);
     };
     if (parallel) {
         parallel(order.size(), convert);

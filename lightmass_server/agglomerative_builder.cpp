@@ -25,6 +25,9 @@ constexpr size_t kSearchChunk = 1u << 15;
 // only to drop dead slots, once fewer than this fraction are live.
 constexpr double kRefitFraction = 0.06;
 constexpr double kRebuildLiveFraction = 0.5;
+// A round's merges read their children's nodes this many pairs ahead, and the
+// representatives' lights half as far ahead.
+constexpr size_t kMergePrefetchAhead = 16;
 
 ClusterShape shape_of(const BuildNode& node) {
     return ClusterShape{node.bbox_min, node.bbox_max, scalar_intensity(node)};
@@ -81,7 +84,7 @@ ClusterState initial_state(const BuildArena& arena, std::span<const uint32_t> le
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1u << 12),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              const BuildNode& node = arena.nodes[leaves[i]];
+                              const BuildNode node = arena.node(leaves[i]);
                               state.set.shapes[i] = shape_of(node);
                               if (state.set.params.oriented()) state.set.cones[i] = cone_of(node);
                           }
@@ -104,12 +107,13 @@ MetricParams agglomerative_metric_params(const BuildArena& arena,
     glm::dvec3 hi(std::numeric_limits<double>::lowest());
     double intensity_sum = 0.0;
     for (const uint32_t leaf : leaves) {
-        lo = glm::min(lo, arena.nodes[leaf].bbox_min);
-        hi = glm::max(hi, arena.nodes[leaf].bbox_max);
-        intensity_sum += scalar_intensity(arena.nodes[leaf]);
+        const BuildNode node = arena.node(leaf);
+        lo = glm::min(lo, node.bbox_min);
+        hi = glm::max(hi, node.bbox_max);
+        intensity_sum += scalar_intensity(node);
     }
     // c: the scene diagonal, for oriented lights only (the paper).
-    const LightType type = arena.nodes[leaves[0]].type;
+    const LightType type = arena.lights[leaves[0]].type;
     if (type == LightType::kSpot || type == LightType::kOriented) params.c2 = squared_diagonal(lo, hi);
     const double mean = intensity_sum / double(leaves.size());
     params.intensity_floor = mean > 0.0 ? 1e-15 * mean : 1.0;
@@ -121,11 +125,11 @@ double total_cluster_metric(const BuildArena& arena, int32_t root, const MetricP
     if (root < 0) return total;
     std::vector<int32_t> stack{root};
     while (!stack.empty()) {
-        const BuildNode& node = arena.nodes[size_t(stack.back())];
+        const BuildNode node = arena.node(uint32_t(stack.back()));
         stack.pop_back();
         if (node.is_leaf()) continue;
-        const BuildNode& l = arena.nodes[size_t(node.left)];
-        const BuildNode& r = arena.nodes[size_t(node.right)];
+        const BuildNode l = arena.node(uint32_t(node.left));
+        const BuildNode r = arena.node(uint32_t(node.right));
         if (!node.mixed_types) {
             total += cluster_metric(params, shape_of(l), shape_of(r), cone_of(l), cone_of(r));
         }
@@ -176,11 +180,16 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
         // 1. Best partners, in parallel over independent searches, in BVH slot
         // order so that consecutive searches touch the same memory.
         slot_keys.resize(pending.size());
-        for (size_t i = 0; i < pending.size(); ++i) {
-            slot_keys[i] = (uint64_t(bvh.slot_of(pending[i])) << 32) | pending[i];
-        }
+        const tbb::blocked_range<size_t> all_pending(0, pending.size(), 1u << 14);
+        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                slot_keys[i] = (uint64_t(bvh.slot_of(pending[i])) << 32) | pending[i];
+            }
+        });
         tbb::parallel_sort(slot_keys.begin(), slot_keys.end());  // slots are unique: deterministic
-        for (size_t i = 0; i < pending.size(); ++i) pending[i] = uint32_t(slot_keys[i]);
+        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) pending[i] = uint32_t(slot_keys[i]);
+        });
         timer.lap("agglomerative: round bookkeeping");
         for (size_t begin = 0; begin < pending.size(); begin += kSearchChunk) {
             const size_t end = std::min(pending.size(), begin + kSearchChunk);
@@ -241,6 +250,17 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
         tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024),
                           [&](const tbb::blocked_range<size_t>& range) {
                               for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  // The pairs' nodes lie at random in the arena.
+                                  if (i + kMergePrefetchAhead < range.end()) {
+                                      const auto [a, b] = pairs[i + kMergePrefetchAhead];
+                                      prefetch_merge_input(arena, state.arena_of[a]);
+                                      prefetch_merge_input(arena, state.arena_of[b]);
+                                  }
+                                  if (i + kMergePrefetchAhead / 2 < range.end()) {
+                                      const auto [a, b] = pairs[i + kMergePrefetchAhead / 2];
+                                      prefetch_representative_lights(arena, state.arena_of[a],
+                                                                     state.arena_of[b]);
+                                  }
                                   const auto [a, b] = pairs[i];
                                   arena.nodes[first_new + i] =
                                       merge_clusters(arena, state.arena_of[a], state.arena_of[b],

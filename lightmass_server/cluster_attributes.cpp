@@ -51,10 +51,22 @@ BuildNode combine_sums_and_bounds(const BuildNode& left, const BuildNode& right)
     return node;
 }
 
-// Orders two arena nodes so the first holds the smaller input light index.
-void order_children(const BuildArena& arena, uint32_t& a, uint32_t& b) {
-    if (arena.nodes[b].min_light_index < arena.nodes[a].min_light_index) std::swap(a, b);
-}
+// Arena nodes a and b as a cluster's children: the first holds the smaller
+// input light index.
+struct Children {
+    BuildNode node_a, node_b;
+    bool a_first;
+    uint32_t left_index, right_index;
+
+    Children(const BuildArena& arena, uint32_t a, uint32_t b)
+        : node_a(arena.node(a)), node_b(arena.node(b)) {
+        a_first = !(node_b.min_light_index < node_a.min_light_index);
+        left_index = a_first ? a : b;
+        right_index = a_first ? b : a;
+    }
+    const BuildNode& left() const { return a_first ? node_a : node_b; }
+    const BuildNode& right() const { return a_first ? node_b : node_a; }
+};
 
 }  // namespace
 
@@ -86,40 +98,6 @@ OrientationCone cone_union(const OrientationCone& a, const OrientationCone& b) {
     return OrientationCone{axis, std::cos(theta_o)};
 }
 
-BuildNode make_leaf(const SceneLight& light, uint32_t light_index) {
-    BuildNode leaf;
-    leaf.guid = light.guid;
-    leaf.type = light.type;
-    leaf.indirect = light.indirect;
-    leaf.representative = light_index;
-    leaf.min_light_index = light_index;
-    leaf.intensity = to_dvec3(light.color) * double(light.intensity);
-    leaf.brightness = light.intensity;
-
-    const bool bounded = light.type != LightType::kDirectional && light.range > 0.0f;
-    leaf.radius = bounded ? double(light.range) : kUnboundedBuildRadius;
-
-    const glm::dvec3 direction = to_dvec3(light.direction);
-    // Directional lights are points on the unit sphere (the paper, section 4).
-    const glm::dvec3 point =
-        light.type == LightType::kDirectional ? direction : to_dvec3(light.position);
-    leaf.bbox_min = point;
-    leaf.bbox_max = point;
-
-    // Oriented lights: a cone of the single direction (a spot's own angular
-    // falloff is evaluated from its spot cosines); point lights: all directions.
-    if (light.type == LightType::kPoint) {
-        leaf.cone_axis = glm::dvec3(0.0, 0.0, -1.0);
-        leaf.cone_cos = -1.0;
-    } else {
-        // Float directions are unit length only to ~1e-7; the cone math needs unit axes.
-        const double length = glm::length(direction);
-        leaf.cone_axis = length > 0.0 ? direction / length : glm::dvec3(0.0, 0.0, -1.0);
-        leaf.cone_cos = 1.0;
-    }
-    return leaf;
-}
-
 bool representative_from_first(const BuildNode& first, const BuildNode& second,
                                RepresentativeRule rule, uint64_t seed) {
     if (rule == RepresentativeRule::kThesisFirst) return true;
@@ -132,13 +110,13 @@ bool representative_from_first(const BuildNode& first, const BuildNode& second,
 
 BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, RepresentativeRule rule,
                          uint64_t seed) {
-    order_children(arena, a, b);
-    const BuildNode& left = arena.nodes[a];
-    const BuildNode& right = arena.nodes[b];
+    const Children children(arena, a, b);
+    const BuildNode& left = children.left();
+    const BuildNode& right = children.right();
 
     BuildNode node = combine_sums_and_bounds(left, right);
-    node.left = int32_t(a);
-    node.right = int32_t(b);
+    node.left = int32_t(children.left_index);
+    node.right = int32_t(children.right_index);
     node.type = left.type;
     node.representative = representative_from_first(left, right, rule, seed) ? left.representative
                                                                              : right.representative;
@@ -164,13 +142,13 @@ BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, Repres
 }
 
 BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b) {
-    order_children(arena, a, b);
-    const BuildNode& left = arena.nodes[a];
-    const BuildNode& right = arena.nodes[b];
+    const Children children(arena, a, b);
+    const BuildNode& left = children.left();
+    const BuildNode& right = children.right();
 
     BuildNode node = combine_sums_and_bounds(left, right);
-    node.left = int32_t(a);
-    node.right = int32_t(b);
+    node.left = int32_t(children.left_index);
+    node.right = int32_t(children.right_index);
     node.type = left.type;
     node.mixed_types = true;
     node.representative = left.representative;

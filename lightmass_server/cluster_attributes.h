@@ -28,9 +28,6 @@ OrientationCone cone_union(const OrientationCone& a, const OrientationCone& b);
 // near-pi angles (atan2 form instead of acos of a dot product).
 double angle_between(const glm::dvec3& u, const glm::dvec3& v);
 
-// A leaf for input light `light_index` (SPEC §4 leaf rules).
-BuildNode make_leaf(const SceneLight& light, uint32_t light_index);
-
 // Scalar intensity used by the representative rule and the cluster metric:
 // the sum of the RGB components.
 inline double scalar_intensity(const BuildNode& node) {
@@ -49,6 +46,26 @@ bool representative_from_first(const BuildNode& first, const BuildNode& second,
 BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, RepresentativeRule rule,
                          uint64_t seed);
 
+// Asks the cache for the lights that merging arena nodes a and b reads (their
+// representatives'), once the nodes themselves are cached: the lights sit at
+// random in the input, far from the nodes.
+inline void prefetch_representative_lights(const BuildArena& arena, uint32_t a, uint32_t b) {
+    for (const uint32_t child : {a, b}) {
+        // A leaf represents itself; a cluster's node says who represents it.
+        prefetch_light(arena.lights[arena.representative_of(child)]);
+    }
+}
+
+// Asks the cache for what merging reads of arena node `index`: a leaf's
+// light, or a cluster's node.
+inline void prefetch_merge_input(const BuildArena& arena, uint32_t index) {
+    if (arena.is_leaf_index(index)) {
+        prefetch_light(arena.lights[index]);
+    } else {
+        prefetch_build_node(arena.nodes[index]);
+    }
+}
+
 // A node that joins two trees of different light types: sums and bounds as a
 // cluster, but unbounded, all directions, and flagged mixed_types so the
 // renderer always refines it.
@@ -57,10 +74,5 @@ BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b);
 // The point a light is paired or clustered by: its position, or its direction
 // for directional lights (a point on the unit sphere).
 glm::dvec3 light_point(const SceneLight& light);
-
-// The point a node is paired or clustered by: its representative light's.
-inline glm::dvec3 representative_point(const BuildArena& arena, const BuildNode& node) {
-    return light_point(arena.representative_light(node));
-}
 
 }  // namespace lc::bake

@@ -9,6 +9,7 @@ namespace lc::bake {
 namespace {
 
 constexpr uint32_t kLeafSlots = 4;
+static_assert(kLeafSlots < 8, "ClusterBvh::Node::count holds 3 bits");
 
 OrientationCone as_cone(const glm::dvec3& axis, double spread) {
     return spread >= std::numbers::pi ? OrientationCone{} : OrientationCone{axis, std::cos(spread)};
@@ -81,6 +82,7 @@ void ClusterBvh::refit_inner(const ClusterSet& set, uint32_t node_index) {
 
 void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, size_t id_capacity) {
     nodes_.clear();
+    parent_.clear();
     cones_.clear();
     live_total_ = 0;
     slots_.resize(ids.size());
@@ -153,7 +155,9 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
     // 2. The nodes, numbered depth-first (a subtree's nodes close together,
     // which the searches' caches like): a work list, no recursion.
     nodes_.reserve(2 * (ids.size() / kLeafSlots + 1));
+    parent_.reserve(nodes_.capacity());
     nodes_.push_back(Node{});
+    parent_.push_back(-1);
     struct Pending {
         uint32_t node, range;
     };
@@ -171,9 +175,9 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
         const uint32_t left = uint32_t(nodes_.size());
         nodes_.push_back(Node{});
         nodes_.push_back(Node{});
+        parent_.push_back(int32_t(p.node));
+        parent_.push_back(int32_t(p.node));
         nodes_[p.node].first = left;
-        nodes_[left].parent = int32_t(p.node);
-        nodes_[left + 1].parent = int32_t(p.node);
         pending.push_back({left, r.first_child});
         pending.push_back({left + 1, r.first_child + 1});
     }
@@ -233,8 +237,7 @@ NearestCluster ClusterBvh::nearest(const ClusterSet& set, uint32_t a, uint32_t h
     // clusters are usually found first, and they prune the rest.
     uint32_t child = leaf_of_slot_[slot_of_[a]];
     scan_leaf(set, a, child, best);
-    for (int32_t up = nodes_[child].parent; up >= 0;
-         child = uint32_t(up), up = nodes_[child].parent) {
+    for (int32_t up = parent_[child]; up >= 0; child = uint32_t(up), up = parent_[child]) {
         const Node& parent = nodes_[size_t(up)];
         const uint32_t sibling = parent.first == child ? parent.first + 1 : parent.first;
         if (nodes_[sibling].live == 0) continue;
@@ -277,7 +280,7 @@ NearestCluster ClusterBvh::nearest(const ClusterSet& set, uint32_t a, uint32_t h
 
 void ClusterBvh::grow_to_include(const ClusterSet& set, uint32_t node_index, uint32_t cluster) {
     const ClusterShape& shape = set.shapes[cluster];
-    for (int32_t i = int32_t(node_index); i >= 0; i = nodes_[size_t(i)].parent) {
+    for (int32_t i = int32_t(node_index); i >= 0; i = parent_[size_t(i)]) {
         Node& node = nodes_[size_t(i)];
         bool changed = false;
         const glm::dvec3 lo = glm::min(node.lo, shape.lo);

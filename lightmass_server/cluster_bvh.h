@@ -46,19 +46,19 @@ public:
     size_t live_count() const { return live_total_; }
 
 private:
-    // Hot data of the search, kept small; orientation bounds live apart.
-    struct Node {
+    // Hot data of the search: one cache line per node (a node's two children
+    // are two lines side by side); parents and orientation bounds live apart.
+    struct alignas(64) Node {
         glm::dvec3 lo{0.0};
         glm::dvec3 hi{0.0};
         double min_I = 0.0;
         uint32_t first = 0;  // leaf: first slot; inner: left child (right = first + 1)
-        uint32_t count = 0;  // leaf: slot count; inner: 0
+        uint32_t count : 3 = 0;  // leaf: slot count (at most kLeafSlots); inner: 0
         // Live clusters below: exact in leaves; in inner nodes as of the last
         // refit, so possibly too high since. A search then walks into a
         // subtree that has died and finds nothing there (the same result);
-        // merges save a walk to the root each.
-        uint32_t live = 0;
-        int32_t parent = -1;
+        // merges save a walk to the root each. A build holds at most 2^24 lights.
+        uint32_t live : 29 = 0;
         bool is_leaf() const { return count > 0; }
     };
     struct ConeBounds {
@@ -68,7 +68,7 @@ private:
     };
     // A copy of the cluster's shape next to its id, so scanning a leaf reads
     // one contiguous block.
-    struct Slot {
+    struct alignas(64) Slot {
         ClusterShape shape;
         uint32_t id = kNoCluster;  // kNoCluster once dead
     };
@@ -80,6 +80,7 @@ private:
     void scan_leaf(const ClusterSet& set, uint32_t a, uint32_t node, NearestCluster& best) const;
 
     std::vector<Node> nodes_;
+    std::vector<int32_t> parent_;  // -1 at the root
     size_t live_total_ = 0;
     std::vector<ConeBounds> cones_;  // oriented metrics only
     std::vector<Slot> slots_;

@@ -73,17 +73,22 @@ uint32_t split_position(const std::vector<Keyed>& keys, uint32_t begin, uint32_t
 }
 
 // Leaves sit in input order, far from their Morton neighbours, so the lowest
-// merges read the arena at random: ask for a node's children this many nodes ahead.
-constexpr size_t kPrefetchAhead = 8;
+// merges read the arena at random: ask for a node's children this many nodes
+// ahead, and for their representatives' lights (the radius reads them) half as
+// far ahead, once the children have arrived.
+constexpr size_t kPrefetchAhead = 16;
 
 void prefetch_children(const BuildArena& arena, const SplitNode& node,
                        const std::vector<uint32_t>& arena_of) {
     if (node.left < 0) return;
-    for (const int32_t child : {node.left, node.right}) {
-        const BuildNode& build_node = arena.nodes[arena_of[size_t(child)]];
-        const char* bytes = reinterpret_cast<const char*>(&build_node);
-        for (size_t offset = 0; offset < sizeof(BuildNode); offset += 64) __builtin_prefetch(bytes + offset);
-    }
+    prefetch_merge_input(arena, arena_of[size_t(node.left)]);
+    prefetch_merge_input(arena, arena_of[size_t(node.right)]);
+}
+
+void prefetch_children_lights(const BuildArena& arena, const SplitNode& node,
+                              const std::vector<uint32_t>& arena_of) {
+    if (node.left < 0) return;
+    prefetch_representative_lights(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)]);
 }
 
 }  // namespace
@@ -187,6 +192,9 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
                               for (size_t i = range.begin(); i != range.end(); ++i) {
                                   if (i + kPrefetchAhead < range.end())
                                       prefetch_children(arena, nodes[i + kPrefetchAhead], arena_of);
+                                  if (i + kPrefetchAhead / 2 < range.end())
+                                      prefetch_children_lights(arena, nodes[i + kPrefetchAhead / 2],
+                                                               arena_of);
                                   const SplitNode& node = nodes[i];
                                   if (node.left < 0) continue;
                                   arena.nodes[arena_of[i]] = merge_clusters(

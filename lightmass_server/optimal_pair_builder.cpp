@@ -35,7 +35,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
                                         const BuildProgressFn& progress, BuildReport& report) {
     if (leaves.empty()) return kNoBuildChild;
     BuildPhaseTimer timer(report);
-    const LightType type = arena.nodes[leaves[0]].type;
+    const LightType type = arena.lights[leaves[0]].type;
 
     std::vector<uint32_t> level(leaves.begin(), leaves.end());
     std::vector<uint32_t> next;
@@ -48,7 +48,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
     while (level.size() > 1) {
         points.resize(level.size());
         for (size_t i = 0; i < level.size(); ++i) {
-            points[i] = representative_point(arena, arena.nodes[level[i]]);
+            points[i] = light_point(arena.lights[arena.representative_of(level[i])]);
         }
 
         LevelPairing pairing;
@@ -89,7 +89,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
         }
         if (pairing.carried != kNoCarriedNode) next.push_back(level[pairing.carried]);
         std::sort(next.begin(), next.end(), [&](uint32_t a, uint32_t b) {
-            return arena.nodes[a].min_light_index < arena.nodes[b].min_light_index;
+            return arena.min_light_index_of(a) < arena.min_light_index_of(b);
         });
 
         done_work += double(level.size());

@@ -58,7 +58,7 @@ inline lc::BuildArena leaf_arena(std::span<const SceneLight> lights) {
     arena.lights = lights;
     arena.nodes.reserve(2 * lights.size() + 3);
     for (uint32_t i = 0; i < lights.size(); ++i)
-        arena.nodes.push_back(bake::make_leaf(lights[i], i));
+        arena.nodes.push_back(make_leaf(lights[i], i));
     return arena;
 }
 
