@@ -48,6 +48,7 @@ BuildNode combine_sums_and_bounds(const BuildNode& left, const BuildNode& right)
     node.bbox_min = glm::min(left.bbox_min, right.bbox_min);
     node.bbox_max = glm::max(left.bbox_max, right.bbox_max);
     node.indirect = left.indirect && right.indirect;
+    node.patch = left.patch && right.patch;
     return node;
 }
 
@@ -91,6 +92,7 @@ BuildNode make_leaf(const SceneLight& light, uint32_t light_index) {
     leaf.guid = light.guid;
     leaf.type = light.type;
     leaf.indirect = light.indirect;
+    leaf.patch = light.patch;
     leaf.representative = light_index;
     leaf.min_light_index = light_index;
     leaf.intensity = to_dvec3(light.color) * double(light.intensity);

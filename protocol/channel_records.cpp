@@ -43,12 +43,14 @@ constexpr uint32_t kLightFlagCluster = 1u << 0;
 // Documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's
 // hash is in every dump, and the recorded dumps stay valid.
 constexpr uint32_t kLightFlagIndirect = 1u << 1;
+// Every light under the node is a radiosity patch (LightTreeNode::patch), its
+// disk radius in light_source_radius; documented like the indirect bit.
+constexpr uint32_t kLightFlagPatch = 1u << 2;
 constexpr uint32_t kLightFlagTypeShift = 8;
 constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
 constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
 
 // Unreal defaults for the FLightData fields Lightcuts does not use.
-constexpr float kLightSourceRadius = 0.0f;
 constexpr float kLightSourceLength = 0.0f;
 constexpr float kIndirectLightingScale = 1.0f;
 constexpr float kIndirectLightingSaturation = 1.0f;
@@ -149,14 +151,14 @@ glm::vec3 normalised_color(const LightTreeNode& n) {
 
 ResultRecord to_record(const LightTreeNode& n) {
     const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
-                           (n.indirect ? kLightFlagIndirect : 0u) |
+                           (n.indirect ? kLightFlagIndirect : 0u) | (n.patch ? kLightFlagPatch : 0u) |
                            (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     const glm::vec3 color = normalised_color(n);
     const fb::FLightData light(
         to_fb(n.guid), flags, fb::Vec4(n.position.x, n.position.y, n.position.z, w),
         fb::Vec4(n.direction.x, n.direction.y, n.direction.z, 0.0f),
-        fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, kLightSourceRadius,
+        fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, n.source_radius,
         kLightSourceLength, kIndirectLightingScale, kIndirectLightingSaturation, kShadowExponent);
     const fb::FPointLightData point(n.radius, n.falloff_exponent);
     const fb::LightcutsNodeRecord node(
@@ -217,6 +219,13 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     if (!std::isfinite(n.range) || n.range < 0.0f) {
         return fail("range " + number(n.range) + " is not a finite value >= 0");
     }
+    if (n.patch && !n.indirect) return fail("light_flags mark a patch that is not indirect");
+    if (!std::isfinite(n.source_radius) || n.source_radius < 0.0f) {
+        return fail("light_source_radius " + number(n.source_radius) + " is not a finite value >= 0");
+    }
+    if (n.source_radius != 0.0f && !n.patch) {
+        return fail("light_source_radius " + number(n.source_radius) + " on a light that is not a patch");
+    }
     if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) {
         return fail("bounding box is not finite");
     }
@@ -262,7 +271,7 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
                           " disagrees with the node record's light_type " +
                           std::to_string(r.node.light_type()));
     }
-    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagTypeMask)) != 0) {
+    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagPatch | kLightFlagTypeMask)) != 0) {
         return make_error(who() + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
     }
     if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
@@ -290,6 +299,8 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
     n.cone_cos = r.node.cone_cos();
     n.mixed_types = (r.node.flags() & kNodeFlagMixedTypes) != 0;
     n.indirect = (flags & kLightFlagIndirect) != 0;
+    n.patch = (flags & kLightFlagPatch) != 0;
+    n.source_radius = r.light.light_source_radius();
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {
@@ -449,6 +460,14 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
                               " but its children are " + (children_indirect ? "both" : "not both") +
                               " indirect");
         }
+        // Patches are not clamped: a VPL below a patch cluster would escape the clamp.
+        const bool children_patch = links[static_cast<size_t>(node.left)].patch &&
+                                    links[static_cast<size_t>(node.right)].patch;
+        if (node.patch != children_patch) {
+            return make_error(node_label(i) + ": patch flag " + (node.patch ? "set" : "clear") +
+                              " but its children are " + (children_patch ? "both" : "not both") +
+                              " patches");
+        }
     }
     // Children always follow their parent, so a node without a parent other
     // than the root would start a second tree.
@@ -492,7 +511,9 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
     return Ok{};
 }
 
-NodeLinks links_of(const LightTreeNode& node) { return {node.left, node.right, node.representative, node.indirect}; }
+NodeLinks links_of(const LightTreeNode& node) {
+    return {node.left, node.right, node.representative, node.indirect, node.patch};
+}
 
 // One pass over the (large) nodes, copying the links the checks need into a
 // compact array.
