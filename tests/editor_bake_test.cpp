@@ -122,6 +122,45 @@ TEST(EditorBake, BakeImportsTheTreeOfTheCurrentLights) {
     EXPECT_TRUE(session.tree_matches_scene());
 }
 
+// Build Lighting with indirect light chosen in the panel (issue 16): the
+// solver's stage reaches the progress bar (the panel draws bake_progress()),
+// and the tree holds the bounced light, patches or VPLs, after the census.
+TEST(EditorBake, BuildLightingBakesIndirectLightWithItsStageInTheProgress) {
+    auto server = start_server();
+    ASSERT_TRUE(server);
+    EditorSessionOptions options = options_for(*server);
+    options.bake.area_lights = 256;
+    options.bake.indirect.patch_size = 0.5f;
+    options.bake.indirect.vpl_count = 2000;
+    options.bake.indirect.bounces = 2;
+    EditorSession session(make_cornell_emissive_scene(), options);
+    for (IndirectMethod method : {IndirectMethod::kRadiosity, IndirectMethod::kVpl}) {
+        session.set_indirect(method);
+        ASSERT_TRUE(session.start_bake());
+        std::set<std::string> stages;
+        BakeReport report = poll_until_done(session, &stages);
+        ASSERT_TRUE(report.succeeded) << report.error;
+        const std::string solver = method == IndirectMethod::kRadiosity ? "radiosity" : "indirect";
+        EXPECT_TRUE(stages.count(solver)) << solver;
+        bool census = false;
+        for (const std::string& stage : stages) census = census || stage.rfind("indirect: simulated (", 0) == 0;
+        EXPECT_TRUE(census);
+        size_t patches = 0, vpls = 0;
+        for (const LightTreeNode& node : session.tree()->nodes) {
+            if (!node.is_leaf() || !node.indirect) continue;
+            patches += node.patch;
+            vpls += !node.patch;
+        }
+        if (method == IndirectMethod::kRadiosity) {
+            EXPECT_GT(patches, 10u);
+            EXPECT_EQ(vpls, 0u);
+        } else {
+            EXPECT_GT(vpls, 100u);
+            EXPECT_EQ(patches, 0u);
+        }
+    }
+}
+
 TEST(EditorBake, FailedBakeKeepsThePreviousTreeAndTheError) {
     auto server = start_server();
     ASSERT_TRUE(server);
