@@ -428,6 +428,13 @@ void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
 // The structure of a tree whose nodes each passed validate_node (child indices
 // in range and after their parent), from its links: one parent each, the leaf
 // count, and representatives that are leaves inside their subtree.
+// A cluster carries a subtree flag exactly when both its children do.
+Status check_subtree_flag(size_t index, const char* flag, bool set, bool children) {
+    if (set == children) return Ok{};
+    return make_error(node_label(index) + ": " + flag + " flag " + (set ? "set" : "clear") + " but its children " +
+                      (children ? "both" : "do not both") + " carry it");
+}
+
 Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
     const size_t n = links.size();
     if (n > kMaxTreeNodes) {
@@ -452,22 +459,12 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
                 return make_error(node_label(static_cast<size_t>(child)) + " has more than one parent");
             }
         }
-        // The renderer clamps and skips by this flag: it must hold for every light below.
-        const bool children_indirect = links[static_cast<size_t>(node.left)].indirect &&
-                                       links[static_cast<size_t>(node.right)].indirect;
-        if (node.indirect != children_indirect) {
-            return make_error(node_label(i) + ": indirect flag " + (node.indirect ? "set" : "clear") +
-                              " but its children are " + (children_indirect ? "both" : "not both") +
-                              " indirect");
-        }
-        // Patches are not clamped: a VPL below a patch cluster would escape the clamp.
-        const bool children_patch = links[static_cast<size_t>(node.left)].patch &&
-                                    links[static_cast<size_t>(node.right)].patch;
-        if (node.patch != children_patch) {
-            return make_error(node_label(i) + ": patch flag " + (node.patch ? "set" : "clear") +
-                              " but its children are " + (children_patch ? "both" : "not both") +
-                              " patches");
-        }
+        // The renderer clamps and skips by the indirect flag, and leaves patches
+        // unclamped: each must hold for every light below.
+        const NodeLinks& left = links[static_cast<size_t>(node.left)];
+        const NodeLinks& right = links[static_cast<size_t>(node.right)];
+        if (Status s = check_subtree_flag(i, "indirect", node.indirect, left.indirect && right.indirect); !s) return s;
+        if (Status s = check_subtree_flag(i, "patch", node.patch, left.patch && right.patch); !s) return s;
     }
     // Children always follow their parent, so a node without a parent other
     // than the root would start a second tree.
