@@ -52,8 +52,8 @@ shading::Emitter make_emitter(LightType type, const glm::vec3& position, const g
 
 shading::Emitter emitter_of(const SceneLight& light) {
     return make_emitter(light.type, light.position, light.direction, light.range,
-                        std::cos(double(light.inner_cone_angle)),
-                        std::cos(double(light.outer_cone_angle)), light.source_radius);
+                        std::cos(double(light.inner_cone_angle)), std::cos(double(light.outer_cone_angle)),
+                        light.source_radius);
 }
 
 // A node's representative is read here only, its bounds in cluster_shape_of().
@@ -151,7 +151,8 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     device::IndirectSums leaves = device::no_indirect_sums();
     const auto add_if_indirect_leaf = [&](const CutEntry& entry) {
         const LightTreeNode& node = tree.nodes[size_t(entry.node)];
-        if (device::clamped_leaf(node.indirect, node.patch, node.is_leaf())) device::add_indirect_leaf(leaves, entry.estimate);
+        if (device::clamped_leaf(node.indirect, node.patch, node.is_leaf()))
+            device::add_indirect_leaf(leaves, entry.estimate);
     };
     const auto rule_total = [&] {
         return leaves.leaves > 0 ? device::clamped_running_total(total, leaves, clamp_ratio) : total;

@@ -150,8 +150,8 @@ glm::vec3 normalised_color(const LightTreeNode& n) {
 }
 
 ResultRecord to_record(const LightTreeNode& n) {
-    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
-                           (n.indirect ? kLightFlagIndirect : 0u) | (n.patch ? kLightFlagPatch : 0u) |
+    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) | (n.indirect ? kLightFlagIndirect : 0u) |
+                           (n.patch ? kLightFlagPatch : 0u) |
                            (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     const glm::vec3 color = normalised_color(n);
@@ -431,8 +431,8 @@ void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
 // A cluster carries a subtree flag exactly when both its children do.
 Status check_subtree_flag(size_t index, const char* flag, bool set, bool children) {
     if (set == children) return Ok{};
-    return make_error(node_label(index) + ": " + flag + " flag " + (set ? "set" : "clear") + " but its children " +
-                      (children ? "both" : "do not both") + " carry it");
+    return make_error(node_label(index) + ": " + flag + " flag " + (set ? "set" : "clear") +
+                      " but its children " + (children ? "both" : "do not both") + " carry it");
 }
 
 Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
@@ -463,7 +463,8 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
         // unclamped: each must hold for every light below.
         const NodeLinks& left = links[static_cast<size_t>(node.left)];
         const NodeLinks& right = links[static_cast<size_t>(node.right)];
-        if (Status s = check_subtree_flag(i, "indirect", node.indirect, left.indirect && right.indirect); !s) return s;
+        if (Status s = check_subtree_flag(i, "indirect", node.indirect, left.indirect && right.indirect); !s)
+            return s;
         if (Status s = check_subtree_flag(i, "patch", node.patch, left.patch && right.patch); !s) return s;
     }
     // Children always follow their parent, so a node without a parent other

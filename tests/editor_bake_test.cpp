@@ -143,7 +143,8 @@ TEST(EditorBake, BuildLightingBakesIndirectLightWithItsStageInTheProgress) {
         const std::string solver = method == IndirectMethod::kRadiosity ? "radiosity" : "indirect";
         EXPECT_TRUE(stages.count(solver)) << solver;
         bool census = false;
-        for (const std::string& stage : stages) census = census || stage.rfind("indirect: simulated (", 0) == 0;
+        for (const std::string& stage : stages)
+            census = census || stage.rfind("indirect: simulated (", 0) == 0;
         EXPECT_TRUE(census);
         size_t patches = 0, vpls = 0;
         for (const LightTreeNode& node : session.tree()->nodes) {

@@ -20,7 +20,9 @@ IndirectRequest request(IndirectMethod method, uint32_t bounces) {
     return r;
 }
 
-TEST(IndirectCensus, NothingWithoutATree) { EXPECT_EQ(indirect_census(IndirectCensusFacts{}), ""); }
+TEST(IndirectCensus, NothingWithoutATree) {
+    EXPECT_EQ(indirect_census(IndirectCensusFacts{}), "");
+}
 
 TEST(IndirectCensus, VplsWithTheBakesBounces) {
     IndirectCensusFacts f = with_tree();
@@ -33,8 +35,9 @@ TEST(IndirectCensus, VplsWithTheBakesBounces) {
 TEST(IndirectCensus, ATreeFromADumpDoesNotKnowItsBounces) {
     IndirectCensusFacts f = with_tree();
     f.vpls = 1;
-    EXPECT_EQ(indirect_census(f),
-              "simulated (1 VPL, bounces not recorded in the tree, see the bake's census, clamped energy 0%)");
+    EXPECT_EQ(
+        indirect_census(f),
+        "simulated (1 VPL, bounces not recorded in the tree, see the bake's census, clamped energy 0%)");
 }
 
 TEST(IndirectCensus, PatchesHoldEveryBounce) {
@@ -53,7 +56,8 @@ TEST(IndirectCensus, LeftOut) {
 
 TEST(IndirectCensus, SkippedSaysWhy) {
     IndirectCensusFacts f = with_tree();
-    EXPECT_EQ(indirect_census(f), "skipped: the tree holds no indirect light (bake --indirect vpl|radiosity)");
+    EXPECT_EQ(indirect_census(f),
+              "skipped: the tree holds no indirect light (bake --indirect vpl|radiosity)");
     f.baked = request(IndirectMethod::kOff, 1);
     EXPECT_EQ(indirect_census(f), "skipped: no bounce requested");
     f.baked = request(IndirectMethod::kVpl, 0);
@@ -62,7 +66,8 @@ TEST(IndirectCensus, SkippedSaysWhy) {
     f.scene_has_geometry = false;
     EXPECT_EQ(indirect_census(f), "skipped: the scene has no geometry");
     f.scene_has_geometry = true;
-    EXPECT_EQ(indirect_census(f), "skipped: the bake made no indirect light (no surface reflects the scene's light)");
+    EXPECT_EQ(indirect_census(f),
+              "skipped: the bake made no indirect light (no surface reflects the scene's light)");
 }
 
 }  // namespace

@@ -258,13 +258,15 @@ TEST(IndirectTree, PatchesHaveSubtreesApartFromVplsAndTravelOnTheWire) {
         spoil(bad);
         return !decode_result_channel(encode_result_channel(bad)).ok();
     };
-    const auto first = [](LightTree& t, const std::function<bool(const LightTreeNode&)>& which) -> LightTreeNode& {
+    const auto first = [](LightTree& t,
+                          const std::function<bool(const LightTreeNode&)>& which) -> LightTreeNode& {
         return *std::find_if(t.nodes.begin(), t.nodes.end(), which);
     };
     EXPECT_TRUE(refused([&](LightTree& t) {
         first(t, [](const LightTreeNode& n) { return !n.is_leaf() && n.indirect && !n.patch; }).patch = true;
     }));
-    EXPECT_TRUE(refused([&](LightTree& t) { first(t, [](const LightTreeNode& n) { return n.patch; }).indirect = false; }));
+    EXPECT_TRUE(refused(
+        [&](LightTree& t) { first(t, [](const LightTreeNode& n) { return n.patch; }).indirect = false; }));
     EXPECT_TRUE(refused([&](LightTree& t) {
         first(t, [](const LightTreeNode& n) { return n.indirect && !n.patch; }).source_radius = 0.1f;
     }));
@@ -347,8 +349,8 @@ TEST(IndirectClampCpu, APatchOneMillimetreFromAWallIsADiskNotASpike) {
     const glm::dvec3 patch = shade_lightcuts(tree, {}, under, exhaustive).radiance -
                              shade_lightcuts(tree, {}, under, off).radiance;
     const double d = 0.001, r = kPatchRadius;
-    const glm::dvec3 disk = under.albedo / std::numbers::pi * glm::dvec3(spike.color) * double(spike.intensity) /
-                            (d * d + r * r);
+    const glm::dvec3 disk =
+        under.albedo / std::numbers::pi * glm::dvec3(spike.color) * double(spike.intensity) / (d * d + r * r);
     for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(patch[ch], disk[ch], 1e-4 * disk[ch]) << "channel " << ch;
 
     for (CutSettings settings : every_search()) {
@@ -510,7 +512,9 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
     }
 }
 
-TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) { expect_gpu_shades_like_the_cpu(build(lights_with_indirect(true))); }
+TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
+    expect_gpu_shades_like_the_cpu(build(lights_with_indirect(true)));
+}
 
 // Patches (disks, not clamped) beside clamped VPLs, in every mode.
 TEST_F(IndirectClampGpu, TheGpuShadesPatchesLikeTheCpu) {

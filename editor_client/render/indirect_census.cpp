@@ -10,7 +10,8 @@ std::string counted(uint64_t n, const char* one, const char* many) {
 }
 
 std::string lights_text(const IndirectCensusFacts& f) {
-    if (f.vpls > 0 && f.patches > 0) return counted(f.vpls, "VPL", "VPLs") + " and " + counted(f.patches, "patch", "patches");
+    if (f.vpls > 0 && f.patches > 0)
+        return counted(f.vpls, "VPL", "VPLs") + " and " + counted(f.patches, "patch", "patches");
     return f.patches > 0 ? counted(f.patches, "patch", "patches") : counted(f.vpls, "VPL", "VPLs");
 }
 
@@ -18,7 +19,8 @@ std::string lights_text(const IndirectCensusFacts& f) {
 // every bounce, not a count.
 std::string bounces_text(const IndirectCensusFacts& f) {
     if (f.vpls == 0) return "all bounces";
-    if (f.baked && f.baked->method == IndirectMethod::kVpl) return counted(f.baked->bounces, "bounce", "bounces");
+    if (f.baked && f.baked->method == IndirectMethod::kVpl)
+        return counted(f.baked->bounces, "bounce", "bounces");
     return "bounces not recorded in the tree, see the bake's census";
 }
 

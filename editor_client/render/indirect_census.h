@@ -13,8 +13,8 @@ namespace lc::client {
 
 struct IndirectCensusFacts {
     bool has_tree = false;
-    uint64_t vpls = 0;     // indirect leaves that are not patches
-    uint64_t patches = 0;  // radiosity patches
+    uint64_t vpls = 0;      // indirect leaves that are not patches
+    uint64_t patches = 0;   // radiosity patches
     bool left_out = false;  // render --indirect off
     double clamped_fraction = 0.0;
     // The bake's request when this render baked the tree itself. A tree from

@@ -40,7 +40,7 @@ struct IndirectSums {
     real3 second;    // the next one
     real3 rest;      // the other indirect leaves
     real rest_max;   // the largest channel of a light in rest
-    real3 others;    // the rest of the cut: direct light and indirect clusters
+    real3 others;    // the rest of the cut: direct light, indirect clusters and patches
     real3 clusters;  // indirect clusters and patches: not clamped, counted in the statistics
     uint leaves;     // indirect leaves added
 };
@@ -87,7 +87,9 @@ LC_INLINE void add_indirect_leaf(LC_INOUT(IndirectSums) s, real3 contribution) {
 }
 
 // Whether a node of the cut is clamped: an indirect leaf that is no patch.
-LC_INLINE bool clamped_leaf(bool indirect, bool is_patch, bool leaf) { return indirect && leaf && !is_patch; }
+LC_INLINE bool clamped_leaf(bool indirect, bool is_patch, bool leaf) {
+    return indirect && leaf && !is_patch;
+}
 
 // One node of the cut: a clamped leaf (clamped_leaf()) goes to the clamp,
 // anything else is the rest.
