@@ -55,6 +55,26 @@ TEST(VplTracer, FurnaceReflectsTheGeometricSeriesOfItsEmission) {
     }
 }
 
+// The radiosity solver's hard cases for the photon tracer: a zero-area
+// triangle, coincident floors and touching panels in a furnace, also nearly
+// white (rho = 0.99). Every hit reflects rho of what arrives, whichever copy
+// it lands on, so the geometric series still holds for the emitted power.
+TEST(VplTracer, HardGeometryAndANearlyWhiteRoomStayFiniteAndBounded) {
+    for (double rho : {0.3, 0.99}) {
+        SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(1.0f)});
+        test::add_hard_cases(g);
+        VplOptions options;
+        options.particle_count = 20000;
+        options.bounces = 16;
+        options.seed = 7;
+        auto r = trace(g, {}, options);
+        ASSERT_TRUE(r.ok()) << r.error();
+        const double expected = r->emitted_power.x * rho * (1.0 - std::pow(rho, 16.0)) / (1.0 - rho);
+        for (const IndirectLight& l : r->lights) ASSERT_TRUE(std::isfinite(l.power.x) && l.power.x > 0.0f);
+        EXPECT_NEAR(total_power(r->lights).x / expected, 1.0, 0.03) << "rho " << rho;
+    }
+}
+
 TEST(VplTracer, SameLightsAtAnyThreadCount) {
     SceneGeometry g = test::cornell_box().geometry;
     VplOptions options;
