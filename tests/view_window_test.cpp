@@ -149,12 +149,18 @@ std::pair<int, std::string> run_logged(const std::string& command, const std::fi
     return {status, text.str()};
 }
 
-TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
-    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed";
-    std::unique_ptr<vk::Context> probe;
-    LC_REQUIRE_VULKAN(probe);
-    probe.reset();
+// The view command in a real window: skipped without xvfb-run or a Vulkan device.
+class ViewWindow : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+            GTEST_SKIP() << "xvfb-run is not installed";
+        std::unique_ptr<vk::Context> probe;
+        LC_REQUIRE_VULKAN(probe);
+    }
+};
+
+TEST_F(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
 
     std::filesystem::path dir = test::make_temp_dir("view-window");
     Scene scene = test::lit_room(11);
@@ -188,12 +194,7 @@ TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
 // emissive Cornell box with radiosity indirect light on a spawned server.
 // The tree holds the panel's 256 area-light samples and the patches
 // (EditorBake tests the solver's stage in the progress bar).
-TEST(ViewWindow, XvfbBuildLightingBakesIndirectLight) {
-    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed";
-    std::unique_ptr<vk::Context> probe;
-    LC_REQUIRE_VULKAN(probe);
-    probe.reset();
+TEST_F(ViewWindow, XvfbBuildLightingBakesIndirectLight) {
 
     const std::filesystem::path dir = test::make_temp_dir("view-window-indirect");
     const std::filesystem::path scene_path = dir / "cornell.gltf";
