@@ -16,6 +16,7 @@ BuildNode make_leaf(const SceneLight& light, uint32_t light_index) {
     leaf.guid = light.guid;
     leaf.type = light.type;
     leaf.indirect = light.indirect;
+    leaf.patch = light.patch;
     leaf.representative = light_index;
     leaf.min_light_index = light_index;
     leaf.intensity = to_dvec3(light.color) * double(light.intensity);

@@ -35,6 +35,9 @@ struct BuildNode {
     // Every light under the node is indirect (SceneLight::indirect): the
     // builders never join indirect and direct lights below a junction.
     bool indirect = false;
+    // Every light under the node is a radiosity patch (SceneLight::patch); the
+    // builders never join patches and VPLs below a junction either.
+    bool patch = false;
 
     glm::dvec3 intensity{0.0};  // RGB sum of the leaves' color * intensity
     double brightness = 0.0;    // sum of the leaves' scalar intensity

@@ -61,7 +61,7 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     out.escape = escape;
     out.radius = node.radius;
     out.flags = (node.mixed_types ? kNodeMixedTypes : 0u) | (node.indirect ? kNodeIndirect : 0u) |
-                (uint32_t(node.type) << kNodeTypeShift);
+                (node.patch ? kNodePatch : 0u) | (uint32_t(node.type) << kNodeTypeShift);
     // A cone that excludes nothing, or that nothing can be learnt from,
     // becomes "every direction" (the bound then excludes nothing either).
     const glm::dvec3 axis(node.cone_axis);

@@ -36,7 +36,7 @@ namespace lc {
 namespace {
 
 shading::Emitter make_emitter(LightType type, const glm::vec3& position, const glm::vec3& direction,
-                              double range, double cos_inner, double cos_outer) {
+                              double range, double cos_inner, double cos_outer, double source_radius) {
     shading::Emitter e;
     e.directional = type == LightType::kDirectional;
     e.spot = type == LightType::kSpot;
@@ -46,19 +46,20 @@ shading::Emitter make_emitter(LightType type, const glm::vec3& position, const g
     e.range = range;
     e.cos_outer = cos_outer;
     e.spot_scale = shading::spot_scale(cos_inner, cos_outer);
+    e.source_radius = source_radius;
     return e;
 }
 
 shading::Emitter emitter_of(const SceneLight& light) {
     return make_emitter(light.type, light.position, light.direction, light.range,
-                        std::cos(double(light.inner_cone_angle)),
-                        std::cos(double(light.outer_cone_angle)));
+                        std::cos(double(light.inner_cone_angle)), std::cos(double(light.outer_cone_angle)),
+                        light.source_radius);
 }
 
 // A node's representative is read here only, its bounds in cluster_shape_of().
 shading::Emitter emitter_of(const LightTreeNode& node) {
     return make_emitter(node.type, node.position, node.direction, node.range, node.spot_cos_inner,
-                        node.spot_cos_outer);
+                        node.spot_cos_outer, node.source_radius);
 }
 
 shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
@@ -150,7 +151,8 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     device::IndirectSums leaves = device::no_indirect_sums();
     const auto add_if_indirect_leaf = [&](const CutEntry& entry) {
         const LightTreeNode& node = tree.nodes[size_t(entry.node)];
-        if (node.indirect && node.is_leaf()) device::add_indirect_leaf(leaves, entry.estimate);
+        if (device::clamped_leaf(node.indirect, node.patch, node.is_leaf()))
+            device::add_indirect_leaf(leaves, entry.estimate);
     };
     const auto rule_total = [&] {
         return leaves.leaves > 0 ? device::clamped_running_total(total, leaves, clamp_ratio) : total;

@@ -9,7 +9,8 @@ double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 void CutTally::add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance) {
     radiance += node_radiance;
     // The paper clamps single lights; clusters are the refinement's.
-    device::add_cut_node(indirect, node.indirect, node.is_leaf(), node_radiance);
+    device::add_cut_node(indirect, node.indirect,
+                         device::clamped_leaf(node.indirect, node.patch, node.is_leaf()), node_radiance);
     size += 1;
     hash += cut_hash_term(uint32_t(node_index));
 }

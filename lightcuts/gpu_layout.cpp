@@ -50,7 +50,8 @@ GpuLight make_gpu_light(const SceneLight& light) {
     gpu.spot_cos_inner = float(cos_inner);
     gpu.spot_cos_outer = float(cos_outer);
     gpu.spot_scale = float(shading::spot_scale(cos_inner, cos_outer));
-    gpu.flags = light.indirect ? kGpuLightIndirect : 0u;
+    gpu.flags = (light.indirect ? kGpuLightIndirect : 0u) | (light.patch ? kGpuLightPatch : 0u);
+    gpu.source_radius = light.source_radius;
     return gpu;
 }
 
@@ -64,7 +65,8 @@ GpuLight make_gpu_leaf_light(const LightTreeNode& node) {
     gpu.spot_cos_inner = node.spot_cos_inner;
     gpu.spot_cos_outer = node.spot_cos_outer;
     gpu.spot_scale = float(shading::spot_scale(node.spot_cos_inner, node.spot_cos_outer));
-    gpu.flags = node.indirect ? kGpuLightIndirect : 0u;
+    gpu.flags = (node.indirect ? kGpuLightIndirect : 0u) | (node.patch ? kGpuLightPatch : 0u);
+    gpu.source_radius = node.source_radius;
     return gpu;
 }
 

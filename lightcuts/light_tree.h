@@ -45,6 +45,11 @@ struct LightTreeNode {
     // Every light under the node is bounced light (SceneLight::indirect); the
     // tree keeps indirect lights in subtrees of their own.
     bool indirect = false;
+    // Every light under the node is a radiosity patch (SceneLight::patch),
+    // kept apart from VPLs the same way; `source_radius` is the
+    // representative's disk radius (0 for every other light).
+    bool patch = false;
+    float source_radius = 0.0f;
 
     bool is_leaf() const { return left == kNoChild && right == kNoChild; }
 };

@@ -42,6 +42,11 @@ struct SceneLight {
     // patch): clamped by the renderer, skipped by render --indirect off. Never
     // on the scene channel: only the server sets it.
     bool indirect = false;
+    // An indirect light that is a radiosity patch, not a VPL: a large emitter
+    // the renderer evaluates as a disk of `source_radius` (sqrt(area / pi))
+    // instead of clamping it. Only the server sets it, with `indirect`.
+    bool patch = false;
+    float source_radius = 0.0f;
 };
 
 }  // namespace lc

@@ -93,6 +93,8 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
         out.cone_cos = export_cone_cos(node.cone_cos);
         out.mixed_types = node.mixed_types;
         out.indirect = node.indirect;
+        out.patch = node.patch;
+        out.source_radius = light.source_radius;
     }
 }
 

@@ -48,6 +48,7 @@ BuildNode combine_sums_and_bounds(const BuildNode& left, const BuildNode& right)
     node.bbox_min = glm::min(left.bbox_min, right.bbox_min);
     node.bbox_max = glm::max(left.bbox_max, right.bbox_max);
     node.indirect = left.indirect && right.indirect;
+    node.patch = left.patch && right.patch;
     return node;
 }
 

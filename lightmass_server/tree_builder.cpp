@@ -71,6 +71,13 @@ Status check_light(const SceneLight& light, size_t i) {
     if (!std::isfinite(light.inner_cone_angle) || !std::isfinite(light.outer_cone_angle)) {
         return make_error(name() + " has non-finite spot cone angles");
     }
+    if (!std::isfinite(light.source_radius) || light.source_radius < 0.0f) {
+        return make_error(name() + " has an invalid source radius (must be finite and >= 0)");
+    }
+    if (light.patch && !light.indirect) return make_error(name() + " is a patch but not indirect");
+    if (light.source_radius > 0.0f && !light.patch) {
+        return make_error(name() + " has a source radius but is not a patch");
+    }
     return Ok{};
 }
 
@@ -95,18 +102,21 @@ Status validate_lights(std::span<const SceneLight> lights) {
 }
 
 // The per-type trees: one per light type, then one per type of the indirect
-// lights, which never share a cluster with direct ones (so the renderer can
-// clamp or skip them by subtree). Direct groups come first, so a tree
-// without indirect lights is built as before.
-constexpr size_t kLightGroupCount = 2 * kLightTypeCount;
+// lights (VPLs), then one per type of the radiosity patches. Indirect lights
+// never share a cluster with direct ones (so the renderer can clamp or skip
+// them by subtree), nor patches with VPLs (patches are not clamped). Direct
+// groups come first, so a tree without indirect lights is built as before.
+constexpr size_t kLightGroupCount = 3 * kLightTypeCount;
 
 size_t light_group(const SceneLight& light) {
-    return size_t(light.type) + (light.indirect ? kLightTypeCount : 0);
+    const size_t kind = light.patch ? 2 : light.indirect ? 1 : 0;
+    return size_t(light.type) + kind * kLightTypeCount;
 }
 
 std::string light_group_name(size_t group) {
     const std::string type = light_type_name(LightType(group % kLightTypeCount));
-    return group < kLightTypeCount ? type : "indirect " + type;
+    const char* kinds[] = {"", "indirect ", "patch "};
+    return kinds[group / kLightTypeCount] + type;
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {

@@ -43,12 +43,14 @@ constexpr uint32_t kLightFlagCluster = 1u << 0;
 // Documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's
 // hash is in every dump, and the recorded dumps stay valid.
 constexpr uint32_t kLightFlagIndirect = 1u << 1;
+// Every light under the node is a radiosity patch (LightTreeNode::patch), its
+// disk radius in light_source_radius; documented like the indirect bit.
+constexpr uint32_t kLightFlagPatch = 1u << 2;
 constexpr uint32_t kLightFlagTypeShift = 8;
 constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
 constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
 
 // Unreal defaults for the FLightData fields Lightcuts does not use.
-constexpr float kLightSourceRadius = 0.0f;
 constexpr float kLightSourceLength = 0.0f;
 constexpr float kIndirectLightingScale = 1.0f;
 constexpr float kIndirectLightingSaturation = 1.0f;
@@ -148,15 +150,15 @@ glm::vec3 normalised_color(const LightTreeNode& n) {
 }
 
 ResultRecord to_record(const LightTreeNode& n) {
-    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) |
-                           (n.indirect ? kLightFlagIndirect : 0u) |
+    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) | (n.indirect ? kLightFlagIndirect : 0u) |
+                           (n.patch ? kLightFlagPatch : 0u) |
                            (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     const glm::vec3 color = normalised_color(n);
     const fb::FLightData light(
         to_fb(n.guid), flags, fb::Vec4(n.position.x, n.position.y, n.position.z, w),
         fb::Vec4(n.direction.x, n.direction.y, n.direction.z, 0.0f),
-        fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, kLightSourceRadius,
+        fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, n.source_radius,
         kLightSourceLength, kIndirectLightingScale, kIndirectLightingSaturation, kShadowExponent);
     const fb::FPointLightData point(n.radius, n.falloff_exponent);
     const fb::LightcutsNodeRecord node(
@@ -217,6 +219,13 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     if (!std::isfinite(n.range) || n.range < 0.0f) {
         return fail("range " + number(n.range) + " is not a finite value >= 0");
     }
+    if (n.patch && !n.indirect) return fail("light_flags mark a patch that is not indirect");
+    if (!std::isfinite(n.source_radius) || n.source_radius < 0.0f) {
+        return fail("light_source_radius " + number(n.source_radius) + " is not a finite value >= 0");
+    }
+    if (n.source_radius != 0.0f && !n.patch) {
+        return fail("light_source_radius " + number(n.source_radius) + " on a light that is not a patch");
+    }
     if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) {
         return fail("bounding box is not finite");
     }
@@ -262,7 +271,7 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
                           " disagrees with the node record's light_type " +
                           std::to_string(r.node.light_type()));
     }
-    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagTypeMask)) != 0) {
+    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagPatch | kLightFlagTypeMask)) != 0) {
         return make_error(who() + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
     }
     if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
@@ -290,6 +299,8 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
     n.cone_cos = r.node.cone_cos();
     n.mixed_types = (r.node.flags() & kNodeFlagMixedTypes) != 0;
     n.indirect = (flags & kLightFlagIndirect) != 0;
+    n.patch = (flags & kLightFlagPatch) != 0;
+    n.source_radius = r.light.light_source_radius();
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {
@@ -417,6 +428,13 @@ void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
 // The structure of a tree whose nodes each passed validate_node (child indices
 // in range and after their parent), from its links: one parent each, the leaf
 // count, and representatives that are leaves inside their subtree.
+// A cluster carries a subtree flag exactly when both its children do.
+Status check_subtree_flag(size_t index, const char* flag, bool set, bool children) {
+    if (set == children) return Ok{};
+    return make_error(node_label(index) + ": " + flag + " flag " + (set ? "set" : "clear") +
+                      " but its children " + (children ? "both" : "do not both") + " carry it");
+}
+
 Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
     const size_t n = links.size();
     if (n > kMaxTreeNodes) {
@@ -441,14 +459,13 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
                 return make_error(node_label(static_cast<size_t>(child)) + " has more than one parent");
             }
         }
-        // The renderer clamps and skips by this flag: it must hold for every light below.
-        const bool children_indirect = links[static_cast<size_t>(node.left)].indirect &&
-                                       links[static_cast<size_t>(node.right)].indirect;
-        if (node.indirect != children_indirect) {
-            return make_error(node_label(i) + ": indirect flag " + (node.indirect ? "set" : "clear") +
-                              " but its children are " + (children_indirect ? "both" : "not both") +
-                              " indirect");
-        }
+        // The renderer clamps and skips by the indirect flag, and leaves patches
+        // unclamped: each must hold for every light below.
+        const NodeLinks& left = links[static_cast<size_t>(node.left)];
+        const NodeLinks& right = links[static_cast<size_t>(node.right)];
+        if (Status s = check_subtree_flag(i, "indirect", node.indirect, left.indirect && right.indirect); !s)
+            return s;
+        if (Status s = check_subtree_flag(i, "patch", node.patch, left.patch && right.patch); !s) return s;
     }
     // Children always follow their parent, so a node without a parent other
     // than the root would start a second tree.
@@ -492,7 +509,9 @@ Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
     return Ok{};
 }
 
-NodeLinks links_of(const LightTreeNode& node) { return {node.left, node.right, node.representative, node.indirect}; }
+NodeLinks links_of(const LightTreeNode& node) {
+    return {node.left, node.right, node.representative, node.indirect, node.patch};
+}
 
 // One pass over the (large) nodes, copying the links the checks need into a
 // compact array.

@@ -64,6 +64,7 @@ struct NodeLinks {
     int32_t right;
     int32_t representative;
     bool indirect;  // the renderer clamps and skips whole subtrees by it
+    bool patch;     // radiosity patches, never clamped: kept apart from VPLs
 };
 
 // What a ResultChannelReader keeps of each record once it passed validation.

@@ -20,6 +20,7 @@ Emitter emitter_of(GpuLight light) {
     e.range = kRangeWindow ? light.range : 0.0;
     e.cos_outer = light.spot_cos_outer;
     e.spot_scale = light.spot_scale;
+    e.source_radius = kOrientedLights ? light.source_radius : 0.0;
     return e;
 }
 

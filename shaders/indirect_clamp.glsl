@@ -15,9 +15,14 @@ layout(constant_id = kSpecErrorRatio) const float kErrorRatio = 0.02;
 
 bool left_out(uint node_flags) { return kIndirectOff && (node_flags & kNodeIndirect) != 0u; }
 
+// Whether a tree node that is a leaf goes to the clamp: a VPL, not a patch.
+bool clamped_node(uint node_flags, bool leaf) {
+    return clamped_leaf((node_flags & kNodeIndirect) != 0u, (node_flags & kNodePatch) != 0u, leaf);
+}
+
 // One cut node's contribution, kept for the clamp.
 void tally_indirect(inout IndirectSums s, uint node_flags, bool leaf, vec3 contribution) {
-    if (kIndirectClamp) add_cut_node(s, (node_flags & kNodeIndirect) != 0u, leaf, contribution);
+    if (kIndirectClamp) add_cut_node(s, (node_flags & kNodeIndirect) != 0u, clamped_node(node_flags, leaf), contribution);
 }
 
 // The cut's total as the stopping rule reads it: clamped.

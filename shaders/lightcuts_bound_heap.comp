@@ -93,7 +93,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     vec3 total = root_unit * tree_nodes[0].intensity;
     // Its indirect leaves, for the clamped total the rule reads.
     IndirectSums leaves = no_indirect_sums();
-    if (kIndirectClamp && tree_nodes[0].first_child == kEndOfWalk && (tree_nodes[0].flags & kNodeIndirect) != 0u)
+    if (kIndirectClamp && clamped_node(tree_nodes[0].flags, tree_nodes[0].first_child == kEndOfWalk))
         add_indirect_leaf(leaves, total);
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
@@ -127,7 +127,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             vec3 unit = child_node.representative == parent_representative ? parent_unit
                                                                            : unit_response(child, p);
             total += unit * child_node.intensity;
-            if (kIndirectClamp && child_node.first_child == kEndOfWalk && (child_node.flags & kNodeIndirect) != 0u)
+            if (kIndirectClamp && clamped_node(child_node.flags, child_node.first_child == kEndOfWalk))
                 add_indirect_leaf(leaves, unit * child_node.intensity);
             heap_push(size, node_key(child, p), child, unit);
         }

@@ -45,7 +45,8 @@ void add_leaf(inout vec3 radiance, inout IndirectSums s, uint i, SurfacePoint p)
     if (kIndirectOff && indirect) return;
     vec3 contribution = light_radiance(leaf_lights[i], p);
     radiance += contribution;
-    if (kIndirectClamp) add_cut_node(s, indirect, true, contribution);
+    bool is_patch = (leaf_lights[i].flags & kGpuLightPatch) != 0u;
+    if (kIndirectClamp) add_cut_node(s, indirect, clamped_leaf(indirect, is_patch, true), contribution);
 }
 
 vec3 leaves_radiance_tallied(uint begin, uint end, inout IndirectSums s, SurfacePoint p) {

@@ -122,6 +122,43 @@ TEST(EditorBake, BakeImportsTheTreeOfTheCurrentLights) {
     EXPECT_TRUE(session.tree_matches_scene());
 }
 
+// Build Lighting with indirect light chosen in the panel (issue 16): the
+// solver's stage reaches the progress bar (the panel draws bake_progress(),
+// the last message, so a stage shorter than a frame may pass unseen), and the
+// tree holds the bounced light, patches or VPLs.
+TEST(EditorBake, BuildLightingBakesIndirectLightWithItsStageInTheProgress) {
+    auto server = start_server();
+    ASSERT_TRUE(server);
+    EditorSessionOptions options = options_for(*server);
+    options.bake.area_lights = 256;
+    options.bake.indirect.patch_size = 0.5f;
+    options.bake.indirect.vpl_count = 200000;  // long enough for the 5 ms polls to see the stage
+    options.bake.indirect.bounces = 2;
+    EditorSession session(make_cornell_emissive_scene(), options);
+    for (IndirectMethod method : {IndirectMethod::kRadiosity, IndirectMethod::kVpl}) {
+        session.set_indirect(method);
+        ASSERT_TRUE(session.start_bake());
+        std::set<std::string> stages;
+        BakeReport report = poll_until_done(session, &stages);
+        ASSERT_TRUE(report.succeeded) << report.error;
+        const std::string solver = method == IndirectMethod::kRadiosity ? "radiosity" : "indirect";
+        EXPECT_TRUE(stages.count(solver)) << solver;
+        size_t patches = 0, vpls = 0;
+        for (const LightTreeNode& node : session.tree()->nodes) {
+            if (!node.is_leaf() || !node.indirect) continue;
+            patches += node.patch;
+            vpls += !node.patch;
+        }
+        if (method == IndirectMethod::kRadiosity) {
+            EXPECT_GT(patches, 10u);
+            EXPECT_EQ(vpls, 0u);
+        } else {
+            EXPECT_GT(vpls, 100u);
+            EXPECT_EQ(patches, 0u);
+        }
+    }
+}
+
 TEST(EditorBake, FailedBakeKeepsThePreviousTreeAndTheError) {
     auto server = start_server();
     ASSERT_TRUE(server);

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -149,6 +151,26 @@ std::vector<SceneLight> lights_with_indirect(bool bounced) {
     return lights;
 }
 
+// The spike made a radiosity patch, a disk of kPatchRadius, with 20 more
+// patches on the back wall; with `vpls`, the 300 floor VPLs stay VPLs.
+constexpr float kPatchRadius = 0.05f;
+
+std::vector<SceneLight> lights_with_patches(bool vpls) {
+    std::vector<SceneLight> lights = lights_with_indirect(vpls);
+    SceneLight& spike = lights[direct_lights().size()];
+    spike.patch = true;
+    spike.source_radius = kPatchRadius;
+    for (uint32_t i = 0; i < 20; ++i) {
+        SceneLight patch = test::oriented_light({-2.0f + 0.2f * float(i), 0.5f + 0.1f * float(i % 3), -4.99f},
+                                                {0.0f, 0.0f, 1.0f}, {0.9f, 0.5f, 0.4f}, 0.05f);
+        patch.indirect = patch.patch = true;
+        patch.source_radius = kPatchRadius;
+        test::set_unit_guid(patch, 600 + i);
+        lights.push_back(patch);
+    }
+    return lights;
+}
+
 LightTree build(const std::vector<SceneLight>& lights) {
     Result<bake::BuildResult> built = bake::build_light_tree(lights, bake::BuildOptions{}, nullptr);
     EXPECT_TRUE(built.ok()) << built.error();
@@ -199,6 +221,60 @@ TEST(IndirectTree, TreesWithoutIndirectLightsKeepTheirBytes) {
         std::memcpy(&flags, bytes.data() + 4 + i * result_record_bytes() + 16, sizeof flags);
         EXPECT_EQ(flags & 2u, 0u) << "node " << i;
     }
+}
+
+TEST(IndirectTree, PatchesHaveSubtreesApartFromVplsAndTravelOnTheWire) {
+    const LightTree tree = build(lights_with_patches(true));
+    ASSERT_TRUE(validate_tree(tree).ok()) << validate_tree(tree).error();
+    size_t patch_leaves = 0, vpl_leaves = 0;
+    for (const LightTreeNode& node : tree.nodes) {
+        EXPECT_TRUE(!node.patch || node.indirect);
+        EXPECT_EQ(node.source_radius, node.patch ? kPatchRadius : 0.0f);
+        if (node.is_leaf()) {
+            patch_leaves += node.patch;
+            vpl_leaves += node.indirect && !node.patch;
+            continue;
+        }
+        // Only junctions join patches with other lights: no cluster mixes them.
+        if (!node.mixed_types) {
+            EXPECT_EQ(node.patch, tree.nodes[size_t(node.left)].patch);
+        }
+        EXPECT_EQ(node.patch, tree.nodes[size_t(node.left)].patch && tree.nodes[size_t(node.right)].patch);
+    }
+    EXPECT_EQ(patch_leaves, 21u);
+    EXPECT_EQ(vpl_leaves, 300u);
+
+    Result<LightTree> decoded = decode_result_channel(encode_result_channel(tree));
+    ASSERT_TRUE(decoded.ok()) << decoded.error();
+    for (size_t i = 0; i < tree.nodes.size(); ++i) {
+        EXPECT_EQ(decoded->nodes[i].patch, tree.nodes[i].patch);
+        EXPECT_EQ(decoded->nodes[i].source_radius, tree.nodes[i].source_radius);
+    }
+
+    // Refused: a cluster of VPLs that calls itself a patch, a patch that is
+    // not indirect, a source radius on a light that is no patch.
+    const auto refused = [&](const std::function<void(LightTree&)>& spoil) {
+        LightTree bad = tree;
+        spoil(bad);
+        return !decode_result_channel(encode_result_channel(bad)).ok();
+    };
+    const auto first = [](LightTree& t,
+                          const std::function<bool(const LightTreeNode&)>& which) -> LightTreeNode& {
+        return *std::find_if(t.nodes.begin(), t.nodes.end(), which);
+    };
+    EXPECT_TRUE(refused([&](LightTree& t) {
+        first(t, [](const LightTreeNode& n) { return !n.is_leaf() && n.indirect && !n.patch; }).patch = true;
+    }));
+    EXPECT_TRUE(refused(
+        [&](LightTree& t) { first(t, [](const LightTreeNode& n) { return n.patch; }).indirect = false; }));
+    EXPECT_TRUE(refused([&](LightTree& t) {
+        first(t, [](const LightTreeNode& n) { return n.indirect && !n.patch; }).source_radius = 0.1f;
+    }));
+
+    // The builder refuses the same lights.
+    std::vector<SceneLight> lights = lights_with_patches(false);
+    lights.back().indirect = false;
+    EXPECT_FALSE(bake::build_light_tree(lights, bake::BuildOptions{}, nullptr).ok());
 }
 
 // Points on the wall near the spike and on the floor: the spike dominates the first.
@@ -253,6 +329,34 @@ TEST(IndirectClampCpu, AVplOneMillimetreFromAWallAddsAtMostTheRatio) {
         const CutResult at_spike = shade_lightcuts(tree, {}, wall_and_floor_points()[0], settings);
         EXPECT_GT(device::largest_channel(at_spike.clamped), 1e3) << "the spike was not clamped";
         EXPECT_GT(device::largest_channel(at_spike.indirect), device::largest_channel(at_spike.clamped));
+    }
+}
+
+// The same spike as a patch: the disk's 1 / (d^2 + r^2) instead of a clamp.
+TEST(IndirectClampCpu, APatchOneMillimetreFromAWallIsADiskNotASpike) {
+    const LightTree tree = build(lights_with_patches(false));
+    const SceneLight spike = lights_with_patches(false)[direct_lights().size()];
+    CutSettings exhaustive;  // the radius criterion refines every cluster of unbounded lights
+    for (const SurfacePoint& p : wall_and_floor_points()) {
+        const CutResult on = shade_lightcuts(tree, {}, p, exhaustive);
+        EXPECT_EQ(on.clamped, glm::dvec3(0.0));
+        for (int ch = 0; ch < 3; ++ch) ASSERT_TRUE(std::isfinite(on.radiance[ch]));
+    }
+    // Under the patch's centre both cosines are 1: f_r I / (d^2 + r^2), Lambert's f_r = albedo / pi.
+    const SurfacePoint under = wall_and_floor_points()[0];
+    CutSettings off = exhaustive;
+    off.indirect = false;
+    const glm::dvec3 patch = shade_lightcuts(tree, {}, under, exhaustive).radiance -
+                             shade_lightcuts(tree, {}, under, off).radiance;
+    const double d = 0.001, r = kPatchRadius;
+    const glm::dvec3 disk =
+        under.albedo / std::numbers::pi * glm::dvec3(spike.color) * double(spike.intensity) / (d * d + r * r);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(patch[ch], disk[ch], 1e-4 * disk[ch]) << "channel " << ch;
+
+    for (CutSettings settings : every_search()) {
+        const CutResult at_spike = shade_lightcuts(tree, {}, under, settings);
+        EXPECT_EQ(at_spike.clamped, glm::dvec3(0.0));
+        EXPECT_GT(device::largest_channel(at_spike.indirect), 0.0);
     }
 }
 
@@ -330,6 +434,9 @@ protected:
                 {client::RenderMode::kLightcuts, CutCriterion::kBound, BoundSearch::kHeap, "bound heap"}};
     }
 
+    // Every pixel of every mode against the CPU evaluator: radiance, clamped and indirect energy.
+    void expect_gpu_shades_like_the_cpu(const LightTree& tree);
+
     Scene scene_;
     client::RenderSettings settings_;
 };
@@ -363,8 +470,7 @@ TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode
     }
 }
 
-TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
-    const LightTree tree = build(lights_with_indirect(true));
+void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
     std::unique_ptr<client::Renderer> r = renderer(tree);
     ASSERT_TRUE(r);
     for (const Mode& m : every_mode()) {
@@ -402,7 +508,17 @@ TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
         EXPECT_GE(double(within), (exhaustive ? 1.0 : 0.97) * double(compared)) << m.name;
         EXPECT_NEAR(f.stats.clamped_energy, clamped_cpu, (exhaustive ? 1e-2 : 0.05) * clamped_cpu) << m.name;
         EXPECT_NEAR(f.stats.indirect_energy, indirect_cpu, (exhaustive ? 1e-2 : 0.05) * indirect_cpu) << m.name;
+        EXPECT_EQ(f.stats.nonfinite_pixels, 0u) << m.name;
     }
+}
+
+TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
+    expect_gpu_shades_like_the_cpu(build(lights_with_indirect(true)));
+}
+
+// Patches (disks, not clamped) beside clamped VPLs, in every mode.
+TEST_F(IndirectClampGpu, TheGpuShadesPatchesLikeTheCpu) {
+    expect_gpu_shades_like_the_cpu(build(lights_with_patches(true)));
 }
 
 TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {

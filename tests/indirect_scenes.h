@@ -49,6 +49,16 @@ inline SceneGeometry closed_box(SurfaceMaterial material, float size = 1.0f) {
     return g;
 }
 
+// The geometry that breaks naive solvers, added to a unit closed box: a
+// zero-area triangle, a copy of the floor on top of itself, and a panel
+// standing on the floor, touching it along an edge.
+inline void add_hard_cases(SceneGeometry& g) {
+    g.triangles.push_back(flat_triangle({0.1f, 0.1f, 0.1f}, {0.2f, 0.1f, 0.1f}, {0.3f, 0.1f, 0.1f}, 0));
+    g.triangles.push_back(g.triangles[0]);
+    g.triangles.push_back(g.triangles[1]);
+    add_quad(g, {0.2f, 0.0f, 0.5f}, {0.6f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f}, 0);
+}
+
 // A unit Cornell box open at z = 1: red wall at x = 0, green at x = 1, white
 // floor, back and ceiling; the ceiling's middle is a white panel of radiance
 // `panel_radiance` facing down. Walls are triangle pairs, tagged by `Wall`.

@@ -93,12 +93,7 @@ TEST(RadiositySolver, ANearlyWhiteRoomConvergesWithinItsBudgetOrSaysWhy) {
 TEST(RadiositySolver, ZeroAreaCoincidentAndTouchingGeometryStaysFiniteAndBounded) {
     const float rho = 0.3f;
     SceneGeometry g = furnace(rho, 1.0f);
-    // A zero-area triangle, a copy of the floor on top of itself, and a panel
-    // standing on the floor, touching it along an edge.
-    g.triangles.push_back(test::flat_triangle({0.1f, 0.1f, 0.1f}, {0.2f, 0.1f, 0.1f}, {0.3f, 0.1f, 0.1f}, 0));
-    g.triangles.push_back(g.triangles[0]);
-    g.triangles.push_back(g.triangles[1]);
-    test::add_quad(g, {0.2f, 0.0f, 0.5f}, {0.6f, 0.0f, 0.0f}, {0.0f, 0.5f, 0.0f}, 0);
+    test::add_hard_cases(g);
     RadiosityOptions options;
     options.patch_size = 0.25f;
     options.tolerance = 1e-3;

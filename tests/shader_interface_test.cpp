@@ -46,7 +46,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuLight, position), LC_FIELD(GpuLight, range), LC_FIELD(GpuLight, direction),
            LC_FIELD(GpuLight, type), LC_FIELD(GpuLight, intensity),
            LC_FIELD(GpuLight, spot_cos_outer), LC_FIELD(GpuLight, spot_cos_inner),
-           LC_FIELD(GpuLight, spot_scale), LC_FIELD(GpuLight, flags), LC_FIELD(GpuLight, pad1)}}},
+           LC_FIELD(GpuLight, spot_scale), LC_FIELD(GpuLight, flags), LC_FIELD(GpuLight, source_radius)}}},
         {"GpuTreeNode",
          {sizeof(GpuTreeNode),
           {LC_FIELD(GpuTreeNode, intensity), LC_FIELD(GpuTreeNode, representative),

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/render/image_io.h"
@@ -139,12 +140,27 @@ TEST(EditorLoop, ModesThatNeedATreeRenderTheReferenceWithoutOne) {
     EXPECT_EQ(context->validation_message_count(), 0u);
 }
 
-TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
-    if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "xvfb-run is not installed";
-    std::unique_ptr<vk::Context> probe;
-    LC_REQUIRE_VULKAN(probe);
-    probe.reset();
+// Runs `command` with its output into `log`; its exit status and the log's text.
+std::pair<int, std::string> run_logged(const std::string& command, const std::filesystem::path& log) {
+    const int status = std::system((command + " > " + log.string() + " 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    return {status, text.str()};
+}
+
+// The view command in a real window: skipped without xvfb-run or a Vulkan device.
+class ViewWindow : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)
+            GTEST_SKIP() << "xvfb-run is not installed";
+        std::unique_ptr<vk::Context> probe;
+        LC_REQUIRE_VULKAN(probe);
+    }
+};
+
+TEST_F(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
 
     std::filesystem::path dir = test::make_temp_dir("view-window");
     Scene scene = test::lit_room(11);
@@ -159,14 +175,11 @@ TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
         std::string command = "xvfb-run -a " + (test::bin_dir() / "editor_client").string() +
                               " view " + scene_path.string() + " --tree " + tree_path.string() +
                               " --mode " + mode + " --size 96x72 --frames 3 --validation" +
-                              " --screenshot " + shot.string() + " > " + log.string() + " 2>&1";
-        int status = std::system(command.c_str());
-        std::ifstream in(log);
-        std::stringstream text;
-        text << in.rdbuf();
-        ASSERT_EQ(status, 0) << text.str();
-        EXPECT_NE(text.str().find("3 frames"), std::string::npos) << text.str();
-        EXPECT_NE(text.str().find("0 validation messages"), std::string::npos) << text.str();
+                              " --screenshot " + shot.string();
+        const auto [status, text] = run_logged(command, log);
+        ASSERT_EQ(status, 0) << text;
+        EXPECT_NE(text.find("3 frames"), std::string::npos) << text;
+        EXPECT_NE(text.find("0 validation messages"), std::string::npos) << text;
 
         Result<Rgba8Image> image = read_png(shot);
         ASSERT_TRUE(image.ok()) << image.error();
@@ -174,6 +187,30 @@ TEST(ViewWindow, XvfbWindowRendersFramesAndSavesAScreenshot) {
         EXPECT_EQ(image->height, 72u);
         test::expect_not_blank(*image, "the screenshot", 4);
     }
+    std::filesystem::remove_all(dir);
+}
+
+// Build Lighting from a real window (issue 16): a scripted bake of the
+// emissive Cornell box with radiosity indirect light on a spawned server.
+// The tree holds the panel's 256 area-light samples and the patches
+// (EditorBake tests the solver's stage in the progress bar).
+TEST_F(ViewWindow, XvfbBuildLightingBakesIndirectLight) {
+
+    const std::filesystem::path dir = test::make_temp_dir("view-window-indirect");
+    const std::filesystem::path scene_path = dir / "cornell.gltf";
+    ASSERT_TRUE(write_scene_gltf(make_cornell_emissive_scene(), scene_path).ok());
+    std::ofstream(dir / "script.txt") << "bake\nquit\n";
+    const std::string command = "xvfb-run -a " + (test::bin_dir() / "editor_client").string() + " view " +
+                                scene_path.string() + " --spawn-server --area-lights 256 --indirect radiosity" +
+                                " --patch-size 0.5 --script " + (dir / "script.txt").string() +
+                                " --size 96x72 --validation";
+    const auto [status, text] = run_logged(command, dir / "view.log");
+    ASSERT_EQ(status, 0) << text;
+    EXPECT_NE(text.find("0 validation messages"), std::string::npos) << text;
+    const size_t at = text.find("bake: 0 lights -> ");
+    ASSERT_NE(at, std::string::npos) << text;
+    const unsigned long nodes = std::stoul(text.substr(at + std::string("bake: 0 lights -> ").size()));
+    EXPECT_GT(nodes, 2u * 256u) << "no patches beside the 256 area-light samples: " << text;
     std::filesystem::remove_all(dir);
 }
 

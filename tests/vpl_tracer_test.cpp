@@ -55,6 +55,34 @@ TEST(VplTracer, FurnaceReflectsTheGeometricSeriesOfItsEmission) {
     }
 }
 
+// The radiosity solver's hard cases for the photon tracer: a zero-area
+// triangle, coincident floors and a touching panel in a furnace, at rho = 0.3
+// and nearly white (0.99). The closed furnace keeps the geometric series of
+// the emitted power; with the hard cases it is an upper bound (the panel is
+// one-sided: photons reaching its back are absorbed, surface_sampling.h), so
+// no duplicate surface may create power.
+TEST(VplTracer, HardGeometryAndANearlyWhiteRoomStayFiniteAndBounded) {
+    for (double rho : {0.3, 0.99}) for (bool hard : {false, true}) {
+        SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(1.0f)});
+        if (hard) test::add_hard_cases(g);
+        VplOptions options;
+        options.particle_count = 20000;
+        options.bounces = 16;
+        options.seed = 7;
+        auto r = trace(g, {}, options);
+        ASSERT_TRUE(r.ok()) << r.error();
+        const double expected = r->emitted_power.x * rho * (1.0 - std::pow(rho, 16.0)) / (1.0 - rho);
+        for (const IndirectLight& l : r->lights) ASSERT_TRUE(std::isfinite(l.power.x) && l.power.x > 0.0f);
+        const double ratio = total_power(r->lights).x / expected;
+        std::printf("rho %.2f%s: reflected power / series %.4f\n", rho, hard ? ", hard cases" : "", ratio);
+        if (hard) {
+            EXPECT_LE(ratio, 1.03) << "rho " << rho;
+        } else {
+            EXPECT_NEAR(ratio, 1.0, 0.03) << "rho " << rho;
+        }
+    }
+}
+
 TEST(VplTracer, SameLightsAtAnyThreadCount) {
     SceneGeometry g = test::cornell_box().geometry;
     VplOptions options;

@@ -37,6 +37,7 @@
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
 #include "editor_client/render/image_io.h"
+#include "editor_client/render/indirect_census.h"
 #include "editor_client/render/pixel_stride.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
@@ -45,6 +46,7 @@
 #include "editor_client/render/supersampled_render.h"
 #include "editor_client/report/progress_display.h"
 #include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/surface_geometry.h"
 #include "editor_client/vk/context.h"
 
 namespace lc::client {
@@ -340,15 +342,18 @@ void run_render(const RenderOptions& options) {
                      "warning: the device's loop limit cut %llu pixels' cut search short; they "
                      "keep their last complete pass (counted in loop_limit_stops)\n",
                      (unsigned long long)stats.loop_limit_stops);
-    if (!stats.indirect.empty()) {
-        if (stats.indirect == "on") {
-            std::printf("indirect: simulated (%llu indirect lights of the tree, clamped energy %.3g%%)\n",
-                        (unsigned long long)stats.indirect_lights, 100.0 * stats.clamped_fraction());
-        } else {
-            std::printf("indirect: skipped (--indirect off: %llu indirect lights of the tree left out)\n",
-                        (unsigned long long)stats.indirect_lights);
-        }
-    }
+    IndirectCensusFacts indirect_facts;
+    indirect_facts.has_tree = tree != nullptr;
+    indirect_facts.vpls = stats.indirect_lights - stats.indirect_patches;
+    indirect_facts.patches = stats.indirect_patches;
+    indirect_facts.left_out = stats.indirect == "off";
+    indirect_facts.clamped_fraction = stats.clamped_fraction();
+    if (source.bake) indirect_facts.baked = source.bake->indirect;
+    // Only a bake that made no indirect light needs to know why.
+    if (source.bake && stats.indirect_lights == 0)
+        indirect_facts.scene_has_geometry = !extract_surface_geometry(scene).triangles.empty();
+    if (std::string census = indirect_census(indirect_facts); !census.empty())
+        std::printf("indirect: %s\n", census.c_str());
     if (stats.has_error_stats)
         std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
                     "over %.3f, max %.4f, %llu max-cut hits\n",

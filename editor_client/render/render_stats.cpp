@@ -44,6 +44,8 @@ nlohmann::json stats_json(const RenderStats& s) {
     if (!s.indirect.empty()) {
         j["indirect"] = s.indirect;
         j["indirect_lights"] = s.indirect_lights;
+        j["indirect_vpls"] = s.indirect_lights - s.indirect_patches;
+        j["indirect_patches"] = s.indirect_patches;
         j["indirect_energy"] = s.indirect_energy;
         j["clamped_energy"] = s.clamped_energy;
         j["clamped_energy_fraction"] = s.clamped_fraction();

@@ -56,6 +56,7 @@ struct RenderStats {
     // removed (summed over pixels and channels).
     std::string indirect;  // empty without indirect lights
     uint64_t indirect_lights = 0;
+    uint64_t indirect_patches = 0;  // of the indirect lights, radiosity patches (the others are VPLs)
     double indirect_energy = 0.0;
     double clamped_energy = 0.0;
     double clamped_fraction() const { return indirect_energy > 0.0 ? clamped_energy / indirect_energy : 0.0; }

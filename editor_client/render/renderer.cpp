@@ -503,6 +503,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
     if (effects_.indirect_lights > 0) {
         stats.indirect = effects_.indirect_off ? "off" : "on";
         stats.indirect_lights = effects_.indirect_lights;
+        stats.indirect_patches = effects_.indirect_patches;
     }
     if (effects_.indirect_clamp) LC_RETURN_IF_ERROR(read_clamped_energy(stats));
     if (settings.mode == RenderMode::kReference) {

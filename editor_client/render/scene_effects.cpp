@@ -142,7 +142,16 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
     // Area lights light the scene through the tree's oriented leaves, which
     // the server sampled from the emissive triangles (area_light_sampler.h).
     const size_t emissive_triangles = emissive_triangle_count(extract_surface_geometry(scene));
-    const size_t samples = tree != nullptr ? orienteds : 0;
+    // Bounced light is the server's (bake --indirect): the renderer traces no
+    // bounce of its own, it clamps or leaves out the tree's indirect lights.
+    if (tree != nullptr) {
+        for (const LightTreeNode& node : tree->nodes) {
+            effects.indirect_lights += node.is_leaf() && node.indirect;
+            effects.indirect_patches += node.is_leaf() && node.patch;
+        }
+    }
+    // The indirect lights are oriented too, but no area light's samples.
+    const size_t samples = tree != nullptr ? orienteds - size_t(effects.indirect_lights) : 0;
     if (emissive_triangles == 0) {
         decide("area lights", false, "", "no drawn triangle emits power");
     } else {
@@ -167,11 +176,6 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         plural(glossy_materials, "drawn material") + " with roughness below 1" +
             (glossy_texture ? " or a metallic-roughness texture" : ""),
         "every drawn material has roughness 1, where the lobe is constant and shades as Lambert");
-    // Bounced light is the server's (bake --indirect): the renderer traces no
-    // bounce of its own, it clamps or leaves out the tree's indirect lights.
-    if (tree != nullptr) {
-        for (const LightTreeNode& node : tree->nodes) effects.indirect_lights += node.is_leaf() && node.indirect;
-    }
     const std::string indirect_name = "indirect light (the paper's automatic clamping)";
     const std::string baked = plural(effects.indirect_lights, "indirect light") +
                               " of the tree (bake --indirect; among the oriented lights above)";
@@ -183,8 +187,12 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         effects.indirect_off = true;
         decide(indirect_name, false, "", "--indirect off: " + baked + " left out");
     } else {
+        const uint64_t vpls = effects.indirect_lights - effects.indirect_patches;
         effects.indirect_clamp = decide(indirect_name, true,
-                                        baked + ": each clamped to half the error ratio of the pixel's total",
+                                        baked + ": " + plural(vpls, "VPL") +
+                                            " clamped to half the error ratio of the pixel's total each, " +
+                                            std::to_string(effects.indirect_patches) +
+                                            " radiosity patch(es) shaded as disks of their area",
                                         "");
     }
     return effects;

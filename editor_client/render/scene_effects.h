@@ -35,6 +35,7 @@ struct SceneEffects {
     bool indirect_clamp = false;
     bool indirect_off = false;
     uint64_t indirect_lights = 0;  // indirect leaves of the tree
+    uint64_t indirect_patches = 0;  // of them, radiosity patches (the others are VPLs)
     // What shadow rays test: three vertices per triangle (occlusion_analysis.h).
     std::vector<glm::vec3> occluders;
 

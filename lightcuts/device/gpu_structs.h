@@ -18,14 +18,16 @@ LC_CONST uint kLightOriented = 3u;
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;
 
-// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, and the node's
-// LightType from bit kNodeTypeShift on.
+// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, kNodePatch, and the
+// node's LightType from bit kNodeTypeShift on.
 LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
 LC_CONST uint kNodeIndirect = 2u;    // every light below is indirect (LightTreeNode::indirect)
+LC_CONST uint kNodePatch = 4u;       // every light below is a radiosity patch (LightTreeNode::patch)
 LC_CONST uint kNodeTypeShift = 8u;
 
 // GpuLight::flags
 LC_CONST uint kGpuLightIndirect = 1u;  // bounced light: clamped (indirect_clamp.glsl.h)
+LC_CONST uint kGpuLightPatch = 2u;     // a radiosity patch (with kGpuLightIndirect): a disk, not clamped
 
 // One light, as the shading model evaluates it (shading_model.h): the leaf
 // lights (every tree node's representative among them) and the classic lights.
@@ -40,7 +42,8 @@ struct LC_ALIGN16 GpuLight {
     // 1 / max(cos_inner - cos_outer, kSpotMinCosDelta), precomputed (shading_model.h).
     float spot_scale LC_DEFAULT(1.0f);
     uint flags LC_DEFAULT(0u);  // kGpuLight*
-    uint pad1 LC_DEFAULT(0u);
+    // A radiosity patch's equivalent disk radius (shading.glsl.h); 0 for every other light.
+    float source_radius LC_DEFAULT(0.0f);
 };
 
 // A light-tree node as the walks read it, 64 bytes (pbrt-v4's
@@ -60,7 +63,7 @@ struct LC_ALIGN16 GpuTreeNode {
     float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
     uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
     float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
-    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | type << kNodeTypeShift
+    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | kNodePatch | type << kNodeTypeShift
 };
 
 // Counters the lighting pass accumulates with atomics (reset every frame).

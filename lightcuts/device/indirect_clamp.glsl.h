@@ -20,6 +20,11 @@
 //
 // The cut's stopping rule (error ratio x the total) reads the clamped total,
 // so that a spike does not coarsen the cut of the light around it.
+//
+// Radiosity patches are indirect but not clamped: a patch is a large emitter
+// whose disk falloff (shading.glsl.h) cannot spike, and clamping it as a
+// point took a quarter of the radiosity Cornell box's light. Their leaves
+// count with the clusters: in the statistics, not in the clamp.
 #ifndef LC_DEVICE_INDIRECT_CLAMP_GLSL_H
 #define LC_DEVICE_INDIRECT_CLAMP_GLSL_H
 
@@ -35,8 +40,8 @@ struct IndirectSums {
     real3 second;    // the next one
     real3 rest;      // the other indirect leaves
     real rest_max;   // the largest channel of a light in rest
-    real3 others;    // the rest of the cut: direct light and indirect clusters
-    real3 clusters;  // indirect clusters: not clamped, counted in the statistics
+    real3 others;    // the rest of the cut: direct light, indirect clusters and patches
+    real3 clusters;  // indirect clusters and patches: not clamped, counted in the statistics
     uint leaves;     // indirect leaves added
 };
 
@@ -81,9 +86,15 @@ LC_INLINE void add_indirect_leaf(LC_INOUT(IndirectSums) s, real3 contribution) {
     s.leaves += 1u;
 }
 
-// One node of the cut: an indirect leaf is clamped, anything else is the rest.
-LC_INLINE void add_cut_node(LC_INOUT(IndirectSums) s, bool indirect, bool leaf, real3 contribution) {
-    if (indirect && leaf) {
+// Whether a node of the cut is clamped: an indirect leaf that is no patch.
+LC_INLINE bool clamped_leaf(bool indirect, bool is_patch, bool leaf) {
+    return indirect && leaf && !is_patch;
+}
+
+// One node of the cut: a clamped leaf (clamped_leaf()) goes to the clamp,
+// anything else is the rest.
+LC_INLINE void add_cut_node(LC_INOUT(IndirectSums) s, bool indirect, bool clamped, real3 contribution) {
+    if (clamped) {
         add_indirect_leaf(s, contribution);
         return;
     }

@@ -10,6 +10,12 @@
 //                cosine max(dot(d, n_e), 0), d the unit direction from the light
 //                to x, n_e its normal (`direction`): a cosine emitter (the
 //                paper's oriented light, a point of an area light)
+//                A radiosity patch is an oriented light with a source radius
+//                r = sqrt(area / pi): its inverse square is 1 / (d^2 + r^2),
+//                the on-axis irradiance of a uniformly emitting disk, exact on
+//                its axis and finite at d = 0, so a patch never spikes. Every
+//                other light has r = 0. The cluster bounds' 1 / d_min^2 stays
+//                above it (cluster_bounds.glsl.h).
 //   directional: G = max(cos_theta, 0) (intensity in lux)
 #ifndef LC_DEVICE_SHADING_GLSL_H
 #define LC_DEVICE_SHADING_GLSL_H
@@ -66,6 +72,7 @@ struct Emitter {
     real range;        // <= 0: no window
     real cos_outer;    // spot only, like spot_scale
     real spot_scale;
+    real source_radius;  // a radiosity patch's disk radius; 0 for every other light
 };
 
 // G of the emitter at x with unit normal n. `l` gets the unit direction
@@ -86,7 +93,7 @@ LC_INLINE real light_geometry(LC_IN(Emitter) e, real3 x, real3 n, LC_OUT(real3) 
     l = to_light / d;
     real cos_theta = dot(n, to_light) / d;
     if (!(cos_theta > 0.0)) return 0.0;
-    real g = range_window(d, e.range) * cos_theta * inverse_square(d2);
+    real g = range_window(d, e.range) * cos_theta * inverse_square(d2 + e.source_radius * e.source_radius);
     if (e.spot) g *= spot_attenuation(dot(-to_light / d, e.direction), e.cos_outer, e.spot_scale);
     if (e.oriented) g *= emitter_cosine(-to_light / d, e.direction);
     return g;

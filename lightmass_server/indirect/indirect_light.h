@@ -4,6 +4,8 @@
 // each into a tree light marked "indirect"; the tests read them directly.
 #include <glm/vec3.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 
 namespace lc::bake {
@@ -12,7 +14,15 @@ struct IndirectLight {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f, 0.0f, 1.0f};  // unit; the emitter lights its front half-space
     glm::vec3 power{0.0f};               // radiant flux leaving the point, linear RGB (W)
+    // A radiosity patch: the radius of the disk of its area, which the
+    // renderer evaluates instead of clamping it; 0: a VPL, a point.
+    float patch_radius = 0.0f;
 };
+
+// The radius of the disk with the patch's area: the renderer's near-field falloff.
+inline float equivalent_disk_radius(float area) {
+    return std::sqrt(std::max(area, 0.0f) / std::numbers::pi_v<float>);
+}
 
 // A cosine emitter of power P has radiant intensity I(theta) = (P / pi) cos(theta).
 inline glm::vec3 intensity_along_normal(const IndirectLight& light) {

@@ -37,6 +37,8 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
         light.color = intensity / scale;
         light.intensity = scale;
         light.indirect = true;
+        light.patch = bounced.patch_radius > 0.0f;
+        light.source_radius = bounced.patch_radius;
         out.push_back(light);
     }
     return out;

@@ -149,7 +149,7 @@ public:
             if (!(mean(reflected) > 0.0)) continue;
             // Just off the surface, so the renderer's shadow rays leave it.
             result_.lights.push_back({p.centre + p.normal * epsilon_, p.normal,
-                                      glm::vec3(reflected * double(p.area))});
+                                      glm::vec3(reflected * double(p.area)), equivalent_disk_radius(p.area)});
         }
     }
 
