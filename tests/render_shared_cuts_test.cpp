@@ -55,6 +55,13 @@ protected:
         f.cuts = renderer_->read_cuts().value();
         return f;
     }
+    // The frame with the pixels' own cuts, then with shared cuts.
+    std::pair<Frame, Frame> render_own_and_shared() {
+        settings_.share_cuts = false;
+        Frame own = render(settings_);
+        settings_.share_cuts = true;
+        return {std::move(own), render(settings_)};
+    }
     Scene scene_;
     LightTree tree_;
     std::unique_ptr<Renderer> renderer_;
@@ -76,10 +83,7 @@ TEST_F(SharedCuts, ErrorWithinTheBoundAndBelowThePixelsOwnCuts) {
     for (float error : {0.02f, 0.005f}) {
         SCOPED_TRACE(testing::Message() << "E " << error);
         settings_.error_ratio = error;
-        settings_.share_cuts = false;
-        const Frame own = render(settings_);
-        settings_.share_cuts = true;
-        const Frame shared = render(settings_);
+        const auto [own, shared] = render_own_and_shared();
         ASSERT_FALSE(own.hdr.empty());
         ASSERT_FALSE(shared.hdr.empty());
         Result<ErrorStats> own_errors =
@@ -116,10 +120,7 @@ TEST_F(SharedCuts, APixelOverMaxCutOnlyThroughItsNeighboursFinishesAlone) {
     settings_.mode = RenderMode::kLightcuts;
     settings_.error_ratio = 0.005f;
     settings_.max_cut = 600;
-    settings_.share_cuts = false;
-    const Frame own = render(settings_);
-    settings_.share_cuts = true;
-    const Frame shared = render(settings_);
+    const auto [own, shared] = render_own_and_shared();
     ASSERT_FALSE(own.hdr.empty());
     ASSERT_FALSE(shared.hdr.empty());
     std::printf("  max cut %u: own cuts %llu pixels at the cap, shared %llu\n", settings_.max_cut,
