@@ -27,6 +27,7 @@
 // loop limit cuts short runs again in the next dispatch (the search kept per
 // pixel in GpuWalkState between them).
 #include <cstdint>
+#include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
 
@@ -41,7 +42,10 @@ inline constexpr uint32_t kWalkBisections = 6;
 // threshold between one whose cut fit and one whose cut exceeded max_cut.
 double bisection_threshold(double fit_hi, double over_lo);
 
-// The cut of the bound criterion by threshold passes (classic lights not included).
-CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings);
+// The cut of the bound criterion by threshold passes (classic lights not
+// included), with the kept pass's nodes appended to `nodes` when given (as
+// bound_heap_cut does: what an audit of the cut's error reads node by node).
+CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+                         std::vector<CutNodeEstimate>* nodes = nullptr);
 
 }  // namespace lc

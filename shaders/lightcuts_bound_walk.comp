@@ -13,7 +13,10 @@
 // a lane's cut refines at least as far as its own at that threshold, and
 // every lane shades the same node and traces its ray to the same light in
 // the same step. Each lane still stops under its own rule (a finer cut may
-// meet it a pass earlier).
+// meet it a pass earlier). A lane whose shared pass exceeds max-cut leaves
+// the vote (kWalkAlone) and walks that threshold again on its own: the
+// nodes its neighbours need must not push it over the cap, where it would
+// bisect down to a cut coarser than its own.
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"
@@ -42,8 +45,9 @@ struct WalkPass {
 // subtree. A lane sitting the pass out (done, or over max-cut) waits for
 // kEndOfWalk, which no node index equals.
 // `shade` false: only sizes the cut (no light is evaluated, no ray traced).
+// `share` false: this lane refines by its own bound alone (kWalkAlone).
 void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout WalkPass pass,
-                     float tau, bool limit_size, bool shade, SurfacePoint p) {
+                     float tau, bool limit_size, bool shade, bool share, SurfacePoint p) {
     if (i == kEndOfWalk) return;
     if (waiting && i == resume) waiting = false;
     // One load of the node per step: llvmpipe gathers every field per lane,
@@ -63,7 +67,10 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
         refine = !leaf && (mixed || key > tau);
         // The lanes here all stand at node i (a lane that took an ancestor
         // as a cluster is waiting, and sits this vote out).
-        if (kWalkShareCuts) refine = subgroupAny(refine);
+        if (kWalkShareCuts) {
+            bool voted = subgroupAny(share && refine);
+            if (share) refine = voted;
+        }
         if (!refine) {
             waiting = true;
             if (limit_size && pass.size >= kWalkMaxCut) {
@@ -94,7 +101,7 @@ GpuWalkState walk_start() {
 
 // The cut at threshold tau (`shade` false: its size, hash and worst bound
 // only). False when the walk or a ray of it was cut short.
-bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, SurfacePoint p) {
+bool walk_cut(float tau, bool limit_size, bool shade, bool share, out WalkPass pass, SurfacePoint p) {
     pass = WalkPass(vec3(0.0), 0u, 0u, 0.0, false, no_indirect_sums());
     int i = frame.node_count > 0u ? 0 : kEndOfWalk;  // an empty tree: an empty cut
     bool waiting = false;
@@ -103,8 +110,8 @@ bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, Surface
     // Two steps per iteration: the step is large, and more copies spill
     // (measured: 8 copies 1.4x slower).
     for (uint step = 0u; i != kEndOfWalk && step < frame.node_count; step += kWalkUnroll) {
-        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
-        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, p);
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, share, p);
+        bound_walk_step(i, waiting, resume, pass, tau, limit_size, shade, share, p);
     }
     return i == kEndOfWalk && !g_shadow_walk_cut_short;
 }
@@ -116,6 +123,7 @@ bool walk_cut(float tau, bool limit_size, bool shade, out WalkPass pass, Surface
 bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
     bool limit_size = s.passes > 0u;
     bool bisecting = (s.flags & kWalkBisecting) != 0u;
+    bool share = kWalkShareCuts && (s.flags & kWalkAlone) == 0u;
     WalkPass pass;
     // With shadow rays, a pass that may well exceed max-cut (bisecting, or
     // the last cut already a quarter of it) is sized first and shaded only
@@ -123,8 +131,13 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
     // are thrown away. Sizing costs a walk of bounds; rays cost far more.
     bool size_first =
         kShadows && limit_size && (bisecting || s.size * 4u >= kWalkMaxCut);
-    if (size_first && !walk_cut(s.tau, limit_size, false, pass, p)) return false;
-    if (!(size_first && pass.over) && !walk_cut(s.tau, limit_size, true, pass, p)) return false;
+    if (size_first && !walk_cut(s.tau, limit_size, false, share, pass, p)) return false;
+    if (!(size_first && pass.over) && !walk_cut(s.tau, limit_size, true, share, pass, p)) return false;
+    if (share && pass.over) {
+        // The same threshold again, on this lane's own walk (not counted as a pass).
+        s.flags |= kWalkAlone;
+        return true;
+    }
     ++s.passes;
     if (s.passes >= kWalkMaxPasses) s.flags |= kWalkDone;  // unless the rule is met below
     if (pass.over) {

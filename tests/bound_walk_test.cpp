@@ -113,6 +113,52 @@ TEST(BoundWalk, FindsTheSameCutsAsThresholdCutsFoundByAncestry) {
     EXPECT_GT(hits, 0) << "max-cut 12 should stop some pixels";
 }
 
+TEST(BoundWalk, GivesTheNodesOfTheCutItKept) {
+    // What an audit of the cut's error reads node by node: the nodes of the
+    // pass the result holds (the last that fit, at max-cut), each with its
+    // cluster estimate, a partition of the leaves.
+    std::mt19937_64 rng(59);
+    const std::vector<SceneLight> lights = mixed_scene(rng);
+    const LightTree tree = morton_pairing_tree(lights, 7);
+    std::uniform_real_distribution<double> u(-6, 6);
+    int hits = 0;
+    for (int k = 0; k < 100; ++k) {
+        const SurfacePoint p =
+            surface({u(rng), u(rng), u(rng) * 0.2}, {u(rng) * 0.2, u(rng) * 0.2, 1});
+        const uint32_t max_cut = k % 4 == 0 ? 12 : 1000;
+        const CutSettings settings{CutCriterion::kBound, 0.005, max_cut};
+        std::vector<CutNodeEstimate> nodes;
+        const CutResult r = bound_walk_cut(tree, p, settings, &nodes);
+        const CutResult plain = bound_walk_cut(tree, p, settings);
+        EXPECT_EQ(r.cut_hash, plain.cut_hash);
+        ASSERT_EQ(nodes.size(), size_t(r.cut_size));
+        glm::dvec3 sum(0.0);
+        uint32_t hash = 0;
+        std::vector<int> covered(tree.nodes.size(), 0);
+        for (const CutNodeEstimate& n : nodes) {
+            expect_near_rel(n.estimate, shade_node(tree.nodes[size_t(n.node)], p), 1e-15, 1e-300);
+            sum += n.estimate;
+            hash += cut_hash_term(uint32_t(n.node));
+            std::vector<int32_t> stack{n.node};
+            while (!stack.empty()) {
+                const LightTreeNode& node = tree.nodes[size_t(stack.back())];
+                covered[size_t(stack.back())] += 1;
+                stack.pop_back();
+                if (!node.is_leaf()) stack.insert(stack.end(), {node.left, node.right});
+            }
+        }
+        EXPECT_EQ(hash, r.cut_hash);
+        expect_near_rel(sum, r.radiance, 1e-12, 1e-300);
+        for (size_t i = 0; i < tree.nodes.size(); ++i) {
+            if (tree.nodes[i].is_leaf()) {
+                EXPECT_EQ(covered[i], 1) << "leaf " << i;
+            }
+        }
+        hits += r.max_cut_hit ? 1 : 0;
+    }
+    EXPECT_GT(hits, 0) << "max-cut 12 should stop some points";
+}
+
 TEST(BoundWalk, CutIsAtLeastAsFineAsTheRuleAsksAndWithinItsBounds) {
     std::mt19937_64 rng(43);
     const std::vector<SceneLight> lights = mixed_scene(rng);

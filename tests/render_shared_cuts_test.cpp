@@ -55,6 +55,13 @@ protected:
         f.cuts = renderer_->read_cuts().value();
         return f;
     }
+    // The frame with the pixels' own cuts, then with shared cuts.
+    std::pair<Frame, Frame> render_own_and_shared() {
+        settings_.share_cuts = false;
+        Frame own = render(settings_);
+        settings_.share_cuts = true;
+        return {std::move(own), render(settings_)};
+    }
     Scene scene_;
     LightTree tree_;
     std::unique_ptr<Renderer> renderer_;
@@ -76,10 +83,7 @@ TEST_F(SharedCuts, ErrorWithinTheBoundAndBelowThePixelsOwnCuts) {
     for (float error : {0.02f, 0.005f}) {
         SCOPED_TRACE(testing::Message() << "E " << error);
         settings_.error_ratio = error;
-        settings_.share_cuts = false;
-        const Frame own = render(settings_);
-        settings_.share_cuts = true;
-        const Frame shared = render(settings_);
+        const auto [own, shared] = render_own_and_shared();
         ASSERT_FALSE(own.hdr.empty());
         ASSERT_FALSE(shared.hdr.empty());
         Result<ErrorStats> own_errors =
@@ -105,6 +109,25 @@ TEST_F(SharedCuts, ErrorWithinTheBoundAndBelowThePixelsOwnCuts) {
         // Neighbours share their cut.
         EXPECT_LT(2 * distinct_cuts(shared.cuts), distinct_cuts(own.cuts));
     }
+}
+
+TEST_F(SharedCuts, APixelOverMaxCutOnlyThroughItsNeighboursFinishesAlone) {
+    // Found by the accuracy audit (docs/BENCHMARKS.md): beside pixels that
+    // need more than max-cut nodes, a shared cut went over the cap for a
+    // pixel that needs far fewer, which then bisected down to a coarse cut
+    // (+28% at one pixel). Such a lane now finishes its search on its own
+    // walk: at the cap, no more pixels stop than with the pixels' own cuts.
+    settings_.mode = RenderMode::kLightcuts;
+    settings_.error_ratio = 0.005f;
+    settings_.max_cut = 600;
+    const auto [own, shared] = render_own_and_shared();
+    ASSERT_FALSE(own.hdr.empty());
+    ASSERT_FALSE(shared.hdr.empty());
+    std::printf("  max cut %u: own cuts %llu pixels at the cap, shared %llu\n", settings_.max_cut,
+                (unsigned long long)own.stats.max_cut_hits, (unsigned long long)shared.stats.max_cut_hits);
+    ASSERT_GT(own.stats.max_cut_hits, 0u) << "the cap should stop some pixels";
+    EXPECT_LE(shared.stats.max_cut_hits, own.stats.max_cut_hits);
+    EXPECT_EQ(shared.stats.loop_limit_stops, 0u);
 }
 
 TEST_F(SharedCuts, SameBytesEveryTime) {

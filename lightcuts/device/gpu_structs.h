@@ -88,6 +88,7 @@ LC_CONST uint kWalkRuleMet = 2u;
 LC_CONST uint kWalkBisecting = 4u;
 LC_CONST uint kWalkLoopStop = 8u;
 LC_CONST uint kWalkStorePending = 16u;  // done where the loop limit fired: stored next dispatch
+LC_CONST uint kWalkAlone = 32u;  // shared cuts: the lane left the subgroup's vote (over max-cut through it)
 LC_CONST uint kWalkBisectionsShift = 8u;
 
 // One pixel's walk search between dispatches (shaders/lightcuts_bound_walk.comp):
