@@ -83,6 +83,39 @@ TEST(VplTracer, HardGeometryAndANearlyWhiteRoomStayFiniteAndBounded) {
     }
 }
 
+// 10^6 small triangles tiling the floor of the furnace (a millimetre above
+// it, reflecting but not emitting): the tracer's BVH and its paths scale to
+// them and stay finite. The floor's own light (a sixth of the emission) meets
+// the tiles' backs and is absorbed; the rest reflects as in the furnace.
+TEST(VplTracer, AMillionTrianglesStayFiniteAndBounded) {
+    const double rho = 0.5;
+    SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(1.0f)});
+    g.materials.push_back({glm::vec3(float(rho)), glm::vec3(0.0f)});
+    const uint32_t tile_material = uint32_t(g.materials.size() - 1);
+    const size_t walls = g.triangles.size();
+    const int n = 708;  // 2 n^2 ~ 10^6
+    const float step = 1.0f / n;
+    for (int i = 0; i < n; ++i) {
+        for (int k = 0; k < n; ++k) {
+            test::add_quad(g, {i * step, 0.001f, k * step}, {0, 0, step}, {step, 0, 0}, tile_material);
+        }
+    }
+    ASSERT_GE(g.triangles.size(), 1000000u);
+    VplOptions options;
+    options.particle_count = 20000;
+    options.bounces = 8;
+    options.seed = 7;
+    auto r = trace(g, {}, options);
+    ASSERT_TRUE(r.ok()) << r.error();
+    ASSERT_FALSE(r->lights.empty());
+    for (const IndirectLight& l : r->lights) ASSERT_TRUE(std::isfinite(l.power.x) && l.power.x > 0.0f);
+    const double series = r->emitted_power.x * rho * (1.0 - std::pow(rho, 8.0)) / (1.0 - rho);
+    const double ratio = total_power(r->lights).x / series;
+    std::printf("10^6 triangles (%zu walls): %zu VPLs, reflected power / series %.4f\n", walls,
+                r->lights.size(), ratio);
+    EXPECT_NEAR(ratio, 5.0 / 6.0, 0.03);
+}
+
 TEST(VplTracer, SameLightsAtAnyThreadCount) {
     SceneGeometry g = test::cornell_box().geometry;
     VplOptions options;
