@@ -521,6 +521,27 @@ TEST_F(IndirectClampGpu, TheGpuShadesPatchesLikeTheCpu) {
     expect_gpu_shades_like_the_cpu(build(lights_with_patches(true)));
 }
 
+// The clamp's sums ride in the walk states from dispatch to dispatch: a
+// reference split over submissions (every dispatch its own: this small
+// image's leaves in layers of workgroups, then their sum) keeps them.
+TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) {
+    const LightTree tree = build(lights_with_indirect(true));
+    settings_.width = settings_.height = 16;
+    std::unique_ptr<client::Renderer> whole = renderer(tree);
+    client::RendererOptions split_options;
+    split_options.reference_evaluations_per_submission = 1;
+    Result<std::unique_ptr<client::Renderer>> split =
+        client::Renderer::create(*context_, scene_, &tree, split_options);
+    ASSERT_TRUE(whole && split.ok());
+    const Frame one = render(*whole, client::RenderMode::kReference, CutCriterion::kRadius);
+    const Frame several = render(**split, client::RenderMode::kReference, CutCriterion::kRadius);
+    EXPECT_EQ(one.stats.submissions, 1u);
+    EXPECT_GT(several.stats.submissions, 1u);
+    EXPECT_EQ(one.hdr, several.hdr);
+    EXPECT_EQ(one.stats.clamped_energy, several.stats.clamped_energy);
+    EXPECT_GT(several.stats.clamped_energy, 0.0);
+}
+
 TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
     const LightTree with = build(lights_with_indirect(true));
     const LightTree without = build(direct_lights());

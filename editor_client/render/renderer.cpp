@@ -371,8 +371,11 @@ Status Renderer::record_frame(VkCommandBuffer cmd, const RenderSettings& setting
     vkCmdFillBuffer(cmd, counters_.handle(), 0, VK_WHOLE_SIZE, 0);
     const GpuBackground background = this->background(settings);
     vkCmdUpdateBuffer(cmd, background_.handle(), 0, sizeof(background), &background);
-    // The clamp's per-pixel statistics: background pixels keep their zeros.
-    if (effects_.indirect_clamp) vkCmdFillBuffer(cmd, targets_.walk_states.handle(), 0, VK_WHOLE_SIZE, 0);
+    // The clamp's per-pixel statistics: background pixels keep their zeros. Only
+    // when an image starts: a continued one (the next submission of a reference,
+    // the next tiles of a progressive view) carries its sums in the walk states.
+    if (effects_.indirect_clamp && !continues_image)
+        vkCmdFillBuffer(cmd, targets_.walk_states.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;
