@@ -19,6 +19,8 @@ inline constexpr float kUnboundedRadius = -1.0f;
 struct LightTreeNode {
     Guid guid;  // a leaf carries its scene light's GUID; a cluster a derived one
     LightType type = LightType::kPoint;
+    // A VPL leaf: the bounce that left it (SceneLight::bounce); 0 otherwise.
+    uint16_t bounce = 0;
     int32_t left = kNoChild;   // explicit child indices (never heap layout)
     int32_t right = kNoChild;
     int32_t representative = 0;  // index of the leaf node that represents this node
@@ -53,6 +55,9 @@ struct LightTreeNode {
 
     bool is_leaf() const { return left == kNoChild && right == kNoChild; }
 };
+
+// 2^20 lights hold twice this each on the client: a new field goes in padding.
+static_assert(sizeof(LightTreeNode) == 140);
 
 struct LightTree {
     // nodes[0] is the root when the tree is not empty. Nodes are in breadth-first

@@ -22,6 +22,10 @@ const char* light_type_name(LightType type);
 struct SceneLight {
     Guid guid;
     LightType type = LightType::kPoint;
+    // A VPL (indirect, not a patch): the bounce that left it, 1 and up; 0 for
+    // every other light, and for VPLs of servers that did not record it. In
+    // the padding after `type`: 2^20 lights are not made larger.
+    uint16_t bounce = 0;
     glm::vec3 position{0.0f};
     // Direction the light shines along (spot, directional) or the emitting
     // side's normal (oriented); unit length.
@@ -48,5 +52,8 @@ struct SceneLight {
     bool patch = false;
     float source_radius = 0.0f;
 };
+
+// The server holds one per light (2^20 and more): a new field goes in padding.
+static_assert(sizeof(SceneLight) == 80);
 
 }  // namespace lc

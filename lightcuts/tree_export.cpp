@@ -95,6 +95,7 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
         out.indirect = node.indirect;
         out.patch = node.patch;
         out.source_radius = light.source_radius;
+        out.bounce = node.left == kNoBuildChild && node.right == kNoBuildChild ? light.bounce : uint16_t{0};
     }
 }
 

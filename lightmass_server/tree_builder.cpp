@@ -78,6 +78,9 @@ Status check_light(const SceneLight& light, size_t i) {
     if (light.source_radius > 0.0f && !light.patch) {
         return make_error(name() + " has a source radius but is not a patch");
     }
+    if (light.bounce != 0 && (!light.indirect || light.patch)) {
+        return make_error(name() + " has a bounce but is not a VPL");
+    }
     return Ok{};
 }
 

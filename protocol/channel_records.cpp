@@ -49,9 +49,12 @@ constexpr uint32_t kLightFlagPatch = 1u << 2;
 constexpr uint32_t kLightFlagTypeShift = 8;
 constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
 constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
+// A VPL leaf's light_source_length is the bounce that left it (a whole number,
+// 1 and up; 0: not recorded); every other node's is 0. Documented like the
+// indirect bit: the field is Unreal's tube length, which no tree light has.
+constexpr float kMaxBounce = 65535.0f;
 
 // Unreal defaults for the FLightData fields Lightcuts does not use.
-constexpr float kLightSourceLength = 0.0f;
 constexpr float kIndirectLightingScale = 1.0f;
 constexpr float kIndirectLightingSaturation = 1.0f;
 constexpr float kShadowExponent = 2.0f;
@@ -159,7 +162,7 @@ ResultRecord to_record(const LightTreeNode& n) {
         to_fb(n.guid), flags, fb::Vec4(n.position.x, n.position.y, n.position.z, w),
         fb::Vec4(n.direction.x, n.direction.y, n.direction.z, 0.0f),
         fb::Vec4(color.x, color.y, color.z, 1.0f), n.brightness, n.source_radius,
-        kLightSourceLength, kIndirectLightingScale, kIndirectLightingSaturation, kShadowExponent);
+        float(n.bounce), kIndirectLightingScale, kIndirectLightingSaturation, kShadowExponent);
     const fb::FPointLightData point(n.radius, n.falloff_exponent);
     const fb::LightcutsNodeRecord node(
         n.left, n.right, n.representative, to_fb(n.intensity), to_fb(n.bbox_min), to_fb(n.bbox_max),
@@ -225,6 +228,9 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
     }
     if (n.source_radius != 0.0f && !n.patch) {
         return fail("light_source_radius " + number(n.source_radius) + " on a light that is not a patch");
+    }
+    if (n.bounce != 0 && !(n.indirect && !n.patch && n.is_leaf())) {
+        return fail("light_source_length " + std::to_string(n.bounce) + " (a bounce) on a node that is not a VPL leaf");
     }
     if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) {
         return fail("bounding box is not finite");
@@ -301,6 +307,12 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
     n.indirect = (flags & kLightFlagIndirect) != 0;
     n.patch = (flags & kLightFlagPatch) != 0;
     n.source_radius = r.light.light_source_radius();
+    const float bounce = r.light.light_source_length();
+    if (!(bounce >= 0.0f && bounce <= kMaxBounce) || bounce != std::floor(bounce)) {
+        return make_error(who() + ": light_source_length " + number(bounce) +
+                          " is not a bounce (a whole number in [0, 65535])");
+    }
+    n.bounce = static_cast<uint16_t>(bounce);
 
     const bool cluster_flag = (flags & kLightFlagCluster) != 0;
     if (cluster_flag == n.is_leaf()) {

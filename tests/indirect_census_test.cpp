@@ -37,7 +37,8 @@ TEST(IndirectCensus, ATreeFromADumpDoesNotKnowItsBounces) {
     f.vpls = 1;
     EXPECT_EQ(
         indirect_census(f),
-        "simulated (1 VPL, bounces not recorded in the tree, see the bake's census, clamped energy 0%)");
+        "simulated (1 VPL, bounces not recorded in the tree (an older server), see the bake's census, "
+        "clamped energy 0%)");
 }
 
 TEST(IndirectCensus, PatchesHoldEveryBounce) {

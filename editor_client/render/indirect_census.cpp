@@ -1,5 +1,6 @@
 #include "editor_client/render/indirect_census.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace lc::client {
@@ -21,7 +22,10 @@ std::string bounces_text(const IndirectCensusFacts& f) {
     if (f.vpls == 0) return "all bounces";
     if (f.baked && f.baked->method == IndirectMethod::kVpl)
         return counted(f.baked->bounces, "bounce", "bounces");
-    return "bounces not recorded in the tree, see the bake's census";
+    // Russian roulette may end every path before the requested count: the
+    // tree knows the deepest bounce that left a light, not the request.
+    if (f.deepest_vpl_bounce > 0) return "up to " + counted(f.deepest_vpl_bounce, "bounce", "bounces");
+    return "bounces not recorded in the tree (an older server), see the bake's census";
 }
 
 std::string skipped_reason(const IndirectCensusFacts& f) {
@@ -34,6 +38,13 @@ std::string skipped_reason(const IndirectCensusFacts& f) {
 }
 
 }  // namespace
+
+uint32_t deepest_vpl_bounce(const LightTree& tree) {
+    uint32_t deepest = 0;
+    for (const LightTreeNode& node : tree.nodes)
+        if (node.indirect && !node.patch && node.is_leaf()) deepest = std::max<uint32_t>(deepest, node.bounce);
+    return deepest;
+}
 
 std::string indirect_census(const IndirectCensusFacts& f) {
     if (!f.has_tree) return "";

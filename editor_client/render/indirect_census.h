@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::client {
@@ -17,12 +18,17 @@ struct IndirectCensusFacts {
     uint64_t patches = 0;   // radiosity patches
     bool left_out = false;  // render --indirect off
     double clamped_fraction = 0.0;
-    // The bake's request when this render baked the tree itself. A tree from
-    // a dump holds the result channel only: the bounce count is the bake's
-    // census, not the tree's.
+    // The deepest bounce among the tree's VPLs (LightTreeNode::bounce); 0: not
+    // recorded (a tree from a server before the field was written).
+    uint32_t deepest_vpl_bounce = 0;
+    // The bake's request when this render baked the tree itself; a tree from
+    // a dump holds the result channel only, and says what its VPLs record.
     std::optional<IndirectRequest> baked;
     bool scene_has_geometry = false;  // triangles the server could bounce light on
 };
+
+// The largest LightTreeNode::bounce over the tree's VPL leaves.
+uint32_t deepest_vpl_bounce(const LightTree& tree);
 
 // Empty when there is no tree to say anything about.
 std::string indirect_census(const IndirectCensusFacts& facts);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 namespace lc::bake {
@@ -17,6 +18,9 @@ struct IndirectLight {
     // A radiosity patch: the radius of the disk of its area, which the
     // renderer evaluates instead of clamping it; 0: a VPL, a point.
     float patch_radius = 0.0f;
+    // A VPL: the diffuse hit that left it (1: light straight from an emitter);
+    // 0 for a patch, whose radiosity holds every bounce.
+    uint16_t bounce = 0;
 };
 
 // The radius of the disk with the patch's area: the renderer's near-field falloff.

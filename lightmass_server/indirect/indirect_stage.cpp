@@ -39,6 +39,7 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
         light.indirect = true;
         light.patch = bounced.patch_radius > 0.0f;
         light.source_radius = bounced.patch_radius;
+        light.bounce = bounced.bounce;
         out.push_back(light);
     }
     return out;

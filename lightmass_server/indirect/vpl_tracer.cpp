@@ -44,7 +44,8 @@ void trace_particle(const SceneGeometry& geometry, const RayCaster& caster, cons
             t.material < geometry.materials.size() ? diffuse_albedo(geometry.materials[t.material]) : glm::vec3(0.0f);
         glm::vec3 reflected = flux * albedo;
         glm::vec3 position = origin + direction * hit->distance;
-        if (reflected.x + reflected.y + reflected.z > 0.0f) out.push_back({position, n, reflected});
+        if (reflected.x + reflected.y + reflected.z > 0.0f)
+            out.push_back({position, n, reflected, 0.0f, static_cast<uint16_t>(bounce)});
         // Russian roulette on the albedo's largest channel keeps each path's weight bounded.
         float survive = std::min(1.0f, std::max({albedo.x, albedo.y, albedo.z}));
         if (bounce == options.bounces || !(rng.uniform() < double(survive))) return;
@@ -60,6 +61,10 @@ Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& cas
                              std::span<const SceneLight> lights, const VplOptions& options,
                              const ProgressFn& progress) {
     VplResult result;
+    if (options.bounces > kMaxVplBounces) {
+        return make_error("VPL bounces " + std::to_string(options.bounces) + " exceed the limit of " +
+                          std::to_string(kMaxVplBounces));
+    }
     PhotonEmitters emitters(geometry, lights);
     if (emitters.empty() || options.particle_count == 0 || options.bounces == 0) return result;
     result.particles = options.particle_count;

@@ -15,9 +15,13 @@
 
 namespace lc::bake {
 
+// Each VPL carries the bounce that left it (FLightData.light_source_length,
+// docs/PROTOCOL.md) in 16 bits; a deeper request is refused, not truncated.
+inline constexpr uint32_t kMaxVplBounces = 65535;
+
 struct VplOptions {
     uint64_t particle_count = 100000;  // light paths; each leaves up to `bounces` lights
-    uint32_t bounces = 1;              // diffuse hits that deposit a light
+    uint32_t bounces = 1;              // diffuse hits that deposit a light, <= kMaxVplBounces
     uint64_t seed = 0;
 };
 
