@@ -19,9 +19,11 @@ struct IndirectLight {
     // renderer evaluates instead of clamping it; 0: a VPL, a point.
     float patch_radius = 0.0f;
     // A VPL: the diffuse hit that left it (1: light straight from an emitter);
-    // 0 for a patch, whose radiosity holds every bounce.
-    uint16_t bounce = 0;
+    // 0 for a patch, whose radiosity holds every bounce. 32 bits: the struct
+    // has no padding, so its bytes are the same at any thread count.
+    uint32_t bounce = 0;
 };
+static_assert(sizeof(IndirectLight) == 11 * sizeof(float), "no padding: the tests compare bytes");
 
 // The radius of the disk with the patch's area: the renderer's near-field falloff.
 inline float equivalent_disk_radius(float area) {

@@ -39,7 +39,8 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
         light.indirect = true;
         light.patch = bounced.patch_radius > 0.0f;
         light.source_radius = bounced.patch_radius;
-        light.bounce = bounced.bounce;
+        // trace_vpls refuses requests deeper than SceneLight::bounce holds.
+        light.bounce = static_cast<uint16_t>(bounced.bounce);
         out.push_back(light);
     }
     return out;

@@ -45,7 +45,7 @@ void trace_particle(const SceneGeometry& geometry, const RayCaster& caster, cons
         glm::vec3 reflected = flux * albedo;
         glm::vec3 position = origin + direction * hit->distance;
         if (reflected.x + reflected.y + reflected.z > 0.0f)
-            out.push_back({position, n, reflected, 0.0f, static_cast<uint16_t>(bounce)});
+            out.push_back({position, n, reflected, 0.0f, bounce});
         // Russian roulette on the albedo's largest channel keeps each path's weight bounded.
         float survive = std::min(1.0f, std::max({albedo.x, albedo.y, albedo.z}));
         if (bounce == options.bounces || !(rng.uniform() < double(survive))) return;
