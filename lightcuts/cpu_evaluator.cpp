@@ -27,6 +27,7 @@
 #include "lightcuts/cut_traversal.h"
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "lightcuts/device/cut_hash.glsl.h"
+#include "lightcuts/device/pixel_representative.glsl.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/shading_model.h"
 #include "lightcuts/shadow_bvh.h"
@@ -111,12 +112,39 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
     return a.node > b.node;
 }
 
+// Per unit intensity, what node `index` evaluated as a cluster returns: its
+// representative's response (the pixel's representative for kPixel).
+glm::dvec3 cluster_unit_response(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                                 const CutSettings& settings) {
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    if (settings.representatives == Representatives::kTree)
+        return unit_response(node.type, emitter_of(node), p);
+    const LightTreeNode& leaf =
+        tree.nodes[size_t(pixel_representative(tree, index, pixel_representative_key(p, settings)))];
+    return unit_response(leaf.type, emitter_of(leaf), p);
+}
+
+// Whether child c of `parent` (children as valid_children lists them) has
+// its parent's representative, so its parent's evaluation.
+bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2],
+                           int child_count, int c, const SurfacePoint& p, const CutSettings& settings) {
+    if (settings.representatives == Representatives::kTree)
+        return tree.nodes[size_t(children[c])].representative == tree.nodes[size_t(parent)].representative;
+    // The pixel's representative of the parent is the one of the child its draw takes there.
+    const bool takes_first =
+        child_count < 2 || device::pixel_takes_first_child(pixel_representative_key(p, settings),
+                                                           uint32_t(parent),
+                                                           tree.nodes[size_t(children[0])].intensity,
+                                                           tree.nodes[size_t(children[1])].intensity);
+    return (c == 0) == takes_first;
+}
+
 CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
-                    const glm::dvec3* reuse_unit) {
+                    const CutSettings& settings, const glm::dvec3* reuse_unit) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
     CutEntry e;
     e.node = index;
-    e.unit = reuse_unit ? *reuse_unit : unit_response(node.type, emitter_of(node), p);
+    e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
     e.estimate = e.unit * glm::dvec3(node.intensity);
     int32_t children[2];
     e.key = error_key(tree, index, valid_children(tree, index, children), p);
@@ -143,7 +171,7 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     const BoundRule rule(settings);
     CutResult result;
     if (left_out(tree.nodes[0], settings)) return result;
-    std::vector<CutEntry> heap{make_entry(tree, 0, p, nullptr)};
+    std::vector<CutEntry> heap{make_entry(tree, 0, p, settings, nullptr)};
     glm::dvec3 total = heap.front().estimate;
     // The cut's indirect leaves (never refined, so only added): the rule reads
     // the clamped total.
@@ -172,14 +200,13 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
         const CutEntry parent = heap.back();
         heap.pop_back();
         total -= parent.estimate;
-        const int32_t representative = tree.nodes[size_t(parent.node)].representative;
         int32_t children[2];
         const int child_count = valid_children(tree, parent.node, children);
         for (int c = 0; c < child_count; ++c) {
             if (left_out(tree.nodes[size_t(children[c])], settings)) continue;
             // The child that shares the representative reuses its evaluation.
-            const bool shares = tree.nodes[size_t(children[c])].representative == representative;
-            CutEntry child = make_entry(tree, children[c], p, shares ? &parent.unit : nullptr);
+            const bool shares = shares_representative(tree, parent.node, children, child_count, c, p, settings);
+            CutEntry child = make_entry(tree, children[c], p, settings, shares ? &parent.unit : nullptr);
             total += child.estimate;
             add_if_indirect_leaf(child);
             heap.push_back(child);
@@ -207,6 +234,31 @@ int valid_children(const LightTree& tree, int32_t index, int32_t out[2]) {
 }
 
 uint32_t cut_hash_term(uint32_t node_index) { return device::cut_hash_term(node_index); }
+
+uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& settings) {
+    return device::pixel_representative_key(p.pixel.x, p.pixel.y, settings.representative_seed);
+}
+
+int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
+    // Children come after their parents, so the descent ends.
+    for (;;) {
+        int32_t children[2];
+        const int child_count = valid_children(tree, index, children);
+        if (child_count == 0) return index;
+        const bool first = child_count == 1 ||
+                           device::pixel_takes_first_child(key, uint32_t(index),
+                                                           tree.nodes[size_t(children[0])].intensity,
+                                                           tree.nodes[size_t(children[1])].intensity);
+        index = children[first ? 0 : 1];
+    }
+}
+
+glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                         const CutSettings& settings) {
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    if (settings.representatives == Representatives::kTree) return shade_node(node, p);
+    return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
+}
 
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p) {
     const glm::dvec3 intensity = glm::dvec3(light.color) * double(light.intensity);

@@ -104,6 +104,22 @@ std::optional<BoundSearch> parse_bound_search(std::string_view text) {
     return std::nullopt;
 }
 
+const char* representatives_name(Representatives representatives) {
+    switch (representatives) {
+        case Representatives::kTree:
+            return "tree";
+        case Representatives::kPixel:
+            return "pixel";
+    }
+    return "unknown";
+}
+
+std::optional<Representatives> parse_representatives(std::string_view text) {
+    if (text == "tree") return Representatives::kTree;
+    if (text == "pixel") return Representatives::kPixel;
+    return std::nullopt;
+}
+
 Result<RenderCamera> parse_camera(std::string_view text) {
     std::vector<std::string_view> parts = split(text, ',');
     if (parts.size() != 7)
@@ -163,6 +179,13 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.share_cuts && mode_needs_tree(settings.mode) &&
         (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk))
         return make_error("shared cuts need the bound criterion's walk search");
+    if (settings.representatives != Representatives::kTree &&
+        settings.representatives != Representatives::kPixel)
+        return make_error("unknown representatives " +
+                          std::to_string(static_cast<int>(settings.representatives)));
+    if (settings.representatives == Representatives::kPixel && mode_needs_tree(settings.mode) &&
+        settings.criterion != CutCriterion::kBound)
+        return make_error("per-pixel representatives need the bound criterion");
     const float ratio = settings.error_ratio;
     if (!std::isfinite(ratio) || ratio < context.min_error_ratio || ratio > context.max_error_ratio)
         return make_error("error ratio " + number_text(ratio) + " is outside [" +
