@@ -34,6 +34,11 @@
 #include "lightcuts/shadow_ray.h"
 
 namespace lc {
+
+static_assert(uint32_t(Representatives::kTree) == device::kRepresentativesTree &&
+              uint32_t(Representatives::kPixel) == device::kRepresentativesPixel &&
+              uint32_t(Representatives::kImportance) == device::kRepresentativesImportance);
+
 namespace {
 
 shading::Emitter make_emitter(LightType type, const glm::vec3& position, const glm::vec3& direction,
@@ -112,24 +117,25 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
     return a.node > b.node;
 }
 
-// Per unit intensity, what node `index` evaluated as a cluster returns: its
-// representative's response (the pixel's representative for kPixel).
+// Per unit intensity, what node `index` evaluated as a cluster returns (kTree
+// and kPixel): its representative's response.
 glm::dvec3 cluster_unit_response(const LightTree& tree, int32_t index, const SurfacePoint& p,
                                  const CutSettings& settings) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
     if (settings.representatives == Representatives::kTree)
         return unit_response(node.type, emitter_of(node), p);
-    const LightTreeNode& leaf =
-        tree.nodes[size_t(pixel_representative(tree, index, pixel_representative_key(p, settings)))];
+    const LightTreeNode& leaf = tree.nodes[size_t(pixel_draw(tree, index, p, settings).leaf)];
     return unit_response(leaf.type, emitter_of(leaf), p);
 }
 
 // Whether child c of `parent` (children as valid_children lists them) has
-// its parent's representative, so its parent's evaluation.
+// its parent's evaluation per unit intensity (kImportance: never, its
+// estimates scale by the draw's probability).
 bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2],
                            int child_count, int c, const SurfacePoint& p, const CutSettings& settings) {
     if (settings.representatives == Representatives::kTree)
         return tree.nodes[size_t(children[c])].representative == tree.nodes[size_t(parent)].representative;
+    if (settings.representatives == Representatives::kImportance) return false;
     // The pixel's representative of the parent is the one of the child its draw takes there.
     const bool takes_first =
         child_count < 2 || device::pixel_takes_first_child(pixel_representative_key(p, settings),
@@ -139,13 +145,25 @@ bool shares_representative(const LightTree& tree, int32_t parent, const int32_t 
     return (c == 0) == takes_first;
 }
 
+// A child's weight in the importance draw (device::importance_weight), from
+// the same bound the criterion reads.
+float importance_weight(const LightTreeNode& node, const SurfacePoint& p) {
+    const glm::dvec3 bound = shading::response_bound(cluster_shape_of(node), p.albedo, p.specular,
+                                                     p.exponent, p.mirror, p.position, p.normal);
+    return device::importance_weight(node.intensity, float(max_channel(bound)));
+}
+
 CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
                     const CutSettings& settings, const glm::dvec3* reuse_unit) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
     CutEntry e;
     e.node = index;
-    e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
-    e.estimate = e.unit * glm::dvec3(node.intensity);
+    if (settings.representatives == Representatives::kImportance) {
+        e.estimate = shade_cluster(tree, index, p, settings);
+    } else {
+        e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
+        e.estimate = e.unit * glm::dvec3(node.intensity);
+    }
     int32_t children[2];
     e.key = error_key(tree, index, valid_children(tree, index, children), p);
     return e;
@@ -239,25 +257,59 @@ uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& sett
     return device::pixel_representative_key(p.pixel.x, p.pixel.y, settings.representative_seed);
 }
 
-int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
+namespace {
+
+// The descent from node `index` to a leaf, each junction's child drawn in
+// proportion to weight(child); the probability of the leaf reached.
+template <typename Weight>
+PixelDraw descend(const LightTree& tree, int32_t index, uint32_t key, Weight&& weight) {
+    PixelDraw draw{index, 1.0};
     // Children come after their parents, so the descent ends.
     for (;;) {
         int32_t children[2];
-        const int child_count = valid_children(tree, index, children);
-        if (child_count == 0) return index;
-        const bool first = child_count == 1 ||
-                           device::pixel_takes_first_child(key, uint32_t(index),
-                                                           tree.nodes[size_t(children[0])].intensity,
-                                                           tree.nodes[size_t(children[1])].intensity);
-        index = children[first ? 0 : 1];
+        const int child_count = valid_children(tree, draw.leaf, children);
+        if (child_count == 0) return draw;
+        bool first = true;
+        if (child_count == 2) {
+            const float w0 = weight(tree.nodes[size_t(children[0])]);
+            const float w1 = weight(tree.nodes[size_t(children[1])]);
+            first = device::pixel_takes_first(key, uint32_t(draw.leaf), w0, w1);
+            if (w0 + w1 > 0.0f) draw.probability *= double(first ? w0 : w1) / (double(w0) + double(w1));
+        }
+        draw.leaf = children[first ? 0 : 1];
     }
+}
+
+}  // namespace
+
+int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
+    return descend(tree, index, key, [](const LightTreeNode& node) {
+               return device::representative_scalar(node.intensity);
+           }).leaf;
+}
+
+PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings) {
+    switch (settings.representatives) {
+        case Representatives::kTree:
+            return {tree.nodes[size_t(index)].is_leaf() ? index : tree.nodes[size_t(index)].representative, 1.0};
+        case Representatives::kPixel:
+            return {pixel_representative(tree, index, pixel_representative_key(p, settings)), 1.0};
+        case Representatives::kImportance:
+            return descend(tree, index, pixel_representative_key(p, settings),
+                           [&](const LightTreeNode& node) { return importance_weight(node, p); });
+    }
+    return {index, 1.0};
 }
 
 glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
                          const CutSettings& settings) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
-    if (settings.representatives == Representatives::kTree) return shade_node(node, p);
-    return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
+    if (settings.representatives == Representatives::kTree || node.is_leaf()) return shade_node(node, p);
+    if (settings.representatives == Representatives::kPixel)
+        return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
+    const PixelDraw draw = pixel_draw(tree, index, p, settings);
+    if (!(draw.probability > 0.0)) return glm::dvec3(0.0);
+    return shade_node(tree.nodes[size_t(draw.leaf)], p) / draw.probability;
 }
 
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p) {

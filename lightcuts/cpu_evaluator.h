@@ -49,7 +49,11 @@ enum class BoundSearch : uint8_t { kWalk = 0, kHeap = 1 };
 //     descent of the cluster's subtree (device/pixel_representative.glsl.h):
 //     each pixel's estimate is distributed as before, but its errors are
 //     independent of its neighbours' (Stochastic Lightcuts' choice).
-enum class Representatives : uint8_t { kTree = 0, kPixel = 1 };
+//   kImportance: drawn per pixel in proportion to intensity x bound at the
+//     point, the estimate the leaf's intensity over its probability
+//     (unbiased, and under the cluster's bound).
+// The values are device::kRepresentatives*, the shaders' constant.
+enum class Representatives : uint8_t { kTree = 0, kPixel = 1, kImportance = 2 };
 
 // Default maximum cut size for the bound criterion (the paper's 1000).
 inline constexpr uint32_t kDefaultMaxCut = 1000;
@@ -96,11 +100,21 @@ int valid_children(const LightTree& tree, int32_t index, int32_t out[2]);
 // The key every per-pixel draw at p starts from (its pixel and the seed).
 uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& settings);
 // The leaf node reached by the per-pixel draw with `key` from node `index`
-// (the node itself when it is a leaf): the pixel's representative of it.
+// in proportion to intensity (the node itself when it is a leaf): the
+// pixel's representative of it (kPixel).
 int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key);
+// A leaf drawn at p from node `index` under the settings' representatives,
+// with the probability it was drawn with (1 for kTree, whose leaf is the
+// node's own representative).
+struct PixelDraw {
+    int32_t leaf = 0;
+    double probability = 1.0;
+};
+PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings);
 // Node `index` evaluated as a cluster at p through the settings'
-// representative: shade_node() for kTree, else the pixel's leaf with the
-// cluster's intensity.
+// representative: shade_node() for kTree, the pixel's leaf with the
+// cluster's intensity for kPixel, the drawn leaf's light over its
+// probability for kImportance.
 glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
                          const CutSettings& settings);
 

@@ -76,7 +76,7 @@ float node_key(int i, SurfacePoint p) {
 }
 
 vec3 unit_response(int i, SurfacePoint p) {
-    GpuLight unit_light = leaf_lights[pixel_representative(i, tree_nodes[i])];
+    GpuLight unit_light = leaf_lights[pixel_draw(i, tree_nodes[i], p).light];
     unit_light.intensity = vec3(1.0);
     return light_radiance(unit_light, p);
 }
@@ -120,7 +120,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         bool two = c1 != kEndOfWalk && c1 != tree_nodes[parent].escape;
         // With per-pixel representatives the parent's is the one of the child
         // the pixel's draw takes at the parent.
-        bool draw_takes_first = kPixelRepresentatives &&
+        bool draw_takes_first = kRepresentatives == kRepresentativesPixel &&
             (!two || pixel_takes_first_child(g_pixel_key, uint(parent), tree_nodes[c0].intensity,
                                              tree_nodes[c1].intensity));
         for (int c = 0; c < (two ? 2 : 1); ++c) {
@@ -129,7 +129,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
             // response: the evaluation is reused (paper Sec. 4.1).
             GpuTreeNode child_node = tree_nodes[child];
             if (left_out(child_node.flags)) continue;
-            bool shares = kPixelRepresentatives ? (c == 0) == draw_takes_first
+            bool shares = kRepresentatives == kRepresentativesPixel ? (c == 0) == draw_takes_first
                                                 : child_node.representative == parent_representative;
             vec3 unit = shares ? parent_unit : unit_response(child, p);
             total += unit * child_node.intensity;

@@ -78,7 +78,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 resume = kEndOfWalk;
             } else {
                 if (shade) {
-                    vec3 contribution = light_radiance(cluster_light(i, node), p);
+                    vec3 contribution = light_radiance(cluster_light(i, node, p), p);
                     pass.radiance += contribution;
                     tally_indirect(pass.indirect, node.flags, leaf, contribution);
                 }

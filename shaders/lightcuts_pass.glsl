@@ -2,7 +2,8 @@
 // lightcuts_bound_walk.comp, lightcuts_bound_heap.comp): per pixel a cut of
 // the light tree, each cut node evaluated as a cluster (its representative's
 // position, direction, range and spot cone with the cluster's RGB intensity;
-// the bound criterion's passes may draw the representative per pixel),
+// the bound criterion's passes may draw the representative per pixel:
+// pixel_representative.glsl's cluster_light),
 // classic lights added one by one.
 #ifndef LC_LIGHTCUTS_PASS_GLSL
 #define LC_LIGHTCUTS_PASS_GLSL
@@ -24,16 +25,8 @@ struct Cut {
 
 Cut empty_cut() { return Cut(vec3(0.0), 0u, 0u, no_indirect_sums()); }
 
-// Node i evaluated as a cluster: its representative leaf light (or this
-// pixel's, pixel_representative.glsl) with the cluster's intensity.
-GpuLight cluster_light(int i, GpuTreeNode node) {
-    GpuLight light = leaf_lights[pixel_representative(i, node)];
-    light.intensity = node.intensity;
-    return light;
-}
-
 void add_to_cut(inout Cut cut, uint node_index, GpuTreeNode node, SurfacePoint p) {
-    vec3 contribution = light_radiance(cluster_light(int(node_index), node), p);
+    vec3 contribution = light_radiance(cluster_light(int(node_index), node, p), p);
     cut.radiance += contribution;
     tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
     cut.size += 1u;

@@ -1,13 +1,16 @@
-// Per-pixel representatives (Representatives::kPixel) in the CPU evaluator:
-// the descent draws each leaf of a cluster with probability I_leaf / I_C
-// (counted over many pixels, pinned keys), a parent's pixel representative is
-// the one of the child its draw takes, the cluster estimate is unbiased over
-// pixels, the searches' reuse of a parent's evaluation gives what evaluating
-// each cut node afresh gives, and kTree is the tree's representatives.
+// Per-pixel representatives (Representatives::kPixel and kImportance) in the
+// CPU evaluator: the descent draws each leaf of a cluster with probability
+// I_leaf / I_C (counted over many pixels, pinned keys), a parent's pixel
+// representative is the one of the child its draw takes, the cluster estimate
+// is unbiased over pixels (per channel with kImportance, whose estimate stays
+// under the cluster's bound), the searches' reuse of a parent's evaluation
+// gives what evaluating each cut node afresh gives, and kTree is the tree's
+// representatives.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -126,8 +129,11 @@ TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds)
     CutSettings settings;
     settings.criterion = CutCriterion::kBound;
     settings.error_ratio = 0.01;
-    settings.representatives = Representatives::kPixel;
-    for (BoundSearch search : {BoundSearch::kHeap, BoundSearch::kWalk}) {
+    for (auto [representatives, search] :
+         {std::pair{Representatives::kPixel, BoundSearch::kHeap}, std::pair{Representatives::kPixel, BoundSearch::kWalk},
+          std::pair{Representatives::kImportance, BoundSearch::kHeap},
+          std::pair{Representatives::kImportance, BoundSearch::kWalk}}) {
+        settings.representatives = representatives;
         settings.search = search;
         for (uint32_t pixel = 0; pixel < 20; ++pixel) {
             SurfacePoint p = test::surface({-3.0 + 0.3 * pixel, 0.0, 1.0 - 0.1 * pixel}, {0.0, 1.0, 0.0});
@@ -145,6 +151,52 @@ TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds)
             test::expect_near_rel(cut.radiance, afresh, 1e-9);
         }
     }
+}
+
+TEST(ImportanceRepresentative, TheClusterEstimateIsUnbiasedPerChannel) {
+    const LightTree tree = random_tree(32, 11);
+    const SurfacePoint p = test::surface({0.5, 0.0, -0.5}, {0.0, 1.0, 0.0});
+    CutSettings settings;
+    settings.representatives = Representatives::kImportance;
+    for (int32_t cluster : {0, 1, 2}) {
+        SCOPED_TRACE(cluster);
+        glm::dvec3 exact(0.0);
+        for (int32_t leaf : leaves_under(tree, cluster)) exact += shade_node(tree.nodes[size_t(leaf)], p);
+        glm::dvec3 mean(0.0);
+        const uint32_t side = 200;
+        SurfacePoint q = p;
+        for (q.pixel.y = 0; q.pixel.y < side; ++q.pixel.y)
+            for (q.pixel.x = 0; q.pixel.x < side; ++q.pixel.x) mean += shade_cluster(tree, cluster, q, settings);
+        mean /= double(side * side);
+        // The leaf's own colour over its probability: unbiased channel by
+        // channel, where the intensity draw is off by several per cent.
+        test::expect_near_rel(mean, exact, 0.01);
+    }
+}
+
+TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersBound) {
+    // White lights on a grey surface: the bound's largest channel is every channel's.
+    std::mt19937_64 rng(31);
+    std::vector<SceneLight> lights = test::random_lights_in_box(rng, 120, LightType::kPoint, {-4.0f, 1.0f, -4.0f},
+                                                                {4.0f, 3.0f, 4.0f}, false);
+    for (SceneLight& light : lights) light.color = glm::vec3(1.0f);
+    const LightTree tree = test::morton_pairing_tree(lights, 31);
+    CutSettings settings;
+    settings.representatives = Representatives::kImportance;
+    int differs_from_tree = 0;
+    for (uint32_t k = 0; k < 40; ++k) {
+        SurfacePoint p = test::surface({-4.0 + 0.2 * k, 0.0, 3.0 - 0.15 * k}, {0.0, 1.0, 0.0}, {0.5, 0.5, 0.5});
+        p.pixel = {k, 7 * k};
+        for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
+            const LightTreeNode& node = tree.nodes[size_t(i)];
+            const glm::dvec3 estimate = shade_cluster(tree, i, p, settings);
+            const glm::dvec3 bound = node_contribution_bound(node, p);
+            for (int c = 0; c < 3; ++c) EXPECT_LE(estimate[c], bound[c] * (1.0 + 1e-5)) << "node " << i;
+            differs_from_tree += std::abs(estimate.x - shade_node(node, p).x) > 1e-9 * bound.x;
+        }
+    }
+    // Not the tree's estimate I_C f_rep under another name.
+    EXPECT_GT(differs_from_tree, 100);
 }
 
 TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {

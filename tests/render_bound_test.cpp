@@ -154,6 +154,15 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithPerPixelRepresentatives) {
                                   {0.02f}, Representatives::kPixel);
 }
 
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithImportanceDrawnRepresentatives) {
+    // The draw's weights are bounds, float on the GPU and double on the CPU:
+    // a pixel may take another branch where two weights nearly tie.
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
+    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk}, {0.02f},
+                                  Representatives::kImportance);
+}
+
 TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(400, LightTypeChoice::kPoint, 1.0f);

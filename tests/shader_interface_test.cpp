@@ -178,7 +178,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kIndirectClamp", kSpecIndirectClamp},
         {"kIndirectOff", kSpecIndirectOff},
         {"kWalkShareCuts", kSpecWalkShareCuts},
-        {"kPixelRepresentatives", kSpecPixelRepresentatives},
+        {"kRepresentatives", kSpecRepresentatives},
         {"kRepresentativeSeed", kSpecRepresentativeSeed},
     };
     return ids;

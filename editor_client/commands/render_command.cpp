@@ -1,7 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
-//   [--representatives tree|pixel [--representative-seed S]] [--shadows auto|on|off]
+//   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
@@ -183,7 +183,8 @@ void run_render(const RenderOptions& options) {
     settings.bound_search = *search;
     settings.share_cuts = options.share_cuts;
     std::optional<Representatives> representatives = parse_representatives(options.representatives);
-    if (!representatives) fail("unknown --representatives '" + options.representatives + "' (tree, pixel)");
+    if (!representatives)
+        fail("unknown --representatives '" + options.representatives + "' (tree, pixel, importance)");
     settings.representatives = *representatives;
     settings.representative_seed = options.representative_seed;
     auto [width, height] = or_fail(parse_size(options.size));
@@ -420,12 +421,13 @@ void add_render_command(CLI::App& app) {
                   "(8 on lavapipe), refined until it meets every one of their bounds");
     cmd->add_option("--representatives", options->representatives,
                     "Bound criterion: evaluate a cluster through the tree's representative (drawn "
-                    "once for the image) or one drawn per pixel with the same probabilities "
-                    "(errors independent between pixels)")
-        ->check(CLI::IsMember({"tree", "pixel"}))
+                    "once for the image), one drawn per pixel with the same probabilities "
+                    "(errors independent between pixels), or one drawn per pixel in proportion "
+                    "to intensity x bound at the point (importance; walk search)")
+        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
         ->capture_default_str();
     cmd->add_option("--representative-seed", options->representative_seed,
-                    "--representatives pixel: the seed of the per-pixel draws")
+                    "--representatives pixel or importance: the seed of the per-pixel draws")
         ->capture_default_str();
     cmd->add_option("--shadows", options->shadows,
                     "Shadow rays: auto (simulated when a surface may hide a light; the stats "

@@ -110,6 +110,8 @@ const char* representatives_name(Representatives representatives) {
             return "tree";
         case Representatives::kPixel:
             return "pixel";
+        case Representatives::kImportance:
+            return "importance";
     }
     return "unknown";
 }
@@ -117,6 +119,7 @@ const char* representatives_name(Representatives representatives) {
 std::optional<Representatives> parse_representatives(std::string_view text) {
     if (text == "tree") return Representatives::kTree;
     if (text == "pixel") return Representatives::kPixel;
+    if (text == "importance") return Representatives::kImportance;
     return std::nullopt;
 }
 
@@ -180,12 +183,18 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
         (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk))
         return make_error("shared cuts need the bound criterion's walk search");
     if (settings.representatives != Representatives::kTree &&
-        settings.representatives != Representatives::kPixel)
+        settings.representatives != Representatives::kPixel &&
+        settings.representatives != Representatives::kImportance)
         return make_error("unknown representatives " +
                           std::to_string(static_cast<int>(settings.representatives)));
-    if (settings.representatives == Representatives::kPixel && mode_needs_tree(settings.mode) &&
+    if (settings.representatives != Representatives::kTree && mode_needs_tree(settings.mode) &&
         settings.criterion != CutCriterion::kBound)
         return make_error("per-pixel representatives need the bound criterion");
+    // The heap reuses a parent's evaluation per unit intensity, which the
+    // importance draw's probabilities do not keep.
+    if (settings.representatives == Representatives::kImportance && mode_needs_tree(settings.mode) &&
+        settings.bound_search != BoundSearch::kWalk)
+        return make_error("importance-drawn representatives need the walk search");
     const float ratio = settings.error_ratio;
     if (!std::isfinite(ratio) || ratio < context.min_error_ratio || ratio > context.max_error_ratio)
         return make_error("error ratio " + number_text(ratio) + " is outside [" +

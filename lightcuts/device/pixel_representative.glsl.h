@@ -20,6 +20,12 @@
 namespace lc::device {
 #endif
 
+// How clusters are evaluated (Representatives in cpu_evaluator.h; the
+// shaders' kSpecRepresentatives).
+LC_CONST uint kRepresentativesTree = 0u;
+LC_CONST uint kRepresentativesPixel = 1u;
+LC_CONST uint kRepresentativesImportance = 2u;
+
 // Chris Wellons' lowbias32: a bijection on 32 bits whose output bits each
 // flip with probability close to 1/2 for any input bit flipped.
 LC_INLINE uint representative_mix(uint h) {
@@ -42,13 +48,31 @@ LC_INLINE float representative_uniform(uint key, uint node_index) {
     return float(representative_mix(key ^ cut_hash_term(node_index)) >> 8u) * (1.0f / 16777216.0f);
 }
 
+// The builder's scalar intensity (the sum of RGB), in float.
+LC_INLINE float representative_scalar(vec3 I) { return I.x + I.y + I.z; }
+
 // Whether the pixel's draw at a node with two children goes to the first
-// (left) one. A zero or non-finite total keeps the first, as the builder does.
-LC_INLINE bool pixel_takes_first_child(uint key, uint node_index, vec3 I_first, vec3 I_second) {
-    float first = I_first.x + I_first.y + I_first.z;
-    float sum = first + (I_second.x + I_second.y + I_second.z);
+// (left) one, the children weighing w_first and w_second. A zero or
+// non-finite total keeps the first, as the builder does.
+LC_INLINE bool pixel_takes_first(uint key, uint node_index, float w_first, float w_second) {
+    float sum = w_first + w_second;
     if (!(sum > 0.0f) || !(sum < 3.402823466e38f)) return true;
-    return representative_uniform(key, node_index) * sum < first;
+    return representative_uniform(key, node_index) * sum < w_first;
+}
+
+// The draw in proportion to intensity (Representatives::kPixel).
+LC_INLINE bool pixel_takes_first_child(uint key, uint node_index, vec3 I_first, vec3 I_second) {
+    return pixel_takes_first(key, node_index, representative_scalar(I_first), representative_scalar(I_second));
+}
+
+// Representatives::kImportance weighs a child by its scalar intensity times
+// the largest channel of its response bound at the point (f_r x G per unit
+// intensity, visibility 1): a child that cannot reach the point is never
+// drawn. A parent's bound is at least each child's, so the draw's
+// probability of a leaf L under C is at least w_L / w_C, and the estimate
+// I_L f_L / P(L) stays under I_C x the largest channel of C's bound.
+LC_INLINE float importance_weight(vec3 I, float response_bound_max) {
+    return representative_scalar(I) * response_bound_max;
 }
 
 #ifdef __cplusplus

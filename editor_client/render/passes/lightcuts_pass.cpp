@@ -26,7 +26,7 @@ void LightcutsPass::specialize(vk::Specialization& spec, const Frame& frame) con
     LightingPass::specialize(spec, frame);
     // shaders/pixel_representative.glsl (the radius walk is refused per-pixel
     // representatives by validate()).
-    spec.set_bool(kSpecPixelRepresentatives, frame.settings->representatives == Representatives::kPixel)
+    spec.set_uint(kSpecRepresentatives, static_cast<uint32_t>(frame.settings->representatives))
         .set_uint(kSpecRepresentativeSeed, frame.settings->representative_seed);
 }
 
