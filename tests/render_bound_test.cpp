@@ -37,6 +37,16 @@ RenderCamera room_camera() {
     return camera;
 }
 
+// A width x width frame of the room in lightcuts-bound mode.
+RenderSettings room_bound_settings(uint32_t width) {
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = width;
+    settings.camera = room_camera();
+    return settings;
+}
+
 struct CutAgreement {
     size_t geometry = 0;
     size_t same_cut = 0;
@@ -108,11 +118,7 @@ void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<Scene
     visible.shadows = ShadowMode::kOff;
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 48;
-    settings.camera = room_camera();
+    RenderSettings settings = room_bound_settings(48);
     settings.representatives = representatives;
     settings.representative_seed = 3;
     for (BoundSearch search : searches) {
@@ -169,11 +175,7 @@ TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) 
     LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 32;
-    settings.camera = room_camera();
+    RenderSettings settings = room_bound_settings(32);
     settings.share_cuts = true;
     const auto render = [&] {
         Result<RenderStats> stats = (*renderer)->render(settings);
@@ -253,11 +255,7 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 32;
-    settings.camera = room_camera();
+    RenderSettings settings = room_bound_settings(32);
     settings.max_cut = 2;
     uint64_t gpu_hits = 0;
     CutAgreement a = compare_with_cpu(**renderer, settings, tree, &gpu_hits);
