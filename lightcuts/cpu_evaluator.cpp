@@ -145,12 +145,11 @@ bool shares_representative(const LightTree& tree, int32_t parent, const int32_t 
     return (c == 0) == takes_first;
 }
 
-// A child's weight in the importance draw (device::importance_weight), from
-// the same bound the criterion reads.
+// A child's weight in the importance draw, in float as the shaders compute it.
 float importance_weight(const LightTreeNode& node, const SurfacePoint& p) {
-    const glm::dvec3 bound = shading::response_bound(cluster_shape_of(node), p.albedo, p.specular,
-                                                     p.exponent, p.mirror, p.position, p.normal);
-    return device::importance_weight(node.intensity, float(max_channel(bound)));
+    return device::importance_weight(
+        node.intensity, device::importance_geometry(node.bbox_min, node.bbox_max, glm::vec3(p.position),
+                                                    glm::vec3(p.normal), node.type == LightType::kDirectional));
 }
 
 CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,

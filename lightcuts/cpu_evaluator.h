@@ -49,9 +49,9 @@ enum class BoundSearch : uint8_t { kWalk = 0, kHeap = 1 };
 //     descent of the cluster's subtree (device/pixel_representative.glsl.h):
 //     each pixel's estimate is distributed as before, but its errors are
 //     independent of its neighbours' (Stochastic Lightcuts' choice).
-//   kImportance: drawn per pixel in proportion to intensity x bound at the
-//     point, the estimate the leaf's intensity over its probability
-//     (unbiased, and under the cluster's bound).
+//   kImportance: drawn per pixel in proportion to intensity x a cheap bound
+//     of cos / d^2 at the point (device::importance_geometry), the estimate
+//     the leaf's intensity over its probability (unbiased per channel).
 // The values are device::kRepresentatives*, the shaders' constant.
 enum class Representatives : uint8_t { kTree = 0, kPixel = 1, kImportance = 2 };
 

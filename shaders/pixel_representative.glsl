@@ -2,15 +2,15 @@
 // (lightcuts/device/pixel_representative.glsl.h): a cluster is evaluated
 // through the leaf this pixel's draw reaches from it, a descent of the
 // cluster's subtree, in proportion to intensity (kRepresentativesPixel) or
-// to intensity x bound at the point (kRepresentativesImportance). Mirrors
+// to intensity x a geometric bound at the point (kRepresentativesImportance). Mirrors
 // pixel_draw() in cpu_evaluator.cpp. The bounds keep reading the node's own
 // representative (its range window).
 #ifndef LC_PIXEL_REPRESENTATIVE_GLSL
 #define LC_PIXEL_REPRESENTATIVE_GLSL
 
-#include "cluster_bounds.glsl"
 #include "frame_bindings.glsl"
 #include "lightcuts/device/pixel_representative.glsl.h"
+#include "material_model.glsl"
 #include "shadow_rays.glsl"
 
 layout(constant_id = kSpecRepresentatives) const uint kRepresentatives = kRepresentativesTree;
@@ -35,9 +35,10 @@ struct PixelDraw {
 // A child's weight in the draw.
 float draw_weight(int i, SurfacePoint p) {
     if (kRepresentatives != kRepresentativesImportance) return representative_scalar(tree_nodes[i].intensity);
-    GpuTreeNode node = tree_nodes[i];
-    vec3 bound = response_bound_of(node, leaf_lights[node.representative], p);
-    return importance_weight(node.intensity, max(bound.x, max(bound.y, bound.z)));
+    bool directional = (tree_nodes[i].flags >> kNodeTypeShift) == kLightDirectional;
+    return importance_weight(tree_nodes[i].intensity,
+                             importance_geometry(tree_nodes[i].bbox_min, tree_nodes[i].bbox_max,
+                                                 p.position, p.normal, directional));
 }
 
 // One level of the descent: from node i (whose first child and escape are

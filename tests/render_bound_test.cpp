@@ -161,8 +161,8 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithPerPixelRepresentatives) {
 }
 
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithImportanceDrawnRepresentatives) {
-    // The draw's weights are bounds, float on the GPU and double on the CPU:
-    // a pixel may take another branch where two weights nearly tie.
+    // The draw weighs by the children's boxes seen from the point, in float on
+    // both sides (the G-buffer's point, rounded alike).
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
     for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
     expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk}, {0.02f},

@@ -423,7 +423,7 @@ void add_render_command(CLI::App& app) {
                     "Bound criterion: evaluate a cluster through the tree's representative (drawn "
                     "once for the image), one drawn per pixel with the same probabilities "
                     "(errors independent between pixels), or one drawn per pixel in proportion "
-                    "to intensity x bound at the point (importance; walk search)")
+                    "to intensity x a bound of cos / d^2 at the point (importance; walk search)")
         ->check(CLI::IsMember({"tree", "pixel", "importance"}))
         ->capture_default_str();
     cmd->add_option("--representative-seed", options->representative_seed,
