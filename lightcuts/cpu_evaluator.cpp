@@ -131,29 +131,29 @@ glm::dvec3 cluster_unit_response(const LightTree& tree, int32_t index, const Sur
 // Whether child c of `parent` (children as valid_children lists them) has
 // its parent's evaluation per unit intensity (kImportance: never, its
 // estimates scale by the draw's probability).
-bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2],
-                           int child_count, int c, const SurfacePoint& p, const CutSettings& settings) {
+bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2], int child_count,
+                           int c, const SurfacePoint& p, const CutSettings& settings) {
     if (settings.representatives == Representatives::kTree)
         return tree.nodes[size_t(children[c])].representative == tree.nodes[size_t(parent)].representative;
     if (settings.representatives == Representatives::kImportance) return false;
     // The pixel's representative of the parent is the one of the child its draw takes there.
-    const bool takes_first =
-        child_count < 2 || device::pixel_takes_first_child(pixel_representative_key(p, settings),
-                                                           uint32_t(parent),
-                                                           tree.nodes[size_t(children[0])].intensity,
-                                                           tree.nodes[size_t(children[1])].intensity);
+    const bool takes_first = child_count < 2 || device::pixel_takes_first_child(
+                                                    pixel_representative_key(p, settings), uint32_t(parent),
+                                                    tree.nodes[size_t(children[0])].intensity,
+                                                    tree.nodes[size_t(children[1])].intensity);
     return (c == 0) == takes_first;
 }
 
 // A child's weight in the importance draw, in float as the shaders compute it.
 float importance_weight(const LightTreeNode& node, const SurfacePoint& p) {
     return device::importance_weight(
-        node.intensity, device::importance_geometry(node.bbox_min, node.bbox_max, glm::vec3(p.position),
-                                                    glm::vec3(p.normal), node.type == LightType::kDirectional));
+        node.intensity,
+        device::importance_geometry(node.bbox_min, node.bbox_max, glm::vec3(p.position), glm::vec3(p.normal),
+                                    node.type == LightType::kDirectional));
 }
 
-CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
-                    const CutSettings& settings, const glm::dvec3* reuse_unit) {
+CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings,
+                    const glm::dvec3* reuse_unit) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
     CutEntry e;
     e.node = index;
@@ -222,7 +222,8 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
         for (int c = 0; c < child_count; ++c) {
             if (left_out(tree.nodes[size_t(children[c])], settings)) continue;
             // The child that shares the representative reuses its evaluation.
-            const bool shares = shares_representative(tree, parent.node, children, child_count, c, p, settings);
+            const bool shares =
+                shares_representative(tree, parent.node, children, child_count, c, p, settings);
             CutEntry child = make_entry(tree, children[c], p, settings, shares ? &parent.unit : nullptr);
             total += child.estimate;
             add_if_indirect_leaf(child);
@@ -282,15 +283,17 @@ PixelDraw descend(const LightTree& tree, int32_t index, uint32_t key, Weight&& w
 }  // namespace
 
 int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
-    return descend(tree, index, key, [](const LightTreeNode& node) {
-               return device::representative_scalar(node.intensity);
-           }).leaf;
+    return descend(tree, index, key,
+                   [](const LightTreeNode& node) { return device::representative_scalar(node.intensity); })
+        .leaf;
 }
 
-PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings) {
+PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                     const CutSettings& settings) {
     switch (settings.representatives) {
         case Representatives::kTree:
-            return {tree.nodes[size_t(index)].is_leaf() ? index : tree.nodes[size_t(index)].representative, 1.0};
+            return {tree.nodes[size_t(index)].is_leaf() ? index : tree.nodes[size_t(index)].representative,
+                    1.0};
         case Representatives::kPixel:
             return {pixel_representative(tree, index, pixel_representative_key(p, settings)), 1.0};
         case Representatives::kImportance:

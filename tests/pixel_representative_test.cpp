@@ -10,8 +10,8 @@
 
 #include <cmath>
 #include <map>
-#include <utility>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "lightcuts/bound_walk.h"
@@ -34,7 +34,9 @@ LightTree random_tree(int count, uint64_t seed) {
     return test::morton_pairing_tree(lights, seed);
 }
 
-uint32_t key_of_pixel(uint32_t x, uint32_t y) { return device::pixel_representative_key(x, y, 7u); }
+uint32_t key_of_pixel(uint32_t x, uint32_t y) {
+    return device::pixel_representative_key(x, y, 7u);
+}
 
 // Every leaf under `index`.
 std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
@@ -60,14 +62,16 @@ TEST(PixelRepresentative, DrawsEachLeafInProportionToItsIntensity) {
         std::map<int32_t, double> counts;
         const uint32_t side = 256;
         for (uint32_t y = 0; y < side; ++y)
-            for (uint32_t x = 0; x < side; ++x) counts[pixel_representative(tree, cluster, key_of_pixel(x, y))] += 1.0;
+            for (uint32_t x = 0; x < side; ++x)
+                counts[pixel_representative(tree, cluster, key_of_pixel(x, y))] += 1.0;
         double leaf_sum = 0.0;
         for (int32_t leaf : leaves) leaf_sum += scalar_intensity(tree.nodes[size_t(leaf)]);
         // Pearson's chi-square over the leaves; the 1e-4 quantile of chi^2
         // with up to 23 degrees of freedom is under 60.
         double chi2 = 0.0, drawn = 0.0;
         for (int32_t leaf : leaves) {
-            const double expected = double(side * side) * scalar_intensity(tree.nodes[size_t(leaf)]) / leaf_sum;
+            const double expected =
+                double(side * side) * scalar_intensity(tree.nodes[size_t(leaf)]) / leaf_sum;
             ASSERT_GT(expected, 5.0);
             const double observed = counts[leaf];
             chi2 += (observed - expected) * (observed - expected) / expected;
@@ -90,9 +94,9 @@ TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) 
                 EXPECT_EQ(parent_rep, i);
                 continue;
             }
-            const bool first = n == 1 || device::pixel_takes_first_child(key, uint32_t(i),
-                                                                          tree.nodes[size_t(children[0])].intensity,
-                                                                          tree.nodes[size_t(children[1])].intensity);
+            const bool first = n == 1 || device::pixel_takes_first_child(
+                                             key, uint32_t(i), tree.nodes[size_t(children[0])].intensity,
+                                             tree.nodes[size_t(children[1])].intensity);
             EXPECT_EQ(parent_rep, pixel_representative(tree, children[first ? 0 : 1], key)) << "node " << i;
         }
     }
@@ -110,12 +114,14 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
     for (int32_t cluster : {0, 1, 2}) {
         SCOPED_TRACE(cluster);
         double exact = 0.0;
-        for (int32_t leaf : leaves_under(tree, cluster)) exact += rgb_sum(shade_node(tree.nodes[size_t(leaf)], p));
+        for (int32_t leaf : leaves_under(tree, cluster))
+            exact += rgb_sum(shade_node(tree.nodes[size_t(leaf)], p));
         double mean = 0.0;
         const uint32_t side = 200;
         SurfacePoint q = p;
         for (q.pixel.y = 0; q.pixel.y < side; ++q.pixel.y)
-            for (q.pixel.x = 0; q.pixel.x < side; ++q.pixel.x) mean += rgb_sum(shade_cluster(tree, cluster, q, settings));
+            for (q.pixel.x = 0; q.pixel.x < side; ++q.pixel.x)
+                mean += rgb_sum(shade_cluster(tree, cluster, q, settings));
         mean /= double(side * side);
         // 40,000 draws: a few per mille; the tree's one representative for
         // every pixel is off by several per cent.
@@ -129,10 +135,10 @@ TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds)
     CutSettings settings;
     settings.criterion = CutCriterion::kBound;
     settings.error_ratio = 0.01;
-    for (auto [representatives, search] :
-         {std::pair{Representatives::kPixel, BoundSearch::kHeap}, std::pair{Representatives::kPixel, BoundSearch::kWalk},
-          std::pair{Representatives::kImportance, BoundSearch::kHeap},
-          std::pair{Representatives::kImportance, BoundSearch::kWalk}}) {
+    for (auto [representatives, search] : {std::pair{Representatives::kPixel, BoundSearch::kHeap},
+                                           std::pair{Representatives::kPixel, BoundSearch::kWalk},
+                                           std::pair{Representatives::kImportance, BoundSearch::kHeap},
+                                           std::pair{Representatives::kImportance, BoundSearch::kWalk}}) {
         settings.representatives = representatives;
         settings.search = search;
         for (uint32_t pixel = 0; pixel < 20; ++pixel) {
@@ -166,7 +172,8 @@ TEST(ImportanceRepresentative, TheClusterEstimateIsUnbiasedPerChannel) {
         const uint32_t side = 200;
         SurfacePoint q = p;
         for (q.pixel.y = 0; q.pixel.y < side; ++q.pixel.y)
-            for (q.pixel.x = 0; q.pixel.x < side; ++q.pixel.x) mean += shade_cluster(tree, cluster, q, settings);
+            for (q.pixel.x = 0; q.pixel.x < side; ++q.pixel.x)
+                mean += shade_cluster(tree, cluster, q, settings);
         mean /= double(side * side);
         // The leaf's own colour over its probability: unbiased channel by
         // channel, where the intensity draw is off by several per cent.
@@ -178,8 +185,8 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
     // White unbounded points on a grey diffuse surface: f_r is albedo / pi in
     // every channel and each channel a third of the scalar intensity.
     std::mt19937_64 rng(31);
-    std::vector<SceneLight> lights = test::random_lights_in_box(rng, 120, LightType::kPoint, {-4.0f, 1.0f, -4.0f},
-                                                                {4.0f, 3.0f, 4.0f}, false);
+    std::vector<SceneLight> lights = test::random_lights_in_box(
+        rng, 120, LightType::kPoint, {-4.0f, 1.0f, -4.0f}, {4.0f, 3.0f, 4.0f}, false);
     for (SceneLight& light : lights) light.color = glm::vec3(1.0f);
     const LightTree tree = test::morton_pairing_tree(lights, 31);
     CutSettings settings;
@@ -187,7 +194,8 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
     const double f_r = 0.5 / test::kPi;
     int differs_from_tree = 0;
     for (uint32_t k = 0; k < 40; ++k) {
-        SurfacePoint p = test::surface({-4.0 + 0.2 * k, 0.0, 3.0 - 0.15 * k}, {0.0, 1.0, 0.0}, {0.5, 0.5, 0.5});
+        SurfacePoint p =
+            test::surface({-4.0 + 0.2 * k, 0.0, 3.0 - 0.15 * k}, {0.0, 1.0, 0.0}, {0.5, 0.5, 0.5});
         p.pixel = {k, 7 * k};
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
             const LightTreeNode& node = tree.nodes[size_t(i)];

@@ -156,8 +156,8 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithPerPixelRepresentatives) {
     // CPU's branches, and the heap reuses a parent's evaluation for the same child.
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
     for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
-    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk, BoundSearch::kHeap},
-                                  {0.02f}, Representatives::kPixel);
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk, BoundSearch::kHeap}, {0.02f},
+                                  Representatives::kPixel);
 }
 
 TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithImportanceDrawnRepresentatives) {

@@ -49,7 +49,9 @@ LC_INLINE float representative_uniform(uint key, uint node_index) {
 }
 
 // The builder's scalar intensity (the sum of RGB), in float.
-LC_INLINE float representative_scalar(vec3 I) { return I.x + I.y + I.z; }
+LC_INLINE float representative_scalar(vec3 I) {
+    return I.x + I.y + I.z;
+}
 
 // Whether the pixel's draw at a node with two children goes to the first
 // (left) one, the children weighing w_first and w_second. A zero or
@@ -62,7 +64,8 @@ LC_INLINE bool pixel_takes_first(uint key, uint node_index, float w_first, float
 
 // The draw in proportion to intensity (Representatives::kPixel).
 LC_INLINE bool pixel_takes_first_child(uint key, uint node_index, vec3 I_first, vec3 I_second) {
-    return pixel_takes_first(key, node_index, representative_scalar(I_first), representative_scalar(I_second));
+    return pixel_takes_first(key, node_index, representative_scalar(I_first),
+                             representative_scalar(I_second));
 }
 
 // Representatives::kImportance weighs a child by its scalar intensity times
@@ -87,7 +90,9 @@ LC_INLINE float importance_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n
     return min(1.0f, z_max / sqrt(d2)) / d2;
 }
 
-LC_INLINE float importance_weight(vec3 I, float geometry) { return representative_scalar(I) * geometry; }
+LC_INLINE float importance_weight(vec3 I, float geometry) {
+    return representative_scalar(I) * geometry;
+}
 
 #ifdef __cplusplus
 }  // namespace lc::device
