@@ -26,26 +26,17 @@ LC_CONST uint kRepresentativesTree = 0u;
 LC_CONST uint kRepresentativesPixel = 1u;
 LC_CONST uint kRepresentativesImportance = 2u;
 
-// Chris Wellons' lowbias32: a bijection on 32 bits whose output bits each
-// flip with probability close to 1/2 for any input bit flipped.
-LC_INLINE uint representative_mix(uint h) {
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return h;
-}
-
 // The pixel's key: every draw of the pixel starts from it. `seed` draws a
-// different set of representatives for the same image.
+// different set of representatives for the same image. The mixer is the cut
+// hash's (murmur3's finaliser): every output bit flips with probability
+// close to 1/2 for any input bit flipped.
 LC_INLINE uint pixel_representative_key(uint x, uint y, uint seed) {
-    return representative_mix(representative_mix(representative_mix(seed + 0x9e3779b9u) ^ x) ^ y);
+    return cut_hash_term(cut_hash_term(cut_hash_term(seed) ^ x) ^ y);
 }
 
 // The pixel's uniform in [0, 1) at a node, exact in float: 24 bits.
 LC_INLINE float representative_uniform(uint key, uint node_index) {
-    return float(representative_mix(key ^ cut_hash_term(node_index)) >> 8u) * (1.0f / 16777216.0f);
+    return float(cut_hash_term(key ^ cut_hash_term(node_index)) >> 8u) * (1.0f / 16777216.0f);
 }
 
 // The builder's scalar intensity (the sum of RGB), in float.
