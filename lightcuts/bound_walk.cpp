@@ -48,7 +48,7 @@ CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     // Shaded again only when asked for: the walk tallies its nodes without keeping them.
     const auto append_kept = [&] {
         if (nodes == nullptr) return;
-        for (int32_t index : kept) nodes->push_back({index, shade_node(tree.nodes[size_t(index)], p)});
+        for (int32_t index : kept) nodes->push_back({index, shade_cluster(tree, index, p, settings)});
     };
     const BoundRule rule(settings);
     double tau = std::numeric_limits<double>::infinity();

@@ -27,12 +27,18 @@
 #include "lightcuts/cut_traversal.h"
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "lightcuts/device/cut_hash.glsl.h"
+#include "lightcuts/device/pixel_representative.glsl.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/shading_model.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
 
 namespace lc {
+
+static_assert(uint32_t(Representatives::kTree) == device::kRepresentativesTree &&
+              uint32_t(Representatives::kPixel) == device::kRepresentativesPixel &&
+              uint32_t(Representatives::kImportance) == device::kRepresentativesImportance);
+
 namespace {
 
 shading::Emitter make_emitter(LightType type, const glm::vec3& position, const glm::vec3& direction,
@@ -111,13 +117,52 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
     return a.node > b.node;
 }
 
-CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
+// Per unit intensity, what node `index` evaluated as a cluster returns (kTree
+// and kPixel): its representative's response.
+glm::dvec3 cluster_unit_response(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                                 const CutSettings& settings) {
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    if (settings.representatives == Representatives::kTree)
+        return unit_response(node.type, emitter_of(node), p);
+    const LightTreeNode& leaf = tree.nodes[size_t(pixel_draw(tree, index, p, settings).leaf)];
+    return unit_response(leaf.type, emitter_of(leaf), p);
+}
+
+// Whether child c of `parent` (children as valid_children lists them) has
+// its parent's evaluation per unit intensity (kImportance: never, its
+// estimates scale by the draw's probability).
+bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2], int child_count,
+                           int c, const SurfacePoint& p, const CutSettings& settings) {
+    if (settings.representatives == Representatives::kTree)
+        return tree.nodes[size_t(children[c])].representative == tree.nodes[size_t(parent)].representative;
+    if (settings.representatives == Representatives::kImportance) return false;
+    // The pixel's representative of the parent is the one of the child its draw takes there.
+    const bool takes_first = child_count < 2 || device::pixel_takes_first_child(
+                                                    pixel_representative_key(p, settings), uint32_t(parent),
+                                                    tree.nodes[size_t(children[0])].intensity,
+                                                    tree.nodes[size_t(children[1])].intensity);
+    return (c == 0) == takes_first;
+}
+
+// A child's weight in the importance draw, in float as the shaders compute it.
+float importance_weight(const LightTreeNode& node, const SurfacePoint& p) {
+    return device::importance_weight(
+        node.intensity,
+        device::importance_geometry(node.bbox_min, node.bbox_max, glm::vec3(p.position), glm::vec3(p.normal),
+                                    node.type == LightType::kDirectional));
+}
+
+CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings,
                     const glm::dvec3* reuse_unit) {
     const LightTreeNode& node = tree.nodes[size_t(index)];
     CutEntry e;
     e.node = index;
-    e.unit = reuse_unit ? *reuse_unit : unit_response(node.type, emitter_of(node), p);
-    e.estimate = e.unit * glm::dvec3(node.intensity);
+    if (settings.representatives == Representatives::kImportance) {
+        e.estimate = shade_cluster(tree, index, p, settings);
+    } else {
+        e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
+        e.estimate = e.unit * glm::dvec3(node.intensity);
+    }
     int32_t children[2];
     e.key = error_key(tree, index, valid_children(tree, index, children), p);
     return e;
@@ -143,7 +188,7 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     const BoundRule rule(settings);
     CutResult result;
     if (left_out(tree.nodes[0], settings)) return result;
-    std::vector<CutEntry> heap{make_entry(tree, 0, p, nullptr)};
+    std::vector<CutEntry> heap{make_entry(tree, 0, p, settings, nullptr)};
     glm::dvec3 total = heap.front().estimate;
     // The cut's indirect leaves (never refined, so only added): the rule reads
     // the clamped total.
@@ -172,14 +217,14 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
         const CutEntry parent = heap.back();
         heap.pop_back();
         total -= parent.estimate;
-        const int32_t representative = tree.nodes[size_t(parent.node)].representative;
         int32_t children[2];
         const int child_count = valid_children(tree, parent.node, children);
         for (int c = 0; c < child_count; ++c) {
             if (left_out(tree.nodes[size_t(children[c])], settings)) continue;
             // The child that shares the representative reuses its evaluation.
-            const bool shares = tree.nodes[size_t(children[c])].representative == representative;
-            CutEntry child = make_entry(tree, children[c], p, shares ? &parent.unit : nullptr);
+            const bool shares =
+                shares_representative(tree, parent.node, children, child_count, c, p, settings);
+            CutEntry child = make_entry(tree, children[c], p, settings, shares ? &parent.unit : nullptr);
             total += child.estimate;
             add_if_indirect_leaf(child);
             heap.push_back(child);
@@ -207,6 +252,67 @@ int valid_children(const LightTree& tree, int32_t index, int32_t out[2]) {
 }
 
 uint32_t cut_hash_term(uint32_t node_index) { return device::cut_hash_term(node_index); }
+
+uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& settings) {
+    return device::pixel_representative_key(p.pixel.x, p.pixel.y, settings.representative_seed);
+}
+
+namespace {
+
+// The descent from node `index` to a leaf, each junction's child drawn in
+// proportion to weight(child); the probability of the leaf reached.
+template <typename Weight>
+PixelDraw descend(const LightTree& tree, int32_t index, uint32_t key, Weight&& weight) {
+    PixelDraw draw{index, 1.0};
+    // Children come after their parents, so the descent ends.
+    for (;;) {
+        int32_t children[2];
+        const int child_count = valid_children(tree, draw.leaf, children);
+        if (child_count == 0) return draw;
+        bool first = true;
+        if (child_count == 2) {
+            const float w0 = weight(tree.nodes[size_t(children[0])]);
+            const float w1 = weight(tree.nodes[size_t(children[1])]);
+            first = device::pixel_takes_first(key, uint32_t(draw.leaf), w0, w1);
+            if (w0 + w1 > 0.0f) draw.probability *= double(first ? w0 : w1) / (double(w0) + double(w1));
+        }
+        draw.leaf = children[first ? 0 : 1];
+    }
+}
+
+}  // namespace
+
+int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
+    return descend(tree, index, key,
+                   [](const LightTreeNode& node) { return device::representative_scalar(node.intensity); })
+        .leaf;
+}
+
+PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                     const CutSettings& settings) {
+    switch (settings.representatives) {
+        case Representatives::kTree:
+            return {tree.nodes[size_t(index)].is_leaf() ? index : tree.nodes[size_t(index)].representative,
+                    1.0};
+        case Representatives::kPixel:
+            return {pixel_representative(tree, index, pixel_representative_key(p, settings)), 1.0};
+        case Representatives::kImportance:
+            return descend(tree, index, pixel_representative_key(p, settings),
+                           [&](const LightTreeNode& node) { return importance_weight(node, p); });
+    }
+    return {index, 1.0};
+}
+
+glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                         const CutSettings& settings) {
+    const LightTreeNode& node = tree.nodes[size_t(index)];
+    if (settings.representatives == Representatives::kTree || node.is_leaf()) return shade_node(node, p);
+    if (settings.representatives == Representatives::kPixel)
+        return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
+    const PixelDraw draw = pixel_draw(tree, index, p, settings);
+    if (!(draw.probability > 0.0)) return glm::dvec3(0.0);
+    return shade_node(tree.nodes[size_t(draw.leaf)], p) / draw.probability;
+}
 
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p) {
     const glm::dvec3 intensity = glm::dvec3(light.color) * double(light.intensity);

@@ -1,6 +1,7 @@
 #pragma once
 // The CPU evaluator: the same estimators as the shaders, in double precision.
 // Ground truth for tests and the exact reference for error measurements.
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -29,6 +30,9 @@ struct SurfacePoint {
     // with its visibility.
     const ShadowBvh* occluders = nullptr;
     double shadow_bias = 0.0;
+    // The image pixel it shades: per-pixel representatives draw from it
+    // (Representatives::kPixel).
+    glm::uvec2 pixel{0u};
 };
 
 enum class CutCriterion : uint8_t { kRadius = 0, kBound = 1 };
@@ -38,6 +42,18 @@ enum class CutCriterion : uint8_t { kRadius = 0, kBound = 1 };
 //   kWalk: threshold passes (bound_walk.h); the default, fast on SIMD devices.
 //   kHeap: the paper's refinement order, the largest bound first, in a heap.
 enum class BoundSearch : uint8_t { kWalk = 0, kHeap = 1 };
+
+// Which leaf light evaluates a cluster (paper Eq. 2's representative).
+//   kTree: the node's own, drawn once by the builder for the whole image.
+//   kPixel: drawn per pixel with the same probabilities (I_leaf / I_C) by a
+//     descent of the cluster's subtree (device/pixel_representative.glsl.h):
+//     each pixel's estimate is distributed as before, but its errors are
+//     independent of its neighbours' (Stochastic Lightcuts' choice).
+//   kImportance: drawn per pixel in proportion to intensity x a cheap bound
+//     of cos / d^2 at the point (device::importance_geometry), the estimate
+//     the leaf's intensity over its probability (unbiased per channel).
+// The values are device::kRepresentatives*, the shaders' constant.
+enum class Representatives : uint8_t { kTree = 0, kPixel = 1, kImportance = 2 };
 
 // Default maximum cut size for the bound criterion (the paper's 1000).
 inline constexpr uint32_t kDefaultMaxCut = 1000;
@@ -51,6 +67,9 @@ struct CutSettings {
     // to half the error ratio of the pixel (device/indirect_clamp.glsl.h);
     // off: every indirect node is left out of the cut (render --indirect off).
     bool indirect = true;
+    // The clusters' representatives, and the per-pixel draws' seed.
+    Representatives representatives = Representatives::kTree;
+    uint32_t representative_seed = 0;
 };
 
 // The automatic clamp's ratio: an indirect light contributes at most this
@@ -77,6 +96,28 @@ uint32_t cut_hash_term(uint32_t node_index);
 // absent; children always come after their parent, so any traversal ends):
 // writes them to `out` and returns how many.
 int valid_children(const LightTree& tree, int32_t index, int32_t out[2]);
+
+// The key every per-pixel draw at p starts from (its pixel and the seed).
+uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& settings);
+// The leaf node reached by the per-pixel draw with `key` from node `index`
+// in proportion to intensity (the node itself when it is a leaf): the
+// pixel's representative of it (kPixel).
+int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key);
+// A leaf drawn at p from node `index` under the settings' representatives,
+// with the probability it was drawn with (1 for kTree, whose leaf is the
+// node's own representative).
+struct PixelDraw {
+    int32_t leaf = 0;
+    double probability = 1.0;
+};
+PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                     const CutSettings& settings);
+// Node `index` evaluated as a cluster at p through the settings'
+// representative: shade_node() for kTree, the pixel's leaf with the
+// cluster's intensity for kPixel, the drawn leaf's light over its
+// probability for kImportance.
+glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
+                         const CutSettings& settings);
 
 // Outgoing radiance at p from one light (shading_model.h), exact.
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p);

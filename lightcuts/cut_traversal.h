@@ -70,7 +70,7 @@ CutTally walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSetting
         if (refine(index, node, child_count)) {
             for (int c = child_count - 1; c >= 0; --c) stack.push_back(children[c]);
         } else {
-            tally.add(index, node, shade_node(node, p));
+            tally.add(index, node, shade_cluster(tree, index, p, settings));
         }
     }
     return tally;

@@ -7,8 +7,13 @@
 # reference. One tree fixes one draw of every cluster's representative for
 # the whole image, so one seed's share of lit pixels within 2% is one sample
 # of the method's spread (docs/BENCHMARKS.md, "Accuracy at E = 0.005").
-# Writes docs/bench/accuracy_seeds.csv.
+# Each seed is rendered with each way of choosing representatives given
+# (render --representatives): `tree`, the tree's own, or `pixel`, drawn per
+# pixel with the seed as --representative-seed (the tree's draws then matter
+# only to the bounds of ranged lights, and this room has none).
+# Writes docs/bench/accuracy_seeds.csv (or CSV, when given).
 # Usage: scripts/bench-accuracy-seeds.sh [build-dir] [lights] [size] [seeds] [reference-dir]
+#          [representatives] [error] [csv]
 # reference-dir: a work folder of bench-speedup.sh for the same count
 # (scene.gltf, tree.lcut, reference.pfm, reference.json): its scene and
 # reference are reused (the reference alone takes 12 minutes on 2 cores).
@@ -19,6 +24,9 @@ lights="${2:-16384}"
 size="${3:-256x256}"
 seeds="${4:-0,1,2,3}"
 reference_dir="${5:-}"
+representatives="${6:-tree}"
+error="${7:-0.005}"
+csv="${8:-docs/bench/accuracy_seeds.csv}"
 source scripts/lib/furnished_bench.sh
 build_bench_client "$build_dir"
 client="$LC_CLIENT"
@@ -40,16 +48,19 @@ for seed in ${seeds//,/ }; do
     "$client" bake "$work/scene.gltf" --spawn-server --builder agglomerative --seed "$seed" \
       -o "$tree" >/dev/null 2>&1
   fi
-  # Validation would slow the GPU work down; the benchmark measures the renderer alone.
-  /usr/bin/time -f "%U %S %e" -o "$work/seed$seed.time" env LC_VALIDATION=0 "$client" render \
-    "$work/scene.gltf" --tree "$tree" --size "$size" --criterion bound --mode lightcuts \
-    --error 0.005 --share-cuts --max-cut 2500 --stats "$work/seed$seed.json" \
-    --float "$work/seed$seed.pfm" -o "$work/seed$seed.png" >"$work/seed$seed.log" 2>&1 ||
-    { cat "$work/seed$seed.log"; exit 1; }
-  tail -n 1 "$work/seed$seed.log"
+  for rep in ${representatives//,/ }; do
+    run="$work/$rep-seed$seed"
+    # Validation would slow the GPU work down; the benchmark measures the renderer alone.
+    /usr/bin/time -f "%U %S %e" -o "$run.time" env LC_VALIDATION=0 "$client" render \
+      "$work/scene.gltf" --tree "$tree" --size "$size" --criterion bound --mode lightcuts \
+      --error "$error" --share-cuts --max-cut 2500 --representatives "$rep" \
+      --representative-seed "$seed" --stats "$run.json" --float "$run.pfm" -o "$run.png" \
+      >"$run.log" 2>&1 || { cat "$run.log"; exit 1; }
+    tail -n 1 "$run.log"
+  done
 done
 
-mkdir -p docs/bench
+mkdir -p "$(dirname "$csv")"
 /usr/bin/python3 scripts/accuracy_seeds_report.py --work "$work" --lights "$lights" --size "$size" \
-  --seeds "$seeds" --csv docs/bench/accuracy_seeds.csv
-cat docs/bench/accuracy_seeds.csv
+  --seeds "$seeds" --representatives "$representatives" --csv "$csv"
+cat "$csv"

@@ -76,7 +76,7 @@ float node_key(int i, SurfacePoint p) {
 }
 
 vec3 unit_response(int i, SurfacePoint p) {
-    GpuLight unit_light = leaf_lights[tree_nodes[i].representative];
+    GpuLight unit_light = leaf_lights[pixel_draw(i, tree_nodes[i], p).light];
     unit_light.intensity = vec3(1.0);
     return light_radiance(unit_light, p);
 }
@@ -118,14 +118,20 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         int c0 = tree_nodes[parent].first_child;
         int c1 = tree_nodes[c0].escape;
         bool two = c1 != kEndOfWalk && c1 != tree_nodes[parent].escape;
+        // With per-pixel representatives the parent's is the one of the child
+        // the pixel's draw takes at the parent.
+        bool draw_takes_first = kRepresentatives == kRepresentativesPixel &&
+            (!two || pixel_takes_first_child(g_pixel_key, uint(parent), tree_nodes[c0].intensity,
+                                             tree_nodes[c1].intensity));
         for (int c = 0; c < (two ? 2 : 1); ++c) {
             int child = c == 0 ? c0 : c1;
             // A child with its parent's representative has its parent's
             // response: the evaluation is reused (paper Sec. 4.1).
             GpuTreeNode child_node = tree_nodes[child];
             if (left_out(child_node.flags)) continue;
-            vec3 unit = child_node.representative == parent_representative ? parent_unit
-                                                                           : unit_response(child, p);
+            bool shares = kRepresentatives == kRepresentativesPixel ? (c == 0) == draw_takes_first
+                                                : child_node.representative == parent_representative;
+            vec3 unit = shares ? parent_unit : unit_response(child, p);
             total += unit * child_node.intensity;
             if (kIndirectClamp && clamped_node(child_node.flags, child_node.first_child == kEndOfWalk))
                 add_indirect_leaf(leaves, unit * child_node.intensity);
@@ -152,6 +158,7 @@ void main() {
         store_background(pixel);
         return;
     }
+    set_pixel_representatives(pixel);
     vec3 radiance;
     bool max_cut_hit;
     Cut cut = select_cut_bound(p, radiance, max_cut_hit);

@@ -78,7 +78,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
                 resume = kEndOfWalk;
             } else {
                 if (shade) {
-                    vec3 contribution = light_radiance(cluster_light(node), p);
+                    vec3 contribution = light_radiance(cluster_light(i, node, p), p);
                     pass.radiance += contribution;
                     tally_indirect(pass.indirect, node.flags, leaf, contribution);
                 }
@@ -182,6 +182,7 @@ bool walk_pass(inout GpuWalkState s, SurfacePoint p) {
 // pixel is stored once, when its search ends; later dispatches skip it.
 void bound_walk_dispatch(ivec2 pixel) {
     uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+    set_pixel_representatives(pixel);
     GpuWalkState s;
     if (frame.walk_dispatch == 0u) {
         s = walk_start();

@@ -1,7 +1,9 @@
 // What the three lightcuts passes share (lightcuts_radius.comp,
 // lightcuts_bound_walk.comp, lightcuts_bound_heap.comp): per pixel a cut of
 // the light tree, each cut node evaluated as a cluster (its representative's
-// position, direction, range and spot cone with the cluster's RGB intensity),
+// position, direction, range and spot cone with the cluster's RGB intensity;
+// the bound criterion's passes may draw the representative per pixel:
+// pixel_representative.glsl's cluster_light),
 // classic lights added one by one.
 #ifndef LC_LIGHTCUTS_PASS_GLSL
 #define LC_LIGHTCUTS_PASS_GLSL
@@ -10,6 +12,7 @@
 
 #include "cut_hash.glsl"
 #include "lighting_pass.glsl"
+#include "pixel_representative.glsl"
 
 layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
 
@@ -22,16 +25,8 @@ struct Cut {
 
 Cut empty_cut() { return Cut(vec3(0.0), 0u, 0u, no_indirect_sums()); }
 
-// A node evaluated as a cluster: its representative leaf light with the
-// cluster's intensity.
-GpuLight cluster_light(GpuTreeNode node) {
-    GpuLight light = leaf_lights[node.representative];
-    light.intensity = node.intensity;
-    return light;
-}
-
 void add_to_cut(inout Cut cut, uint node_index, GpuTreeNode node, SurfacePoint p) {
-    vec3 contribution = light_radiance(cluster_light(node), p);
+    vec3 contribution = light_radiance(cluster_light(int(node_index), node, p), p);
     cut.radiance += contribution;
     tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
     cut.size += 1u;

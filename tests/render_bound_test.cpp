@@ -37,6 +37,16 @@ RenderCamera room_camera() {
     return camera;
 }
 
+// A width x width frame of the room in lightcuts-bound mode.
+RenderSettings room_bound_settings(uint32_t width) {
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    settings.width = settings.height = width;
+    settings.camera = room_camera();
+    return settings;
+}
+
 struct CutAgreement {
     size_t geometry = 0;
     size_t same_cut = 0;
@@ -63,11 +73,15 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
     cut_settings.error_ratio = settings.error_ratio;
     cut_settings.max_cut = settings.max_cut;
     cut_settings.search = settings.bound_search;
+    cut_settings.representatives = settings.representatives;
+    cut_settings.representative_seed = settings.representative_seed;
     const size_t pixels = size_t(settings.width) * settings.height;
     for (size_t i = 0; i < pixels; ++i) {
         if (g->position[4 * i + 3] == 0.0f) continue;
         ++a.geometry;
-        CutResult cpu = shade_lightcuts(tree, {}, test::gbuffer_point(*g, i), cut_settings);
+        SurfacePoint p = test::gbuffer_point(*g, i);
+        p.pixel = {uint32_t(i % settings.width), uint32_t(i / settings.width)};
+        CutResult cpu = shade_lightcuts(tree, {}, p, cut_settings);
         a.cpu_max_cut_hits += cpu.max_cut_hit ? 1 : 0;
         if ((*cuts)[2 * i] != cpu.cut_size || (*cuts)[2 * i + 1] != cpu.cut_hash) continue;
         ++a.same_cut;
@@ -94,7 +108,8 @@ using BoundCriterion = test::VulkanTest;
 // the CPU's cut, and those match it in radiance.
 void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<SceneLight>& lights,
                                    std::initializer_list<BoundSearch> searches,
-                                   std::initializer_list<float> errors) {
+                                   std::initializer_list<float> errors,
+                                   Representatives representatives = Representatives::kTree) {
     Scene scene = make_room_scene();
     scene.lights = lights;
     const LightTree tree = test::agglomerative_tree(lights);
@@ -103,11 +118,9 @@ void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<Scene
     visible.shadows = ShadowMode::kOff;
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 48;
-    settings.camera = room_camera();
+    RenderSettings settings = room_bound_settings(48);
+    settings.representatives = representatives;
+    settings.representative_seed = 3;
     for (BoundSearch search : searches) {
         for (float error : errors) {
             SCOPED_TRACE(testing::Message() << bound_search_name(search) << " " << error);
@@ -136,6 +149,55 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorOnOrientedLights) {
     std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kSpot, 2.0f);
     for (SceneLight& light : lights) light.type = LightType::kOriented;
     expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk}, {0.02f});
+}
+
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithPerPixelRepresentatives) {
+    // The descent from each cut node (pixel_representative.glsl) takes the
+    // CPU's branches, and the heap reuses a parent's evaluation for the same child.
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
+    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk, BoundSearch::kHeap}, {0.02f},
+                                  Representatives::kPixel);
+}
+
+TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithImportanceDrawnRepresentatives) {
+    // The draw weighs by the children's boxes seen from the point, in float on
+    // both sides (the G-buffer's point, rounded alike).
+    std::vector<SceneLight> lights = room_lights(300, LightTypeChoice::kMixed, 2.0f);
+    for (size_t i = 0; i < lights.size(); i += 4) lights[i].range = 2.5f;
+    expect_gpu_cuts_match_the_cpu(*context_, lights, {BoundSearch::kWalk}, {0.02f},
+                                  Representatives::kImportance);
+}
+
+TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) {
+    Scene scene = make_room_scene();
+    scene.lights = room_lights(400, LightTypeChoice::kPoint, 1.0f);
+    LightTree tree = test::agglomerative_tree(scene.lights);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    ASSERT_TRUE(renderer.ok()) << renderer.error();
+    RenderSettings settings = room_bound_settings(32);
+    settings.share_cuts = true;
+    const auto render = [&] {
+        Result<RenderStats> stats = (*renderer)->render(settings);
+        EXPECT_TRUE(stats.ok()) << stats.error();
+        Result<std::vector<float>> hdr = (*renderer)->read_hdr();
+        EXPECT_TRUE(hdr.ok());
+        return hdr.ok() ? *hdr : std::vector<float>{};
+    };
+    const std::vector<float> tree_image = render();
+    settings.representatives = Representatives::kPixel;
+    const std::vector<float> pixel_image = render();
+    // The same frame again, after another one in between: the same bytes.
+    settings.representative_seed = 1;
+    const std::vector<float> reseeded = render();
+    settings.representative_seed = 0;
+    EXPECT_EQ(render(), pixel_image);
+    EXPECT_NE(pixel_image, tree_image);
+    EXPECT_NE(reseeded, pixel_image);
+    // Per-pixel representatives are refused where the radius walk would ignore them.
+    settings.criterion = CutCriterion::kRadius;
+    settings.share_cuts = false;
+    EXPECT_FALSE((*renderer)->validate(settings).ok());
 }
 
 TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
@@ -193,11 +255,7 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     LightTree tree = test::agglomerative_tree(scene.lights);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    settings.width = settings.height = 32;
-    settings.camera = room_camera();
+    RenderSettings settings = room_bound_settings(32);
     settings.max_cut = 2;
     uint64_t gpu_hits = 0;
     CutAgreement a = compare_with_cpu(**renderer, settings, tree, &gpu_hits);

@@ -178,6 +178,8 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kIndirectClamp", kSpecIndirectClamp},
         {"kIndirectOff", kSpecIndirectOff},
         {"kWalkShareCuts", kSpecWalkShareCuts},
+        {"kRepresentatives", kSpecRepresentatives},
+        {"kRepresentativeSeed", kSpecRepresentativeSeed},
     };
     return ids;
 }

@@ -1,6 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
-//   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts] [--shadows auto|on|off]
+//   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
+//   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
@@ -67,6 +68,8 @@ struct RenderOptions {
     uint32_t max_cut = kDefaultMaxCut;
     std::string bound_search = "walk";
     bool share_cuts = false;
+    std::string representatives = "tree";
+    uint32_t representative_seed = 0;
     std::string shadows = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
@@ -179,6 +182,11 @@ void run_render(const RenderOptions& options) {
     if (!search) fail("unknown --bound-search '" + options.bound_search + "' (walk, heap)");
     settings.bound_search = *search;
     settings.share_cuts = options.share_cuts;
+    std::optional<Representatives> representatives = parse_representatives(options.representatives);
+    if (!representatives)
+        fail("unknown --representatives '" + options.representatives + "' (tree, pixel, importance)");
+    settings.representatives = *representatives;
+    settings.representative_seed = options.representative_seed;
     auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
@@ -270,6 +278,8 @@ void run_render(const RenderOptions& options) {
             fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
         if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
             fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
+        if (spp.method != SppMethod::kGpu && settings.representatives != Representatives::kTree)
+            fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
     }
     const std::vector<SceneLight> classic = classic_lights_of(scene);
     RenderedFrame rendered = render_frame(*renderer, settings, supersampled ? &spp : nullptr,
@@ -410,6 +420,16 @@ void add_render_command(CLI::App& app) {
     cmd->add_flag("--share-cuts", options->share_cuts,
                   "Bound criterion, walk search: one cut per subgroup of neighbouring pixels "
                   "(8 on lavapipe), refined until it meets every one of their bounds");
+    cmd->add_option("--representatives", options->representatives,
+                    "Bound criterion: evaluate a cluster through the tree's representative (drawn "
+                    "once for the image), one drawn per pixel with the same probabilities "
+                    "(errors independent between pixels), or one drawn per pixel in proportion "
+                    "to intensity x a bound of cos / d^2 at the point (importance; walk search)")
+        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
+        ->capture_default_str();
+    cmd->add_option("--representative-seed", options->representative_seed,
+                    "--representatives pixel or importance: the seed of the per-pixel draws")
+        ->capture_default_str();
     cmd->add_option("--shadows", options->shadows,
                     "Shadow rays: auto (simulated when a surface may hide a light; the stats "
                     "JSON says why), on or off")

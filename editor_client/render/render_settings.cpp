@@ -104,6 +104,25 @@ std::optional<BoundSearch> parse_bound_search(std::string_view text) {
     return std::nullopt;
 }
 
+const char* representatives_name(Representatives representatives) {
+    switch (representatives) {
+        case Representatives::kTree:
+            return "tree";
+        case Representatives::kPixel:
+            return "pixel";
+        case Representatives::kImportance:
+            return "importance";
+    }
+    return "unknown";
+}
+
+std::optional<Representatives> parse_representatives(std::string_view text) {
+    if (text == "tree") return Representatives::kTree;
+    if (text == "pixel") return Representatives::kPixel;
+    if (text == "importance") return Representatives::kImportance;
+    return std::nullopt;
+}
+
 Result<RenderCamera> parse_camera(std::string_view text) {
     std::vector<std::string_view> parts = split(text, ',');
     if (parts.size() != 7)
@@ -163,6 +182,19 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.share_cuts && mode_needs_tree(settings.mode) &&
         (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk))
         return make_error("shared cuts need the bound criterion's walk search");
+    if (settings.representatives != Representatives::kTree &&
+        settings.representatives != Representatives::kPixel &&
+        settings.representatives != Representatives::kImportance)
+        return make_error("unknown representatives " +
+                          std::to_string(static_cast<int>(settings.representatives)));
+    if (settings.representatives != Representatives::kTree && mode_needs_tree(settings.mode) &&
+        settings.criterion != CutCriterion::kBound)
+        return make_error("per-pixel representatives need the bound criterion");
+    // The heap reuses a parent's evaluation per unit intensity, which the
+    // importance draw's probabilities do not keep.
+    if (settings.representatives == Representatives::kImportance && mode_needs_tree(settings.mode) &&
+        settings.bound_search != BoundSearch::kWalk)
+        return make_error("importance-drawn representatives need the walk search");
     const float ratio = settings.error_ratio;
     if (!std::isfinite(ratio) || ratio < context.min_error_ratio || ratio > context.max_error_ratio)
         return make_error("error ratio " + number_text(ratio) + " is outside [" +

@@ -38,6 +38,9 @@ std::optional<CutCriterion> parse_criterion(std::string_view text);
 const char* bound_search_name(BoundSearch search);
 std::optional<BoundSearch> parse_bound_search(std::string_view text);
 
+const char* representatives_name(Representatives representatives);
+std::optional<Representatives> parse_representatives(std::string_view text);
+
 // Right-handed, +Y up, looking from eye to target (glTF conventions).
 struct RenderCamera {
     glm::vec3 eye{0.0f, 0.0f, 5.0f};
@@ -65,6 +68,11 @@ struct RenderSettings {
     // fine enough for each of them (Lin and Yuksel 2020's cut sharing, here
     // deterministic): coherent shadow rays, each pixel stopping under its own rule.
     bool share_cuts = false;
+    // The bound criterion's clusters are evaluated through the tree's
+    // representatives or through ones drawn per pixel (cpu_evaluator.h,
+    // Representatives); the seed of the per-pixel draws.
+    Representatives representatives = Representatives::kTree;
+    uint32_t representative_seed = 0;
     // Where each pixel's eye ray passes, in pixels from the pixel's centre
     // (supersampling's jitter; each component in [-0.5, 0.5]).
     glm::vec2 pixel_offset{0.0f};

@@ -57,6 +57,8 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;
         j["bound_search"] = s.bound_search;
+        j["representatives"] = s.representatives;
+        if (s.representatives == "pixel") j["representative_seed"] = s.representative_seed;
     }
     if (s.has_error_stats) {
         j["rel_err_mean"] = s.rel_err_mean;

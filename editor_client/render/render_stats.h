@@ -43,6 +43,8 @@ struct RenderStats {
     float error_ratio = 0.0f;
     uint32_t max_cut_setting = 0;
     std::string bound_search;  // walk or heap
+    std::string representatives;  // tree or pixel
+    uint32_t representative_seed = 0;
     uint64_t max_cut_hits = 0;
     uint64_t loop_limit_stops = 0;  // pixels whose walk or shadow ray the device's loop limit cut short
     // Shadows: simulated or not (effects), rays traced, the occluders' size.

@@ -517,6 +517,8 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;
         stats.bound_search = bound_search_name(settings.bound_search);
+        stats.representatives = representatives_name(settings.representatives);
+        stats.representative_seed = settings.representative_seed;
     }
 
     Result<std::vector<uint32_t>> cuts = read_cuts();

@@ -42,6 +42,12 @@ LC_CONST uint kSpecIndirectClamp = 22u;
 LC_CONST uint kSpecIndirectOff = 23u;
 // The walk search refines one cut for every lane of a subgroup (RenderSettings::share_cuts).
 LC_CONST uint kSpecWalkShareCuts = 24u;
+// Which leaf evaluates a cluster of the bound criterion: the tree's
+// representative or one drawn per pixel (kRepresentatives*,
+// pixel_representative.glsl.h; RenderSettings::representatives), and the
+// draws' seed.
+LC_CONST uint kSpecRepresentatives = 25u;
+LC_CONST uint kSpecRepresentativeSeed = 26u;
 
 LC_DEVICE_END
 

@@ -24,6 +24,10 @@ std::span<const uint32_t> LightcutsPass::module(const Frame&) const {
 
 void LightcutsPass::specialize(vk::Specialization& spec, const Frame& frame) const {
     LightingPass::specialize(spec, frame);
+    // shaders/pixel_representative.glsl (the radius walk is refused per-pixel
+    // representatives by validate()).
+    spec.set_uint(kSpecRepresentatives, static_cast<uint32_t>(frame.settings->representatives))
+        .set_uint(kSpecRepresentativeSeed, frame.settings->representative_seed);
 }
 
 void LightcutsPass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const {
