@@ -50,7 +50,7 @@ size="${3:-256x256}"
 strides="${4:-4,8}"
 cache="${LC_BENCH_CACHE:-}"
 all_methods="gpu_0.02,shared_0.02,reconstruction_0.02,gpu_0.005,shared_0.005,reconstruction_0.005"
-all_methods+=",shared_0.005_maxcut2500,gpu_noshadow,shared_noshadow"
+all_methods+=",shared_0.005_maxcut2500,shared_0.005_maxcut2500_importance,gpu_noshadow,shared_noshadow"
 methods="${LC_BENCH_METHODS:-$all_methods}"
 source scripts/lib/furnished_bench.sh
 build_bench_client "$build_dir"
@@ -104,6 +104,9 @@ for lights in ${counts//,/ }; do
     render "reconstruction_$e" --mode lightcuts --error "$e" --spp 1 --spp-method reconstruction
   done
   render shared_0.005_maxcut2500 --mode lightcuts --error 0.005 --share-cuts --max-cut 2500
+  # Representatives drawn per pixel by importance (docs/BENCHMARKS.md, "Per-pixel representatives").
+  render shared_0.005_maxcut2500_importance --mode lightcuts --error 0.005 --share-cuts --max-cut 2500 \
+    --representatives importance
   render gpu_noshadow --mode lightcuts --error 0.02 --shadows off
   render shared_noshadow --mode lightcuts --error 0.02 --shadows off --share-cuts
 done

@@ -38,6 +38,7 @@ METHODS = {
     "gpu_0.005": "gpu", "shared_0.005": "gpu shared cuts",
     "reconstruction_0.005": "reconstruction",
     "shared_0.005_maxcut2500": "gpu shared cuts, max cut 2500",
+    "shared_0.005_maxcut2500_importance": "gpu shared cuts, max cut 2500, importance",
     "gpu_noshadow": "gpu, no shadow rays", "shared_noshadow": "gpu shared cuts, no shadow rays",
 }
 COLUMNS = ["lights", "size", "method", "error_ratio", "reference_ms", "reference_stride",
@@ -139,7 +140,8 @@ def main():
 
 
 SHORT = {"gpu": "walk", "gpu shared cuts": "shared", "reconstruction": "reconstr.",
-         "gpu shared cuts, max cut 2500": "shared, K 2500"}
+         "gpu shared cuts, max cut 2500": "shared, K 2500",
+         "gpu shared cuts, max cut 2500, importance": "shared, K 2500, imp."}
 
 
 def plot(rows, size, path):
