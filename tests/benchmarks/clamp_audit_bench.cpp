@@ -12,34 +12,19 @@
 // GRID: every GRID-th pixel in x and y. A diagnostic for docs/ACCURACY.md
 // ("The exact clamp in the reference"), not run by any script.
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <functional>
 #include <cstdio>
 #include <cstdlib>
-#include <iostream>
-#include <thread>
+#include <functional>
 #include <vector>
 
 #include "editor_client/render/gbuffer_surface.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/render/render_inputs.h"
-#include "editor_client/render/renderer.h"
-#include "editor_client/vk/context.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/exact_indirect_clamp.h"
+#include "tests/benchmarks/gbuffer_diagnostic.h"
 
 namespace lc::client {
 namespace {
-
-template <typename T>
-T or_exit(Result<T> r) {
-    if (!r) {
-        std::cerr << r.error() << "\n";
-        std::exit(1);
-    }
-    return std::move(r).value();
-}
 
 double sum_of(const glm::dvec3& v) { return v.x + v.y + v.z; }
 
@@ -152,52 +137,33 @@ int run(int argc, char** argv) {
         std::fprintf(stderr, "usage: %s SCENE TREE WxH E GRID OUT\n", argv[0]);
         return 2;
     }
-    const Scene scene = or_exit(load_scene(argv[1]));
-    TreeSource source;
-    source.dump = argv[2];
-    const std::shared_ptr<const LightTree> tree = or_exit(obtain_tree(scene, source));
+    GBufferDiagnostic d = load_diagnostic(argv[1], argv[2]);
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
     settings.criterion = CutCriterion::kBound;
     if (std::sscanf(argv[3], "%ux%u", &settings.width, &settings.height) != 2) return 2;
-    settings.camera = or_exit(choose_camera(scene, "", std::nullopt,
-                                            float(settings.width) / float(settings.height)));
+    settings.camera = scene_camera(d, settings);
     CutSettings cut;
     cut.criterion = CutCriterion::kBound;
     cut.search = BoundSearch::kHeap;
     cut.error_ratio = std::atof(argv[4]);
     const int grid = std::max(1, std::atoi(argv[5]));
 
-    vk::ContextOptions context_options;
-    context_options.validation = false;
-    const vk::Context context = or_exit(vk::Context::create(context_options));
-    const std::unique_ptr<Renderer> renderer = or_exit(Renderer::create(context, scene, tree.get(), {}));
-    if (Status drawn = renderer->render_gbuffer(settings); !drawn) {
-        std::cerr << drawn.error() << "\n";
-        return 1;
-    }
-    const GBufferReadback g = or_exit(renderer->read_gbuffer());
+    draw_gbuffer(d, settings);
+    const GBufferReadback& g = d.gbuffer;
 
     std::vector<std::pair<int, int>> pixels;
     for (uint32_t y = uint32_t(grid / 2); y < settings.height; y += uint32_t(grid))
         for (uint32_t x = uint32_t(grid / 2); x < settings.width; x += uint32_t(grid))
             if (g.position[4 * (size_t(y) * settings.width + x) + 3] != 0.0f) pixels.push_back({int(x), int(y)});
     std::vector<PixelClamp> audits(pixels.size());
-    std::atomic<size_t> next{0};
-    const auto work = [&] {
-        for (size_t k; (k = next.fetch_add(1)) < pixels.size();) {
-            const auto [x, y] = pixels[k];
-            SurfacePoint p = gbuffer_surface_point(g, size_t(y) * settings.width + size_t(x));
-            p.occluders = &renderer->shadow_bvh();
-            p.shadow_bias = renderer->shadow_bias();
-            audits[k] = audit_pixel(*tree, p, cut);
-            audits[k].x = x;
-            audits[k].y = y;
-        }
-    };
-    std::vector<std::thread> workers;
-    for (unsigned t = 0; t < std::max(1u, std::thread::hardware_concurrency()); ++t) workers.emplace_back(work);
-    for (std::thread& t : workers) t.join();
+    for_each_index(pixels.size(), [&](size_t k) {
+        const auto [x, y] = pixels[k];
+        const SurfacePoint p = diagnostic_point(d, settings.width, x, y);
+        audits[k] = audit_pixel(*d.tree, p, cut);
+        audits[k].x = x;
+        audits[k].y = y;
+    });
 
     std::FILE* out = std::fopen(argv[6], "w");
     if (out == nullptr) return 1;
