@@ -12,7 +12,8 @@
 //   a node is refined while max_c(bound_c) > error_ratio * max_c(total_c).
 // - Indirect lights: the cut is chosen from unclamped estimates; then each
 //   indirect leaf on it is clamped to half the error ratio of the cut's total
-//   (device/indirect_clamp.glsl.h), before the classic lights are added.
+//   (device/indirect_clamp.glsl.h), before the classic lights are added; the
+//   reference (every leaf) clamps them exactly (exact_indirect_clamp.h).
 #include "lightcuts/cpu_evaluator.h"
 
 #include <glm/geometric.hpp>
@@ -28,6 +29,7 @@
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "lightcuts/device/cut_hash.glsl.h"
 #include "lightcuts/device/pixel_representative.glsl.h"
+#include "lightcuts/exact_indirect_clamp.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/shading_model.h"
 #include "lightcuts/shadow_bvh.h"
@@ -353,6 +355,30 @@ glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
 glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
     return shading::material_bound(cluster_shape_of(node), p.albedo, p.specular, p.exponent,
                                    p.mirror, p.position);
+}
+
+CutResult shade_tree_reference(const LightTree& tree, std::span<const SceneLight> classic_lights,
+                               const SurfacePoint& p, const CutSettings& settings) {
+    CutResult result;
+    glm::dvec3 others(0.0);
+    std::vector<glm::dvec3> clamped_leaves;
+    for (const LightTreeNode& node : tree.nodes) {
+        if (!node.is_leaf() || left_out(node, settings)) continue;
+        const glm::dvec3 contribution = shade_node(node, p);
+        result.cut_size += 1;
+        if (node.indirect) result.indirect += contribution;
+        if (device::clamped_leaf(node.indirect, node.patch, true)) {
+            clamped_leaves.push_back(contribution);
+        } else {
+            others += contribution;
+        }
+    }
+    const ExactClamp clamp =
+        exact_indirect_clamp(others, clamped_leaves, indirect_clamp_ratio(settings.error_ratio));
+    result.radiance = clamp.radiance;
+    result.clamped = clamp.removed;
+    for (const SceneLight& light : classic_lights) result.radiance += shade_light(light, p);
+    return result;
 }
 
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,

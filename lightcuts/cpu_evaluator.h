@@ -150,6 +150,11 @@ struct CutNodeEstimate {
 // samples of reconstruction cuts are made from them).
 CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes = nullptr);
+// Reference mode: every leaf of the tree, exact, its indirect leaves clamped
+// exactly (exact_indirect_clamp.h; left out with settings.indirect off), plus
+// the classic lights. cut_size counts the leaves.
+CutResult shade_tree_reference(const LightTree& tree, std::span<const SceneLight> classic_lights,
+                               const SurfacePoint& p, const CutSettings& settings);
 // Lightcuts over the tree, plus the classic lights shaded one by one, with the
 // indirect leaves clamped (or indirect light left out, settings.indirect).
 CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,

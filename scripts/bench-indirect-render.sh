@@ -8,13 +8,20 @@
 # (--tile-stride 4; for 10^6 paths one 8x8 tile, --tile-stride 16), so the
 # error columns are the lightcut's own error against the exact sum of the same
 # lights (the solvers' error against a path-traced reference is
-# bench/indirect.csv's). Writes docs/bench/indirect_render.csv:
+# bench/indirect.csv's). The reference clamps its VPLs exactly, over Newton's
+# passes (reference.comp); a third render, the same reference with --indirect
+# off, counts the pixels no direct light reaches. Writes
+# docs/bench/indirect_render.csv:
 #   method, parameter, tree_lights, indirect_lights, bake_wall_s, lightcuts_gpu_ms,
 #   lightcuts_wall_s, avg_cut, clamped_energy_fraction, reference_clamped_energy_fraction,
 #   reference_gpu_ms_full
-#   (the strided reference's time scaled to the full frame), speed_up,
+#   (the strided reference's time scaled to the full frame), reference_clamp_passes,
+#   reference_clamp_change (the largest relative change of a threshold in the last pass),
+#   reference_pixels, reference_zero_pixels, direct_zero_pixels (of the strided
+#   reference's pixels: black with indirect light, black without), speed_up,
 #   rel_err_mean, within_2pct, max_err
 # Usage: scripts/bench-indirect-render.sh [build-dir]   (default: build)
+# INDIRECT_BENCH_KEEP=DIR keeps the scene, trees and images in DIR.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
@@ -22,11 +29,12 @@ bin="$build_dir/bin"
 [[ -x "$bin/editor_client" && -x "$bin/lightmass_server" ]] ||
   cmake --build "$build_dir" --target editor_client lightmass_server -j "$(nproc)"
 out=docs/bench/indirect_render.csv
-work="$(mktemp -d)"
+work="${INDIRECT_BENCH_KEEP:-$(mktemp -d)}"
+mkdir -p "$work"
 server_pid=""
 cleanup() {
   [[ -n "$server_pid" ]] && kill "$server_pid" 2>/dev/null && wait "$server_pid" 2>/dev/null
-  rm -rf "$work"
+  [[ -n "${INDIRECT_BENCH_KEEP:-}" ]] || rm -rf "$work"
 }
 trap cleanup EXIT
 
@@ -56,9 +64,10 @@ row() {  # method parameter, then bake flags
   local stride=4
   [[ "$(stat -c %s "$work/$tag.lcut")" -gt 200000000 ]] && stride=16
   # Validation would slow the GPU work down; the benchmark measures the renderer.
-  for mode in lightcuts reference; do
+  for mode in lightcuts reference direct; do
     local flags=(--mode lightcuts --error 0.02)
     [[ $mode == reference ]] && flags=(--mode reference --tile-stride "$stride")
+    [[ $mode == direct ]] && flags=(--mode reference --tile-stride "$stride" --indirect off)
     LC_VALIDATION=0 "$bin/editor_client" render "$work/cornell.gltf" --tree "$work/$tag.lcut" \
       --size 128x128 "${flags[@]}" --stats "$work/$tag.$mode.json" --float "$work/$tag.$mode.pfm" \
       -o "$work/$tag.$mode.png" >"$work/$tag.$mode.log" 2>&1 || { cat "$work/$tag.$mode.log"; exit 1; }
@@ -87,8 +96,9 @@ for line in open(sys.argv[1]):
     stride, tile = ref["pixel_stride"], ref["stride_tile"]
     scale = (lc["width"] * lc["height"]) / (ref["width"] * ref["height"])
     reference_ms = ref["render_ms"] * scale
-    errors = error_columns(base + ".lightcuts.pfm", read_pfm(base + ".reference.pfm"),
-                           ref["geometry_pixels"], stride, tile)
+    reference = read_pfm(base + ".reference.pfm")
+    errors = error_columns(base + ".lightcuts.pfm", reference, ref["geometry_pixels"], stride, tile)
+    black = lambda image: int((image[:, :, :3].max(axis=2) == 0.0).sum())
     rows.append({
         "method": method, "parameter": parameter, "tree_lights": lc["tree_lights"],
         "indirect_lights": lc["indirect_lights"], "bake_wall_s": round(float(bake_s), 2),
@@ -97,6 +107,10 @@ for line in open(sys.argv[1]):
         "clamped_energy_fraction": round(lc["clamped_energy_fraction"], 5),
         "reference_clamped_energy_fraction": round(ref["clamped_energy_fraction"], 5),
         "reference_gpu_ms_full": round(reference_ms, 1),
+        "reference_clamp_passes": ref.get("reference_clamp_passes", 0),
+        "reference_clamp_change": round(ref.get("reference_clamp_change", 0.0), 6),
+        "reference_pixels": ref["geometry_pixels"], "reference_zero_pixels": black(reference),
+        "direct_zero_pixels": black(read_pfm(base + ".direct.pfm")),
         "speed_up": round(reference_ms / max(lc["render_ms"], 1e-9), 1),
         "rel_err_mean": errors["rel_err_mean"], "within_2pct": errors["within_2pct"],
         "max_err": errors["max_err"],

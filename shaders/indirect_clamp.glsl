@@ -69,6 +69,56 @@ void keep_indirect_sums(inout GpuWalkState state, IndirectSums s) {
     state.indirect_leaves = s.leaves;
 }
 
+// Reference mode's exact clamp (indirect_clamp.glsl.h): whether this frame
+// runs Newton's passes after the sums.
+bool exact_clamp() { return kIndirectClamp && frame.clamp_passes > 0u; }
+
+// The sums' end: the pixel's unclamped radiance, its sums and Newton's start,
+// kept in walk_states[index] for the passes.
+void begin_exact_clamp(uint index, vec3 radiance, IndirectSums s) {
+    GpuWalkState state = walk_states[index];
+    keep_indirect_sums(state, s);
+    state.radiance = radiance;
+    for (int c = 0; c < 3; ++c)
+        state.clamp_threshold[c] = exact_clamp_start(s.others[c], s.largest[c], s.second[c], s.rest[c],
+                                                     0.5 * kErrorRatio);
+    walk_states[index] = state;
+}
+
+// A pass's end, from its tally at the pixel's threshold: Newton's step; after
+// the last pass, the clamped radiance (the classic lights and emission not
+// included) with the statistics clamp_indirect() keeps, and the step's
+// largest relative change.
+bool end_exact_clamp_pass(uint index, vec3 below, vec3 above, out vec3 clamped) {
+    GpuWalkState state = walk_states[index];
+    IndirectSums s = indirect_sums_of(state);
+    vec3 t = state.clamp_threshold;
+    vec3 next;
+    for (int c = 0; c < 3; ++c) next[c] = exact_clamp_step(s.others[c], below[c], above[c], t[c], 0.5 * kErrorRatio);
+    clamped = state.radiance;
+    if (frame.clamp_pass < frame.clamp_passes) {
+        walk_states[index].clamp_threshold = next;
+        return false;
+    }
+    vec3 leaves = s.largest + s.second + s.rest;
+    vec3 removed = vec3(0.0);
+    float change = 0.0;
+    for (int c = 0; c < 3; ++c) {
+        if (t[c] > 0.0) change = max(change, (t[c] - next[c]) / t[c]);
+        // A channel the clamp leaves alone is exactly its total.
+        if (above[c] == 0.0) continue;
+        float kept = below[c] + above[c] * next[c];
+        clamped[c] = s.others[c] + kept;
+        removed[c] = max(leaves[c] - kept, 0.0);
+    }
+    vec3 indirect = leaves + s.clusters;
+    walk_states[index].indirect_energy = indirect.x + indirect.y + indirect.z;
+    walk_states[index].clamped_energy = removed.x + removed.y + removed.z;
+    walk_states[index].clamp_threshold = next;
+    walk_states[index].clamp_change = change;
+    return true;
+}
+
 void store_indirect_sums(uint index, IndirectSums s) {
     GpuWalkState state = walk_states[index];
     keep_indirect_sums(state, s);

@@ -96,7 +96,8 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
 GpuWalkState walk_start() {
     return GpuWalkState(vec3(0.0), 0u, 0u, uintBitsToFloat(0x7f800000u), 0.0, 0.0,
                         kWalkBisections << kWalkBisectionsShift, 0u, 0u, 0u, vec3(0.0), 0u,
-                        vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u);
+                        vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u,
+                        vec3(0.0), 0.0, vec3(0.0), 0u, vec3(0.0), 0u);
 }
 
 // The cut at threshold tau (`shade` false: its size, hash and worst bound

@@ -20,6 +20,13 @@
 // reference: every indirect leaf is tallied (the sums kept beside the partial
 // sum), and the classic lights and emission join only after the clamp, in
 // the dispatch that stores the pixel. --indirect off leaves them out.
+//
+// The reference clamps its VPLs exactly (indirect_clamp.glsl.h), where a cut
+// approximates the clamp from its two largest leaves: after the pass that
+// sums the leaves (frame.clamp_pass 0), frame.clamp_passes more passes over
+// them (same dispatches, same parts) tally the VPLs at the pixel's threshold
+// and take Newton's step; the last one stores the pixel. Those passes shade
+// the VPLs only: the rest of the pixel is known from the sums.
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
@@ -72,6 +79,73 @@ vec3 indirect_leaves_onto(vec3 previous, uint at, bool first, uint begin, uint e
     return radiance;
 }
 
+// Newton's passes: one VPL at the pixel's threshold t.
+void tally_exact_leaf(uint i, vec3 t, inout vec3 below, inout vec3 above, SurfacePoint p) {
+    if ((leaf_lights[i].flags & (kGpuLightIndirect | kGpuLightPatch)) != kGpuLightIndirect) return;
+    tally_exact_clamp(below, above, light_radiance(leaf_lights[i], p), t);
+}
+
+void tally_exact_leaves(uint begin, uint end, vec3 t, inout vec3 below, inout vec3 above, SurfacePoint p) {
+    uint i = begin;
+    for (; i + kLoopUnroll <= end; i += kLoopUnroll) {
+        tally_exact_leaf(i, t, below, above, p);
+        tally_exact_leaf(i + 1u, t, below, above, p);
+        tally_exact_leaf(i + 2u, t, below, above, p);
+        tally_exact_leaf(i + 3u, t, below, above, p);
+    }
+    for (; i < end; ++i) tally_exact_leaf(i, t, below, above, p);
+}
+
+// A pass's tally of the whole pixel: Newton's step, and the pixel after the last pass.
+void finish_exact_clamp_pass(ivec2 pixel, uint index, vec3 below, vec3 above, SurfacePoint p) {
+    vec3 clamped;
+    if (end_exact_clamp_pass(index, below, above, clamped)) {
+        store_pixel(pixel, clamped + classic_and_emitted_radiance(p), frame.leaf_count, 0u, false);
+    } else {
+        flush_pixel_counters(false);
+    }
+}
+
+// One dispatch of Newton's pass frame.clamp_pass, split like the sums: each
+// part tallies its leaves in its own walk state, at the threshold its pixel
+// keeps in the first part's state.
+void exact_clamp_pass(ivec2 pixel, SurfacePoint p) {
+    const uint parts = gl_NumWorkGroups.z;
+    const uint pixels = frame.width * frame.height;
+    const uint index = uint(pixel.y) * frame.width + uint(pixel.x);
+    if (parts > 1u && frame.light_begin == frame.light_end) {
+        if (gl_WorkGroupID.z != 0u) return;
+        vec3 below = vec3(0.0);
+        vec3 above = vec3(0.0);
+        for (uint z = 0u; z < parts; ++z) {
+            below += walk_states[z * pixels + index].clamp_below;
+            above += walk_states[z * pixels + index].clamp_above;
+        }
+        finish_exact_clamp_pass(pixel, index, below, above, p);
+        return;
+    }
+    uint begin = frame.light_begin;
+    uint end = min(frame.light_end, frame.leaf_count);
+    uint at = index;
+    if (parts > 1u) {
+        const uint part = (frame.light_end - frame.light_begin + parts - 1u) / parts;
+        begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
+        end = min(begin + part, frame.light_end);
+        at = gl_WorkGroupID.z * pixels + index;
+    }
+    const bool first = frame.light_begin == 0u;
+    vec3 below = first ? vec3(0.0) : walk_states[at].clamp_below;
+    vec3 above = first ? vec3(0.0) : walk_states[at].clamp_above;
+    tally_exact_leaves(begin, end, walk_states[index].clamp_threshold, below, above, p);
+    if (parts == 1u && frame.light_end >= frame.leaf_count) {
+        finish_exact_clamp_pass(pixel, index, below, above, p);
+        return;
+    }
+    walk_states[at].clamp_below = below;
+    walk_states[at].clamp_above = above;
+    flush_pixel_counters(false);
+}
+
 // One part: the dispatch's leaves onto the pixel's sum in the HDR image.
 void sum_onto_the_image(ivec2 pixel, SurfacePoint p) {
     const bool first = frame.light_begin == 0u;
@@ -83,6 +157,11 @@ void sum_onto_the_image(ivec2 pixel, SurfacePoint p) {
         const vec3 previous = first ? vec3(0.0) : imageLoad(hdr_image, pixel).rgb;
         IndirectSums s;
         radiance = indirect_leaves_onto(previous, index, first, frame.light_begin, end, s, p);
+        if (last && exact_clamp()) {
+            begin_exact_clamp(index, radiance, s);
+            flush_pixel_counters(false);
+            return;
+        }
         if (last) radiance = clamp_indirect(pixel, radiance, s) + classic_and_emitted_radiance(p);
     } else {
         radiance = leaves_radiance(frame.light_begin, end, p);
@@ -105,6 +184,10 @@ void main() {
         store_background(pixel);
         return;
     }
+    if (frame.clamp_pass > 0u) {
+        exact_clamp_pass(pixel, p);
+        return;
+    }
     const uint parts = gl_NumWorkGroups.z;
     if (parts == 1u) {
         sum_onto_the_image(pixel, p);
@@ -120,6 +203,10 @@ void main() {
             for (uint z = 0u; z < parts; ++z) {
                 radiance += walk_states[z * pixels + pixel_index].radiance;
                 if (kIndirectClamp) merge_indirect_sums(s, indirect_sums_of(walk_states[z * pixels + pixel_index]));
+            }
+            if (exact_clamp()) {
+                begin_exact_clamp(pixel_index, radiance, s);
+                return;
             }
             radiance = clamp_indirect(pixel, radiance, s) + classic_and_emitted_radiance(p);
             store_pixel(pixel, radiance, frame.leaf_count, 0u, false);

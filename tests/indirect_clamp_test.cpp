@@ -19,6 +19,7 @@
 #include "editor_client/render/renderer.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/device/indirect_clamp.glsl.h"
+#include "lightcuts/exact_indirect_clamp.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "render_test_support.h"
@@ -112,6 +113,87 @@ TEST(IndirectClampFormula, TwoSpikesMatchTheIdealClampAndMoreAreNeverUnderClampe
                                                           c.sums.rest.x, c.sums.rest_max, kRatio);
         EXPECT_LE(t, kRatio * c.clamped.x * (1.0 + 1e-9)) << "trial " << trial;
     }
+}
+
+// ---- the exact clamp (reference mode) -------------------------------------------
+
+// Indirect light as a bake leaves it: many weak VPLs, a few spikes, sometimes nothing else.
+std::vector<double> random_lights(std::mt19937_64& rng, int weak, int spikes) {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    std::vector<double> lights;
+    for (int i = 0; i < weak; ++i) lights.push_back(1e-3 * unit(rng));
+    for (int i = 0; i < spikes; ++i) lights.push_back(0.02 + 10.0 * unit(rng) * unit(rng));
+    std::shuffle(lights.begin(), lights.end(), rng);
+    return lights;
+}
+
+TEST(ExactClamp, EveryLightAtMostTheThresholdWhichIsTheRatioOfTheClampedTotal) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int trial = 0; trial < 300; ++trial) {
+        const std::vector<double> lights = random_lights(rng, 10 + trial % 7 * 60, trial % 13);
+        // Every third pixel is lit by indirect light only.
+        const double others = trial % 3 == 0 ? 0.0 : 0.05 * unit(rng);
+        const double t = exact_clamp_threshold(others, lights, kRatio);
+        const double ideal = ideal_clamped_total(others, lights);
+        double clamped = others;
+        for (double l : lights) clamped += std::min(l, t);
+        EXPECT_NEAR(clamped, ideal, 1e-9 * ideal + 1e-300) << "trial " << trial;
+        EXPECT_NEAR(t, kRatio * clamped, 1e-12 * clamped) << "trial " << trial;
+    }
+}
+
+// What the cut's two-largest approximation cannot do: a pixel lit by 300
+// weak VPLs (0.1) and three bright ones (500, 5, 5), with no other light.
+// The approximation's rest over its largest light is 35 / 5, far under
+// 1 / ratio - 2, so it keeps only t = 0 and removes all of it; the exact
+// clamp holds the bright ones at t and keeps the weak ones.
+TEST(ExactClamp, AnIndirectOnlyPixelKeepsItsLightWhereTheApproximationZeroesIt) {
+    std::vector<glm::dvec3> lights(300, glm::dvec3(0.1));
+    for (double bright : {500.0, 5.0, 5.0}) lights.push_back(glm::dvec3(bright));
+    const Clamped approximated = clamp_of(glm::dvec3(0.0), lights);
+    EXPECT_EQ(approximated.clamped.x, 0.0);
+    const ExactClamp exact = exact_indirect_clamp(glm::dvec3(0.0), lights, kRatio);
+    // t = ratio (300 x 0.1 + 3 t).
+    const double t = kRatio * 30.0 / (1.0 - 3.0 * kRatio);
+    EXPECT_NEAR(exact.threshold.x, t, 1e-12);
+    EXPECT_NEAR(exact.radiance.x, 30.0 + 3.0 * t, 1e-9);
+    EXPECT_NEAR(exact.removed.x, 540.0 - exact.radiance.x, 1e-9);
+    // Fewer comparable lights than 1 / ratio and nothing else: no positive root.
+    const std::vector<double> few(60, 1.0);
+    EXPECT_EQ(exact_clamp_threshold(0.0, few, kRatio), 0.0);
+}
+
+// The GPU reference's passes (device::exact_clamp_start, tally_exact_clamp,
+// exact_clamp_step), run on the CPU: never under the root, and on it within
+// the passes the reference runs.
+TEST(ExactClamp, NewtonsPassesComeDownOnTheRootWithoutPassingIt) {
+    std::mt19937_64 rng(18);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    uint32_t most_passes = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const std::vector<double> lights = random_lights(rng, 10 + trial % 7 * 60, trial % 13);
+        const double others = trial % 3 == 0 ? 0.0 : 0.05 * unit(rng);
+        const double root = exact_clamp_threshold(others, lights, kRatio);
+        device::IndirectSums sums = device::no_indirect_sums();
+        for (double l : lights) device::add_indirect_leaf(sums, glm::dvec3(l));
+        double t = device::exact_clamp_start(others, sums.largest.x, sums.second.x, sums.rest.x, kRatio);
+        // The GPU's last pass takes the step and clamps with the tally it
+        // made, exact once the step lands on the root.
+        uint32_t passes = 0;
+        while (std::abs(t - root) > 1e-12 * root && passes < 64) {
+            glm::dvec3 below(0.0), above(0.0);
+            for (double l : lights) device::tally_exact_clamp(below, above, glm::dvec3(l), glm::dvec3(t));
+            const double next = device::exact_clamp_step(others, below.x, above.x, t, kRatio);
+            ASSERT_GE(next, root * (1.0 - 1e-12)) << "trial " << trial << ", pass " << passes;
+            t = next;
+            ++passes;
+        }
+        EXPECT_NEAR(t, root, 1e-12 * root + 1e-300) << "trial " << trial;
+        most_passes = std::max(most_passes, passes);
+    }
+    std::printf("  passes to the root: at most %u\n", most_passes);
+    EXPECT_LE(most_passes, device::kExactClampPasses);
 }
 
 // ---- the tree and the CPU evaluator ------------------------------------------
@@ -484,11 +566,10 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
         for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
             if (f.gbuffer.position[4 * i + 3] == 0.0f) continue;
             const SurfacePoint p = test::gbuffer_point(f.gbuffer, i);
-            // Reference mode: every leaf is on the cut, as in the radius walk of
-            // this tree (its oriented lights have no range, so every cluster is refined).
-            CutSettings s = cpu_settings;
-            if (m.mode == client::RenderMode::kReference) s.criterion = CutCriterion::kRadius;
-            const CutResult cpu = shade_lightcuts(tree, {}, p, s);
+            // Reference mode: every leaf, its VPLs clamped exactly.
+            const CutResult cpu = m.mode == client::RenderMode::kReference
+                                      ? shade_tree_reference(tree, {}, p, cpu_settings)
+                                      : shade_lightcuts(tree, {}, p, cpu_settings);
             clamped_cpu += cpu.clamped.x + cpu.clamped.y + cpu.clamped.z;
             indirect_cpu += cpu.indirect.x + cpu.indirect.y + cpu.indirect.z;
             ++compared;
@@ -500,8 +581,9 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
             within += close;
         }
         ASSERT_GT(compared, 0u);
-        std::printf("  %s: %zu of %zu pixels within 1e-3, clamped energy GPU %.4g CPU %.4g\n", m.name, within,
-                    compared, f.stats.clamped_energy, clamped_cpu);
+        std::printf("  %s: %zu of %zu pixels within 1e-3, clamped energy GPU %.4g CPU %.4g, passes %u (change %.3g)\n",
+                    m.name, within, compared, f.stats.clamped_energy, clamped_cpu, f.stats.reference_clamp_passes,
+                    f.stats.reference_clamp_change);
         // The bound searches may choose another cut where float and double
         // straddle a threshold; the exhaustive cuts may not.
         const bool exhaustive = m.criterion == CutCriterion::kRadius;
@@ -514,6 +596,39 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
 
 TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
     expect_gpu_shades_like_the_cpu(build(lights_with_indirect(true)));
+}
+
+// Every pixel lit by VPLs only: a spike 1 mm from the wall and 300 weak VPLs.
+// The reference's exact clamp keeps the light the approximation removed.
+TEST_F(IndirectClampGpu, TheReferenceClampsIndirectOnlyPixelsExactly) {
+    std::vector<SceneLight> lights = lights_with_indirect(true);
+    lights.erase(lights.begin(), lights.begin() + std::ptrdiff_t(direct_lights().size()));
+    const LightTree tree = build(lights);
+    std::unique_ptr<client::Renderer> r = renderer(tree);
+    ASSERT_TRUE(r);
+    const Frame f = render(*r, client::RenderMode::kReference, CutCriterion::kRadius);
+    EXPECT_EQ(f.stats.reference_clamp_passes, device::kExactClampPasses);
+    CutSettings settings;
+    settings.error_ratio = kErrorRatio;
+    size_t compared = 0, within = 0, zeroed_by_the_approximation = 0;
+    for (size_t i = 0; i < size_t(kSize) * kSize; ++i) {
+        if (f.gbuffer.position[4 * i + 3] == 0.0f) continue;
+        const SurfacePoint p = test::gbuffer_point(f.gbuffer, i);
+        const CutResult exact = shade_tree_reference(tree, {}, p, settings);
+        const CutResult approximated = shade_lightcuts(tree, {}, p, settings);  // every leaf on the cut
+        zeroed_by_the_approximation += approximated.radiance.x == 0.0 && exact.radiance.x > 0.0;
+        ++compared;
+        bool close = true;
+        for (int ch = 0; ch < 3; ++ch)
+            close = close && std::abs(double(f.hdr[4 * i + ch]) - exact.radiance[ch]) <=
+                                 1e-3 * std::abs(exact.radiance[ch]) + 1e-7;
+        within += close;
+    }
+    std::printf("  %zu of %zu pixels within 1e-3; %zu the approximation zeroed; change %.3g\n", within, compared,
+                zeroed_by_the_approximation, f.stats.reference_clamp_change);
+    EXPECT_GT(zeroed_by_the_approximation, compared / 10) << "the scene does not test the exact clamp";
+    EXPECT_EQ(within, compared);
+    EXPECT_EQ(f.stats.nonfinite_pixels, 0u);
 }
 
 // Patches (disks, not clamped) beside clamped VPLs, in every mode.

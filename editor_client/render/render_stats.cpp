@@ -49,6 +49,10 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["indirect_energy"] = s.indirect_energy;
         j["clamped_energy"] = s.clamped_energy;
         j["clamped_energy_fraction"] = s.clamped_fraction();
+        if (s.reference_clamp_passes > 0) {
+            j["reference_clamp_passes"] = s.reference_clamp_passes;
+            j["reference_clamp_change"] = s.reference_clamp_change;
+        }
     }
     j["submissions"] = s.submissions;
     if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;

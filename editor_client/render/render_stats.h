@@ -62,6 +62,11 @@ struct RenderStats {
     double indirect_energy = 0.0;
     double clamped_energy = 0.0;
     double clamped_fraction() const { return indirect_energy > 0.0 ? clamped_energy / indirect_energy : 0.0; }
+    // Reference mode with VPLs: the exact clamp's Newton passes after the sums,
+    // and the largest relative change of a pixel's threshold in the last one
+    // (0: every pixel had reached its root).
+    uint32_t reference_clamp_passes = 0;
+    double reference_clamp_change = 0.0;
     uint32_t submissions = 1;           // command buffers the frame was submitted in
     // Every pixel_stride-th pixel in x and y was rendered (render --pixel-stride): the
     // image holds only those, and its time is theirs.

@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "lightcuts/device/bindings.h"
+#include "lightcuts/device/indirect_clamp.glsl.h"
 #include "lightcuts/device/spec_constants.h"
 #include "editor_client/render/background.h"
 #include "editor_client/render/frame_set_layout.h"
@@ -243,6 +244,13 @@ LoopWork Renderer::loop_work() const {
     return work;
 }
 
+uint32_t Renderer::reference_clamp_passes(const RenderSettings& settings) const {
+    // The reference clamps its VPLs exactly, over passes of its own (reference.comp).
+    const bool vpls = effects_.indirect_lights > effects_.indirect_patches;
+    if (settings.mode != RenderMode::kReference || !effects_.indirect_clamp || !vpls) return 0;
+    return device::kExactClampPasses;
+}
+
 uint32_t Renderer::reference_chunk() const {
     return client::reference_chunk(context_.physical().quirks, loop_work());
 }
@@ -323,6 +331,7 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
     constants.light_begin = 0;
     constants.light_end = leaf_count_;
     constants.eye = settings.camera.eye;
+    constants.clamp_passes = reference_clamp_passes(settings);
     return frame;
 }
 
@@ -509,6 +518,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
         stats.indirect_patches = effects_.indirect_patches;
     }
     if (effects_.indirect_clamp) LC_RETURN_IF_ERROR(read_clamped_energy(stats));
+    stats.reference_clamp_passes = reference_clamp_passes(settings);
     if (settings.mode == RenderMode::kReference) {
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(leaf_count_, 1u) + chunk - 1) / chunk;
@@ -600,6 +610,7 @@ Status Renderer::read_clamped_energy(RenderStats& stats) const {
         std::memcpy(&state, bytes->data() + i * sizeof(GpuWalkState), sizeof(state));
         stats.indirect_energy += double(state.indirect_energy);
         stats.clamped_energy += double(state.clamped_energy);
+        stats.reference_clamp_change = std::max(stats.reference_clamp_change, double(state.clamp_change));
     }
     return Ok{};
 }

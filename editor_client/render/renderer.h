@@ -152,6 +152,8 @@ public:
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
     // the device's loop budget (all of them in one on devices without one).
     uint32_t reference_chunk() const;
+    // The exact clamp's passes after the reference's sums (0 outside reference mode or without VPLs).
+    uint32_t reference_clamp_passes(const RenderSettings& settings) const;
 
 private:
     Renderer(const vk::Context& context, const Scene& scene, const RendererOptions& options);

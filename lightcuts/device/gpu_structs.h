@@ -122,6 +122,15 @@ struct LC_ALIGN16 GpuWalkState {
     float indirect_rest_max LC_DEFAULT(0.0f);
     vec3 indirect_others LC_DEFAULT(vec3(0.0f));
     uint pad3 LC_DEFAULT(0u);
+    // Reference mode's exact clamp (indirect_clamp.glsl.h): the pixel's
+    // threshold per channel and how much the last pass moved it (its first
+    // part's state), and each part's tally at the threshold over a pass.
+    vec3 clamp_threshold LC_DEFAULT(vec3(0.0f));
+    float clamp_change LC_DEFAULT(0.0f);
+    vec3 clamp_below LC_DEFAULT(vec3(0.0f));  // the lights at most the threshold, summed
+    uint pad4 LC_DEFAULT(0u);
+    vec3 clamp_above LC_DEFAULT(vec3(0.0f));  // the lights above it, counted
+    uint pad5 LC_DEFAULT(0u);
 };
 
 // Push constants shared by the compute passes.
@@ -143,7 +152,13 @@ struct LC_ALIGN16 GpuFrameConstants {
     uint bvh_node_count LC_DEFAULT(0u);  // shadow BVH nodes (0: nothing occludes)
     uint walk_dispatch LC_DEFAULT(0u);   // the bound criterion's walk search: this dispatch's number
     vec3 eye LC_DEFAULT(vec3(0.0f));     // camera position: the glossy lobe's view direction
-    float pad2 LC_DEFAULT(0.0f);
+    // Reference mode's exact clamp: this dispatch's pass over the leaves (0:
+    // the sums) of clamp_passes more (0 without clamped leaves).
+    uint clamp_pass LC_DEFAULT(0u);
+    uint clamp_passes LC_DEFAULT(0u);
+    uint pad2 LC_DEFAULT(0u);
+    uint pad3 LC_DEFAULT(0u);
+    uint pad4 LC_DEFAULT(0u);
 };
 
 // GpuBackground::kind: what a pixel without geometry shows.

@@ -167,6 +167,48 @@ LC_INLINE real3 clamped_running_total(real3 total, IndirectSums s, real ratio) {
     return indirect_clamped(total, s, ratio, removed);
 }
 
+// ---- The exact clamp (reference mode) ----
+// The reference holds every VPL as a leaf, where the approximation above
+// over-clamps: with no other light on the pixel it keeps only t = 0 unless
+// rest / m > 1 / ratio - 2, and zeroes bounced light that the exact clamp
+// keeps. The reference solves t = ratio x (others + sum_i min(L_i, t))
+// itself, over passes over its leaves (shaders/reference.comp): the first
+// sums them as above; each further one takes the pixel's threshold t and
+// tallies per channel the lights at most t (summed: `below`) and those
+// above it (counted: `above`). The right side is concave and piecewise
+// linear in t, so Newton's step from above,
+//   t' = ratio x (others + below) / (1 - ratio x above),
+// never goes under the largest root and lands on it from the root's piece;
+// no difference of large sums is taken, so a spike loses nothing.
+
+// Newton's passes after the sums (each one a pass over the leaves).
+LC_CONST uint kExactClampPasses = 6u;
+
+// Where Newton starts: the largest root with the two largest lights clamped
+// and the rest not, above the exact one (clamping the rest only lowers the
+// right side).
+LC_INLINE real exact_clamp_start(real others, real a, real b, real rest, real ratio) {
+    return indirect_clamp_threshold(others, a, b, rest, 0.0, ratio);
+}
+
+// One light of a pass at the pixel's threshold t, per channel.
+LC_INLINE void tally_exact_clamp(LC_INOUT(real3) below, LC_INOUT(real3) above, real3 contribution, real3 t) {
+    for (int c = 0; c < 3; ++c) {
+        if (contribution[c] > t[c]) {
+            above[c] += 1.0;
+        } else {
+            below[c] += contribution[c];
+        }
+    }
+}
+
+// Newton's step from t (at or above the root) with the pass's tally at t.
+LC_INLINE real exact_clamp_step(real others, real below, real above, real t, real ratio) {
+    real denominator = 1.0 - ratio * above;
+    if (!(denominator > 0.0)) return t;
+    return min(t, ratio * (others + below) / denominator);
+}
+
 #ifdef __cplusplus
 }  // namespace lc::device
 #endif

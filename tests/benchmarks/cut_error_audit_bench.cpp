@@ -17,13 +17,11 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -36,6 +34,7 @@
 #include "lightcuts/bound_walk.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/seeded_mixer.h"
+#include "tests/benchmarks/gbuffer_diagnostic.h"
 
 namespace lc::client {
 namespace {
@@ -180,68 +179,40 @@ PixelAudit audit_pixel(const LightTree& tree, const SurfacePoint& shadowed, cons
     return a;
 }
 
-template <typename T>
-T or_exit(Result<T> r) {
-    if (!r) {
-        std::cerr << r.error() << "\n";
-        std::exit(1);
-    }
-    return std::move(r).value();
-}
-
 int run(int argc, char** argv) {
     if (argc < 8) {
         std::fprintf(stderr, "usage: %s SCENE TREE WxH E MAX_CUT PIXELS OUT [STRIDE]\n", argv[0]);
         return 2;
     }
-    const Scene scene = or_exit(load_scene(argv[1]));
-    TreeSource source;
-    source.dump = argv[2];
-    const std::shared_ptr<const LightTree> tree = or_exit(obtain_tree(scene, source));
+    GBufferDiagnostic d = load_diagnostic(argv[1], argv[2]);
+    const LightTree& tree = *d.tree;
     std::fprintf(stderr, "representative draws: z = %.2f over the junctions\n",
-                 representative_draw_z(*tree));
+                 representative_draw_z(tree));
 
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
     settings.criterion = CutCriterion::kBound;
     if (std::sscanf(argv[3], "%ux%u", &settings.width, &settings.height) != 2) return 2;
-    settings.camera = or_exit(choose_camera(scene, "", std::nullopt,
-                                            float(settings.width) / float(settings.height)));
+    settings.camera = scene_camera(d, settings);
     if (argc > 8) settings = or_exit(strided_settings(settings, uint32_t(std::atoi(argv[8]))));
     CutSettings cut;
     cut.criterion = CutCriterion::kBound;
     cut.error_ratio = std::atof(argv[4]);
     cut.max_cut = uint32_t(std::atoi(argv[5]));
 
-    vk::ContextOptions context_options;
-    context_options.validation = false;
-    const vk::Context context = or_exit(vk::Context::create(context_options));
-    const std::unique_ptr<Renderer> renderer = or_exit(Renderer::create(context, scene, tree.get(), {}));
-    if (Status drawn = renderer->render_gbuffer(settings); !drawn) {
-        std::cerr << drawn.error() << "\n";
-        return 1;
-    }
-    const GBufferReadback g = or_exit(renderer->read_gbuffer());
+    draw_gbuffer(d, settings);
 
     std::vector<std::pair<int, int>> pixels;
     std::ifstream in(argv[6]);
     for (int x, y; in >> x >> y;) pixels.push_back({x, y});
     std::vector<PixelAudit> audits(pixels.size());
-    std::atomic<size_t> next{0};
-    const auto work = [&] {
-        for (size_t k; (k = next.fetch_add(1)) < pixels.size();) {
-            const auto [x, y] = pixels[k];
-            SurfacePoint p = gbuffer_surface_point(g, size_t(y) * settings.width + size_t(x));
-            p.occluders = &renderer->shadow_bvh();
-            p.shadow_bias = renderer->shadow_bias();
-            audits[k] = audit_pixel(*tree, p, cut, mix64(k + 1));
-            audits[k].x = x;
-            audits[k].y = y;
-        }
-    };
-    std::vector<std::thread> workers;
-    for (unsigned t = 0; t < std::max(1u, std::thread::hardware_concurrency()); ++t) workers.emplace_back(work);
-    for (std::thread& t : workers) t.join();
+    for_each_index(pixels.size(), [&](size_t k) {
+        const auto [x, y] = pixels[k];
+        const SurfacePoint p = diagnostic_point(d, settings.width, x, y);
+        audits[k] = audit_pixel(tree, p, cut, mix64(k + 1));
+        audits[k].x = x;
+        audits[k].y = y;
+    });
 
     std::FILE* out = std::fopen(argv[7], "w");
     if (out == nullptr) return 1;

@@ -51,9 +51,11 @@ ReferenceWork reference_work(const Frame& frame) {
     uint64_t pixels = 0;
     for (const PixelRegion& r : frame.regions) pixels += r.pixels();
     ReferenceWork work;
-    // At least one dispatch, even without leaves (the classic lights and emission).
-    work.dispatches = uint32_t(std::max<uint64_t>((leaf_count + per_dispatch - 1) / per_dispatch, 1)) +
-                      (parts > 1 ? 1u : 0u);
+    // At least one dispatch, even without leaves (the classic lights and emission),
+    // for the sums and for each of the exact clamp's passes.
+    const uint32_t per_pass =
+        uint32_t(std::max<uint64_t>((leaf_count + per_dispatch - 1) / per_dispatch, 1)) + (parts > 1 ? 1u : 0u);
+    work.dispatches = per_pass * (1 + frame.constants.clamp_passes);
     work.evaluations_per_dispatch = pixels * std::min(per_dispatch, std::max<uint64_t>(leaf_count, 1));
     return work;
 }
@@ -78,26 +80,33 @@ void ReferencePass::dispatch_all(VkCommandBuffer cmd, const Frame& frame) const 
     GpuFrameConstants constants = frame.constants;
     const uint32_t leaf_count = constants.leaf_count;
     const uint64_t per_dispatch = uint64_t(frame.reference_chunk) * parts;
-    uint32_t begin = 0;
     uint32_t index = 0;
-    do {
-        constants.light_begin = begin;
-        constants.light_end = uint32_t(std::min<uint64_t>(leaf_count, begin + per_dispatch));
-        if (range.contains(index)) {
-            if (begin > 0)
+    // The sums (pass 0), then the exact clamp's passes over the same leaves.
+    for (uint32_t pass = 0; pass <= frame.constants.clamp_passes; ++pass) {
+        constants.clamp_pass = pass;
+        uint32_t begin = 0;
+        do {
+            constants.light_begin = begin;
+            constants.light_end = uint32_t(std::min<uint64_t>(leaf_count, begin + per_dispatch));
+            if (range.contains(index)) {
+                if (begin > 0 || pass > 0)
+                    vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
+                                       kStorageReadWrite);
+                dispatch_layers(cmd, frame, constants, parts);
+            }
+            begin = constants.light_end;
+            ++index;
+        } while (begin < leaf_count);
+        if (parts > 1) {
+            if (range.contains(index)) {
+                // The parts' sums, added in order.
                 vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
                                    kStorageReadWrite);
-            dispatch_layers(cmd, frame, constants, parts);
+                constants.light_begin = constants.light_end = leaf_count;
+                dispatch_layers(cmd, frame, constants, parts);
+            }
+            ++index;
         }
-        begin = constants.light_end;
-        ++index;
-    } while (begin < leaf_count);
-    if (parts > 1 && range.contains(index)) {
-        // The parts' sums, added in order.
-        vk::memory_barrier(cmd, kComputeStage, kStorageReadWrite, kComputeStage,
-                           kStorageReadWrite);
-        constants.light_begin = constants.light_end = leaf_count;
-        dispatch_layers(cmd, frame, constants, parts);
     }
 }
 
