@@ -16,7 +16,7 @@
 #          [representatives] [error] [csv]
 # reference-dir: a work folder of bench-speedup.sh for the same count
 # (scene.gltf, tree.lcut, reference.pfm, reference.json): its scene and
-# reference are reused (the reference alone takes 12 minutes on 2 cores).
+# reference are reused (the full reference takes about 1-12 minutes on 2 cores, by load).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
