@@ -356,7 +356,8 @@ void run_render(const RenderOptions& options) {
     indirect_facts.has_tree = tree != nullptr;
     indirect_facts.vpls = stats.indirect_lights - stats.indirect_patches;
     indirect_facts.patches = stats.indirect_patches;
-    if (tree) indirect_facts.deepest_vpl_bounce = deepest_vpl_bounce(*tree);
+    // Only a tree with VPLs has a bounce to name (one pass over its nodes).
+    if (tree && indirect_facts.vpls > 0) indirect_facts.deepest_vpl_bounce = deepest_vpl_bounce(*tree);
     indirect_facts.left_out = stats.indirect == "off";
     indirect_facts.clamped_fraction = stats.clamped_fraction();
     if (source.bake) indirect_facts.baked = source.bake->indirect;
