@@ -254,6 +254,44 @@ TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(EditorProgressive, ImportanceDrawnRepresentativesRefineToTheWholeFrame) {
+    // The per-pixel draws are keyed by the pixel's place in the image, so an
+    // image refined in tiles over many frames is the whole frame's; and the
+    // choice reaches the renderer (the tree's representatives shade differently).
+    std::unique_ptr<vk::Context> context;
+    LC_REQUIRE_VULKAN(context);
+    const std::filesystem::path dir = test::make_temp_dir("editor-progressive-importance");
+    Scene scene = test::lit_room(11);
+    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
+    const std::filesystem::path tree = test::write_tree_dump(scene, dir);
+    EditorSession session(std::move(scene));
+    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.import_tree_dump(tree).ok());
+    session.set_mode(RenderMode::kLightcuts);
+    const std::string script = "error-ratio 0.2\n"  // clusters on most cuts: draws matter
+                               "representatives importance\n"
+                               "wait-refined\n"
+                               "save-view " + (dir / "refined.pfm").string() + "\n" +
+                               "screenshot " + (dir / "whole.pfm").string() + "\n" +
+                               "representatives tree\n"  // wait-refined waits for the new image
+                               "wait-refined\n"
+                               "save-view " + (dir / "tree.pfm").string() + "\nquit\n";
+    const ScriptedRun run = run_progressive_script(*context, session, script, 64, 48, false);
+    ASSERT_TRUE(run.summary.ok()) << run.summary.error();
+    EXPECT_EQ(run.script_state, ScriptState::kQuit) << run.script_error;
+    EXPECT_EQ(session.view().representatives, Representatives::kTree);
+    EXPECT_EQ(context->validation_message_count(), 0u);
+    expect_same_radiance(dir / "refined.pfm", dir / "whole.pfm");
+    const std::vector<float> importance = read_radiance(dir / "refined.pfm");
+    const std::vector<float> by_tree = read_radiance(dir / "tree.pfm");
+    ASSERT_EQ(importance.size(), by_tree.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < importance.size(); ++i)
+        differing += std::abs(importance[i] - by_tree[i]) > 1e-3f * (1.0f + std::abs(by_tree[i])) ? 1 : 0;
+    EXPECT_GT(differing, importance.size() / 20) << "the importance draws did not reach the renderer";
+    std::filesystem::remove_all(dir);
+}
+
 TEST(EditorProgressive, AutoExposureFromTheCoarsePassKeepsRefining) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);

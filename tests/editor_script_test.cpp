@@ -76,6 +76,8 @@ TEST(EditorScript, ParsesEveryCommandWithItsValues) {
     EXPECT_EQ(parse_one<cmd::Criterion>("criterion bound").name, "bound");
     EXPECT_DOUBLE_EQ(parse_one<cmd::ErrorRatio>("error-ratio 0.05").ratio, 0.05f);
     EXPECT_EQ(parse_one<cmd::MaxCut>("max-cut 200").max_cut, 200u);
+    EXPECT_EQ(parse_one<cmd::RepresentativesChoice>("representatives importance").name, "importance");
+    EXPECT_FALSE(parse_editor_command("representatives").ok()) << "the name is required";
     cmd::Camera camera = parse_one<cmd::Camera>("camera 0 1.5 4.5 0 1 0 60  # front");
     EXPECT_EQ(camera.camera.eye, glm::vec3(0, 1.5f, 4.5f));
     EXPECT_EQ(camera.camera.target, glm::vec3(0, 1, 0));

@@ -224,12 +224,25 @@ TEST(EditorSession, ViewControlsValidate) {
     EXPECT_FALSE(session.set_max_cut(0).ok());
     EXPECT_FALSE(session.set_max_cut(kMaxGpuCut + 1).ok()) << "the renderer would refuse it";
 
+    EXPECT_EQ(session.view().representatives, Representatives::kTree) << "as render defaults to";
+    ASSERT_TRUE(session.set_representatives("importance"));
+    EXPECT_EQ(session.view().representatives, Representatives::kImportance);
+    Status bad_draw = session.set_representatives("lottery");
+    ASSERT_FALSE(bad_draw.ok());
+    EXPECT_NE(bad_draw.error().find("importance"), std::string::npos) << bad_draw.error();
+    // Per-pixel draws need the bound criterion: the switch is refused, the view unchanged.
+    Status radius = session.set_criterion("radius");
+    ASSERT_FALSE(radius.ok());
+    EXPECT_NE(radius.error().find("bound criterion"), std::string::npos) << radius.error();
+    EXPECT_EQ(session.view().criterion, CutCriterion::kBound);
+
     // Every control reaches the renderer (error ratio and max cut once did not).
     RenderSettings shown = render_settings_for(session.view(), 320, 200, /*has_tree=*/true);
     EXPECT_EQ(shown.mode, RenderMode::kLightcuts);
     EXPECT_EQ(shown.criterion, CutCriterion::kBound);
     EXPECT_FLOAT_EQ(shown.error_ratio, 0.05f);
     EXPECT_EQ(shown.max_cut, 64u);
+    EXPECT_EQ(shown.representatives, Representatives::kImportance);
     EXPECT_EQ(shown.width, 320u);
     EXPECT_EQ(shown.height, 200u);
     EXPECT_EQ(render_settings_for(session.view(), 320, 200, false).mode, RenderMode::kReference);

@@ -47,6 +47,7 @@ struct ViewCommandOptions {
     BakeFlags bake;
     std::string script;
     std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
+    std::string representatives = "tree";
     std::string shadows = "auto";
     std::string size = "800x600";
     std::string camera;
@@ -119,6 +120,7 @@ void run_view(const ViewCommandOptions& options) {
     or_fail(session.set_camera(camera));
     or_fail(session.set_exposure(requested.exposure));
     session.set_mode(*mode);
+    or_fail(session.set_representatives(options.representatives));
     if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
 
     // A cut mode asked for on the command line with only a server: bake now.
@@ -205,6 +207,12 @@ void add_view_command(CLI::App& app) {
                     "First mode: reference, lightcuts, cuts or cutsize (default: lightcuts with --tree, "
                     "reference otherwise)")
         ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}));
+    cmd->add_option("--representatives", options->representatives,
+                    "Bound criterion: evaluate clusters through the tree's representatives, ones drawn "
+                    "per pixel (pixel), or drawn per pixel by intensity x a bound of cos / d^2 "
+                    "(importance: more accurate, about twice the time); as render")
+        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
+        ->capture_default_str();
     cmd->add_option("--size", options->size, "Window and render size WxH")->capture_default_str();
     auto* camera =
         cmd->add_option("--camera", options->camera, "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");

@@ -198,9 +198,10 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
     if (name == "bake") return no_args(args, cmd::Bake{});
     if (name == "cancel-bake") return no_args(args, cmd::CancelBake{});
     if (name == "quit") return no_args(args, cmd::Quit{});
-    if (name == "mode" || name == "criterion") {
+    if (name == "mode" || name == "criterion" || name == "representatives") {
         if (Status ok = args.expect(1, 1, "NAME"); !ok) return make_error(ok.error());
         if (name == "mode") return R(cmd::Mode{std::string(args.word(0))});
+        if (name == "representatives") return R(cmd::RepresentativesChoice{std::string(args.word(0))});
         return R(cmd::Criterion{std::string(args.word(0))});
     }
     if (name == "error-ratio") {
@@ -255,7 +256,7 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
     }
     return make_error("unknown command '" + std::string(name) +
                       "' (add-light, add-lights, remove-light, move-light, select, undo, redo, "
-                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, exposure, "
+                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, representatives, exposure, "
                       "camera, screenshot, save, save-view, wait-frames, wait-refined, quit)");
 }
 

@@ -223,8 +223,8 @@ Status EditorSession::set_criterion(std::string_view name) {
     std::optional<CutCriterion> criterion = parse_criterion(name);
     if (!criterion)
         return make_error("unknown criterion '" + std::string(name) + "' (radius, bound)");
-    view_.criterion = *criterion;
-    return Ok{};
+    // Validated: the radius criterion cannot take per-pixel representatives.
+    return edit_view(view_, [&](ViewState& v) { v.criterion = *criterion; });
 }
 
 Status EditorSession::set_error_ratio(double ratio) {
@@ -233,6 +233,13 @@ Status EditorSession::set_error_ratio(double ratio) {
 
 Status EditorSession::set_max_cut(uint32_t max_cut) {
     return edit_view(view_, [&](ViewState& v) { v.max_cut = max_cut; });
+}
+
+Status EditorSession::set_representatives(std::string_view name) {
+    std::optional<Representatives> representatives = parse_representatives(name);
+    if (!representatives)
+        return make_error("unknown representatives '" + std::string(name) + "' (tree, pixel, importance)");
+    return edit_view(view_, [&](ViewState& v) { v.representatives = *representatives; });
 }
 
 Status EditorSession::set_camera(const RenderCamera& camera) {

@@ -84,6 +84,8 @@ public:
     void set_criterion(CutCriterion criterion) { view_.criterion = criterion; }
     Status set_error_ratio(double ratio);
     Status set_max_cut(uint32_t max_cut);
+    // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
+    Status set_representatives(std::string_view name);
     Status set_camera(const RenderCamera& camera);
     Status set_exposure(float exposure);
 

@@ -16,6 +16,8 @@ struct ViewState {
     CutCriterion criterion = CutCriterion::kBound;  // the paper's, as `render` defaults to
     double error_ratio = 0.02;
     uint32_t max_cut = kDefaultMaxCut;
+    // Bound criterion: how a cluster is evaluated (render --representatives).
+    Representatives representatives = Representatives::kTree;
     RenderCamera camera;
     float exposure = 1.0f;
 
@@ -32,6 +34,7 @@ inline RenderSettings render_settings_for(const ViewState& view, uint32_t width,
     s.criterion = view.criterion;
     s.error_ratio = float(view.error_ratio);
     s.max_cut = view.max_cut;
+    s.representatives = view.representatives;
     s.width = width;
     s.height = height;
     s.camera = view.camera;

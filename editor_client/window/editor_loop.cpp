@@ -32,7 +32,8 @@ bool same_camera(const RenderCamera& a, const RenderCamera& b) {
 bool same_settings(const RenderSettings& a, const RenderSettings& b) {
     return a.mode == b.mode && a.criterion == b.criterion && a.width == b.width && a.height == b.height &&
            same_camera(a.camera, b.camera) && a.exposure == b.exposure && a.error_ratio == b.error_ratio &&
-           a.max_cut == b.max_cut && a.bound_search == b.bound_search;
+           a.max_cut == b.max_cut && a.bound_search == b.bound_search &&
+           a.representatives == b.representatives && a.representative_seed == b.representative_seed;
 }
 
 // The renderer's last image: a PFM of the linear radiance, or a PNG of what is shown.
@@ -65,8 +66,7 @@ public:
     RendererSync(Renderer& renderer, const EditorSession& session) : renderer_(renderer), session_(session) {}
 
     Status update() {
-        if (synced_ && revision_ == session_.scene_revision() && generation_ == session_.tree_generation())
-            return Ok{};
+        if (in_step()) return Ok{};
         tree_ = session_.tree_matches_scene() ? session_.tree() : nullptr;
         if (tree_ && tree_->empty()) tree_.reset();
         LC_RETURN_IF_ERROR(renderer_.set_tree(tree_.get()));
@@ -78,6 +78,10 @@ public:
     }
     // Counts the renderer's lights and tree changing (a progressive image starts again).
     uint64_t updates() const { return updates_; }
+    // Whether the renderer holds the session's lights and tree (no edit since update()).
+    bool in_step() const {
+        return synced_ && revision_ == session_.scene_revision() && generation_ == session_.tree_generation();
+    }
 
     // The session's settings at a size, falling back to reference mode while
     // there is no tree matching the lights.
@@ -95,6 +99,13 @@ private:
     uint64_t updates_ = 0;
 };
 
+// What a progressive image is being refined for: the settings and the
+// renderer's lights and tree (RendererSync::updates) it started with.
+struct RefinedImage {
+    RenderSettings settings;
+    uint64_t updates = 0;
+};
+
 // Screenshots render the current state afresh at full size, so a scripted
 // screenshot right after an edit shows the edit (not the last, possibly
 // reduced, frame). Called between frames, when the GPU is idle. With a
@@ -103,8 +114,13 @@ private:
 class LoopHost final : public EditorHost {
 public:
     LoopHost(Renderer& renderer, RendererSync& sync, uint32_t width, uint32_t height,
-             const ProgressiveRefinement* refinement)
-        : renderer_(renderer), sync_(sync), width_(width), height_(height), refinement_(refinement) {}
+             const ProgressiveRefinement* refinement, const RefinedImage* refined)
+        : renderer_(renderer),
+          sync_(sync),
+          width_(width),
+          height_(height),
+          refinement_(refinement),
+          refined_(refined) {}
 
     Status screenshot(const std::filesystem::path& path) override {
         if (path.empty()) return make_error("screenshot needs a file name");
@@ -124,7 +140,13 @@ public:
             return make_error("save-view: " + written.error());
         return Ok{};
     }
-    bool view_refined() const override { return refinement_ == nullptr || refinement_->complete(); }
+    // Refined for what the next frame would show: a setting or light changed
+    // since the image completed (the loop restarts it next frame) is not.
+    bool view_refined() const override {
+        if (refinement_ == nullptr) return true;
+        return refinement_->complete() && sync_.in_step() && refined_->updates == sync_.updates() &&
+               same_settings(sync_.settings(width_, height_), refined_->settings);
+    }
     void request_quit() override { quit_ = true; }
 
     bool quit_requested() const { return quit_; }
@@ -137,6 +159,7 @@ private:
     RendererSync& sync_;
     uint32_t width_, height_;
     const ProgressiveRefinement* refinement_;
+    const RefinedImage* refined_;
     bool quit_ = false;
     bool image_lost_ = false;
     uint32_t count_ = 0;
@@ -197,9 +220,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         // The coarse pass is the size whose whole image fits one frame's budget.
         adaptive_options.target_frame_ms = options.refinement.frame_budget_ms;
     }
-    LoopHost host(renderer, sync, options.width, options.height, refinement ? &*refinement : nullptr);
-    RenderSettings refined;  // what the progressive image shows
-    uint64_t refined_updates = 0;
+    RefinedImage refined;  // what the progressive image shows
+    LoopHost host(renderer, sync, options.width, options.height, refinement ? &*refinement : nullptr, &refined);
 
     Result<VkCommandBuffer> cmd = context.command_pool().allocate();
     if (!cmd) return make_error(cmd.error());
@@ -312,8 +334,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         if (refinement) {
             settings = sync.settings(options.width, options.height);
             const bool lost = host.take_image_lost();
-            if (summary.refinement_events.empty() || lost || !same_settings(settings, refined) ||
-                sync.updates() != refined_updates) {
+            if (summary.refinement_events.empty() || lost || !same_settings(settings, refined.settings) ||
+                sync.updates() != refined.updates) {
                 RefinementEvent event;
                 event.kind = summary.refinement_events.empty() ? RefinementEvent::Kind::kStarted
                                                                : RefinementEvent::Kind::kRestarted;
@@ -324,8 +346,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 event.passes = refinement->passes();
                 summary.refinement_events.push_back(event);
                 refinement->restart(adaptive.divisor_meeting_target());
-                refined = settings;
-                refined_updates = sync.updates();
+                refined.settings = settings;
+                refined.updates = sync.updates();
             }
             batch = refinement->next_batch();
             if (batch) {
@@ -388,8 +410,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
                 // The progressive image goes on refining: what it lit is tone-mapped again.
                 if (refinement) {
-                    refined.exposure = session.view().exposure;
-                    settings.exposure = refined.exposure;
+                    refined.settings.exposure = session.view().exposure;
+                    settings.exposure = refined.settings.exposure;
                     const PixelRegion whole{0, 0, settings.width, settings.height};
                     Status toned = Ok{};
                     LC_RETURN_IF_ERROR(context.command_pool().run_one_time(device, [&](VkCommandBuffer c) {
