@@ -176,8 +176,15 @@ void sum_onto_the_image(ivec2 pixel, SurfacePoint p) {
     }
 }
 
+// This invocation's pixel: its global id, or its place on the lattice of tiles.
+ivec2 dispatched_pixel() {
+    if (frame.lattice_step == 0u) return ivec2(gl_GlobalInvocationID.xy);
+    uvec2 group = gl_WorkGroupID.xy * frame.lattice_step + uvec2(frame.lattice_origin_x, frame.lattice_origin_y);
+    return ivec2(group * gl_WorkGroupSize.xy + gl_LocalInvocationID.xy);
+}
+
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 pixel = dispatched_pixel();
     if (pixel.x >= int(frame.width) || pixel.y >= int(frame.height)) return;
     SurfacePoint p;
     if (!load_surface(pixel, p)) {

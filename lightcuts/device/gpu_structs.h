@@ -156,9 +156,12 @@ struct LC_ALIGN16 GpuFrameConstants {
     // the sums) of clamp_passes more (0 without clamped leaves).
     uint clamp_pass LC_DEFAULT(0u);
     uint clamp_passes LC_DEFAULT(0u);
-    uint pad2 LC_DEFAULT(0u);
-    uint pad3 LC_DEFAULT(0u);
-    uint pad4 LC_DEFAULT(0u);
+    // Reference mode over a lattice of single-workgroup tiles dispatched as one
+    // grid (workgroup_lattice.h): workgroup (i, j) lights the image's workgroup
+    // lattice_origin + (i, j) x lattice_step. 0: the workgroup is its own place.
+    uint lattice_step LC_DEFAULT(0u);
+    uint lattice_origin_x LC_DEFAULT(0u);
+    uint lattice_origin_y LC_DEFAULT(0u);
 };
 
 // GpuBackground::kind: what a pixel without geometry shows.

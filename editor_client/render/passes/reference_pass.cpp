@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "editor_client/render/workgroup_lattice.h"
 #include "editor_client/vk/barriers.h"
 #include "reference_comp.spv.h"
 
@@ -28,11 +29,21 @@ uint32_t reference_parts(const Frame& frame) {
     return uint32_t(std::max<uint64_t>(parts, 1));
 }
 
-void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, const GpuFrameConstants& constants,
+void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, GpuFrameConstants constants,
                      uint32_t layers) {
+    const uint32_t size = frame.workgroup_size;
+    if (std::optional<WorkgroupLattice> lattice = workgroup_lattice(frame.regions, size)) {
+        // One dispatch keeps every thread busy (a tile-strided reference).
+        constants.lattice_step = lattice->step;
+        constants.lattice_origin_x = lattice->origin_x;
+        constants.lattice_origin_y = lattice->origin_y;
+        vkCmdPushConstants(cmd, frame.compute_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                           &constants);
+        vkCmdDispatch(cmd, lattice->count_x, lattice->count_y, layers);
+        return;
+    }
     vkCmdPushConstants(cmd, frame.compute_layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                        &constants);
-    const uint32_t size = frame.workgroup_size;
     for (const PixelRegion& r : frame.regions)
         vkCmdDispatchBase(cmd, r.x / size, r.y / size, 0, (r.width + size - 1) / size,
                           (r.height + size - 1) / size, layers);
