@@ -34,7 +34,7 @@
 # reference image kept in the cache (below). Writes docs/bench/speedup.csv and
 # docs/bench/speedup.png.
 # Usage: scripts/bench-speedup.sh [build-dir] [light counts] [size] [reference tile strides]
-# (counts and strides comma-separated, one stride per count; default 4,8).
+# (counts and strides comma-separated, one stride per count; default 4,4).
 # LC_BENCH_CACHE=DIR keeps each count's scene and tree in DIR/LIGHTS/ and
 # reuses them, and with them a full (stride 1) reference's image and stats,
 # copied there as reference_full.pfm/.json when a run renders one: a later run
@@ -47,7 +47,7 @@ cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
 counts="${2:-16384,131072}"
 size="${3:-256x256}"
-strides="${4:-4,8}"
+strides="${4:-4,4}"
 cache="${LC_BENCH_CACHE:-}"
 all_methods="gpu_0.02,shared_0.02,reconstruction_0.02,gpu_0.005,shared_0.005,reconstruction_0.005"
 all_methods+=",shared_0.005_maxcut2500,shared_0.005_maxcut2500_importance,gpu_noshadow,shared_noshadow"
