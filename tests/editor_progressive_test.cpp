@@ -210,17 +210,26 @@ ScriptedRun run_progressive_script(const vk::Context& context, EditorSession& se
     return run;
 }
 
+// The lit room with its tree imported (a dump written in `dir`), at its own
+// camera, in lightcuts mode.
+std::unique_ptr<EditorSession> room_in_lightcuts(const std::filesystem::path& dir) {
+    Scene scene = test::lit_room(11);
+    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
+    const std::filesystem::path tree = test::write_tree_dump(scene, dir);
+    auto session = std::make_unique<EditorSession>(std::move(scene));
+    EXPECT_TRUE(session->set_camera(camera));
+    EXPECT_TRUE(session->import_tree_dump(tree).ok());
+    session->set_mode(RenderMode::kLightcuts);
+    return session;
+}
+
 TEST(EditorProgressive, HeadlessLoopRestartsOnInputAndEndsWithTheWholeFrame) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
     const std::filesystem::path dir = test::make_temp_dir("editor-progressive");
-    Scene scene = test::lit_room(11);
-    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
-    const std::filesystem::path tree = test::write_tree_dump(scene, dir);
-    EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
-    ASSERT_TRUE(session.import_tree_dump(tree).ok());
-    session.set_mode(RenderMode::kLightcuts);
+    std::unique_ptr<EditorSession> owned = room_in_lightcuts(dir);
+    EditorSession& session = *owned;
+    const RenderCamera camera = session.view().camera;
 
     const ScriptedRun run =
         run_progressive_script(*context, session, input_while_refining_script(camera, dir), 96, 72, false);
@@ -261,13 +270,8 @@ TEST(EditorProgressive, ImportanceDrawnRepresentativesRefineToTheWholeFrame) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
     const std::filesystem::path dir = test::make_temp_dir("editor-progressive-importance");
-    Scene scene = test::lit_room(11);
-    const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
-    const std::filesystem::path tree = test::write_tree_dump(scene, dir);
-    EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
-    ASSERT_TRUE(session.import_tree_dump(tree).ok());
-    session.set_mode(RenderMode::kLightcuts);
+    std::unique_ptr<EditorSession> owned = room_in_lightcuts(dir);
+    EditorSession& session = *owned;
     const std::string script = "error-ratio 0.2\n"  // clusters on most cuts: draws matter
                                "representatives importance\n"
                                "wait-refined\n"
