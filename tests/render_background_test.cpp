@@ -85,7 +85,8 @@ TEST_F(BackgroundRender, UniformEnvironmentShowsItsRadianceExactlyInEveryMode) {
     const glm::vec3 L(0.25f, 0.5f, 1.5f);
     const std::shared_ptr<Environment> environment = uniform_environment(L);
     const LightTree tree = environment_tree(*environment, 256);
-    auto renderer = Renderer::create(*context_, ground_scene(false), &tree);
+    const Scene scene = ground_scene(false);
+    auto renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
     struct Case {
@@ -127,7 +128,8 @@ TEST_F(BackgroundRender, IntensityScalesTheBackgroundAndNoEnvironmentLeavesItBla
     const glm::vec3 L(0.25f, 0.5f, 1.5f);
     auto environment = uniform_environment(L);
     environment->intensity = 3.0f;
-    auto renderer = Renderer::create(*context_, ground_scene(false), nullptr);
+    const Scene scene = ground_scene(false);
+    auto renderer = Renderer::create(*context_, scene, nullptr);
     ASSERT_TRUE(renderer) << renderer.error();
     const RenderSettings settings = looking({0, 1, 0}, {0, 1, -5});
     for (bool with_environment : {true, false}) {
@@ -151,7 +153,8 @@ TEST_F(BackgroundRender, SkyMatchesTheCpuPreethamModelAndShowsTheSun) {
     environment->sky = SkyParameters{30.0f, 60.0f, 3.0f};
     environment->intensity = 0.5f;
     const glm::dvec3 sun = sun_direction(*environment->sky);
-    auto renderer = Renderer::create(*context_, ground_scene(false), nullptr);
+    const Scene scene = ground_scene(false);
+    auto renderer = Renderer::create(*context_, scene, nullptr);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
     const glm::vec3 eye(0, 1, 0);
@@ -188,7 +191,8 @@ TEST_F(BackgroundRender, RotationTurnsTheBackgroundWithTheLight) {
         for (uint32_t x = 0; x < 4; ++x) environment->map.texels[y * 64 + x] = patch;
     environment->rotation_deg = 90.0f;
     const LightTree tree = environment_tree(*environment, 512);
-    auto renderer = Renderer::create(*context_, ground_scene(true), &tree);
+    const Scene scene = ground_scene(true);
+    auto renderer = Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
 

@@ -58,7 +58,8 @@ protected:
     std::vector<double> irradiance(bool wall, RenderMode mode) {
         const std::vector<SceneLight> lights = uniform_environment_lights();
         const LightTree tree = test::agglomerative_tree(lights);
-        auto renderer = Renderer::create(*context_, ground_scene(wall), &tree);
+        const Scene scene = ground_scene(wall);  // the renderer keeps a reference
+        auto renderer = Renderer::create(*context_, scene, &tree);
         EXPECT_TRUE(renderer) << renderer.error();
         if (!renderer) return {};
         EXPECT_TRUE((*renderer)->effects().shadows);

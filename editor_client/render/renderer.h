@@ -75,6 +75,11 @@ public:
     static Result<std::unique_ptr<Renderer>> create(const vk::Context& context, const Scene& scene,
                                                     const LightTree* tree,
                                                     const RendererOptions& options = {});
+    // A temporary scene would die before the renderer that keeps it (ASan
+    // found tests passing one): refused at compile time.
+    static Result<std::unique_ptr<Renderer>> create(const vk::Context& context, const Scene&& scene,
+                                                    const LightTree* tree,
+                                                    const RendererOptions& options = {}) = delete;
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
