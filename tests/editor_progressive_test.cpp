@@ -272,14 +272,16 @@ TEST(EditorProgressive, ImportanceDrawnRepresentativesRefineToTheWholeFrame) {
     const std::filesystem::path dir = test::make_temp_dir("editor-progressive-importance");
     std::unique_ptr<EditorSession> owned = room_in_lightcuts(dir);
     EditorSession& session = *owned;
-    const std::string script = "error-ratio 0.2\n"  // clusters on most cuts: draws matter
-                               "representatives importance\n"
-                               "wait-refined\n"
-                               "save-view " + (dir / "refined.pfm").string() + "\n" +
-                               "screenshot " + (dir / "whole.pfm").string() + "\n" +
-                               "representatives tree\n"  // wait-refined waits for the new image
-                               "wait-refined\n"
-                               "save-view " + (dir / "tree.pfm").string() + "\nquit\n";
+    const std::string script =
+        "error-ratio 0.2\n"  // clusters on most cuts: draws matter
+        "representatives importance\n"
+        "wait-refined\n"
+        "save-view " +
+        (dir / "refined.pfm").string() + "\n" + "screenshot " + (dir / "whole.pfm").string() + "\n" +
+        "representatives tree\n"  // wait-refined waits for the new image
+        "wait-refined\n"
+        "save-view " +
+        (dir / "tree.pfm").string() + "\nquit\n";
     const ScriptedRun run = run_progressive_script(*context, session, script, 64, 48, false);
     ASSERT_TRUE(run.summary.ok()) << run.summary.error();
     EXPECT_EQ(run.script_state, ScriptState::kQuit) << run.script_error;

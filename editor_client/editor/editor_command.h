@@ -90,9 +90,9 @@ struct SaveView {
 }  // namespace cmd
 
 using EditorCommand =
-    std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select,
-                 cmd::Undo, cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion,
-                 cmd::ErrorRatio, cmd::MaxCut, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
+    std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select, cmd::Undo,
+                 cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion, cmd::ErrorRatio,
+                 cmd::MaxCut, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
                  cmd::Save, cmd::Quit, cmd::WaitFrames, cmd::WaitRefined, cmd::SaveView>;
 
 // One line without its comment; the error names the command and argument.

@@ -35,7 +35,8 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
                            render_mode_name(view.mode), criterion_name(view.criterion),
                            view.error_ratio, view.max_cut));
     if (view.representatives != Representatives::kTree)
-        lines.push_back(format("representatives drawn per pixel: %s", representatives_name(view.representatives)));
+        lines.push_back(
+            format("representatives drawn per pixel: %s", representatives_name(view.representatives)));
     if (frame.avg_cut && frame.max_cut)
         lines.push_back(format("cut size: mean %.1f, max %u", *frame.avg_cut, *frame.max_cut));
 

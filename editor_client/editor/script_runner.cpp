@@ -86,8 +86,7 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
                 return session.save(c.path);
             } else if constexpr (std::is_same_v<T, cmd::SaveView>) {
                 return host.save_view(c.path);
-            } else if constexpr (std::is_same_v<T, cmd::WaitFrames> ||
-                                 std::is_same_v<T, cmd::WaitRefined>) {
+            } else if constexpr (std::is_same_v<T, cmd::WaitFrames> || std::is_same_v<T, cmd::WaitRefined>) {
                 return Ok{};  // the runner waits; a single command has nothing to wait for
             } else {
                 static_assert(std::is_same_v<T, cmd::Quit>);

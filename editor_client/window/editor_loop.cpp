@@ -221,7 +221,8 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         adaptive_options.target_frame_ms = options.refinement.frame_budget_ms;
     }
     RefinedImage refined;  // what the progressive image shows
-    LoopHost host(renderer, sync, options.width, options.height, refinement ? &*refinement : nullptr, &refined);
+    LoopHost host(renderer, sync, options.width, options.height, refinement ? &*refinement : nullptr,
+                  &refined);
 
     Result<VkCommandBuffer> cmd = context.command_pool().allocate();
     if (!cmd) return make_error(cmd.error());

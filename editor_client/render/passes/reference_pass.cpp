@@ -29,8 +29,7 @@ uint32_t reference_parts(const Frame& frame) {
     return uint32_t(std::max<uint64_t>(parts, 1));
 }
 
-void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, GpuFrameConstants constants,
-                     uint32_t layers) {
+void dispatch_layers(VkCommandBuffer cmd, const Frame& frame, GpuFrameConstants constants, uint32_t layers) {
     const uint32_t size = frame.workgroup_size;
     if (std::optional<WorkgroupLattice> lattice = workgroup_lattice(frame.regions, size)) {
         // One dispatch keeps every thread busy (a tile-strided reference).
