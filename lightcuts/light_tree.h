@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "lightcuts/guid.h"
@@ -58,6 +59,8 @@ struct LightTreeNode {
 
 // 2^20 lights hold twice this each on the client: a new field goes in padding.
 static_assert(sizeof(LightTreeNode) == 140);
+// A node records the bounce its light does (kMaxRecordedBounce).
+static_assert(std::is_same_v<decltype(LightTreeNode::bounce), decltype(SceneLight::bounce)>);
 
 struct LightTree {
     // nodes[0] is the root when the tree is not empty. Nodes are in breadth-first

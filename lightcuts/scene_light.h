@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <numbers>
 
 #include "lightcuts/guid.h"
@@ -55,5 +56,9 @@ struct SceneLight {
 
 // The server holds one per light (2^20 and more): a new field goes in padding.
 static_assert(sizeof(SceneLight) == 80);
+
+// The deepest bounce a light can record (SceneLight::bounce, LightTreeNode::bounce,
+// FLightData.light_source_length): deeper VPL requests are refused, not truncated.
+inline constexpr uint32_t kMaxRecordedBounce = std::numeric_limits<decltype(SceneLight::bounce)>::max();
 
 }  // namespace lc

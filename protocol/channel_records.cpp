@@ -52,7 +52,7 @@ constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
 // A VPL leaf's light_source_length is the bounce that left it (a whole number,
 // 1 and up; 0: not recorded); every other node's is 0. Documented like the
 // indirect bit: the field is Unreal's tube length, which no tree light has.
-constexpr float kMaxBounce = 65535.0f;
+constexpr float kMaxBounce = float(kMaxRecordedBounce);
 
 // Unreal defaults for the FLightData fields Lightcuts does not use.
 constexpr float kIndirectLightingScale = 1.0f;

@@ -79,6 +79,14 @@ vec3 indirect_leaves_onto(vec3 previous, uint at, bool first, uint begin, uint e
     return radiance;
 }
 
+// This part's share [begin, end) of the dispatch's leaves (layer
+// gl_WorkGroupID.z of `parts`), for the sums and Newton's passes alike.
+void part_leaves(uint parts, out uint begin, out uint end) {
+    const uint part = (frame.light_end - frame.light_begin + parts - 1u) / parts;
+    begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
+    end = min(begin + part, frame.light_end);
+}
+
 // Newton's passes: one VPL at the pixel's threshold t.
 void tally_exact_leaf(uint i, vec3 t, inout vec3 below, inout vec3 above, SurfacePoint p) {
     if ((leaf_lights[i].flags & (kGpuLightIndirect | kGpuLightPatch)) != kGpuLightIndirect) return;
@@ -128,9 +136,7 @@ void exact_clamp_pass(ivec2 pixel, SurfacePoint p) {
     uint end = min(frame.light_end, frame.leaf_count);
     uint at = index;
     if (parts > 1u) {
-        const uint part = (frame.light_end - frame.light_begin + parts - 1u) / parts;
-        begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
-        end = min(begin + part, frame.light_end);
+        part_leaves(parts, begin, end);
         at = gl_WorkGroupID.z * pixels + index;
     }
     const bool first = frame.light_begin == 0u;
@@ -224,9 +230,8 @@ void main() {
         store_pixel(pixel, radiance, frame.leaf_count, 0u, false);
         return;
     }
-    const uint part = (frame.light_end - frame.light_begin + parts - 1u) / parts;
-    const uint begin = min(frame.light_begin + gl_WorkGroupID.z * part, frame.light_end);
-    const uint end = min(begin + part, frame.light_end);
+    uint begin, end;
+    part_leaves(parts, begin, end);
     const uint at = gl_WorkGroupID.z * pixels + pixel_index;
     vec3 radiance;
     if (kIndirectClamp || kIndirectOff) {

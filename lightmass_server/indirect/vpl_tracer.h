@@ -16,8 +16,8 @@
 namespace lc::bake {
 
 // Each VPL carries the bounce that left it (FLightData.light_source_length,
-// docs/PROTOCOL.md) in 16 bits; a deeper request is refused, not truncated.
-inline constexpr uint32_t kMaxVplBounces = 65535;
+// docs/PROTOCOL.md); a deeper request is refused, not truncated.
+inline constexpr uint32_t kMaxVplBounces = kMaxRecordedBounce;
 
 struct VplOptions {
     uint64_t particle_count = 100000;  // light paths; each leaves up to `bounces` lights

@@ -138,11 +138,7 @@ int run(int argc, char** argv) {
         return 2;
     }
     GBufferDiagnostic d = load_diagnostic(argv[1], argv[2]);
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    if (std::sscanf(argv[3], "%ux%u", &settings.width, &settings.height) != 2) return 2;
-    settings.camera = scene_camera(d, settings);
+    RenderSettings settings = diagnostic_settings(d, argv[3]);
     CutSettings cut;
     cut.criterion = CutCriterion::kBound;
     cut.search = BoundSearch::kHeap;

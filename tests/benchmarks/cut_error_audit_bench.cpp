@@ -189,11 +189,7 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "representative draws: z = %.2f over the junctions\n",
                  representative_draw_z(tree));
 
-    RenderSettings settings;
-    settings.mode = RenderMode::kLightcuts;
-    settings.criterion = CutCriterion::kBound;
-    if (std::sscanf(argv[3], "%ux%u", &settings.width, &settings.height) != 2) return 2;
-    settings.camera = scene_camera(d, settings);
+    RenderSettings settings = diagnostic_settings(d, argv[3]);
     if (argc > 8) settings = or_exit(strided_settings(settings, uint32_t(std::atoi(argv[8]))));
     CutSettings cut;
     cut.criterion = CutCriterion::kBound;

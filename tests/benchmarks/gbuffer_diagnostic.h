@@ -5,6 +5,7 @@
 // pixels' work spread over the machine's threads. Any failure ends the program.
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <iostream>
@@ -48,8 +49,19 @@ inline GBufferDiagnostic load_diagnostic(const char* scene_path, const char* tre
 }
 
 // The scene's camera for an image of settings' size.
-inline RenderCamera scene_camera(const GBufferDiagnostic& d, const RenderSettings& settings) {
-    return or_exit(choose_camera(d.scene, "", std::nullopt, float(settings.width) / float(settings.height)));
+// The bound criterion's lightcuts at `size` ("WxH") through the scene's own camera.
+inline RenderSettings diagnostic_settings(const GBufferDiagnostic& d, const char* size) {
+    RenderSettings settings;
+    settings.mode = RenderMode::kLightcuts;
+    settings.criterion = CutCriterion::kBound;
+    if (std::sscanf(size, "%ux%u", &settings.width, &settings.height) != 2 || settings.width == 0 ||
+        settings.height == 0) {
+        std::cerr << "size '" << size << "' is not WxH\n";
+        std::exit(2);
+    }
+    settings.camera =
+        or_exit(choose_camera(d.scene, "", std::nullopt, float(settings.width) / float(settings.height)));
+    return settings;
 }
 
 // Draws the G-buffer of `settings` on the device and reads it back.
