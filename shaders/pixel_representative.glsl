@@ -32,10 +32,25 @@ struct PixelDraw {
     float probability;
 };
 
+// Draws whose probabilities divide the estimate (the leaf's own intensity
+// over its probability): by importance, and the real-time mode's.
+bool draws_by_weight() {
+    return kRepresentatives == kRepresentativesImportance || kRepresentatives == kRepresentativesStochastic;
+}
+
 // A child's weight in the draw.
 float draw_weight(int i, SurfacePoint p) {
-    if (kRepresentatives != kRepresentativesImportance) return representative_scalar(tree_nodes[i].intensity);
-    bool directional = (tree_nodes[i].flags >> kNodeTypeShift) == kLightDirectional;
+    if (!draws_by_weight()) return representative_scalar(tree_nodes[i].intensity);
+    // A junction of several light types has a box of positions and directions
+    // mixed: it weighs by intensity alone, so the draw stays unbiased (only the
+    // real-time mode draws through one: the cut searches always refine it).
+    uint flags = tree_nodes[i].flags;
+    if ((flags & kNodeMixedTypes) != 0u) return representative_scalar(tree_nodes[i].intensity);
+    bool directional = (flags >> kNodeTypeShift) == kLightDirectional;
+    if (kRepresentatives == kRepresentativesStochastic)
+        return importance_weight(tree_nodes[i].intensity,
+                                 stochastic_geometry(tree_nodes[i].bbox_min, tree_nodes[i].bbox_max, p.position,
+                                                     p.normal, directional));
     return importance_weight(tree_nodes[i].intensity,
                              importance_geometry(tree_nodes[i].bbox_min, tree_nodes[i].bbox_max,
                                                  p.position, p.normal, directional));
@@ -54,7 +69,7 @@ void descend_one_level(inout int i, inout int first_child, inout int escape, ino
         float w0 = draw_weight(c0, p);
         float w1 = draw_weight(c1, p);
         take_first = pixel_takes_first(g_pixel_key, uint(i), w0, w1);
-        if (kRepresentatives == kRepresentativesImportance && w0 + w1 > 0.0)
+        if (draws_by_weight() && w0 + w1 > 0.0)
             probability *= (take_first ? w0 : w1) / (w0 + w1);
     }
     i = take_first ? c0 : c1;
@@ -92,7 +107,7 @@ PixelDraw pixel_draw(int i, GpuTreeNode node, SurfacePoint p) {
 GpuLight cluster_light(int i, GpuTreeNode node, SurfacePoint p) {
     PixelDraw draw = pixel_draw(i, node, p);
     GpuLight light = leaf_lights[draw.light];
-    if (kRepresentatives == kRepresentativesImportance && node.first_child != kEndOfWalk)
+    if (draws_by_weight() && node.first_child != kEndOfWalk)
         light.intensity = draw.probability > 0.0 ? light.intensity / draw.probability : vec3(0.0);
     else
         light.intensity = node.intensity;

@@ -97,7 +97,15 @@ const std::map<std::string, CppStruct>& cpp_structs() {
            LC_FIELD(GpuFrameConstants, bvh_node_count), LC_FIELD(GpuFrameConstants, walk_dispatch),
            LC_FIELD(GpuFrameConstants, eye), LC_FIELD(GpuFrameConstants, clamp_pass),
            LC_FIELD(GpuFrameConstants, clamp_passes), LC_FIELD(GpuFrameConstants, lattice_step),
-           LC_FIELD(GpuFrameConstants, lattice_origin_x), LC_FIELD(GpuFrameConstants, lattice_origin_y)}}},
+           LC_FIELD(GpuFrameConstants, lattice_origin_x), LC_FIELD(GpuFrameConstants, lattice_origin_y),
+           LC_FIELD(GpuFrameConstants, frame_seed)}}},
+        {"GpuTemporalParams",
+         {sizeof(GpuTemporalParams),
+          {LC_FIELD(GpuTemporalParams, previous_view_proj), LC_FIELD(GpuTemporalParams, history_valid),
+           LC_FIELD(GpuTemporalParams, camera_moved), LC_FIELD(GpuTemporalParams, still_history_cap),
+           LC_FIELD(GpuTemporalParams, moving_history_cap), LC_FIELD(GpuTemporalParams, filter_frames),
+           LC_FIELD(GpuTemporalParams, position_tolerance), LC_FIELD(GpuTemporalParams, pad0),
+           LC_FIELD(GpuTemporalParams, pad1)}}},
         {"GpuDrawConstants",
          {sizeof(GpuDrawConstants),
           {LC_FIELD(GpuDrawConstants, view_proj), LC_FIELD(GpuDrawConstants, base_color_factor),
@@ -134,6 +142,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
 struct Block {
     int64_t binding;  // -1: push constants
     std::string element;
+    int64_t set = 0;  // the frame's set, or the real-time mode's (kTemporalSet)
 };
 
 // Every block, image and specialization constant a shader may declare.
@@ -150,6 +159,7 @@ const std::map<std::string, Block>& known_blocks() {
         {"EnvironmentTexels", {kBindEnvironmentTexels, "GpuEnvironmentTexel"}},
         {"FrameConstants", {-1, "GpuFrameConstants"}},
         {"DrawConstants", {-1, "GpuDrawConstants"}},
+        {"TemporalParams", {kBindTemporalParams, "GpuTemporalParams", kTemporalSet}},
     };
     return blocks;
 }
@@ -166,6 +176,17 @@ const std::map<std::string, uint32_t>& known_images() {
         {"base_color_texture", kBindBaseColorTexture},
         {"emissive_texture", kBindEmissiveTexture},
         {"metallic_roughness_texture", kBindMetallicRoughnessTexture},
+    };
+    return images;
+}
+
+// The real-time mode's own set (kTemporalSet, shaders/temporal_bindings.glsl).
+const std::map<std::string, uint32_t>& known_temporal_images() {
+    static const std::map<std::string, uint32_t> images = {
+        {"history_in", kBindHistoryIn},
+        {"history_out", kBindHistoryOut},
+        {"history_position_in", kBindHistoryPositionIn},
+        {"history_position_out", kBindHistoryPositionOut},
     };
     return images;
 }
@@ -195,6 +216,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kWalkShareCuts", kSpecWalkShareCuts},
         {"kRepresentatives", kSpecRepresentatives},
         {"kRepresentativeSeed", kSpecRepresentativeSeed},
+        {"kStochasticCut", kSpecStochasticCut},
     };
     return ids;
 }
@@ -323,7 +345,7 @@ void expect_module_matches(const LcShaderModule& module, Seen& seen) {
             const bool push_constant = resource.value("push_constant", false);
             EXPECT_EQ(push_constant, it->second.binding < 0) << where;
             if (!push_constant) {
-                EXPECT_EQ(resource.at("set").get<int64_t>(), 0) << where;
+                EXPECT_EQ(resource.at("set").get<int64_t>(), it->second.set) << where;
                 EXPECT_EQ(resource.at("binding").get<int64_t>(), it->second.binding) << where;
             }
             expect_block_matches(types, resource, it->second, where);
@@ -333,10 +355,13 @@ void expect_module_matches(const LcShaderModule& module, Seen& seen) {
         if (!reflection.contains(kind) || benchmark) continue;
         for (const json& image : reflection.at(kind)) {
             const std::string name = image.at("name");
-            auto it = known_images().find(name);
-            ASSERT_NE(it, known_images().end()) << module.name << ": image " << name;
+            const bool temporal = known_temporal_images().count(name) > 0;
+            const auto& images = temporal ? known_temporal_images() : known_images();
+            auto it = images.find(name);
+            ASSERT_NE(it, images.end()) << module.name << ": image " << name;
             seen.images.insert(name);
             EXPECT_EQ(image.at("binding").get<uint32_t>(), it->second) << module.name << " " << name;
+            EXPECT_EQ(image.value("set", 0u), temporal ? kTemporalSet : 0u) << module.name << " " << name;
         }
     }
     if (reflection.contains("specialization_constants")) {
@@ -375,6 +400,8 @@ TEST(ShaderInterface, EveryModuleMatchesTheSharedHeaders) {
     // The checks above ran on every block, image and constant of the interface.
     for (const auto& [name, block] : known_blocks()) EXPECT_TRUE(seen.blocks.count(name)) << name;
     for (const auto& [name, binding] : known_images()) EXPECT_TRUE(seen.images.count(name)) << name;
+    for (const auto& [name, binding] : known_temporal_images())
+        EXPECT_TRUE(seen.images.count(name)) << name;
     for (const auto& [name, id] : known_spec_constants())
         EXPECT_TRUE(seen.spec_constants.count(name)) << name;
 }
@@ -389,12 +416,28 @@ TEST(ShaderInterface, FrameSetIsImagesThenBuffersWithoutGaps) {
         ++uses[binding];
     }
     for (const auto& [name, block] : known_blocks()) {
-        if (block.binding < 0) continue;  // push constants
+        if (block.binding < 0 || block.set != 0) continue;  // push constants, other sets
         ASSERT_GE(block.binding, int64_t(kBindLeafLights)) << name;
         ASSERT_LT(block.binding, int64_t(kFrameBindingCount)) << name;
         ++uses[size_t(block.binding)];
     }
     for (uint32_t b = 0; b < kFrameBindingCount; ++b) EXPECT_EQ(uses[b], 1) << "binding " << b;
+}
+
+TEST(ShaderInterface, TemporalSetHasEveryBindingOnce) {
+    // temporal_history.cpp creates bindings 0..kTemporalBindingCount-1: the
+    // parameters' buffer and storage images.
+    std::vector<int> uses(kTemporalBindingCount, 0);
+    for (const auto& [name, binding] : known_temporal_images()) {
+        ASSERT_LT(binding, kTemporalBindingCount) << name;
+        ++uses[binding];
+    }
+    for (const auto& [name, block] : known_blocks()) {
+        if (block.set != kTemporalSet) continue;
+        ASSERT_LT(block.binding, int64_t(kTemporalBindingCount)) << name;
+        ++uses[size_t(block.binding)];
+    }
+    for (uint32_t b = 0; b < kTemporalBindingCount; ++b) EXPECT_EQ(uses[b], 1) << "binding " << b;
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
-//   [--pixel-stride K | --tile-stride K]
+//   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -18,7 +18,9 @@
 // renders the reference at every K-th pixel in x and y only (pixel_stride.h):
 // an image of (W/K)x(H/K) in a K^2-th of the time; --tile-stride K renders
 // every K-th 8x8 tile instead (strided_tiles), its pixels' neighbours those
-// of the full frame, gathered into an image of the same size.
+// of the full frame, gathered into an image of the same size. --mode realtime
+// is stochastic lightcuts with at most --realtime-cut shadow rays per pixel,
+// its image the mean of --frames frames of the still view (real_time_frames.h).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -40,6 +42,7 @@
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/indirect_census.h"
 #include "editor_client/render/pixel_stride.h"
+#include "editor_client/render/real_time_frames.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/render_stats.h"
@@ -88,6 +91,8 @@ struct RenderOptions {
     uint32_t threads = 2;
     uint32_t pixel_stride = 1;
     uint32_t tile_stride = 1;
+    uint32_t realtime_cut = 16;
+    uint32_t frames = 1;
 };
 
 // The scene's classic lights (shaded one by one besides the tree).
@@ -105,6 +110,17 @@ struct RenderedFrame {
     std::vector<float> hdr;
     std::vector<uint8_t> display;
 };
+
+// The real-time mode's frames of a still view; their mean is the image.
+RenderedFrame render_real_time(Renderer& renderer, const RenderSettings& settings,
+                               uint32_t frames) {
+    if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
+    RenderedFrame out;
+    out.stats = or_fail(render_real_time_frames(renderer, settings, frames));
+    out.display = or_fail(renderer.read_display());
+    out.hdr = or_fail(renderer.read_hdr());
+    return out;
+}
 
 // `tiles` (not empty: a reference strided over tiles) renders those alone and
 // gathers them into an image of (W/K)x(H/K), K the tiles' stride.
@@ -129,11 +145,16 @@ RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
         out.hdr = or_fail(renderer.read_hdr());
         return out;
     }
+    const auto start = std::chrono::steady_clock::now();
     SupersampledImage image =
         or_fail(render_supersampled(renderer, settings, *spp, tree, classic));
+    // Every eye ray's frame on the wall clock, not the last one's.
+    out.stats.wall_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.hdr = std::move(image.hdr);
     out.display = tone_map_image(out.hdr, settings.exposure);
     out.stats.render_ms = image.shading_ms;
+    if (spp->method != SppMethod::kGpu) out.stats.render_clock = "CPU";
     out.stats.shadow_rays = image.shadow_rays;
     out.stats.nonfinite_pixels = image.nonfinite_pixels;
     out.stats.spp = spp->spp;
@@ -142,6 +163,22 @@ RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
     out.stats.reconstruction_cuts = image.cpu.reconstruction_cuts;
     out.stats.shading_cpu_ms = image.cpu.cpu_ms;
     return out;
+}
+
+// The real-time mode's part of the summary line: per frame, over how many.
+std::string realtime_summary(const RenderStats& stats) {
+    if (stats.realtime_cut == 0) return "";
+    char text[160];
+    std::snprintf(text, sizeof text, " a frame (mean of %u), %.2f shadow rays a pixel",
+                  stats.realtime_frames,
+                  double(stats.shadow_rays) / double(std::max<uint64_t>(stats.geometry_pixels, 1)));
+    return text;
+}
+
+// Pixels the device's loop limit cut short, said in the summary line too.
+std::string loop_limit_summary(const RenderStats& stats) {
+    if (stats.loop_limit_stops == 0) return "";
+    return std::to_string(stats.loop_limit_stops) + " pixels cut short by the device's loop limit, ";
 }
 
 void run_render(const RenderOptions& options) {
@@ -172,7 +209,8 @@ void run_render(const RenderOptions& options) {
     std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
     std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
     if (!mode)
-        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, error)");
+        fail("unknown --mode '" + mode_text +
+             "' (reference, lightcuts, cuts, cutsize, realtime, error)");
     if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
     settings.mode = *mode;
     settings.criterion = *criterion;
@@ -187,6 +225,9 @@ void run_render(const RenderOptions& options) {
         fail("unknown --representatives '" + options.representatives + "' (tree, pixel, importance)");
     settings.representatives = *representatives;
     settings.representative_seed = options.representative_seed;
+    settings.realtime_cut = options.realtime_cut;
+    if (options.frames != 1 && settings.mode != RenderMode::kRealTime)
+        fail("--frames accumulates the real-time mode (--mode realtime)");
     auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
@@ -204,7 +245,10 @@ void run_render(const RenderOptions& options) {
     }
     if (!options.sweep_csv.empty() && sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
     if (compare && !mode_needs_tree(settings.mode))
-        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize or error)");
+        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or "
+             "error)");
+    if (!sweep_ratios.empty() && settings.mode == RenderMode::kRealTime)
+        fail("--sweep-error sweeps the deterministic lightcuts modes, not realtime");
     if (options.pixel_stride > 1 || options.tile_stride > 1) {
         if (settings.mode != RenderMode::kReference || options.spp > 1 ||
             options.spp_method != "gpu")
@@ -282,8 +326,11 @@ void run_render(const RenderOptions& options) {
             fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
     }
     const std::vector<SceneLight> classic = classic_lights_of(scene);
-    RenderedFrame rendered = render_frame(*renderer, settings, supersampled ? &spp : nullptr,
-                                          tree.get(), classic, tiles, options.tile_stride);
+    RenderedFrame rendered =
+        settings.mode == RenderMode::kRealTime
+            ? render_real_time(*renderer, settings, options.frames)
+            : render_frame(*renderer, settings, supersampled ? &spp : nullptr, tree.get(), classic,
+                           tiles, options.tile_stride);
     RenderStats stats = std::move(rendered.stats);
     stats.pixel_stride = std::max(options.pixel_stride, options.tile_stride);
     if (options.tile_stride > 1) stats.stride_tile = kStrideTile;
@@ -374,13 +421,14 @@ void run_render(const RenderOptions& options) {
                     settings.error_ratio, stats.max_err, (unsigned long long)stats.max_cut_hits);
     std::printf(
         "%s: %s %ux%u, %llu lights (%llu in the tree, %llu classic), %llu nodes, render %.2f ms "
-        "GPU, %.2f ms wall (%.0f ms total), avg cut %.2f, max cut %u, %llu non-finite pixels, "
-        "%u validation messages -> %s\n",
+        "%s%s, %.2f ms wall (%.0f ms total), avg cut %.2f, max cut %u, %llu non-finite pixels, "
+        "%s%u validation messages -> %s\n",
         stats.device.c_str(), stats.mode.c_str(), width, height, (unsigned long long)stats.lights,
         (unsigned long long)stats.tree_lights, (unsigned long long)stats.classic_lights,
-        (unsigned long long)stats.nodes, stats.render_ms, stats.wall_ms, command_ms, stats.avg_cut,
-        stats.max_cut, (unsigned long long)stats.nonfinite_pixels, stats.validation_messages,
-        options.output.c_str());
+        (unsigned long long)stats.nodes, stats.render_ms, stats.render_clock.c_str(),
+        realtime_summary(stats).c_str(), stats.wall_ms, command_ms, stats.avg_cut, stats.max_cut,
+        (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
+        stats.validation_messages, options.output.c_str());
 }
 
 }  // namespace
@@ -396,11 +444,12 @@ void add_render_command(CLI::App& app) {
     options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode,
-                    "reference, lightcuts, cuts, cutsize or error (relative error of lightcuts "
+                    "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
+                    "fixed shadow-ray budget) or error (relative error of lightcuts "
                     "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
                     "when a tree source (--tree, --server, --spawn-server) is given, else "
                     "reference")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "error"}));
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "error"}));
     cmd->add_option("--criterion", options->criterion,
                     "Cut criterion: bound (the paper's error bounds) or radius (the thesis)")
         ->check(CLI::IsMember({"radius", "bound"}))
@@ -482,6 +531,13 @@ void add_render_command(CLI::App& app) {
                     "full frame; 8K must divide both sides): a (W/K)x(H/K) image of the tiles in "
                     "a K^2-th of the time")
         ->check(CLI::Range(1u, 64u))
+        ->capture_default_str();
+    cmd->add_option("--realtime-cut", options->realtime_cut,
+                    "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (at most this many "
+                    "shadow rays per pixel and frame)")
+        ->capture_default_str();
+    cmd->add_option("--frames", options->frames,
+                    "Real-time mode: frames of the still view whose mean is the image")
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

@@ -1,14 +1,15 @@
 // editor_client view SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server]
-//   [--token-file F] [--script FILE] [--mode M] [--size WxH] [--camera ... | --camera-index I]
+//   [--token-file F] [--script FILE] [--mode M] [--realtime-cut K] [--size WxH] [--camera ... | --camera-index I]
 //   [--exposure E] [--frames N --screenshot OUT.png] [--headless] [--no-adaptive] [--no-panels]
 //   [--no-progressive | --frame-budget-ms MS]
 //   [--environment FILE.hdr [--environment-intensity S] [--environment-rotation DEG] | --sky E,A,T]
 // The interactive editor: drag with the left button to orbit, the right button
-// to pan, the wheel to dolly; keys 1-4 pick reference, lightcuts, cuts,
-// cutsize; Esc or Q closes. `--script` runs editor commands through the same
+// to pan, the wheel to dolly; keys 1-5 pick reference, lightcuts, cuts,
+// cutsize, realtime; Esc or Q closes. `--script` runs editor commands through the same
 // session functions the panels call, one command per frame. The view refines
 // progressively (coarse to fine, in tiles within a GPU budget per frame) unless
 // --no-progressive; with --tree it opens in lightcuts mode, as render does.
+// The real-time mode shows whole frames and refines by accumulating them.
 // --environment/--sky (or the glTF's environment) is the background where no
 // geometry is hit, and Build Lighting sends it with the scene's surfaces.
 #include <spdlog/spdlog.h>
@@ -47,6 +48,7 @@ struct ViewCommandOptions {
     BakeFlags bake;
     std::string script;
     std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
+    uint32_t realtime_cut = 16;
     std::string representatives = "tree";
     std::string shadows = "auto";
     std::string size = "800x600";
@@ -94,7 +96,7 @@ void run_view(const ViewCommandOptions& options) {
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
     const std::string mode_name = options.mode.value_or(options.tree.empty() ? "reference" : "lightcuts");
     std::optional<RenderMode> mode = parse_render_mode(mode_name);
-    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize)");
+    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize, realtime)");
     const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
@@ -121,6 +123,7 @@ void run_view(const ViewCommandOptions& options) {
     or_fail(session.set_exposure(requested.exposure));
     session.set_mode(*mode);
     or_fail(session.set_representatives(options.representatives));
+    or_fail(session.set_realtime_cut(options.realtime_cut));
     if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
 
     // A cut mode asked for on the command line with only a server: bake now.
@@ -204,9 +207,12 @@ void add_view_command(CLI::App& app) {
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode,
-                    "First mode: reference, lightcuts, cuts or cutsize (default: lightcuts with --tree, "
-                    "reference otherwise)")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize"}));
+                    "First mode: reference, lightcuts, cuts, cutsize or realtime (stochastic lightcuts, "
+                    "accumulated while the view rests) (default: lightcuts with --tree, reference otherwise)")
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime"}));
+    cmd->add_option("--realtime-cut", options->realtime_cut,
+                    "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (shadow rays per pixel and frame)")
+        ->capture_default_str();
     cmd->add_option("--representatives", options->representatives,
                     "Bound criterion: evaluate clusters through the tree's representatives, ones drawn "
                     "per pixel (pixel), or drawn per pixel by intensity x a bound of cos / d^2 "

@@ -215,6 +215,12 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
         if (max_cut > UINT32_MAX) return make_error("max-cut: N is too large");
         return R(cmd::MaxCut{static_cast<uint32_t>(max_cut)});
     }
+    if (name == "realtime-cut") {
+        if (Status ok = args.expect(1, 1, "K"); !ok) return make_error(ok.error());
+        LC_TRY(nodes, args.integer(0, "K"));
+        if (nodes > UINT32_MAX) return make_error("realtime-cut: K is too large");
+        return R(cmd::RealTimeCut{static_cast<uint32_t>(nodes)});
+    }
     if (name == "exposure") {
         if (Status ok = args.expect(1, 1, "E"); !ok) return make_error(ok.error());
         LC_TRY(exposure, args.number(0, "exposure"));
@@ -256,7 +262,7 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
     }
     return make_error("unknown command '" + std::string(name) +
                       "' (add-light, add-lights, remove-light, move-light, select, undo, redo, "
-                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, representatives, exposure, "
+                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, realtime-cut, representatives, exposure, "
                       "camera, screenshot, save, save-view, wait-frames, wait-refined, quit)");
 }
 

@@ -64,6 +64,9 @@ struct ErrorRatio {
 struct MaxCut {
     uint32_t max_cut = 0;
 };
+struct RealTimeCut {
+    uint32_t nodes = 16;
+};
 struct RepresentativesChoice {
     std::string name;
 };
@@ -92,7 +95,7 @@ struct SaveView {
 using EditorCommand =
     std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select, cmd::Undo,
                  cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion, cmd::ErrorRatio,
-                 cmd::MaxCut, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
+                 cmd::MaxCut, cmd::RealTimeCut, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
                  cmd::Save, cmd::Quit, cmd::WaitFrames, cmd::WaitRefined, cmd::SaveView>;
 
 // One line without its comment; the error names the command and argument.

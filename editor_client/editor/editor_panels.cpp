@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "editor_client/editor/picking.h"
+#include "lightcuts/device/limits.h"
 
 namespace lc::client {
 namespace {
@@ -50,6 +51,12 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
     int max_cut = int(view.max_cut);
     if (ImGui::SliderInt("max cut", &max_cut, 1, 4096, "%d", ImGuiSliderFlags_Logarithmic))
         report(state, session.set_max_cut(uint32_t(std::max(max_cut, 1))), "max cut set");
+    if (view.mode == RenderMode::kRealTime) {
+        // Shadow rays per pixel and frame: the real-time mode's whole budget.
+        int nodes = int(view.realtime_cut);
+        if (ImGui::SliderInt("real-time cut", &nodes, 1, int(kMaxStochasticCut)))
+            report(state, session.set_realtime_cut(uint32_t(std::max(nodes, 1))), "real-time cut set");
+    }
     if (view.criterion == CutCriterion::kBound) {
         // How a cluster is evaluated: importance keeps E = 0.005 within 2% at 99% of pixels
         // (docs/BENCHMARKS.md), at about twice the time of the tree's representatives.

@@ -235,6 +235,10 @@ Status EditorSession::set_max_cut(uint32_t max_cut) {
     return edit_view(view_, [&](ViewState& v) { v.max_cut = max_cut; });
 }
 
+Status EditorSession::set_realtime_cut(uint32_t nodes) {
+    return edit_view(view_, [&](ViewState& v) { v.realtime_cut = nodes; });
+}
+
 Status EditorSession::set_representatives(std::string_view name) {
     std::optional<Representatives> representatives = parse_representatives(name);
     if (!representatives)

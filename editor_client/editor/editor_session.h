@@ -84,6 +84,8 @@ public:
     void set_criterion(CutCriterion criterion) { view_.criterion = criterion; }
     Status set_error_ratio(double ratio);
     Status set_max_cut(uint32_t max_cut);
+    // The real-time mode's cut per block, 1 to 32 nodes (render --realtime-cut).
+    Status set_realtime_cut(uint32_t nodes);
     // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
     Status set_representatives(std::string_view name);
     Status set_camera(const RenderCamera& camera);

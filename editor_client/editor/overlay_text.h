@@ -29,6 +29,8 @@ struct FrameInfo {
     std::optional<double> avg_cut;  // absent in reference mode or before a read-back
     std::optional<uint32_t> max_cut;
     std::optional<RefinementProgress> refinement;  // progressive view only
+    std::optional<uint32_t> realtime_frames;       // real-time mode: frames in its history
+    uint64_t loop_limit_stops = 0;  // pixels the device's loop limit cut short (said, not hidden)
 };
 
 std::vector<std::string> overlay_lines(const EditorSession& session, const FrameInfo& frame);

@@ -72,6 +72,8 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
                 return session.set_error_ratio(c.ratio);
             } else if constexpr (std::is_same_v<T, cmd::MaxCut>) {
                 return session.set_max_cut(c.max_cut);
+            } else if constexpr (std::is_same_v<T, cmd::RealTimeCut>) {
+                return session.set_realtime_cut(c.nodes);
             } else if constexpr (std::is_same_v<T, cmd::RepresentativesChoice>) {
                 return session.set_representatives(c.name);
             } else if constexpr (std::is_same_v<T, cmd::Exposure>) {

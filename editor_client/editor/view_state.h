@@ -18,6 +18,8 @@ struct ViewState {
     uint32_t max_cut = kDefaultMaxCut;
     // Bound criterion: how a cluster is evaluated (render --representatives).
     Representatives representatives = Representatives::kTree;
+    // Real-time mode: nodes of each block's cut (shadow rays per pixel and frame).
+    uint32_t realtime_cut = 16;
     RenderCamera camera;
     float exposure = 1.0f;
 
@@ -35,6 +37,7 @@ inline RenderSettings render_settings_for(const ViewState& view, uint32_t width,
     s.error_ratio = float(view.error_ratio);
     s.max_cut = view.max_cut;
     s.representatives = view.representatives;
+    s.realtime_cut = view.realtime_cut;
     s.width = width;
     s.height = height;
     s.camera = view.camera;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "lightcuts/device/limits.h"
+
 namespace lc::client {
 namespace {
 
@@ -60,6 +62,8 @@ const char* render_mode_name(RenderMode mode) {
             return "cuts";
         case RenderMode::kCutSize:
             return "cutsize";
+        case RenderMode::kRealTime:
+            return "realtime";
     }
     return "unknown";
 }
@@ -179,7 +183,7 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.bound_search != BoundSearch::kWalk && settings.bound_search != BoundSearch::kHeap)
         return make_error("unknown bound search " +
                           std::to_string(static_cast<int>(settings.bound_search)));
-    if (settings.share_cuts && mode_needs_tree(settings.mode) &&
+    if (settings.share_cuts && mode_searches_cuts(settings.mode) &&
         (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk))
         return make_error("shared cuts need the bound criterion's walk search");
     if (settings.representatives != Representatives::kTree &&
@@ -187,12 +191,12 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
         settings.representatives != Representatives::kImportance)
         return make_error("unknown representatives " +
                           std::to_string(static_cast<int>(settings.representatives)));
-    if (settings.representatives != Representatives::kTree && mode_needs_tree(settings.mode) &&
+    if (settings.representatives != Representatives::kTree && mode_searches_cuts(settings.mode) &&
         settings.criterion != CutCriterion::kBound)
         return make_error("per-pixel representatives need the bound criterion");
     // The heap reuses a parent's evaluation per unit intensity, which the
     // importance draw's probabilities do not keep.
-    if (settings.representatives == Representatives::kImportance && mode_needs_tree(settings.mode) &&
+    if (settings.representatives == Representatives::kImportance && mode_searches_cuts(settings.mode) &&
         settings.bound_search != BoundSearch::kWalk)
         return make_error("importance-drawn representatives need the walk search");
     const float ratio = settings.error_ratio;
@@ -203,6 +207,9 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.max_cut < 1 || settings.max_cut > kMaxGpuCut)
         return make_error("max cut " + std::to_string(settings.max_cut) + " is outside 1 .. " +
                           std::to_string(kMaxGpuCut));
+    if (settings.realtime_cut < 1 || settings.realtime_cut > kMaxStochasticCut)
+        return make_error("real-time cut " + std::to_string(settings.realtime_cut) +
+                          " is outside 1 .. " + std::to_string(kMaxStochasticCut));
     const RenderCamera& c = settings.camera;
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return make_error("the camera has a non-finite coordinate");

@@ -20,16 +20,25 @@ enum class RenderMode : uint8_t {
     kLightcuts = 1,  // one cut per pixel, each cut node evaluated as a cluster
     kCuts = 2,       // each distinct cut a stable colour
     kCutSize = 3,    // heatmap of cut nodes per pixel with a colour scale bar
+    // Stochastic lightcuts with a fixed shadow-ray budget, accumulated over
+    // frames (RealTimePass): noise that converges instead of a bias.
+    kRealTime = 4,
 };
-inline constexpr int kRenderModeCount = 4;
+inline constexpr int kRenderModeCount = 5;
 
 const char* render_mode_name(RenderMode mode);
 std::optional<RenderMode> parse_render_mode(std::string_view text);
 // Modes that select a cut from the tree (and so need one).
 inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kReference; }
+// Modes that search a cut per pixel with a criterion (the real-time mode
+// refines one per block its own way, and draws its representatives).
+inline bool mode_searches_cuts(RenderMode mode) {
+    return mode_needs_tree(mode) && mode != RenderMode::kRealTime;
+}
 // Modes whose display is tone-mapped radiance (the others visualise cuts).
 inline bool mode_is_shaded(RenderMode mode) {
-    return mode == RenderMode::kReference || mode == RenderMode::kLightcuts;
+    return mode == RenderMode::kReference || mode == RenderMode::kLightcuts ||
+           mode == RenderMode::kRealTime;
 }
 
 const char* criterion_name(CutCriterion criterion);
@@ -47,6 +56,8 @@ struct RenderCamera {
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float yfov = 0.8f;  // radians
+
+    bool operator==(const RenderCamera&) const = default;
 };
 
 // Rows at the bottom of a cutsize image given to the colour scale bar.
@@ -79,6 +90,11 @@ struct RenderSettings {
     // The frame's pixels are the corners of the pixels of a (width - 1) x
     // (height - 1) image seen by the same camera (reconstruction cuts' samples).
     bool corner_grid = false;
+    // The real-time mode (RenderMode::kRealTime): nodes in each 8x8 block's
+    // cut, so at most this many shadow rays per pixel and frame.
+    uint32_t realtime_cut = 16;
+
+    bool operator==(const RenderSettings&) const = default;
 };
 
 // Largest max-cut the GPU accepts (the heap search keeps it in private memory per invocation).

@@ -20,6 +20,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["width"] = s.width;
     j["height"] = s.height;
     j["render_ms"] = s.render_ms;
+    j["render_clock"] = s.render_clock;
     j["gbuffer_ms"] = s.gbuffer_ms;
     j["lighting_ms"] = s.lighting_ms;
     j["output_ms"] = s.output_ms;
@@ -63,6 +64,12 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["bound_search"] = s.bound_search;
         j["representatives"] = s.representatives;
         if (s.representatives == "pixel") j["representative_seed"] = s.representative_seed;
+    }
+    if (s.realtime_cut > 0) {
+        j["realtime_cut"] = s.realtime_cut;
+        j["realtime_frames"] = s.realtime_frames;
+        j["shadow_rays_per_pixel"] =
+            s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
     }
     if (s.has_error_stats) {
         j["rel_err_mean"] = s.rel_err_mean;

@@ -30,6 +30,9 @@ struct RenderStats {
     double lighting_ms = 0.0;
     double output_ms = 0.0;
     double wall_ms = 0.0;  // CPU wall clock of the frame: record, submit, wait
+    // The clock render_ms reads: GPU timestamps, or the CPU's wall clock
+    // (render --spp-method lightcuts or reconstruction shade on the CPU).
+    std::string render_clock = "GPU";
     // Cut size over pixels with geometry (reference mode: every leaf is the cut).
     double avg_cut = 0.0;
     uint32_t max_cut = 0;
@@ -46,6 +49,10 @@ struct RenderStats {
     std::string representatives;  // tree or pixel
     uint32_t representative_seed = 0;
     uint64_t max_cut_hits = 0;
+    // The real-time mode: nodes per block's cut, and the frames its history
+    // holds after this one (the image is their mean).
+    uint32_t realtime_cut = 0;
+    uint32_t realtime_frames = 0;
     uint64_t loop_limit_stops = 0;  // pixels whose walk or shadow ray the device's loop limit cut short
     // Shadows: simulated or not (effects), rays traced, the occluders' size.
     bool shadows = false;

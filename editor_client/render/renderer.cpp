@@ -82,11 +82,12 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, c
     Result<GpuScene> gpu_scene = GpuScene::upload(context, scene);
     if (!gpu_scene) return make_error(gpu_scene.error());
     renderer->gpu_scene_ = std::move(gpu_scene).value();
-    Result<FramePasses> passes =
-        FramePasses::create(context.device().handle(), renderer->gpu_scene_, scene);
+    LC_RETURN_IF_ERROR(renderer->create_frame_resources());
+    Result<FramePasses> passes = FramePasses::create(
+        context.device(), renderer->frame_layout_.handle(), renderer->gpu_scene_, scene);
     if (!passes) return make_error(passes.error());
     renderer->passes_.emplace(std::move(passes).value());
-    LC_RETURN_IF_ERROR(renderer->create_frame_resources());
+    renderer->passes_->real_time().set_policy(options.realtime);
     LC_RETURN_IF_ERROR(renderer->set_tree(tree));
     return renderer;
 }
@@ -207,6 +208,7 @@ Status Renderer::set_tree(const LightTree* tree) {
                       d.reason);
     // The pipelines are keyed by the effects' specialization constants: a
     // frame after a change finds (or builds) the ones that match.
+    passes_->real_time().drop_history();
     return Ok{};
 }
 
@@ -215,6 +217,7 @@ Status Renderer::set_environment(std::shared_ptr<const Environment> environment)
     const std::vector<GpuEnvironmentTexel> texels = environment_texels(environment.get());
     LC_RETURN_IF_ERROR(upload_storage(environment_texels_, std::as_bytes(std::span(texels))));
     environment_ = std::move(environment);
+    passes_->real_time().drop_history();
     return Ok{};
 }
 
@@ -394,6 +397,7 @@ Status Renderer::record_frame(VkCommandBuffer cmd, const RenderSettings& setting
         if (!skipped) pass->record(cmd, frame);
         timestamps_.write(cmd, pass->last_stage(), ++slot);
     }
+    if (settings.mode == RenderMode::kRealTime) passes_->real_time().advance();
 
     // Results become readable by copies (read-backs, blits) and by the host (counters).
     vk::memory_barrier(cmd, kComputeStage, kStorageWrite,
@@ -486,7 +490,9 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
 
     RenderStats stats;
     stats.mode = render_mode_name(settings.mode);
-    stats.criterion = mode_needs_tree(settings.mode) ? criterion_name(settings.criterion) : "none";
+    stats.criterion = mode_searches_cuts(settings.mode) ? criterion_name(settings.criterion)
+                      : settings.mode == RenderMode::kRealTime ? "stochastic"
+                                                               : "none";
     stats.device = context_.physical().name();
     stats.width = settings.width;
     stats.height = settings.height;
@@ -523,7 +529,11 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(leaf_count_, 1u) + chunk - 1) / chunk;
     }
-    if (mode_needs_tree(settings.mode) && settings.criterion == CutCriterion::kBound) {
+    if (settings.mode == RenderMode::kRealTime) {
+        stats.realtime_cut = settings.realtime_cut;
+        stats.realtime_frames = passes_->real_time().frames_accumulated();
+    }
+    if (mode_searches_cuts(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;
         stats.bound_search = bound_search_name(settings.bound_search);

@@ -47,6 +47,8 @@ struct RendererOptions {
     // at most this many light evaluations (with their shadow rays): on
     // lavapipe under load about 2.5 minutes, well within a fence wait (600 s).
     uint64_t reference_evaluations_per_submission = uint64_t(1) << 27;
+    // The real-time mode's history: how long, and the spatial filter's fade.
+    TemporalPolicy realtime;
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
@@ -154,6 +156,8 @@ public:
     // The occluders shadow rays test (SceneEffects::occluders, rebuilt with the tree).
     const ShadowBvh& shadow_bvh() const { return shadow_bvh_; }
     float shadow_bias() const { return shadow_bias_; }
+    // The real-time mode: frames in its history after the last frame (its mean is the image).
+    uint32_t real_time_frames() const { return passes_->real_time().frames_accumulated(); }
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
     // the device's loop budget (all of them in one on devices without one).
     uint32_t reference_chunk() const;

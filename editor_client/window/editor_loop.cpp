@@ -24,18 +24,6 @@
 namespace lc::client {
 namespace {
 
-bool same_camera(const RenderCamera& a, const RenderCamera& b) {
-    return a.eye == b.eye && a.target == b.target && a.up == b.up && a.yfov == b.yfov;
-}
-
-// The same image: every setting equal (an exposure change tone-maps anew, so it refines anew).
-bool same_settings(const RenderSettings& a, const RenderSettings& b) {
-    return a.mode == b.mode && a.criterion == b.criterion && a.width == b.width && a.height == b.height &&
-           same_camera(a.camera, b.camera) && a.exposure == b.exposure && a.error_ratio == b.error_ratio &&
-           a.max_cut == b.max_cut && a.bound_search == b.bound_search &&
-           a.representatives == b.representatives && a.representative_seed == b.representative_seed;
-}
-
 // The renderer's last image: a PFM of the linear radiance, or a PNG of what is shown.
 Status write_rendered_image(const Renderer& renderer, const std::filesystem::path& path) {
     std::error_code ec;
@@ -142,10 +130,14 @@ public:
     }
     // Refined for what the next frame would show: a setting or light changed
     // since the image completed (the loop restarts it next frame) is not.
+    // The real-time mode's view is refined once its history has outgrown the spatial filter.
     bool view_refined() const override {
+        const RenderSettings settings = sync_.settings(width_, height_);
+        if (settings.mode == RenderMode::kRealTime)
+            return sync_.in_step() && renderer_.real_time_frames() >= kRealTimeRefinedFrames;
         if (refinement_ == nullptr) return true;
         return refinement_->complete() && sync_.in_step() && refined_->updates == sync_.updates() &&
-               same_settings(sync_.settings(width_, height_), refined_->settings);
+               settings == refined_->settings;
     }
     void request_quit() override { quit_ = true; }
 
@@ -266,7 +258,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         }
 
         // A script or a panel may have moved the camera: orbit from there.
-        if (!same_camera(session.view().camera, orbit_camera)) {
+        if (session.view().camera != orbit_camera) {
             orbit = OrbitCamera(session.view().camera);
             orbit_camera = session.view().camera;
         }
@@ -330,12 +322,16 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         // After the swapchain image is in hand: a skipped frame must not take tiles.
         const auto since_start = [&] { return elapsed_ms(started) / 1000.0; };
         uint32_t divisor = 1;
-        RenderSettings settings;
+        RenderSettings settings = sync.settings(options.width, options.height);
+        // The real-time mode shows whole frames at the full size: its history
+        // refines the view, not tiles or a coarser size.
+        const bool realtime = settings.mode == RenderMode::kRealTime;
+        const bool tiled = refinement && !realtime;
         std::optional<TileBatch> batch;
-        if (refinement) {
-            settings = sync.settings(options.width, options.height);
+        if (tiled) {
             const bool lost = host.take_image_lost();
-            if (summary.refinement_events.empty() || lost || !same_settings(settings, refined.settings) ||
+            // The same image: every setting equal (an exposure change tone-maps anew, so it refines anew).
+            if (summary.refinement_events.empty() || lost || settings != refined.settings ||
                 sync.updates() != refined.updates) {
                 RefinementEvent event;
                 event.kind = summary.refinement_events.empty() ? RefinementEvent::Kind::kStarted
@@ -356,7 +352,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 settings.width = batch->width;
                 settings.height = batch->height;
             }
-        } else {
+        } else if (!realtime) {
             divisor = options.adaptive_resolution ? adaptive.next_divisor(moved, elapsed_ms(started)) : 1;
             settings = sync.settings(reduced_size(options.width, divisor), reduced_size(options.height, divisor));
         }
@@ -365,7 +361,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         Status recorded = Ok{};
         const vk::Image* shown = &renderer.display_image();
         DisplayWrite written;
-        if (canvas) {
+        if (tiled) {
             if (batch) recorded = renderer.record_regions(*cmd, settings, batch->tiles, !batch->new_image);
             if (recorded)
                 canvas->record_tiles(*cmd, renderer.display_image(),
@@ -401,7 +397,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
 
         ++summary.frames;
         // A progressive view sets the exposure from its first whole image, coarse or not.
-        const bool whole_image = refinement ? batch && refinement->pass() > batch->pass : divisor == 1;
+        const bool whole_image = tiled ? batch && refinement->pass() > batch->pass : divisor == 1;
         if (auto_exposure_pending && whole_image && mode_is_shaded(settings.mode)) {
             auto_exposure_pending = false;
             // A script or the panel may have set one already: keep it.
@@ -410,7 +406,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 if (!hdr) return make_error(hdr.error());
                 LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
                 // The progressive image goes on refining: what it lit is tone-mapped again.
-                if (refinement) {
+                if (tiled) {
                     refined.settings.exposure = session.view().exposure;
                     settings.exposure = refined.settings.exposure;
                     const PixelRegion whole{0, 0, settings.width, settings.height};
@@ -425,7 +421,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
         }
         FrameInfo& frame = summary.last_frame;
         frame.frame_ms = elapsed_ms(frame_start);
-        if (refinement) {
+        if (tiled) {
             RefinementProgress progress;
             progress.pass = refinement->pass();
             progress.passes = refinement->passes();
@@ -447,7 +443,7 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
                 if (!summary.first_complete_seconds) summary.first_complete_seconds = event.seconds;
             }
         }
-        if (!refinement || batch) {
+        if (!tiled || batch) {
             frame.width = settings.width;
             frame.height = settings.height;
             frame.divisor = divisor;
@@ -463,21 +459,26 @@ Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& con
             }
             frame.avg_cut.reset();
             frame.max_cut.reset();
+            frame.loop_limit_stops = 0;
             if (settings.mode != RenderMode::kReference) {
-                if (Result<GpuFrameCounters> counters = renderer.read_counters())
+                if (Result<GpuFrameCounters> counters = renderer.read_counters()) {
                     frame.max_cut = counters->max_cut;
+                    frame.loop_limit_stops = counters->loop_limit_stops;
+                }
             }
         } else {
             frame.gpu_ms = 0.0;
         }
+        frame.realtime_frames.reset();
+        if (realtime) frame.realtime_frames = renderer.real_time_frames();
         summary.last_mode = settings.mode;
-        if (!refinement) adaptive.report_frame(divisor, frame.frame_ms);
+        if (!tiled) adaptive.report_frame(divisor, frame.frame_ms);
         if (steady_since) ++summary.steady_frames;
         const std::vector<std::string> lines = overlay_lines(session, frame);
         window.set_title("lightcuts editor: " + (lines.empty() ? std::string() : lines[0]));
         // A finished progressive image has nothing left for the GPU: the loop
         // only answers input, without spinning a core.
-        if (refinement && !batch) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        if (tiled && !batch) std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     LC_RETURN_IF_ERROR(device.wait_idle());
     const auto ended = std::chrono::steady_clock::now();

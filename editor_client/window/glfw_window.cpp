@@ -92,7 +92,7 @@ void GlfwWindow::set_title(const std::string& title) {
 void GlfwWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
     auto* self = static_cast<GlfwWindow*>(glfwGetWindowUserPointer(window));
     if (action != GLFW_PRESS || self->ui_keyboard_) return;
-    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_4) self->pending_.mode_key = key - GLFW_KEY_1 + 1;
+    if (key >= GLFW_KEY_1 && key <= GLFW_KEY_5) self->pending_.mode_key = key - GLFW_KEY_1 + 1;
     if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) glfwSetWindowShouldClose(window, GLFW_TRUE);
 }
 

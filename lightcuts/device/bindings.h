@@ -27,6 +27,17 @@ LC_CONST uint kBindBackground = 14u;         // GpuBackground, rewritten every f
 LC_CONST uint kBindEnvironmentTexels = 15u;  // GpuEnvironmentTexel, row 0 at the zenith
 LC_CONST uint kFrameBindingCount = 16u;
 
+// The real-time mode's own set (set 1, shaders/temporal_bindings.glsl): the
+// accumulated history and the positions it was shaded at, the previous frame's
+// and this frame's (two of each, swapped every frame), and its parameters.
+LC_CONST uint kTemporalSet = 1u;
+LC_CONST uint kBindHistoryIn = 0u;           // rgb: accumulated radiance, a: frames in it
+LC_CONST uint kBindHistoryOut = 1u;
+LC_CONST uint kBindHistoryPositionIn = 2u;   // xyz: world position, w = 1 on geometry
+LC_CONST uint kBindHistoryPositionOut = 3u;
+LC_CONST uint kBindTemporalParams = 4u;      // GpuTemporalParams
+LC_CONST uint kTemporalBindingCount = 5u;
+
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;
 LC_CONST uint kBindEmissiveTexture = 1u;

@@ -162,6 +162,26 @@ struct LC_ALIGN16 GpuFrameConstants {
     uint lattice_step LC_DEFAULT(0u);
     uint lattice_origin_x LC_DEFAULT(0u);
     uint lattice_origin_y LC_DEFAULT(0u);
+    // The real-time mode's frame number (stochastic_cuts.comp): its pivots and
+    // light draws are drawn anew from it every frame.
+    uint frame_seed LC_DEFAULT(0u);
+};
+
+// The real-time mode's temporal pass (temporal_accumulate.comp): where each
+// pixel's history is in the previous frame, and how much of it to keep.
+struct LC_ALIGN16 GpuTemporalParams {
+    mat4 previous_view_proj LC_DEFAULT(mat4(1.0f));  // world to the previous frame's clip space
+    uint history_valid LC_DEFAULT(0u);  // 0: the history is dropped (first frame, new settings or tree)
+    uint camera_moved LC_DEFAULT(0u);   // 0: the same view, the history is the pixel's own
+    // Frames of history kept at most: while the view rests (a running mean that
+    // converges) and while it moves (a short, clamped history).
+    uint still_history_cap LC_DEFAULT(0u);
+    uint moving_history_cap LC_DEFAULT(0u);
+    // Frames over which the spatial filter fades out as the history grows (0: no filter).
+    uint filter_frames LC_DEFAULT(0u);
+    float position_tolerance LC_DEFAULT(0.02f);  // reprojection: accepted distance, x the eye distance
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
 };
 
 // GpuBackground::kind: what a pixel without geometry shows.

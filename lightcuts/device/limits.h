@@ -21,6 +21,12 @@ LC_CONST uint kWalkUnroll = 2u;    // the bound criterion's walk (checks its own
 // and the bound walk 2x slower (measured: 4 visits per iteration, 16,384
 // lights, 2.4 s against 1.1 s).
 LC_CONST uint kShadowUnroll = 1u;
+// The real-time mode's cut per 8x8 block: at most this many nodes (Lin and
+// Yuksel 2020 use 32), each one drawn light and one shadow ray per pixel.
+LC_CONST uint kMaxStochasticCut = 32u;
+// Invocations in a compute workgroup at most (RendererOptions::workgroup_size
+// squared): the real-time mode's block keeps one flag per pixel in shared memory.
+LC_CONST uint kMaxWorkgroupInvocations = 256u;
 
 LC_DEVICE_END
 

@@ -25,6 +25,9 @@ namespace lc::device {
 LC_CONST uint kRepresentativesTree = 0u;
 LC_CONST uint kRepresentativesPixel = 1u;
 LC_CONST uint kRepresentativesImportance = 2u;
+// The real-time mode's draw (stochastic_cuts.comp): intensity x an estimate
+// of cos / d^2, not a bound (stochastic_geometry below).
+LC_CONST uint kRepresentativesStochastic = 3u;
 
 // The pixel's key: every draw of the pixel starts from it. `seed` draws a
 // different set of representatives for the same image. The mixer is the cut
@@ -78,6 +81,25 @@ LC_INLINE float importance_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n
     float d2 = max(dot(nearest, nearest), 1e-4f);
     float z_max = dot(n, 0.5f * (lo + hi)) + dot(abs(n), 0.5f * (hi - lo));
     if (!(z_max > 0.0f)) return 0.0f;
+    return min(1.0f, z_max / sqrt(d2)) / d2;
+}
+
+// The real-time mode's weight: an estimate of cos / d^2 over a child's box
+// rather than a bound. d is the distance to the box's centre, kept at least
+// half the box's diagonal: a box the point sits in or beside weighs like its
+// lights on average, not like the nearest corner (the bound above gives such
+// a box 1e4 and its sibling 1 / d^2, and a light drawn from the sibling a
+// weight 1e4 times too large: fireflies). Zero only where the whole box is
+// behind the surface, as the bound's, so the draw stays unbiased.
+LC_INLINE float stochastic_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n, bool directional) {
+    if (directional) return 1.0f;
+    vec3 lo = bbox_min - x;
+    vec3 hi = bbox_max - x;
+    vec3 centre = 0.5f * (lo + hi);
+    vec3 half_extent = 0.5f * (hi - lo);
+    float z_max = dot(n, centre) + dot(abs(n), half_extent);
+    if (!(z_max > 0.0f)) return 0.0f;
+    float d2 = max(max(dot(centre, centre), dot(half_extent, half_extent)), 1e-4f);
     return min(1.0f, z_max / sqrt(d2)) / d2;
 }
 

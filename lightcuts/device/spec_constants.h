@@ -48,6 +48,9 @@ LC_CONST uint kSpecWalkShareCuts = 24u;
 // draws' seed.
 LC_CONST uint kSpecRepresentatives = 25u;
 LC_CONST uint kSpecRepresentativeSeed = 26u;
+// The real-time mode (stochastic_cuts.comp): nodes in a block's cut, at most
+// kMaxStochasticCut (limits.h).
+LC_CONST uint kSpecStochasticCut = 27u;
 
 LC_DEVICE_END
 

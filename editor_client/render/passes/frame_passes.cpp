@@ -2,18 +2,24 @@
 
 namespace lc::client {
 
-Result<FramePasses> FramePasses::create(VkDevice device, const GpuScene& gpu_scene,
-                                        const Scene& scene) {
-    Result<std::unique_ptr<GBufferPass>> gbuffer = GBufferPass::create(device, gpu_scene, scene);
+Result<FramePasses> FramePasses::create(const vk::Device& device, VkDescriptorSetLayout frame_layout,
+                                        const GpuScene& gpu_scene, const Scene& scene) {
+    Result<std::unique_ptr<GBufferPass>> gbuffer =
+        GBufferPass::create(device.handle(), gpu_scene, scene);
     if (!gbuffer) return make_error(gbuffer.error());
+    Result<std::unique_ptr<RealTimePass>> real_time = RealTimePass::create(device, frame_layout);
+    if (!real_time) return make_error(real_time.error());
     FramePasses passes;
     passes.gbuffer_ = std::move(gbuffer).value();
+    passes.real_time_ = std::move(real_time).value();
     return passes;
 }
 
 std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settings) {
     FramePass* lighting = &reference_;
-    if (mode_needs_tree(settings.mode)) {
+    if (settings.mode == RenderMode::kRealTime) {
+        lighting = real_time_.get();
+    } else if (mode_needs_tree(settings.mode)) {
         if (settings.criterion == CutCriterion::kRadius)
             lighting = &radius_walk_;
         else if (settings.bound_search == BoundSearch::kWalk)

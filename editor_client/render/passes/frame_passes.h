@@ -9,6 +9,7 @@
 #include "editor_client/render/passes/cut_view_pass.h"
 #include "editor_client/render/passes/gbuffer_pass.h"
 #include "editor_client/render/passes/radius_walk_pass.h"
+#include "editor_client/render/passes/real_time_pass.h"
 #include "editor_client/render/passes/reference_pass.h"
 #include "editor_client/render/passes/tone_map_pass.h"
 
@@ -17,13 +18,16 @@ namespace lc::client {
 class FramePasses {
 public:
     // Both must outlive the passes.
-    static Result<FramePasses> create(VkDevice device, const GpuScene& gpu_scene,
-                                      const Scene& scene);
+    // `frame_layout` is the compute passes' set 0.
+    static Result<FramePasses> create(const vk::Device& device, VkDescriptorSetLayout frame_layout,
+                                      const GpuScene& gpu_scene, const Scene& scene);
 
     // The passes that render `settings`, in recording order.
     std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
     // The G-buffer pass alone (Renderer::render_gbuffer).
     FramePass& gbuffer() { return *gbuffer_; }
+    RealTimePass& real_time() { return *real_time_; }
+    const RealTimePass& real_time() const { return *real_time_; }
 
 private:
     std::unique_ptr<GBufferPass> gbuffer_;
@@ -31,6 +35,7 @@ private:
     RadiusWalkPass radius_walk_;
     BoundWalkPass bound_walk_;
     BoundHeapPass bound_heap_;
+    std::unique_ptr<RealTimePass> real_time_;
     ToneMapPass tone_map_;
     CutViewPass cut_view_;
 };

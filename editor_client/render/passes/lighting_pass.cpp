@@ -9,6 +9,10 @@
 namespace lc::client {
 
 void LightingPass::specialize(vk::Specialization& spec, const Frame& frame) const {
+    specialize_lighting(spec, frame);
+}
+
+void specialize_lighting(vk::Specialization& spec, const Frame& frame) {
     const SceneEffects& effects = *frame.effects;
     spec.set_bool(kSpecPointLights, effects.point_lights)
         .set_bool(kSpecSpotLights, effects.spot_lights)

@@ -6,6 +6,10 @@
 
 namespace lc::client {
 
+// The effects every lighting shader is specialised for (the scene's light
+// types, shadows, the indirect clamp).
+void specialize_lighting(vk::Specialization& spec, const Frame& frame);
+
 class LightingPass : public ComputePass {
 public:
     void record(VkCommandBuffer cmd, const Frame& frame) const final;

@@ -1,0 +1,95 @@
+#include "editor_client/render/passes/real_time_pass.h"
+
+#include <string>
+
+#include "editor_client/render/passes/compute_pass.h"
+#include "editor_client/render/passes/lighting_pass.h"
+#include "editor_client/vk/barriers.h"
+#include "lightcuts/device/bindings.h"
+#include "lightcuts/device/limits.h"
+#include "lightcuts/device/pixel_representative.glsl.h"
+#include "lightcuts/device/spec_constants.h"
+#include "lightcuts/status_macros.h"
+#include "spatial_filter_comp.spv.h"
+#include "stochastic_cuts_comp.spv.h"
+#include "temporal_accumulate_comp.spv.h"
+
+namespace lc::client {
+
+Result<std::unique_ptr<RealTimePass>> RealTimePass::create(const vk::Device& device,
+                                                           VkDescriptorSetLayout frame_layout) {
+    Result<TemporalHistory> history = TemporalHistory::create(device);
+    if (!history) return make_error(history.error());
+    std::array<VkDescriptorSetLayout, 2> sets{frame_layout, history->set_layout()};
+    VkPushConstantRange constants{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuFrameConstants)};
+    Result<vk::PipelineLayout> layout =
+        vk::PipelineLayout::create(device.handle(), sets, std::span(&constants, 1));
+    if (!layout) return make_error(layout.error());
+    return std::unique_ptr<RealTimePass>(
+        new RealTimePass(std::move(history).value(), std::move(layout).value()));
+}
+
+Status RealTimePass::prepare(PipelineCache& pipelines, const Frame& frame) {
+    if (frame.workgroup_size * frame.workgroup_size > kMaxWorkgroupInvocations)
+        return make_error("the real-time mode needs workgroups of at most " +
+                          std::to_string(kMaxWorkgroupInvocations) + " pixels");
+    LC_RETURN_IF_ERROR(history_.prepare(*frame.settings));
+    const std::array<std::span<const uint32_t>, kStageCount> modules{
+        spirv_words(stochastic_cuts_comp_spv), spirv_words(temporal_accumulate_comp_spv),
+        spirv_words(spatial_filter_comp_spv)};
+    for (int stage = 0; stage < kStageCount; ++stage) {
+        vk::Specialization spec;
+        spec.set_uint(kSpecWorkgroupX, frame.workgroup_size)
+            .set_uint(kSpecWorkgroupY, frame.workgroup_size);
+        if (stage == kLighting) {
+            specialize_lighting(spec, frame);
+            spec.set_uint(kSpecRepresentatives, device::kRepresentativesStochastic)
+                .set_uint(kSpecStochasticCut, frame.settings->realtime_cut);
+        }
+        Result<VkPipeline> pipeline = pipelines.compute(layout_.handle(), modules[stage], spec);
+        if (!pipeline) return make_error("real-time pipeline: " + pipeline.error());
+        pipelines_[stage] = *pipeline;
+    }
+    return Ok{};
+}
+
+void RealTimePass::dispatch(VkCommandBuffer cmd, const Frame& frame, Stage stage) const {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[stage]);
+    GpuFrameConstants constants = frame.constants;
+    // Draws differ per frame and per seed (render --representative-seed).
+    constants.frame_seed = frames_recorded_ * 0x9E3779B9u + frame.settings->representative_seed;
+    vkCmdPushConstants(cmd, layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
+                       &constants);
+    const uint32_t size = frame.workgroup_size;
+    for (const PixelRegion& r : frame.regions)
+        vkCmdDispatchBase(cmd, r.x / size, r.y / size, 0, (r.width + size - 1) / size,
+                          (r.height + size - 1) / size, 1);
+}
+
+void RealTimePass::record(VkCommandBuffer cmd, const Frame& frame) const {
+    const VkImageLayout old_layout =
+        frame.continues_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
+    for (const vk::Image* image : {&frame.targets->hdr, &frame.targets->cut}) {
+        vk::transition_image(cmd, {image->handle(), old_layout, VK_IMAGE_LAYOUT_GENERAL,
+                                   kComputeStage, kStorageReadWrite, kComputeStage, kStorageWrite});
+    }
+    history_.record_setup(cmd);
+    const std::array<VkDescriptorSet, 2> sets{frame.frame_set, history_.descriptor_set()};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.handle(), 0,
+                            uint32_t(sets.size()), sets.data(), 0, nullptr);
+    for (int stage = 0; stage < kStageCount; ++stage) {
+        // Each stage reads what the one before wrote, around its pixel.
+        if (stage > 0)
+            vk::memory_barrier(cmd, kComputeStage, kStorageWrite, kComputeStage, kStorageReadWrite);
+        dispatch(cmd, frame, Stage(stage));
+    }
+}
+
+VkPipelineStageFlags2 RealTimePass::last_stage() const { return kComputeStage; }
+
+void RealTimePass::advance() {
+    history_.advance();
+    ++frames_recorded_;
+}
+
+}  // namespace lc::client

@@ -1,0 +1,134 @@
+#version 460
+// The real-time mode's lighting (Lin and Yuksel 2020, Real-Time Stochastic
+// Lightcuts): each workgroup is a block of pixels that shares one cut of the
+// light tree, refined at a pivot pixel drawn anew every frame, at most
+// kStochasticCut nodes. Every pixel then draws one light inside each cut node,
+// descending the node's subtree with probabilities from the children's
+// importance at the pixel (pixel_representative.glsl, kRepresentativesStochastic),
+// and shades it with its intensity over its probability and one shadow ray:
+// an unbiased estimate of the tree's light with at most kStochasticCut shadow
+// rays per pixel, whatever the number of lights. The temporal pass averages
+// the frames.
+#extension GL_GOOGLE_include_directive : require
+
+#include "bound_criterion.glsl"
+
+layout(constant_id = kSpecStochasticCut) const uint kStochasticCut = 16u;
+
+shared int s_cut_node[kMaxStochasticCut];
+shared float s_cut_bound[kMaxStochasticCut];
+shared uint s_cut_size;
+shared bool s_has_surface[kMaxWorkgroupInvocations];
+
+// How much refining node i at the pivot could change the estimate: 0 for a
+// leaf (nothing to split), +inf for a junction of several light types.
+float split_priority(int i, SurfacePoint p) {
+    GpuTreeNode node = tree_nodes[i];
+    if (node.first_child == kEndOfWalk) return 0.0;
+    if ((node.flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
+    return cluster_error_bound(node, p);
+}
+
+void append_cut_node(int i, SurfacePoint p) {
+    if (left_out(tree_nodes[i].flags)) return;
+    s_cut_node[s_cut_size] = i;
+    s_cut_bound[s_cut_size] = split_priority(i, p);
+    ++s_cut_size;
+}
+
+// The entry with the largest split priority (the first of equals), -1 when no
+// entry can be split.
+int largest_entry() {
+    int best = -1;
+    float best_bound = 0.0;
+    for (uint k = 0u; k < s_cut_size; ++k) {
+        if (s_cut_bound[k] > best_bound) {
+            best = int(k);
+            best_bound = s_cut_bound[k];
+        }
+    }
+    return best;
+}
+
+// The block's cut, refined at the pivot like the paper's heap (largest bound
+// first) until it holds kStochasticCut nodes or only leaves. One invocation
+// writes it into shared memory; at most kStochasticCut - 1 splits of at most
+// kStochasticCut entries each, so no loop nears a device's limit.
+void refine_block_cut(SurfacePoint pivot) {
+    s_cut_size = 0u;
+    if (frame.node_count == 0u) return;
+    append_cut_node(0, pivot);
+    for (uint step = 0u; step + 1u < kStochasticCut; ++step) {
+        int k = largest_entry();
+        if (k < 0) break;
+        int parent = s_cut_node[k];
+        int c0 = tree_nodes[parent].first_child;
+        int c1 = tree_nodes[c0].escape;
+        bool two = c1 != kEndOfWalk && c1 != tree_nodes[parent].escape;
+        // The parent's slot goes to the last entry; the children are appended.
+        --s_cut_size;
+        s_cut_node[k] = s_cut_node[s_cut_size];
+        s_cut_bound[k] = s_cut_bound[s_cut_size];
+        append_cut_node(c0, pivot);
+        if (two) append_cut_node(c1, pivot);
+    }
+}
+
+// The block's pivot: the first pixel with geometry from a place drawn for this
+// block and frame, -1 when the block shows only background.
+int block_pivot() {
+    uint count = gl_WorkGroupSize.x * gl_WorkGroupSize.y;
+    uint block = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    uint start = cut_hash_term(cut_hash_term(frame.frame_seed) ^ block) % count;
+    for (uint k = 0u; k < count; ++k) {
+        uint i = (start + k) % count;
+        if (s_has_surface[i]) return int(i);
+    }
+    return -1;
+}
+
+// One drawn light of cut node i at p, with its shadow ray. In uniform control
+// flow (the shadow walk is the subgroup's); `shaded` false adds nothing.
+vec3 drawn_light_radiance(int i, SurfacePoint p, bool shaded) {
+    GpuLight light = cluster_light(i, tree_nodes[i], p);
+    vec3 l;
+    vec3 e = shaded ? light_irradiance(light, p.position, p.normal, l) : vec3(0.0);
+    if (kShadows) e *= light_visibility(light, p.position, p.normal, max_channel(e) > 0.0);
+    return shaded ? brdf_toward(p, l) * e : vec3(0.0);
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = pixel.x < int(frame.width) && pixel.y < int(frame.height);
+    SurfacePoint p;
+    // Lanes off the image still walk the shared shadow rays: they shade pixel
+    // (0, 0)'s point, and add nothing.
+    bool surface = load_surface(inside ? pixel : ivec2(0), p) && inside;
+    s_has_surface[gl_LocalInvocationIndex] = surface;
+    barrier();
+    int pivot = block_pivot();
+    if (int(gl_LocalInvocationIndex) == pivot) refine_block_cut(p);
+    barrier();
+    if (pivot < 0) {
+        if (inside) store_background(pixel);
+        return;  // the whole workgroup: no barrier follows
+    }
+    g_pixel_key = pixel_representative_key(uint(pixel.x), uint(pixel.y), frame.frame_seed);
+    Cut cut = empty_cut();
+    for (uint k = 0u; k < s_cut_size; ++k) {
+        int i = s_cut_node[k];
+        vec3 contribution = drawn_light_radiance(i, p, surface);
+        cut.radiance += contribution;
+        tally_indirect(cut.indirect, tree_nodes[i].flags, tree_nodes[i].first_child == kEndOfWalk,
+                       contribution);
+        cut.hash += cut_hash_term(uint(i));
+    }
+    cut.size = s_cut_size;
+    if (!inside) return;
+    if (!surface) {
+        store_background(pixel);
+        return;
+    }
+    vec3 radiance = clamp_indirect(pixel, cut.radiance, cut.indirect) + classic_and_emitted_radiance(p);
+    store_pixel(pixel, radiance, cut.size, cut.hash, false);
+}

@@ -1,0 +1,211 @@
+// The real-time mode (RenderMode::kRealTime, RealTimePass): stochastic
+// lightcuts with at most K shadow rays per pixel and frame, accumulated over
+// frames. On the furnished room with shadows: the ray budget holds; the
+// accumulated image converges to the reference as 1 / frames (the estimator
+// is unbiased); a still view changes from frame to frame no more than its
+// noise predicts; a moved camera keeps its reprojected history; the same
+// frames give the same bytes; validation stays silent.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "editor_client/render/renderer.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+constexpr uint32_t kSize = 48;
+
+// Sum over lit pixels of the squared error over the sum of the squared
+// reference: the relative mean squared error.
+double relative_mse(const std::vector<float>& image, const std::vector<float>& reference) {
+    double error = 0.0, energy = 0.0;
+    for (size_t i = 0; i + 3 < image.size(); i += 4) {
+        if (reference[i + 3] == 0.0f) continue;  // background
+        for (size_t c = 0; c < 3; ++c) {
+            const double d = double(image[i + c]) - double(reference[i + c]);
+            error += d * d;
+            energy += double(reference[i + c]) * double(reference[i + c]);
+        }
+    }
+    return energy > 0.0 ? error / energy : 0.0;
+}
+
+// Mean over lit pixels and channels of |a - b|, over the mean of `scale`.
+double relative_mean_difference(const std::vector<float>& a, const std::vector<float>& b,
+                                const std::vector<float>& scale) {
+    double difference = 0.0, total = 0.0;
+    for (size_t i = 0; i + 3 < a.size(); i += 4) {
+        if (scale[i + 3] == 0.0f) continue;
+        for (size_t c = 0; c < 3; ++c) {
+            difference += std::abs(double(a[i + c]) - double(b[i + c]));
+            total += double(scale[i + c]);
+        }
+    }
+    return total > 0.0 ? difference / total : 0.0;
+}
+
+class RealTime : public test::VulkanTest {
+protected:
+    void SetUp() override {
+        VulkanTest::SetUp();
+        if (!context_) return;
+        scene_ = make_furnished_room_scene();
+        scene_.lights = test::room_lights(1500, 23, LightTypeChoice::kPoint, 0.8f);
+        tree_ = test::agglomerative_tree(scene_.lights);
+        renderer_ = make_renderer(0);
+        settings_.width = settings_.height = kSize;
+        settings_.camera = test::furnished_room_camera();
+        settings_.mode = RenderMode::kReference;
+        reference_ = render(*renderer_, settings_);
+        settings_.mode = RenderMode::kRealTime;
+        settings_.realtime_cut = 8;
+    }
+    // filter_frames 0: the image is the plain running mean from the first frame.
+    std::unique_ptr<Renderer> make_renderer(uint32_t filter_frames) {
+        RendererOptions options;
+        options.realtime.filter_frames = filter_frames;
+        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_, options);
+        EXPECT_TRUE(renderer.ok()) << renderer.error();
+        if (renderer.ok()) {
+            EXPECT_TRUE((*renderer)->effects().shadows);
+        }
+        return renderer.ok() ? std::move(renderer).value() : nullptr;
+    }
+    std::vector<float> render(Renderer& renderer, const RenderSettings& settings) {
+        Result<RenderStats> stats = renderer.render(settings);
+        EXPECT_TRUE(stats.ok()) << stats.error();
+        if (!stats.ok()) return {};
+        last_stats_ = *stats;
+        EXPECT_EQ(stats->nonfinite_pixels, 0u);
+        return renderer.read_hdr().value();
+    }
+    Scene scene_;
+    LightTree tree_;
+    std::unique_ptr<Renderer> renderer_;
+    RenderSettings settings_;
+    std::vector<float> reference_;
+    RenderStats last_stats_;
+};
+
+TEST_F(RealTime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
+    for (uint32_t cut : {1u, 8u, 32u}) {
+        SCOPED_TRACE(testing::Message() << "cut " << cut);
+        settings_.realtime_cut = cut;
+        ASSERT_FALSE(render(*renderer_, settings_).empty());
+        const RenderStats& s = last_stats_;
+        std::printf("  cut %u: %llu shadow rays over %llu lit pixels (%.2f a pixel), avg cut %.2f\n", cut,
+                    (unsigned long long)s.shadow_rays, (unsigned long long)s.geometry_pixels,
+                    double(s.shadow_rays) / double(s.geometry_pixels), s.avg_cut);
+        EXPECT_GT(s.geometry_pixels, kSize * kSize / 2);
+        EXPECT_GT(s.shadow_rays, 0u);
+        EXPECT_LE(s.shadow_rays, uint64_t(cut) * s.geometry_pixels);
+        EXPECT_LE(s.max_cut, cut);
+        EXPECT_EQ(s.realtime_cut, cut);
+        EXPECT_EQ(s.loop_limit_stops, 0u);
+        // 1,500 lights: a cut of more than one node has room to refine.
+        if (cut > 1) {
+            EXPECT_GT(s.avg_cut, 0.9 * cut);
+        }
+    }
+}
+
+TEST_F(RealTime, AccumulatedImageConvergesToTheReferenceAsOneOverFrames) {
+    std::unique_ptr<Renderer> plain = make_renderer(0);
+    ASSERT_TRUE(plain);
+    // After 4, 16, 64 frames. A single frame's MSE is left out: a few rare
+    // large estimates (a light drawn with a small probability) decide it.
+    std::vector<double> mse;
+    uint32_t frames = 0;
+    for (uint32_t target : {4u, 16u, 64u}) {
+        std::vector<float> image;
+        for (; frames < target; ++frames) image = render(*plain, settings_);
+        ASSERT_FALSE(image.empty());
+        EXPECT_EQ(plain->real_time_frames(), target);
+        mse.push_back(relative_mse(image, reference_));
+        std::printf("  %2u frames: relative MSE %.3g\n", target, mse.back());
+    }
+    // Each 4x more frames divide the MSE by about 4 (an unbiased estimate's
+    // variance); a bias would make it level off.
+    for (size_t i = 1; i < mse.size(); ++i) {
+        EXPECT_LT(mse[i], mse[i - 1] / 2.5) << i;
+        EXPECT_GT(mse[i], mse[i - 1] / 8.0) << i;
+    }
+}
+
+TEST_F(RealTime, StillViewChangesNoMoreThanItsNoisePredicts) {
+    std::unique_ptr<Renderer> plain = make_renderer(0);
+    ASSERT_TRUE(plain);
+    const std::vector<float> first = render(*plain, settings_);
+    // One frame's noise: how far a single estimate is from the answer.
+    const double noise = relative_mean_difference(first, reference_, reference_);
+    std::vector<float> previous = first;
+    for (uint32_t n = 2; n <= 32; ++n) {
+        const std::vector<float> image = render(*plain, settings_);
+        ASSERT_FALSE(image.empty());
+        // The running mean moves by (estimate - mean) / n.
+        const double change = relative_mean_difference(image, previous, reference_);
+        if (n == 2 || n == 8 || n == 32)
+            std::printf("  frame %2u: change %.4f, one frame's noise / n %.4f\n", n, change, noise / n);
+        EXPECT_LT(change, 2.0 * noise / n) << "frame " << n;
+        previous = image;
+    }
+}
+
+TEST_F(RealTime, MovedCameraKeepsItsReprojectedHistory) {
+    std::unique_ptr<Renderer> plain = make_renderer(0);
+    ASSERT_TRUE(plain);
+    for (int f = 0; f < 32; ++f) ASSERT_FALSE(render(*plain, settings_).empty());
+    RenderSettings moved = settings_;
+    moved.camera.eye += glm::vec3(0.05f, 0.0f, 0.0f);
+    moved.mode = RenderMode::kReference;
+    const std::vector<float> moved_reference = render(*renderer_, moved);
+    moved.mode = RenderMode::kRealTime;
+    const std::vector<float> with_history = render(*plain, moved);
+    EXPECT_EQ(plain->real_time_frames(), 1u) << "a moved view counts its frames anew";
+    std::unique_ptr<Renderer> fresh = make_renderer(0);
+    ASSERT_TRUE(fresh);
+    const std::vector<float> without_history = render(*fresh, moved);
+    const double kept = relative_mse(with_history, moved_reference);
+    const double alone = relative_mse(without_history, moved_reference);
+    std::printf("  moved camera: relative MSE %.3g with history, %.3g without\n", kept, alone);
+    EXPECT_LT(kept, 0.5 * alone);
+}
+
+TEST_F(RealTime, ANewSettingStartsANewHistory) {
+    ASSERT_FALSE(render(*renderer_, settings_).empty());
+    ASSERT_FALSE(render(*renderer_, settings_).empty());
+    EXPECT_EQ(renderer_->real_time_frames(), 2u);
+    EXPECT_EQ(last_stats_.realtime_frames, 2u);
+    settings_.exposure *= 2.0f;  // tone mapping only: the history stays
+    ASSERT_FALSE(render(*renderer_, settings_).empty());
+    EXPECT_EQ(renderer_->real_time_frames(), 3u);
+    settings_.realtime_cut = 16;
+    ASSERT_FALSE(render(*renderer_, settings_).empty());
+    EXPECT_EQ(renderer_->real_time_frames(), 1u);
+    ASSERT_TRUE(renderer_->set_tree(&tree_).ok());
+    ASSERT_FALSE(render(*renderer_, settings_).empty());
+    EXPECT_EQ(renderer_->real_time_frames(), 1u);
+}
+
+TEST_F(RealTime, SameFramesGiveTheSameBytes) {
+    std::vector<float> a, b;
+    std::unique_ptr<Renderer> first = make_renderer(16);
+    std::unique_ptr<Renderer> second = make_renderer(16);
+    ASSERT_TRUE(first && second);
+    for (int f = 0; f < 3; ++f) {
+        a = render(*first, settings_);
+        b = render(*second, settings_);
+    }
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(a, b);
+    // And the frames differ: the draws change every frame.
+    const std::vector<float> next = render(*first, settings_);
+    EXPECT_NE(next, a);
+}
+
+}  // namespace
+}  // namespace lc::client
