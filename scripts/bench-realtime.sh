@@ -7,11 +7,18 @@
 #   realtime_K_F       the real-time mode at K = 8, 16, 32 nodes per 8x8 block's
 #                      cut (at most K shadow rays per pixel and frame), its image
 #                      the mean of F = 1, 4, 16, 64 frames of the still view
-#                      (render --mode realtime --realtime-cut K --frames F).
+#                      (render --mode realtime --realtime-cut K --frames F
+#                      --realtime-filter off: the plain mean, whose error is
+#                      the estimator's);
+#   filtered_K         one frame at K as the editor shows it (the spatial
+#                      filter on).
 # Times are GPU timestamps per frame (the mean over F frames); errors against
 # the reference (error_stats.cpp's definition, scripts/sweep_accuracy.py) on
 # every lit pixel, and the relative MSE. Writes docs/bench/realtime.csv and
 # docs/bench/realtime.png (error against frames per K, and against time).
+# Then the editor (`view --headless --mode realtime`, whole frames of the same
+# room at 480x300, camera still, 30 frames) at K = 8 and 16:
+# docs/bench/realtime_editor.csv (K, frames, seconds, fps, GPU ms of the last frame).
 # Usage: scripts/bench-realtime.sh [build-dir] [lights] [size]
 # LC_BENCH_CACHE=DIR keeps the scene, tree and reference in DIR/realtime_LIGHTS/.
 set -euo pipefail
@@ -38,7 +45,20 @@ if [[ ! -f "$base/reference.pfm" ]]; then
 fi
 render lightcuts_0.02 --mode lightcuts --error 0.02
 for k in 8 16 32; do
-    for f in 1 4 16 64; do render "realtime_${k}_${f}" --mode realtime --realtime-cut "$k" --frames "$f"; done
+    for f in 1 4 16 64; do
+        render "realtime_${k}_${f}" --mode realtime --realtime-cut "$k" --frames "$f" --realtime-filter off
+    done
+    render "filtered_${k}" --mode realtime --realtime-cut "$k" --frames 1
 done
+echo "realtime_cut,width,height,frames,seconds,fps,gpu_ms_last" > "$work/editor.csv"
+for k in 8 16; do
+    line="$("$client" view "$base/scene.gltf" --tree "$base/tree.lcut" --mode realtime --realtime-cut "$k" \
+        --headless --size 480x300 --frames 30 --exposure 1 2>/dev/null | grep -E '^steady:|ms GPU')"
+    gpu="$(echo "$line" | sed -n 's/.*, \([0-9.]*\) ms GPU.*/\1/p')"
+    steady="$(echo "$line" | sed -n 's/^steady: \([0-9]*\) frames in \([0-9.]*\) s = \([0-9.]*\) fps.*/\1,\2,\3/p')"
+    echo "$k,480,300,$steady,$gpu" >> "$work/editor.csv"
+done
+cp "$work/editor.csv" docs/bench/realtime_editor.csv
+cat docs/bench/realtime_editor.csv
 /usr/bin/python3 scripts/realtime_report.py "$work" "$base" "$lights" "$size" docs/bench/realtime.csv \
     docs/bench/realtime.png

@@ -24,7 +24,7 @@ def relative_mse(image, reference):
 def row(work, tag, reference, geometry_pixels, lights, size):
     stats = json.load(open(os.path.join(work, tag + ".json")))
     pfm = os.path.join(work, tag + ".pfm")
-    frames = int(stats.get("realtime_frames", 1)) if tag.startswith("realtime") else 1
+    frames = int(stats.get("realtime_frames", 1)) if "realtime_cut" in stats else 1
     r = {"lights": lights, "size": size, "method": tag.split("_")[0],
          "realtime_cut": stats.get("realtime_cut", ""), "frames": frames,
          "gpu_ms_per_frame": round(stats["render_ms"], 2),
@@ -69,6 +69,7 @@ def main():
     reference = read_pfm(os.path.join(base, "reference.pfm"))
     geometry_pixels = json.load(open(os.path.join(base, "reference.json")))["geometry_pixels"]
     tags = ["lightcuts_0.02"] + [f"realtime_{k}_{f}" for k in (8, 16, 32) for f in (1, 4, 16, 64)]
+    tags += [f"filtered_{k}" for k in (8, 16, 32)]
     rows = [row(work, t, reference, geometry_pixels, lights, size) for t in tags]
     ref_stats = json.load(open(os.path.join(base, "reference.json")))
     rows.insert(0, {"lights": lights, "size": size, "method": "reference", "frames": 1,

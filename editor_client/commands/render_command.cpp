@@ -7,7 +7,7 @@
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
-//   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N]
+//   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
 // the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
@@ -93,6 +93,7 @@ struct RenderOptions {
     uint32_t tile_stride = 1;
     uint32_t realtime_cut = 16;
     uint32_t frames = 1;
+    bool realtime_filter = true;
 };
 
 // The scene's classic lights (shaded one by one besides the tree).
@@ -278,6 +279,7 @@ void run_render(const RenderOptions& options) {
     RendererOptions renderer_options;
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
     renderer_options.indirect = options.bake.renders_indirect();
+    if (!options.realtime_filter) renderer_options.realtime.filter_frames = 0;
     std::unique_ptr<Renderer> renderer =
         or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
     std::vector<EffectDecision> decisions = renderer->effects().decisions;
@@ -538,6 +540,10 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--frames", options->frames,
                     "Real-time mode: frames of the still view whose mean is the image")
+        ->capture_default_str();
+    cmd->add_option("--realtime-filter", options->realtime_filter,
+                    "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
+                    "plain mean of the frames, as the convergence benchmark measures it)")
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

@@ -78,6 +78,7 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["max_err"] = s.max_err;
         j["error_pixels"] = s.error_pixels;
         j["reference_ms"] = s.reference_ms;
+        j["frac_over_2pct"] = s.frac_over_2pct;
     }
     if (s.spp > 1 || s.spp_method != "gpu") {
         j["spp"] = s.spp;
@@ -85,10 +86,7 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["lightcuts_computed"] = s.lightcuts_computed;
         j["reconstruction_cuts"] = s.reconstruction_cuts;
         if (s.spp_method != "gpu") j["shading_cpu_ms"] = s.shading_cpu_ms;
-        if (s.has_error_stats) {
-            j["frac_over_2pct"] = s.frac_over_2pct;
-            j["reference_shadow_rays"] = s.reference_shadow_rays;
-        }
+        if (s.has_error_stats) j["reference_shadow_rays"] = s.reference_shadow_rays;
     }
     j["exposure"] = s.exposure;
     j["auto_exposure"] = s.auto_exposure;

@@ -67,7 +67,9 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     pass_info.pSubpasses = &subpass;
     pass_info.dependencyCount = 2;
     pass_info.pDependencies = dependencies;
-    LC_VK_CHECK(vkCreateRenderPass(device, &pass_info, nullptr, &layer->render_pass_));
+    VkRenderPass render_pass = VK_NULL_HANDLE;
+    LC_VK_CHECK(vkCreateRenderPass(device, &pass_info, nullptr, &render_pass));
+    layer->render_pass_ = vk::DeviceHandle<VkRenderPass>(device, render_pass, vkDestroyRenderPass);
 
     // The font atlas is the backend's only descriptor set.
     VkDescriptorPoolSize sizes{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
@@ -76,7 +78,10 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     pool_info.maxSets = 4;
     pool_info.poolSizeCount = 1;
     pool_info.pPoolSizes = &sizes;
-    LC_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &layer->descriptor_pool_));
+    VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
+    LC_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool));
+    layer->descriptor_pool_ =
+        vk::DeviceHandle<VkDescriptorPool>(device, descriptor_pool, vkDestroyDescriptorPool);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -94,12 +99,12 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     init.Device = device;
     init.QueueFamily = context.device().queue_family();
     init.Queue = context.device().queue();
-    init.DescriptorPool = layer->descriptor_pool_;
+    init.DescriptorPool = layer->descriptor_pool_.get();
     init.MinImageCount = 2;
     init.ImageCount = 3;
     init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     init.CheckVkResultFn = &check_imgui_vk;
-    if (!ImGui_ImplVulkan_Init(&init, layer->render_pass_))
+    if (!ImGui_ImplVulkan_Init(&init, layer->render_pass_.get()))
         return make_error("ImGui's Vulkan backend failed to initialise");
     layer->vulkan_ready_ = true;
     LC_RETURN_IF_ERROR(context.command_pool().run_one_time(
@@ -115,22 +120,13 @@ ImGuiLayer::~ImGuiLayer() {
     if (vulkan_ready_) ImGui_ImplVulkan_Shutdown();
     if (glfw_ready_) ImGui_ImplGlfw_Shutdown();
     if (ImGui::GetCurrentContext() != nullptr) ImGui::DestroyContext();
-    destroy_framebuffer();
-    if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device, descriptor_pool_, nullptr);
-    if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device, render_pass_, nullptr);
     g_layer_exists.store(false);
-}
-
-void ImGuiLayer::destroy_framebuffer() {
-    if (framebuffer_ != VK_NULL_HANDLE)
-        vkDestroyFramebuffer(context_.device().handle(), framebuffer_, nullptr);
-    framebuffer_ = VK_NULL_HANDLE;
 }
 
 Status ImGuiLayer::resize(VkExtent2D extent) {
     if (extent.width == extent_.width && extent.height == extent_.height && framebuffer_) return Ok{};
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
-    destroy_framebuffer();
+    framebuffer_.reset();
     drawn_ = false;
     vk::ImageDesc desc;
     desc.width = extent.width;
@@ -144,13 +140,15 @@ Status ImGuiLayer::resize(VkExtent2D extent) {
     extent_ = extent;
     VkImageView view = composite_.view();
     VkFramebufferCreateInfo fb_info{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-    fb_info.renderPass = render_pass_;
+    fb_info.renderPass = render_pass_.get();
     fb_info.attachmentCount = 1;
     fb_info.pAttachments = &view;
     fb_info.width = extent_.width;
     fb_info.height = extent_.height;
     fb_info.layers = 1;
-    LC_VK_CHECK(vkCreateFramebuffer(context_.device().handle(), &fb_info, nullptr, &framebuffer_));
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    LC_VK_CHECK(vkCreateFramebuffer(context_.device().handle(), &fb_info, nullptr, &framebuffer));
+    framebuffer_ = vk::DeviceHandle<VkFramebuffer>(context_.device().handle(), framebuffer, vkDestroyFramebuffer);
     ImGui_ImplVulkan_SetMinImageCount(2);
     return Ok{};
 }
@@ -171,8 +169,8 @@ void ImGuiLayer::record(VkCommandBuffer cmd, VkImage swapchain_image) {
     ImGui::Render();
     frame_open_ = false;
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-    begin.renderPass = render_pass_;
-    begin.framebuffer = framebuffer_;
+    begin.renderPass = render_pass_.get();
+    begin.framebuffer = framebuffer_.get();
     begin.renderArea.extent = extent_;
     vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
     ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "editor_client/vk/context.h"
+#include "editor_client/vk/device_handle.h"
 #include "editor_client/vk/image.h"
 #include "lightcuts/result.h"
 
@@ -47,13 +48,14 @@ public:
 
 private:
     explicit ImGuiLayer(const vk::Context& context) : context_(context) {}
-    void destroy_framebuffer();
 
     const vk::Context& context_;
-    VkRenderPass render_pass_ = VK_NULL_HANDLE;
-    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
+    // Destroyed after the destructor has shut ImGui's Vulkan backend down,
+    // in reverse order: the framebuffer, the composite, the pool, the pass.
+    vk::DeviceHandle<VkRenderPass> render_pass_;
+    vk::DeviceHandle<VkDescriptorPool> descriptor_pool_;
     vk::Image composite_;
-    VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+    vk::DeviceHandle<VkFramebuffer> framebuffer_;
     VkExtent2D extent_{0, 0};
     bool drawn_ = false;  // the composite holds a finished frame
     bool glfw_ready_ = false;
