@@ -16,6 +16,7 @@
 #include "indirect_scenes.h"
 #include "lightmass_server/bake_pipeline.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
+#include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/index_range.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
 #include "protocol/channel_records.h"
@@ -58,6 +59,11 @@ BakeInputs cornell_inputs() {
     inputs.lights = lights;
     inputs.geometry = std::make_shared<SceneGeometry>(test::cornell_box().geometry);
     inputs.area_lights = 301;  // not a multiple of any rank count
+    auto sky = std::make_shared<Environment>();
+    sky->sky = SkyParameters{30.0f, 40.0f, 3.0f};
+    sky->intensity = 1e-4f;
+    inputs.environment = sky;
+    inputs.environment_lights = 203;
     inputs.build.builder = BuilderKind::kLbvh;
     inputs.build.seed = 7;
     inputs.indirect.method = IndirectMethod::kVpl;
@@ -99,6 +105,36 @@ TEST(IndexShares, AreaSamplesOfTheSharesAreTheWholeRunsBytes) {
             joined.insert(joined.end(), part->lights.begin(), part->lights.end());
         }
         EXPECT_EQ(encode_scene_channel(joined), encode_scene_channel(whole->lights)) << parts << " shares";
+    }
+}
+
+// A map with a dark band: strata without power leave gaps in the slots.
+Environment banded_map() {
+    Environment environment;
+    environment.map.width = 64;
+    environment.map.height = 32;
+    for (uint32_t y = 0; y < 32; ++y)
+        for (uint32_t x = 0; x < 64; ++x)
+            environment.map.texels.push_back(x >= 20 && x < 30 ? glm::vec3(0.0f) : glm::vec3(0.1f * float(x % 7), 1.0f, 2.0f));
+    return environment;
+}
+
+TEST(IndexShares, EnvironmentLightsOfTheSharesAreTheWholeRunsBytes) {
+    Environment sky;
+    sky.sky = SkyParameters{30.0f, 40.0f, 3.0f};
+    for (const Environment& environment : {banded_map(), sky}) {
+        Result<EnvironmentLights> whole = sample_environment(environment, 1001, 9);
+        ASSERT_TRUE(whole.ok());
+        ASSERT_GT(whole->lights.size(), 500u);
+        for (uint32_t parts : {2u, 3u, 4u}) {
+            std::vector<SceneLight> joined;
+            for (uint32_t p = 0; p < parts; ++p) {
+                Result<EnvironmentLights> part = sample_environment(environment, 1001, 9, p, parts);
+                ASSERT_TRUE(part.ok());
+                joined.insert(joined.end(), part->lights.begin(), part->lights.end());
+            }
+            EXPECT_EQ(encode_scene_channel(joined), encode_scene_channel(whole->lights)) << parts << " shares";
+        }
     }
 }
 

@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 #include <vector>
 
@@ -51,6 +52,19 @@ Result<std::vector<T>> gather_in_rank_order(const std::vector<T>& mine, uint64_t
                 MPI_COMM_WORLD);
     if (rank != 0) bytes_sent += my_bytes;
     return all;
+}
+
+// Every rank receives every rank's `mine`, concatenated in rank order.
+template <typename T>
+Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes_sent) {
+    Result<std::vector<T>> all = gather_in_rank_order(mine, bytes_sent);
+    if (!all) return all;
+    std::vector<uint8_t> bytes(all->size() * sizeof(T));
+    std::memcpy(bytes.data(), all->data(), bytes.size());
+    broadcast_bytes(bytes);
+    std::vector<T> out(bytes.size() / sizeof(T));
+    std::memcpy(out.data(), bytes.data(), bytes.size());
+    return out;
 }
 
 }  // namespace lc::bake

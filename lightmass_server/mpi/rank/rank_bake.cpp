@@ -85,14 +85,21 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
         lights.insert(lights.end(), area->begin(), area->end());
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
-    // Every rank samples the sky (cheap, deterministic): the photons leave it too.
+    // The sky's strata split over the ranks; every rank gets them all back:
+    // the photons leave the sky too.
     std::vector<SceneLight> sky;
     if (job.environment) {
-        Result<EnvironmentLights> sampled =
-            sample_environment(*job.environment, job.request.environment_lights, job.request.seed);
+        Result<EnvironmentLights> sampled = sample_environment(*job.environment, job.request.environment_lights,
+                                                               job.request.seed, uint32_t(rank), uint32_t(ranks));
         if (!sampled) return sampled.failure();
-        effects.push_back(sampled->census);
-        sky = std::move(sampled->lights);
+        stats.lights_made += sampled->lights.size();
+        Result<std::vector<SceneLight>> all = gather_to_all(sampled->lights, stats.bytes_sent);
+        if (!all) return all.failure();
+        sky = std::move(all.value());
+        effects.push_back(ranks == 1 ? sampled->census
+                                     : sampled->census.substr(0, sampled->census.find(':')) + ": simulated (" +
+                                           std::to_string(sky.size()) + " lights over " + std::to_string(ranks) +
+                                           " ranks)");
     }
     std::vector<SceneLight> sources = job.lights;
     if (job.request.indirect.method != IndirectMethod::kOff) sources.insert(sources.end(), sky.begin(), sky.end());
