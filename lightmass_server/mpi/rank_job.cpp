@@ -36,6 +36,40 @@ Status write_file_atomically(const fs::path& path, std::span<const uint8_t> byte
 
 namespace {
 
+// The tree as the result channel, written a chunk at a time: never the whole channel in memory.
+Status write_result_channel(const fs::path& path, const LightTree& tree) {
+    const fs::path partial = path.string() + ".partial";
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    std::vector<uint8_t> chunk = encode_result_prefix(uint32_t(tree.nodes.size()));
+    const size_t per_chunk = std::max<size_t>(1, kDefaultChunkBytes / result_record_bytes());
+    for (size_t first = 0; first <= tree.nodes.size(); first += per_chunk) {
+        append_result_records(tree, first, std::min(per_chunk, tree.nodes.size() - first), chunk);
+        out.write(reinterpret_cast<const char*>(chunk.data()), std::streamsize(chunk.size()));
+        chunk.clear();
+        if (first == tree.nodes.size()) break;
+    }
+    out.close();
+    if (!out) return make_error("cannot write " + partial.string());
+    std::error_code ec;
+    fs::rename(partial, path, ec);
+    if (ec) return make_error("cannot rename " + partial.string() + ": " + ec.message());
+    return Ok{};
+}
+
+// Rank 0's tree file through the channel's reader, a chunk at a time, validated as it reads.
+Result<LightTree> read_result_channel(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return make_error("cannot open " + path.string());
+    ResultChannelReader reader;
+    std::vector<uint8_t> chunk(kDefaultChunkBytes);
+    while (in) {
+        in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size()));
+        Status consumed = reader.consume(std::span(chunk.data(), size_t(in.gcount())));
+        if (!consumed) return consumed.failure();
+    }
+    return reader.finish();
+}
+
 Status write_text(const fs::path& path, const std::string& text) {
     return write_file_atomically(path, std::span(reinterpret_cast<const uint8_t*>(text.data()), text.size()));
 }
@@ -137,15 +171,13 @@ Status write_rank_result(const fs::path& dir, const BuildResult& result, const s
          << r.pairing_lower_bound << "\nexact " << (r.exact ? 1 : 0) << "\nlevels " << r.levels << "\ndepth "
          << r.depth << "\n";
     for (const std::string& line : rank_lines) text << line << "\n";
-    LC_RETURN_IF_ERROR(write_file_atomically(dir / "result.lcut", encode_result_channel(result.tree)));
+    LC_RETURN_IF_ERROR(write_result_channel(dir / "result.lcut", result.tree));
     return write_text(dir / "report.txt", text.str());
 }
 
 Result<BuildResult> read_rank_result(const fs::path& dir) {
     BuildResult result;
-    std::vector<uint8_t> channel;
-    LC_RETURN_IF_ERROR(read_into(dir / "result.lcut", channel));
-    Result<LightTree> tree = decode_result_channel(channel);
+    Result<LightTree> tree = read_result_channel(dir / "result.lcut");
     if (!tree) return make_error("rank 0's tree: " + tree.error());
     result.tree = std::move(tree.value());
     std::ifstream in(dir / "report.txt");

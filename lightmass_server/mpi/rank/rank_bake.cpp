@@ -108,9 +108,14 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     if (!bounced) return bounced.failure();
     if (!share.root()) return std::optional<BuildResult>{};
 
+    // Each stage's vector goes as soon as it is copied: rank 0 holds the whole set.
+    std::vector<SceneLight> tree_bounced = as_tree_lights(*bounced);
+    bounced->clear();
+    bounced->shrink_to_fit();
+    lights.reserve(lights.size() + sky.size() + tree_bounced.size());
     lights.insert(lights.end(), sky.begin(), sky.end());
-    const std::vector<SceneLight> tree_bounced = as_tree_lights(*bounced);
     lights.insert(lights.end(), tree_bounced.begin(), tree_bounced.end());
+    tree_bounced = {};
     Result<BuildResult> built = build_light_tree(lights, job_build_options(job.request), progress);
     if (!built) return built.failure();
     built->report.effects = std::move(effects);
