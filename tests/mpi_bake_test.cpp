@@ -18,6 +18,8 @@
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/index_range.h"
+#include "lightmass_server/lbvh_builder.h"
+#include "lightcuts/seeded_mixer.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
 #include "protocol/channel_records.h"
 
@@ -158,6 +160,78 @@ TEST(IndexShares, VplPathsOfTheSharesAreTheWholeRunsBytes) {
         }
         ASSERT_EQ(joined.size(), whole->lights.size()) << parts << " shares";
         EXPECT_EQ(0, std::memcmp(joined.data(), whole->lights.data(), joined.size() * sizeof(IndirectLight)));
+    }
+}
+
+// Lights with coincident positions (equal Morton codes) and two types.
+std::vector<SceneLight> scattered_lights(size_t count) {
+    std::vector<SceneLight> lights(count);
+    SplitMix64 random(11);
+    for (size_t i = 0; i < count; ++i) {
+        lights[i].guid = Guid{uint32_t(i), 7, 7, 7};
+        lights[i].type = i % 5 == 0 ? LightType::kSpot : LightType::kPoint;
+        lights[i].position = i % 97 == 0 ? glm::vec3(1.0f)
+                                         : glm::vec3(random.uniform(), random.uniform(), random.uniform()) * 10.0f;
+        lights[i].intensity = float(0.1 + random.uniform());
+    }
+    return lights;
+}
+
+// The LBVH with its subtrees merged "elsewhere" (merge_lbvh_subtree, in this
+// process): the same tree as built whole, for any number of parts.
+TEST(LbvhSubtrees, MergedElsewhereTheyGiveTheSameTree) {
+    const std::vector<SceneLight> lights = scattered_lights(5000);
+    BuildOptions options;
+    options.builder = BuilderKind::kLbvh;
+    options.seed = 3;
+    Result<BuildResult> whole = build_light_tree(lights, options, {});
+    ASSERT_TRUE(whole.ok());
+    for (uint32_t parts : {2u, 3u, 4u, 7u}) {
+        std::vector<std::vector<std::vector<LbvhKey>>> sent(parts);
+        size_t subtrees_sent = 0;
+        LbvhRemoteMerges remote;
+        remote.parts = parts;
+        remote.send = [&](uint32_t part, const std::vector<std::span<const LbvhKey>>& subtrees) -> Status {
+            sent[part].clear();
+            for (const auto& s : subtrees) sent[part].emplace_back(s.begin(), s.end());
+            subtrees_sent += subtrees.size();
+            return Ok{};
+        };
+        remote.receive = [&](uint32_t part) -> Result<std::vector<std::vector<BuildNode>>> {
+            std::vector<std::vector<BuildNode>> merged;
+            for (const std::vector<LbvhKey>& keys : sent[part]) {
+                std::vector<SceneLight> their_lights;
+                for (const LbvhKey& key : keys) their_lights.push_back(lights[key.leaf]);
+                Result<std::vector<BuildNode>> nodes = merge_lbvh_subtree(keys, their_lights, options);
+                if (!nodes) return nodes.failure();
+                merged.push_back(std::move(nodes.value()));
+            }
+            return merged;
+        };
+        BuildOptions split = options;
+        split.lbvh_remote = &remote;
+        Result<BuildResult> built = build_light_tree(lights, split, {});
+        ASSERT_TRUE(built.ok()) << built.error();
+        EXPECT_GT(subtrees_sent, 0u) << parts << " parts";
+        EXPECT_EQ(encode_result_channel(built->tree), encode_result_channel(whole->tree)) << parts << " parts";
+    }
+}
+
+TEST(MpiBake, TheLbvhTreeIsTheSameWhenTheRanksMergeItsSubtrees) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.lights = std::make_shared<std::vector<SceneLight>>(scattered_lights(20000));
+    const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+    for (uint32_t ranks : {2u, 4u}) {
+        inputs.ranks = ranks;
+        Result<BuildResult> built = run_bake(inputs, {});
+        EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        // Every rank but 0 sent merged nodes back (160 bytes each), beyond its lights.
+        for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{}) {
+            if (effect.rfind("rank ", 0) == 0 && effect.rfind("rank 0 ", 0) != 0) {
+                EXPECT_EQ(effect.find("bytes_sent 0 "), std::string::npos) << effect;
+            }
+        }
     }
 }
 

@@ -67,4 +67,25 @@ Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes
     return out;
 }
 
+// Point to point: a size, then the bytes in pieces.
+inline void send_bytes(const void* data, uint64_t size, int to) {
+    MPI_Send(&size, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    for (uint64_t at = 0; at < size; at += kMpiPieceBytes)
+        MPI_Send(bytes + at, int(std::min(kMpiPieceBytes, size - at)), MPI_BYTE, to, 0, MPI_COMM_WORLD);
+}
+
+template <typename T>
+std::vector<T> receive_vector(int from) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    uint64_t size = 0;
+    MPI_Recv(&size, 1, MPI_UINT64_T, from, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    std::vector<T> out(size / sizeof(T));
+    auto* bytes = reinterpret_cast<uint8_t*>(out.data());
+    for (uint64_t at = 0; at < size; at += kMpiPieceBytes)
+        MPI_Recv(bytes + at, int(std::min(kMpiPieceBytes, size - at)), MPI_BYTE, from, 0, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    return out;
+}
+
 }  // namespace lc::bake

@@ -3,10 +3,12 @@
 #include <cstdio>
 #include <string>
 
+#include "lightcuts/status_macros.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/index_range.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
+#include "lightmass_server/mpi/rank/remote_subtrees.h"
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
@@ -106,7 +108,10 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     Result<std::vector<IndirectLight>> bounced =
         indirect_lights(job, share, caster ? &*caster : nullptr, sources, progress, stats, effects);
     if (!bounced) return bounced.failure();
-    if (!share.root()) return std::optional<BuildResult>{};
+    if (!share.root()) {
+        LC_RETURN_IF_ERROR(serve_subtrees(job_build_options(job.request), stats));
+        return std::optional<BuildResult>{};
+    }
 
     // Each stage's vector goes as soon as it is copied: rank 0 holds the whole set.
     std::vector<SceneLight> tree_bounced = as_tree_lights(*bounced);
@@ -116,7 +121,12 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     lights.insert(lights.end(), sky.begin(), sky.end());
     lights.insert(lights.end(), tree_bounced.begin(), tree_bounced.end());
     tree_bounced = {};
-    Result<BuildResult> built = build_light_tree(lights, job_build_options(job.request), progress);
+    BuildOptions options = job_build_options(job.request);
+    // An LBVH's subtrees go to the ranks (the same tree at any rank count).
+    const LbvhRemoteMerges remote = subtrees_over_ranks(ranks, lights);
+    if (options.builder == BuilderKind::kLbvh && ranks > 1) options.lbvh_remote = &remote;
+    Result<BuildResult> built = build_light_tree(lights, options, progress);
+    end_subtree_service(ranks);
     if (!built) return built.failure();
     built->report.effects = std::move(effects);
     return std::optional<BuildResult>(std::move(built.value()));
