@@ -31,7 +31,7 @@ struct BakeFlags {
     uint32_t ranks = 0;  // 0: the server bakes in its own process
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --area-lights, --record,
+    // --pairing, --representative, --exact-limit, --seed, --area-lights, --ranks, --record,
     // --connect-timeout, the environment flags (environment_flags.h) and the indirect
     // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     // `renders`: the subcommand also renders, and its --indirect takes `on` (the
