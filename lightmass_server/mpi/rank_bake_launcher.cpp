@@ -1,10 +1,10 @@
 #include "lightmass_server/mpi/rank_bake_launcher.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
-#include <fcntl.h>
-#include <spawn.h>
 
 #include <atomic>
 #include <chrono>
@@ -64,7 +64,8 @@ Result<pid_t> spawn_group(const std::vector<std::string>& argv, const fs::path& 
     const int failed = posix_spawnp(&pid, args[0], &files, &attributes, args.data(), environ);
     posix_spawn_file_actions_destroy(&files);
     posix_spawnattr_destroy(&attributes);
-    if (failed != 0) return make_error("cannot start the MPI launcher '" + argv[0] + "': " + std::strerror(failed));
+    if (failed != 0)
+        return make_error("cannot start the MPI launcher '" + argv[0] + "': " + std::strerror(failed));
     return pid;
 }
 
@@ -118,18 +119,21 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     while (waitpid(*pid, &status, WNOHANG) == 0) {
         if (!forward_progress(dir, progress, last_progress)) {
             stop_group(*pid);
-            return make_error("cancelled: the MPI job of " + std::to_string(inputs.ranks) + " ranks was stopped",
-                              ErrorKind::kCancelled);
+            return make_error(
+                "cancelled: the MPI job of " + std::to_string(inputs.ranks) + " ranks was stopped",
+                ErrorKind::kCancelled);
         }
         std::this_thread::sleep_for(kPollInterval);
     }
     kill(-*pid, SIGKILL);  // no rank outlives its job
-    if (fs::exists(dir / "error.txt")) return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
+    if (fs::exists(dir / "error.txt"))
+        return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(dir / "result.lcut")) {
-        const std::string code = WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
-        return make_error("MPI bake over " + std::to_string(inputs.ranks) + " ranks failed: " + argv[0] + " " +
-                          exit_text(status) + code + " (a rank died or could not start); its log: " +
-                          tail_of(dir / "mpirun.log", 1500));
+        const std::string code =
+            WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
+        return make_error("MPI bake over " + std::to_string(inputs.ranks) + " ranks failed: " + argv[0] +
+                          " " + exit_text(status) + code +
+                          " (a rank died or could not start); its log: " + tail_of(dir / "mpirun.log", 1500));
     }
     return read_rank_result(dir);
 }
@@ -139,8 +143,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
 Result<BuildResult> run_bake_on_ranks(const BakeInputs& inputs, const ProgressFn& progress) {
     const MpiLaunchOptions& mpi = inputs.mpi;
     if (inputs.ranks > mpi.max_ranks) {
-        return make_error("the bake asks for " + std::to_string(inputs.ranks) + " MPI ranks; this server allows at most " +
-                              std::to_string(mpi.max_ranks) + " (lightmass_server --mpi-max-ranks)",
+        return make_error("the bake asks for " + std::to_string(inputs.ranks) +
+                              " MPI ranks; this server allows at most " + std::to_string(mpi.max_ranks) +
+                              " (lightmass_server --mpi-max-ranks)",
                           ErrorKind::kRefused);
     }
     const fs::path dir = make_job_dir(mpi);

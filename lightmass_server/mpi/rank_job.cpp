@@ -124,7 +124,8 @@ Result<RankJobBytes> read_rank_job(const fs::path& dir) {
     LC_RETURN_IF_ERROR(read_into(dir / "request.msg", job.request));
     LC_RETURN_IF_ERROR(read_into(dir / "lights.scene", job.lights));
     if (fs::exists(dir / "geometry.geom")) LC_RETURN_IF_ERROR(read_into(dir / "geometry.geom", job.geometry));
-    if (fs::exists(dir / "environment.env")) LC_RETURN_IF_ERROR(read_into(dir / "environment.env", job.environment));
+    if (fs::exists(dir / "environment.env"))
+        LC_RETURN_IF_ERROR(read_into(dir / "environment.env", job.environment));
     return job;
 }
 
@@ -161,7 +162,8 @@ BuildOptions job_build_options(const BakeRequestMsg& request) {
     return build;
 }
 
-Status write_rank_result(const fs::path& dir, const BuildResult& result, const std::vector<std::string>& rank_lines) {
+Status write_rank_result(const fs::path& dir, const BuildResult& result,
+                         const std::vector<std::string>& rank_lines) {
     const BuildReport& r = result.report;
     std::ostringstream text;
     text.precision(17);
@@ -187,20 +189,31 @@ Result<BuildResult> read_rank_result(const fs::path& dir) {
         const size_t space = line.find(' ');
         const std::string key = line.substr(0, space);
         const std::string value = space == std::string::npos ? "" : line.substr(space + 1);
-        if (key == "effect") r.effects.push_back(value);
-        else if (key == "warning") r.warnings.push_back(value);
-        else if (key == "rank") r.effects.push_back("rank " + value);
-        else if (key == "build_ms") r.build_ms = std::stod(value);
-        else if (key == "pairing_cost") r.pairing_cost = std::stod(value);
-        else if (key == "pairing_lower_bound") r.pairing_lower_bound = std::stod(value);
-        else if (key == "exact") r.exact = value == "1";
-        else if (key == "levels") r.levels = uint32_t(std::stoul(value));
-        else if (key == "depth") r.depth = uint32_t(std::stoul(value));
+        if (key == "effect")
+            r.effects.push_back(value);
+        else if (key == "warning")
+            r.warnings.push_back(value);
+        else if (key == "rank")
+            r.effects.push_back("rank " + value);
+        else if (key == "build_ms")
+            r.build_ms = std::stod(value);
+        else if (key == "pairing_cost")
+            r.pairing_cost = std::stod(value);
+        else if (key == "pairing_lower_bound")
+            r.pairing_lower_bound = std::stod(value);
+        else if (key == "exact")
+            r.exact = value == "1";
+        else if (key == "levels")
+            r.levels = uint32_t(std::stoul(value));
+        else if (key == "depth")
+            r.depth = uint32_t(std::stoul(value));
     }
     return result;
 }
 
-Status write_rank_error(const fs::path& dir, const std::string& text) { return write_text(dir / "error.txt", text); }
+Status write_rank_error(const fs::path& dir, const std::string& text) {
+    return write_text(dir / "error.txt", text);
+}
 
 Status write_rank_progress(const fs::path& dir, std::string_view stage, double percent) {
     char head[32];

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 
 struct RankFlags {
     fs::path job;
-    int die_rank = -1;     // tests: this rank kills itself once the job has arrived
-    bool stall = false;    // tests: every rank waits forever once the job has arrived
+    int die_rank = -1;   // tests: this rank kills itself once the job has arrived
+    bool stall = false;  // tests: every rank waits forever once the job has arrived
 };
 
 [[noreturn]] void fail(int rank, const fs::path& dir, const std::string& text) {
@@ -41,8 +41,10 @@ Result<RankJob> receive_job(int rank, const fs::path& dir) {
     if (rank == 0) {
         Result<RankJobBytes> read = read_rank_job(dir);
         // An unreadable job still broadcasts (empty), so the other ranks fail too.
-        if (read) bytes = std::move(read.value());
-        else std::fprintf(stderr, "lightmass_rank 0: %s\n", read.error().c_str());
+        if (read)
+            bytes = std::move(read.value());
+        else
+            std::fprintf(stderr, "lightmass_rank 0: %s\n", read.error().c_str());
     }
     for (std::vector<uint8_t>* part : {&bytes.request, &bytes.lights, &bytes.geometry, &bytes.environment})
         broadcast_bytes(*part);

@@ -40,7 +40,8 @@ Result<std::vector<T>> gather_in_rank_order(const std::vector<T>& mine, uint64_t
     uint64_t total = 0;
     for (uint64_t s : sizes) total += s;
     MPI_Bcast(&total, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
-    if (total > uint64_t(INT32_MAX)) return make_error("a gather of " + std::to_string(total) + " bytes exceeds MPI's int counts");
+    if (total > uint64_t(INT32_MAX))
+        return make_error("a gather of " + std::to_string(total) + " bytes exceeds MPI's int counts");
     std::vector<int> counts(static_cast<size_t>(ranks)), offsets(static_cast<size_t>(ranks));
     for (int r = 0, at = 0; r < ranks; ++r) {
         counts[size_t(r)] = int(sizes[size_t(r)]);

@@ -43,16 +43,21 @@ Result<std::vector<SceneLight>> area_lights(const RankJob& job, const Share& sha
 }
 
 // The bounced light: VPL paths split over the ranks; radiosity on rank 0 alone.
-Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Share& share, const RayCaster* caster,
-                                                   std::span<const SceneLight> sources, const ProgressFn& progress,
-                                                   RankStats& stats, std::vector<std::string>& effects) {
+Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Share& share,
+                                                   const RayCaster* caster,
+                                                   std::span<const SceneLight> sources,
+                                                   const ProgressFn& progress, RankStats& stats,
+                                                   std::vector<std::string>& effects) {
     IndirectOptions options = indirect_options(job.request.indirect, job.request.seed);
     const bool split = options.method == IndirectMethod::kVpl;
-    if (split) options.vpl.particles = share_of(options.vpl.particle_count, uint32_t(share.rank), uint32_t(share.ranks));
+    if (split)
+        options.vpl.particles =
+            share_of(options.vpl.particle_count, uint32_t(share.rank), uint32_t(share.ranks));
     if (!split && !share.root()) return std::vector<IndirectLight>{};
     const SceneGeometry no_geometry;
-    Result<IndirectStageResult> stage = run_indirect_stage(job.geometry ? *job.geometry : no_geometry, caster, sources,
-                                                           options, share.root() ? progress : ProgressFn{});
+    Result<IndirectStageResult> stage =
+        run_indirect_stage(job.geometry ? *job.geometry : no_geometry, caster, sources, options,
+                           share.root() ? progress : ProgressFn{});
     if (!stage) return stage.failure();
     if (!split) {
         effects.push_back("indirect: " + stage->census);
@@ -62,8 +67,9 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
     Result<std::vector<IndirectLight>> all = gather_in_rank_order(stage->lights, stats.bytes_sent);
     if (all && share.root()) {
         char text[160];
-        std::snprintf(text, sizeof text, "indirect: simulated (%zu VPLs from %llu particles, %u bounces, %d ranks)",
-                      all->size(), static_cast<unsigned long long>(options.vpl.particle_count), options.vpl.bounces,
+        std::snprintf(text, sizeof text,
+                      "indirect: simulated (%zu VPLs from %llu particles, %u bounces, %d ranks)", all->size(),
+                      static_cast<unsigned long long>(options.vpl.particle_count), options.vpl.bounces,
                       share.ranks);
         effects.push_back(text);
     }
@@ -72,8 +78,8 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
 
 }  // namespace
 
-Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks, const ProgressFn& progress,
-                                              RankStats& stats) {
+Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks,
+                                              const ProgressFn& progress, RankStats& stats) {
     const Share share{rank, ranks};
     std::vector<std::string> effects;
     std::vector<SceneLight> lights = job.lights;  // the tree's input order: scene, area, sky, bounces
@@ -91,20 +97,22 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     // the photons leave the sky too.
     std::vector<SceneLight> sky;
     if (job.environment) {
-        Result<EnvironmentLights> sampled = sample_environment(*job.environment, job.request.environment_lights,
-                                                               job.request.seed, uint32_t(rank), uint32_t(ranks));
+        Result<EnvironmentLights> sampled =
+            sample_environment(*job.environment, job.request.environment_lights, job.request.seed,
+                               uint32_t(rank), uint32_t(ranks));
         if (!sampled) return sampled.failure();
         stats.lights_made += sampled->lights.size();
         Result<std::vector<SceneLight>> all = gather_to_all(sampled->lights, stats.bytes_sent);
         if (!all) return all.failure();
         sky = std::move(all.value());
         effects.push_back(ranks == 1 ? sampled->census
-                                     : sampled->census.substr(0, sampled->census.find(':')) + ": simulated (" +
-                                           std::to_string(sky.size()) + " lights over " + std::to_string(ranks) +
-                                           " ranks)");
+                                     : sampled->census.substr(0, sampled->census.find(':')) +
+                                           ": simulated (" + std::to_string(sky.size()) + " lights over " +
+                                           std::to_string(ranks) + " ranks)");
     }
     std::vector<SceneLight> sources = job.lights;
-    if (job.request.indirect.method != IndirectMethod::kOff) sources.insert(sources.end(), sky.begin(), sky.end());
+    if (job.request.indirect.method != IndirectMethod::kOff)
+        sources.insert(sources.end(), sky.begin(), sky.end());
     Result<std::vector<IndirectLight>> bounced =
         indirect_lights(job, share, caster ? &*caster : nullptr, sources, progress, stats, effects);
     if (!bounced) return bounced.failure();

@@ -18,7 +18,7 @@ struct RankStats {
 };
 
 // Rank 0 returns the tree; the other ranks return nullopt once their share is sent.
-Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks, const ProgressFn& progress,
-                                              RankStats& stats);
+Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks,
+                                              const ProgressFn& progress, RankStats& stats);
 
 }  // namespace lc::bake

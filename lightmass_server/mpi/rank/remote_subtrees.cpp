@@ -37,7 +37,8 @@ LbvhRemoteMerges subtrees_over_ranks(int ranks, std::span<const SceneLight> ligh
         std::vector<std::vector<BuildNode>> subtrees;
         size_t at = 0;
         for (uint64_t size : sizes) {
-            if (at + size > nodes.size()) return make_error("rank " + std::to_string(part) + " sent too few nodes");
+            if (at + size > nodes.size())
+                return make_error("rank " + std::to_string(part) + " sent too few nodes");
             subtrees.emplace_back(nodes.begin() + ptrdiff_t(at), nodes.begin() + ptrdiff_t(at + size));
             at += size;
         }
@@ -47,7 +48,8 @@ LbvhRemoteMerges subtrees_over_ranks(int ranks, std::span<const SceneLight> ligh
 }
 
 void end_subtree_service(int ranks) {
-    for (int rank = 1; rank < ranks; ++rank) MPI_Send(&kServiceOver, 1, MPI_UINT64_T, rank, 0, MPI_COMM_WORLD);
+    for (int rank = 1; rank < ranks; ++rank)
+        MPI_Send(&kServiceOver, 1, MPI_UINT64_T, rank, 0, MPI_COMM_WORLD);
 }
 
 Status serve_subtrees(const BuildOptions& options, RankStats& stats) {
@@ -62,9 +64,10 @@ Status serve_subtrees(const BuildOptions& options, RankStats& stats) {
         std::vector<BuildNode> merged;
         size_t at = 0;
         for (uint64_t size : sizes) {
-            if (at + size > keys.size() || keys.size() != lights.size()) return make_error("rank 0 sent a bad subtree");
-            Result<std::vector<BuildNode>> nodes = merge_lbvh_subtree(std::span(keys).subspan(at, size),
-                                                                      std::span(lights).subspan(at, size), options);
+            if (at + size > keys.size() || keys.size() != lights.size())
+                return make_error("rank 0 sent a bad subtree");
+            Result<std::vector<BuildNode>> nodes = merge_lbvh_subtree(
+                std::span(keys).subspan(at, size), std::span(lights).subspan(at, size), options);
             if (!nodes) return nodes.failure();
             merged_sizes.push_back(nodes->size());
             merged.insert(merged.end(), nodes->begin(), nodes->end());
