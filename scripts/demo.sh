@@ -140,7 +140,9 @@ if command -v mpirun > /dev/null && [ -x "$bin/lightmass_rank" ]; then
   "$bin/editor_client" bake "$out/cornell.gltf" --server "$server" --builder agglomerative \
       --area-lights 4096 --indirect vpl --bounces 4 --vpl-count 20000 --ranks 3 \
       -o "$out/cornell_vpl_3ranks.lcut" | grep -E "^(indirect|rank)"
-  cmp "$out/cornell_vpl.lcut" "$out/cornell_vpl_3ranks.lcut" && echo "demo: 3 MPI ranks baked the same tree, byte for byte"
+  cmp -s "$out/cornell_vpl.lcut" "$out/cornell_vpl_3ranks.lcut" \
+      || { echo "demo: the tree baked over 3 MPI ranks differs from the one-process tree"; exit 1; }
+  echo "demo: 3 MPI ranks baked the same tree, byte for byte"
 else
   echo "demo: mpirun or lightmass_rank missing: the bake over MPI ranks is left out (scripts/install-deps.sh)"
 fi
