@@ -7,11 +7,13 @@
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/radiosity_ply.h"
+#include "lightmass_server/mpi/rank_bake_launcher.h"
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
 
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
+    if (inputs.ranks > 0) return run_bake_on_ranks(inputs, progress);
     auto report = [&](const std::string& stage, double percent) {
         return !progress || progress(stage, percent);
     };

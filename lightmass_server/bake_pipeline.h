@@ -15,6 +15,7 @@
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
 #include "lightmass_server/indirect/indirect_stage.h"
+#include "lightmass_server/mpi/mpi_launch_options.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/messages.h"
 
@@ -33,6 +34,9 @@ struct BakeInputs {
     IndirectOptions indirect;  // bounced light, added to the tree as oriented lights
     std::string radiosity_out;  // a radiosity bake writes its patches here (PLY); empty: not
     int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
+    // 0: baked in this process; N: over N MPI ranks (mpi/rank_bake_launcher.h).
+    uint32_t ranks = 0;
+    MpiLaunchOptions mpi;
 };
 
 // A cancelled bake returns an error of kind ErrorKind::kCancelled. The

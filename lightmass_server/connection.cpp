@@ -127,6 +127,7 @@ void Connection::apply(ServerActions actions) {
 void Connection::start_bake(StartBake start) {
     start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
     start.inputs.radiosity_out = options_.radiosity_out.string();
+    start.inputs.mpi = options_.mpi;
     auto cancel = std::make_shared<std::atomic<bool>>(false);
     build_cancel_ = cancel;
     auto self = shared_from_this();

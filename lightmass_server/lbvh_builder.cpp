@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcuts/status_macros.h"
 #include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 
@@ -38,13 +39,7 @@ uint64_t morton_code(const glm::dvec3& p, const glm::dvec3& lo, const glm::dvec3
            spread_bits(uint64_t(q.z));
 }
 
-struct Keyed {
-    uint64_t code;
-    uint32_t leaf;  // arena index == input light index: the tie-break
-    bool operator<(const Keyed& o) const {
-        return code < o.code || (code == o.code && leaf < o.leaf);
-    }
-};
+using Keyed = LbvhKey;
 
 // A node of the split hierarchy over the sorted range [begin, end).
 struct SplitNode {
@@ -89,6 +84,186 @@ void prefetch_children_lights(const BuildArena& arena, const SplitNode& node,
                               const std::vector<uint32_t>& arena_of) {
     if (node.left < 0) return;
     prefetch_representative_lights(arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)]);
+}
+
+
+// The split hierarchy over sorted keys: nodes numbered breadth-first, depth d
+// holding nodes [depth_begin[d], depth_begin[d + 1]).
+struct SplitHierarchy {
+    std::vector<SplitNode> nodes;
+    std::vector<size_t> depth_begin{0};
+};
+
+// Top-down splits, one depth at a time: the ranges of one depth are disjoint,
+// so their split positions are searched in parallel; the children are then
+// appended in order, parents before children (breadth-first, as a serial work
+// list would number them). A range's splits depend on its keys alone, so a
+// subtree's hierarchy is the same built alone (merge_lbvh_subtree).
+SplitHierarchy split_hierarchy(const std::vector<Keyed>& keys) {
+    SplitHierarchy h;
+    std::vector<SplitNode>& nodes = h.nodes;
+    nodes.reserve(2 * keys.size());
+    nodes.push_back(SplitNode{0, uint32_t(keys.size())});
+    std::vector<uint32_t> split_at;
+    while (h.depth_begin.back() < nodes.size()) {
+        const size_t begin = h.depth_begin.back();
+        const size_t end = nodes.size();
+        split_at.resize(end - begin);
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(begin, end, 1024), [&](const tbb::blocked_range<size_t>& range) {
+                for (size_t i = range.begin(); i != range.end(); ++i) {
+                    const SplitNode& node = nodes[i];
+                    // 0 marks a leaf: a split always lies after its range's first key.
+                    split_at[i - begin] =
+                        node.end - node.begin < 2 ? 0 : split_position(keys, node.begin, node.end);
+                }
+            });
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t split = split_at[i - begin];
+            if (split == 0) continue;
+            const uint32_t range_begin = nodes[i].begin;
+            const uint32_t range_end = nodes[i].end;
+            nodes[i].left = int32_t(nodes.size());
+            nodes.push_back(SplitNode{range_begin, split});
+            nodes[i].right = int32_t(nodes.size());
+            nodes.push_back(SplitNode{split, range_end});
+        }
+        h.depth_begin.push_back(end);
+    }
+    return h;
+}
+
+// Arena slots fixed in advance (the i-th split node from the end takes the
+// i-th slot after the arena's nodes), which makes the arena the same at any
+// thread count; leaves are their lights' slots.
+std::vector<uint32_t> assign_arena_slots(BuildArena& arena, const SplitHierarchy& h, const std::vector<Keyed>& keys) {
+    std::vector<uint32_t> arena_of(h.nodes.size());
+    size_t slot = arena.nodes.size();
+    for (size_t i = h.nodes.size(); i-- > 0;) {
+        arena_of[i] = h.nodes[i].left < 0 ? keys[h.nodes[i].begin].leaf : uint32_t(slot++);
+    }
+    arena.nodes.resize(slot);
+    return arena_of;
+}
+
+// Bottom-up cluster attributes, one depth at a time from the deepest: the
+// merges of one depth are independent, so they run in parallel. Only the
+// nodes whose phase is `wanted` (every node when `phase` is empty).
+Status merge_bottom_up(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of,
+                       const std::vector<uint8_t>& phase, uint8_t wanted, const BuildOptions& options,
+                       const BuildProgressFn& progress, size_t& merges) {
+    const size_t total_merges = (h.nodes.size() - 1) / 2;
+    for (size_t d = h.depth_begin.size() - 1; d-- > 0;) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(h.depth_begin[d], h.depth_begin[d + 1], 4096),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  if (i + kPrefetchAhead < range.end())
+                                      prefetch_children(arena, h.nodes[i + kPrefetchAhead], arena_of);
+                                  if (i + kPrefetchAhead / 2 < range.end())
+                                      prefetch_children_lights(arena, h.nodes[i + kPrefetchAhead / 2], arena_of);
+                                  const SplitNode& node = h.nodes[i];
+                                  if (node.left < 0 || (!phase.empty() && phase[i] != wanted)) continue;
+                                  arena.nodes[arena_of[i]] = merge_clusters(
+                                      arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
+                                      options.representative_rule, options.seed);
+                              }
+                          });
+        const size_t children = d + 2 < h.depth_begin.size() ? h.depth_begin[d + 2] - h.depth_begin[d + 1] : 0;
+        merges = std::min(total_merges, merges + children / 2);
+        if (progress && !progress(double(merges) / double(std::max<size_t>(1, total_merges)))) {
+            return make_error("cancelled during the lbvh build (" + std::to_string(merges) + " of " +
+                                  std::to_string(total_merges) + " merges done)",
+                              ErrorKind::kCancelled);
+        }
+    }
+    return Ok{};
+}
+
+// The inner split nodes of the subtree under `root`, breadth-first.
+std::vector<uint32_t> inner_nodes_below(const SplitHierarchy& h, uint32_t root) {
+    std::vector<uint32_t> inner{root};
+    for (size_t k = 0; k < inner.size(); ++k) {
+        const SplitNode& node = h.nodes[inner[k]];
+        for (int32_t child : {node.left, node.right})
+            if (h.nodes[size_t(child)].left >= 0) inner.push_back(uint32_t(child));
+    }
+    return inner;
+}
+
+// Phases of the split nodes with remote parts: 0 merged here first (part 0's
+// subtrees), 1 merged elsewhere, 2 merged here last (the top over the subtree
+// roots). The subtrees are the largest whose size is at most n / parts, given
+// to the parts in Morton order. Fills each remote part's subtree roots.
+std::vector<uint8_t> plan_parts(const SplitHierarchy& h, uint32_t parts, std::vector<std::vector<uint32_t>>& roots) {
+    const uint32_t n = h.nodes[0].end;
+    const uint32_t target = (n + parts - 1) / parts;
+    std::vector<uint8_t> phase(h.nodes.size(), 2);
+    roots.assign(parts, {});
+    std::vector<uint32_t> stack{0};
+    while (!stack.empty()) {
+        const uint32_t i = stack.back();
+        stack.pop_back();
+        const SplitNode& node = h.nodes[i];
+        if (node.end - node.begin > target) {
+            stack.push_back(uint32_t(node.right));  // the left child first: Morton order
+            stack.push_back(uint32_t(node.left));
+            continue;
+        }
+        if (node.left < 0) continue;  // a leaf: nothing to merge
+        const uint32_t part = uint32_t(uint64_t(node.begin) * parts / n);
+        for (uint32_t inner : inner_nodes_below(h, i)) phase[inner] = part == 0 ? 0 : 1;
+        if (part != 0) roots[part].push_back(i);
+    }
+    return phase;
+}
+
+// Writes a remote subtree's nodes (merge_lbvh_subtree's form) into their slots.
+Status place_subtree(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of, uint32_t root,
+                     const std::vector<BuildNode>& merged) {
+    const std::vector<uint32_t> inner = inner_nodes_below(h, root);
+    if (merged.size() != inner.size())
+        return make_error("a rank merged " + std::to_string(merged.size()) + " nodes of a subtree of " +
+                          std::to_string(inner.size()));
+    const auto slot_of = [&](int32_t child) -> int32_t {
+        if (child >= 0) return child;  // a leaf: its light's index
+        const size_t ordinal = size_t(-2 - child);
+        return ordinal < inner.size() ? int32_t(arena_of[inner[ordinal]]) : kNoBuildChild;
+    };
+    for (size_t k = 0; k < inner.size(); ++k) {
+        BuildNode node = merged[k];
+        node.left = slot_of(node.left);
+        node.right = slot_of(node.right);
+        if (node.left == kNoBuildChild || node.right == kNoBuildChild) return make_error("a rank sent a bad child");
+        arena.nodes[arena_of[inner[k]]] = node;
+    }
+    return Ok{};
+}
+
+// The split hierarchy's merges: here alone, or with whole subtrees merged by remote parts.
+Status merge_all(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of,
+                 const std::vector<Keyed>& keys, const BuildOptions& options, const BuildProgressFn& progress) {
+    size_t merges = 0;
+    const LbvhRemoteMerges* remote = options.lbvh_remote;
+    if (!remote || remote->parts < 2 || keys.size() < 2 * size_t(remote->parts))
+        return merge_bottom_up(arena, h, arena_of, {}, 0, options, progress, merges);
+    std::vector<std::vector<uint32_t>> roots;
+    const std::vector<uint8_t> phase = plan_parts(h, remote->parts, roots);
+    for (uint32_t part = 1; part < remote->parts; ++part) {
+        std::vector<std::span<const Keyed>> subtrees;
+        for (uint32_t root : roots[part])
+            subtrees.emplace_back(keys.data() + h.nodes[root].begin, h.nodes[root].end - h.nodes[root].begin);
+        LC_RETURN_IF_ERROR(remote->send(part, subtrees));
+    }
+    LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, phase, 0, options, progress, merges));
+    for (uint32_t part = 1; part < remote->parts; ++part) {
+        Result<std::vector<std::vector<BuildNode>>> merged = remote->receive(part);
+        if (!merged) return merged.failure();
+        if (merged->size() != roots[part].size()) return make_error("a rank merged the wrong number of subtrees");
+        for (size_t s = 0; s < merged->size(); ++s)
+            LC_RETURN_IF_ERROR(place_subtree(arena, h, arena_of, roots[part][s], (*merged)[s]));
+    }
+    merges = 0;
+    return merge_bottom_up(arena, h, arena_of, phase, 2, options, progress, merges);
 }
 
 }  // namespace
@@ -137,81 +312,60 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     tbb::parallel_sort(keys.begin(), keys.end());  // a strict total order: deterministic
     timer.lap("lbvh: sort");
 
-    // Top-down splits, one depth at a time: the ranges of one depth are
-    // disjoint, so their split positions are searched in parallel; the children
-    // are then appended in order, parents before children (breadth-first, as a
-    // serial work list would number them).
-    std::vector<SplitNode> nodes;
-    nodes.reserve(2 * leaves.size());
-    nodes.push_back(SplitNode{0, uint32_t(keys.size())});
-    std::vector<size_t> depth_begin{0};  // depth d holds nodes [depth_begin[d], depth_begin[d + 1])
-    std::vector<uint32_t> split_at;
-    while (depth_begin.back() < nodes.size()) {
-        const size_t begin = depth_begin.back();
-        const size_t end = nodes.size();
-        split_at.resize(end - begin);
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(begin, end, 1024), [&](const tbb::blocked_range<size_t>& range) {
-                for (size_t i = range.begin(); i != range.end(); ++i) {
-                    const SplitNode& node = nodes[i];
-                    // 0 marks a leaf: a split always lies after its range's first key.
-                    split_at[i - begin] =
-                        node.end - node.begin < 2 ? 0 : split_position(keys, node.begin, node.end);
-                }
-            });
-        for (size_t i = begin; i < end; ++i) {
-            const uint32_t split = split_at[i - begin];
-            if (split == 0) continue;
-            const uint32_t range_begin = nodes[i].begin;
-            const uint32_t range_end = nodes[i].end;
-            nodes[i].left = int32_t(nodes.size());
-            nodes.push_back(SplitNode{range_begin, split});
-            nodes[i].right = int32_t(nodes.size());
-            nodes.push_back(SplitNode{split, range_end});
-        }
-        depth_begin.push_back(end);
-    }
-
-    // Bottom-up cluster attributes, one depth at a time from the deepest: the
-    // merges of one depth are independent, so they run in parallel into arena
-    // slots fixed in advance (the i-th split node from the end takes the i-th
-    // slot), which makes the arena the same at any thread count.
-    std::vector<uint32_t> arena_of(nodes.size());
-    size_t slot = arena.nodes.size();
-    for (size_t i = nodes.size(); i-- > 0;) {
-        arena_of[i] = nodes[i].left < 0 ? keys[nodes[i].begin].leaf : uint32_t(slot++);
-    }
-    arena.nodes.resize(slot);
+    const SplitHierarchy hierarchy = split_hierarchy(keys);
+    const std::vector<uint32_t> arena_of = assign_arena_slots(arena, hierarchy, keys);
     timer.lap("lbvh: splits");
-
-    const size_t total_merges = leaves.size() - 1;
-    size_t merges = 0;
-    for (size_t d = depth_begin.size() - 1; d-- > 0;) {
-        tbb::parallel_for(tbb::blocked_range<size_t>(depth_begin[d], depth_begin[d + 1], 4096),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i) {
-                                  if (i + kPrefetchAhead < range.end())
-                                      prefetch_children(arena, nodes[i + kPrefetchAhead], arena_of);
-                                  if (i + kPrefetchAhead / 2 < range.end())
-                                      prefetch_children_lights(arena, nodes[i + kPrefetchAhead / 2],
-                                                               arena_of);
-                                  const SplitNode& node = nodes[i];
-                                  if (node.left < 0) continue;
-                                  arena.nodes[arena_of[i]] = merge_clusters(
-                                      arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
-                                      options.representative_rule, options.seed);
-                              }
-                          });
-        const size_t children = d + 2 < depth_begin.size() ? depth_begin[d + 2] - depth_begin[d + 1] : 0;
-        merges += children / 2;
-        if (progress && !progress(double(merges) / double(total_merges))) {
-            return make_error("cancelled during the lbvh build (" + std::to_string(merges) + " of " +
-                                  std::to_string(total_merges) + " merges done)",
-                              ErrorKind::kCancelled);
-        }
-    }
+    LC_RETURN_IF_ERROR(merge_all(arena, hierarchy, arena_of, keys, options, progress));
     timer.lap("lbvh: cluster attributes");
     return int32_t(arena_of[0]);
+}
+
+}  // namespace lc::bake
+
+namespace lc::bake {
+
+Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys, std::span<const SceneLight> lights,
+                                                  const BuildOptions& options) {
+    if (keys.size() != lights.size() || keys.size() < 2) return make_error("a subtree needs 2 or more keys, one light each");
+    // Local leaf indices in the order of the global ones: merges order children
+    // by their smallest light index, so the local order must be the global one.
+    std::vector<uint32_t> by_global(keys.size());
+    for (uint32_t k = 0; k < keys.size(); ++k) by_global[k] = k;
+    std::sort(by_global.begin(), by_global.end(), [&](uint32_t a, uint32_t b) { return keys[a].leaf < keys[b].leaf; });
+    std::vector<SceneLight> local_lights(keys.size());
+    std::vector<uint32_t> global_of(keys.size());
+    std::vector<Keyed> local_keys(keys.size());
+    for (uint32_t j = 0; j < by_global.size(); ++j) {
+        const uint32_t k = by_global[j];
+        local_lights[j] = lights[k];
+        global_of[j] = keys[k].leaf;
+        local_keys[k] = Keyed{keys[k].code, j};
+    }
+    BuildArena arena;
+    arena.lights = local_lights;
+    arena.nodes.resize(local_lights.size());
+    const SplitHierarchy h = split_hierarchy(local_keys);
+    const std::vector<uint32_t> arena_of = assign_arena_slots(arena, h, local_keys);
+    size_t merges = 0;
+    LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, {}, 0, options, {}, merges));
+    // Breadth-first inner nodes, children as global light indices or inner ordinals.
+    const std::vector<uint32_t> inner = inner_nodes_below(h, 0);
+    std::vector<int32_t> ordinal_of_slot(arena.nodes.size(), kNoBuildChild);
+    for (size_t k = 0; k < inner.size(); ++k) ordinal_of_slot[arena_of[inner[k]]] = encode_inner_child(uint32_t(k));
+    const auto global_child = [&](int32_t slot) {
+        return arena.is_leaf_index(uint32_t(slot)) ? int32_t(global_of[size_t(slot)]) : ordinal_of_slot[size_t(slot)];
+    };
+    std::vector<BuildNode> out;
+    out.reserve(inner.size());
+    for (uint32_t i : inner) {
+        BuildNode node = arena.nodes[arena_of[i]];
+        node.left = global_child(node.left);
+        node.right = global_child(node.right);
+        node.representative = global_of[node.representative];
+        node.min_light_index = global_of[node.min_light_index];
+        out.push_back(node);
+    }
+    return out;
 }
 
 }  // namespace lc::bake

@@ -6,13 +6,45 @@
 // and orientation: with uneven intensities its summed cluster metric is above
 // the agglomerative one, with uniform ones it can be below (docs/bench/).
 #include <cstdint>
+#include <functional>
 #include <span>
+#include <vector>
 
 #include "lightcuts/build_tree.h"
 #include "lightmass_server/tree_builder.h"
 #include "lightcuts/result.h"
 
 namespace lc::bake {
+
+// A light's place on the Z-order curve; ties go by light index.
+struct LbvhKey {
+    uint64_t code;
+    uint32_t leaf;  // arena index == input light index
+    bool operator<(const LbvhKey& o) const { return code < o.code || (code == o.code && leaf < o.leaf); }
+};
+
+// Whole subtrees of the split hierarchy merged by other processes (MPI ranks):
+// the largest subtrees of at most n / parts lights, in Morton order, go to
+// parts 0..parts-1; part 0 is merged here, then each other part's come back
+// and the top over the subtree roots is merged here. A subtree's splits and
+// merges depend on its lights alone, so the tree is the same for any parts.
+struct LbvhRemoteMerges {
+    uint32_t parts = 1;
+    // Hands part p its subtrees, each as its keys in Morton order.
+    std::function<Status(uint32_t part, const std::vector<std::span<const LbvhKey>>& subtrees)> send;
+    // Part p's subtrees merged, in the order sent (merge_lbvh_subtree's form).
+    std::function<Result<std::vector<std::vector<BuildNode>>>(uint32_t part)> receive;
+};
+
+// An inner child in merge_lbvh_subtree's nodes: its breadth-first ordinal, encoded.
+inline int32_t encode_inner_child(uint32_t ordinal) { return -2 - int32_t(ordinal); }
+
+// On another process: merges the subtree over `keys` (Morton order; leaf: the
+// global light index) whose lights are `lights` (in key order). Returns its
+// inner nodes breadth-first; children, representatives and smallest light
+// indices are global light indices, inner children encode_inner_child(ordinal).
+Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys, std::span<const SceneLight> lights,
+                                                  const BuildOptions& options);
 
 // Builds the tree over `leaves` (arena indices of one light type, in input
 // order); returns the root's arena index (kNoBuildChild when empty).

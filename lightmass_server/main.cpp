@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "protocol/asio.h"
+#include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/auth_token.h"
 #include "lightmass_server/server.h"
 
@@ -99,6 +100,8 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     app.add_flag("--quiet", quiet, "Log warnings and errors only");
+    lc::bake::MpiLaunchOptions mpi;
+    lc::bake::add_mpi_flags(app, mpi);
     CLI11_PARSE(app, argc, argv);
 
     spdlog::set_default_logger(spdlog::stderr_color_mt("lightmass"));
@@ -120,6 +123,7 @@ int main(int argc, char** argv) {
     options.memory_budget_bytes = memory_budget_mb << 20;
     options.tls_certificate = tls_cert;
     options.tls_private_key = tls_key;
+    options.mpi = mpi;
     if (!token_file.empty()) {
         auto token = lc::bake::read_token_file(token_file);
         if (!token) {

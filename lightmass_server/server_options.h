@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "lightmass_server/mpi/mpi_launch_options.h"
 #include "protocol/frame_decoder.h"
 #include "lightcuts/result.h"
 
@@ -37,6 +38,8 @@ struct ServerOptions {
     // Announced bytes of every connection's scene channels and stored scenes together;
     // a channel that does not fit is refused as "server busy".
     uint64_t memory_budget_bytes = uint64_t{4096} << 20;
+    // How a bake that asks for MPI ranks is launched (--mpi-* flags).
+    MpiLaunchOptions mpi;
 };
 
 // True for 127.0.0.0/8, ::1 and "localhost".

@@ -341,6 +341,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     if (request.area_lights != 0) start.inputs.area_lights = request.area_lights;
     start.inputs.environment = std::move(environment);
     start.inputs.environment_lights = request.environment_lights;
+    start.inputs.ranks = request.ranks;
 
     bake_ = ActiveBake{request.bake_id};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});

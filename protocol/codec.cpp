@@ -83,7 +83,7 @@ Body encode_body(Fbb& fbb, const BakeRequestMsg& m) {
                               static_cast<fb::PairingMode>(m.pairing), m.exact_pairing_limit,
                               environment, m.environment_lights, geometry, m.area_lights,
                               static_cast<fb::IndirectMethod>(m.indirect.method), m.indirect.bounces,
-                              m.indirect.vpl_count, m.indirect.patch_size, m.indirect.tolerance);
+                              m.indirect.vpl_count, m.indirect.patch_size, m.indirect.tolerance, m.ranks);
     return {fb::Message::BakeRequest, table.Union()};
 }
 
@@ -257,6 +257,7 @@ Result<Message> decode_table(const fb::BakeRequest& t, ExtentTracker& extent) {
     m.indirect.vpl_count = t.vpl_count();
     m.indirect.patch_size = t.patch_size();
     m.indirect.tolerance = t.radiosity_tolerance();
+    m.ranks = t.ranks();
     return Message{std::move(m)};
 }
 

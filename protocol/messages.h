@@ -94,6 +94,7 @@ struct BakeRequestMsg {
     std::string geometry_channel;
     uint32_t area_lights = 0;  // the area-light sample budget; 0: the server's default
     IndirectRequest indirect;
+    uint32_t ranks = 0;  // 0: in the server's process; N: one bake over N MPI ranks
 };
 struct ProgressMsg {
     uint32_t bake_id = 0;

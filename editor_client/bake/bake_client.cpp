@@ -310,7 +310,8 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              .environment_lights = options.environment_lights,
                                              // Only a bake with geometry has area lights to sample.
                                              .area_lights = options.geometry ? options.area_lights : 0u,
-                                             .indirect = options.indirect};
+                                             .indirect = options.indirect,
+                                             .ranks = options.ranks};
     session_options.environment = options.environment;
     session_options.geometry = options.geometry;
     session_options.on_progress = options.on_progress;

@@ -68,6 +68,7 @@ struct BakeClientOptions {
     std::shared_ptr<const SceneGeometry> geometry;
     uint32_t area_lights = 0;  // area-light sample budget; 0: the server's default
     IndirectRequest indirect;
+    uint32_t ranks = 0;  // 0: the server bakes in its process; N: over N MPI ranks
     double timeout_seconds = 600.0;    // whole bake, transfer included
     // From connecting until HelloAck (TCP, TLS handshake, Hello): a server that
     // accepts and never answers is given up on after this long.

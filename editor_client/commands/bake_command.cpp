@@ -49,6 +49,9 @@ void add_bake_command(CLI::App& app) {
         for (const auto& w : warnings) std::cerr << "warning: " << w << "\n";
 
         BakeClientOptions bake = options->bake.to_options(*scene);
+        std::string auto_reason;
+        const std::string builder = options->bake.resolved_builder(*scene, &auto_reason);
+        const std::string builder_line = auto_reason.empty() ? builder : builder + " (" + auto_reason + ")";
         bake.keep_result_channel = false;
         // The tree goes no further than the dump: validated as it arrives, never decoded into nodes.
         bake.decode_tree = false;
@@ -76,7 +79,9 @@ void add_bake_command(CLI::App& app) {
             j["scene_guid"] = scene->guid.to_hex();
             j["lights"] = scene->lights.size();
             j["classic_lights"] = classic;
-            j["builder"] = options->bake.builder;
+            j["builder"] = builder;
+            j["builder_choice"] = auto_reason.empty() ? "flag" : auto_reason;
+            j["ranks"] = options->bake.ranks;
             j["seed"] = options->bake.seed;
             j["nodes"] = done.node_count;
             j["leaves"] = done.leaf_count;
@@ -96,8 +101,8 @@ void add_bake_command(CLI::App& app) {
             std::cout << j.dump(2) << "\n";
         } else {
             std::printf("baked %zu lights (%zu classic kept local) into %u nodes with %s in %.1f ms\n",
-                        scene->lights.size(), classic, done.node_count, options->bake.builder.c_str(), done.build_ms);
-            if (options->bake.builder == "optimal-pair")
+                        scene->lights.size(), classic, done.node_count, builder_line.c_str(), done.build_ms);
+            if (builder == "optimal-pair")
                 std::printf("pairing: %s, total distance %.6g, lower bound %.6g\n",
                             done.exact ? "exact (proven optimal)" : "approximate", done.pairing_cost,
                             done.pairing_lower_bound);

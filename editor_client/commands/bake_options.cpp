@@ -24,8 +24,9 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
                                   "against; implies --tls (default: the system's trusted CAs)");
     tls_opt->excludes(spawn_opt);
     ca_opt->excludes(spawn_opt);
-    cmd.add_option("--builder", builder, "Tree builder")
-        ->check(CLI::IsMember({"optimal-pair", "agglomerative", "lbvh"}))
+    cmd.add_option("--builder", builder,
+                   "Tree builder; auto: optimal-pair up to 131,072 lights, agglomerative above")
+        ->check(CLI::IsMember({"auto", "optimal-pair", "agglomerative", "lbvh"}))
         ->capture_default_str();
     cmd.add_option("--pairing", pairing, "optimal-pair pairing: exact, approximate, or auto (exact up to --exact-limit)")
         ->check(CLI::IsMember({"auto", "exact", "approximate"}))
@@ -40,6 +41,10 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
                    "Oriented point lights sampled from the emissive triangles, shared by their power")
         ->capture_default_str()
         ->check(CLI::Range(1u, kMaxAreaLights));
+    cmd.add_option("--ranks", ranks,
+                   "Bake over N MPI ranks the server launches (0: in the server's process; "
+                   "the server's --mpi-max-ranks bounds N)")
+        ->capture_default_str();
     cmd.add_option("--record", record_dir, "Write every channel sent and received as a dump file here");
     cmd.add_option("--connect-timeout", connect_timeout, "Seconds to connect, finish TLS and get HelloAck")
         ->capture_default_str()
@@ -84,7 +89,8 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     options.tls = tls || !tls_ca.empty();
     options.tls_ca_file = tls_ca;
     options.record_dir = record_dir;
-    options.builder = builders.at(builder);
+    options.builder = builders.at(resolved_builder(scene));
+    options.ranks = ranks;
     options.pairing = pairings.at(pairing);
     options.representative_rule =
         representative == "thesis-first" ? RepresentativeRule::kThesisFirst : RepresentativeRule::kIntensity;
@@ -100,6 +106,18 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     options.indirect = indirect_request;
     options.indirect.method = methods.at(indirect);
     return options;
+}
+
+std::string BakeFlags::resolved_builder(const Scene& scene, std::string* why) const {
+    if (builder != "auto") return builder;
+    size_t tree_lights = 0;
+    for (const SceneLight& light : scene.lights) tree_lights += light.classic ? 0 : 1;
+    const bool large = tree_lights > kAutoBuilderLightLimit;
+    if (why) {
+        *why = "auto: " + std::to_string(tree_lights) + (large ? " lights > " : " lights <= ") +
+               std::to_string(kAutoBuilderLightLimit);
+    }
+    return large ? "agglomerative" : "optimal-pair";
 }
 
 }  // namespace lc::client

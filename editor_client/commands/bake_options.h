@@ -16,7 +16,8 @@ struct BakeFlags {
     std::string token_file;
     bool tls = false;
     std::string tls_ca;
-    std::string builder = "optimal-pair";
+    // auto: optimal-pair up to kAutoBuilderLightLimit tree lights, agglomerative above.
+    std::string builder = "auto";
     std::string pairing = "auto";
     std::string representative = "intensity";
     uint32_t exact_limit = 0;
@@ -27,9 +28,10 @@ struct BakeFlags {
     EnvironmentFlags environment;
     std::string indirect = "off";
     IndirectRequest indirect_request;
+    uint32_t ranks = 0;  // 0: the server bakes in its own process
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
-    // --pairing, --representative, --exact-limit, --seed, --area-lights, --record,
+    // --pairing, --representative, --exact-limit, --seed, --area-lights, --ranks, --record,
     // --connect-timeout, the environment flags (environment_flags.h) and the indirect
     // light's --indirect, --bounces, --vpl-count, --patch-size and --tolerance to a subcommand.
     // `renders`: the subcommand also renders, and its --indirect takes `on` (the
@@ -42,6 +44,13 @@ struct BakeFlags {
     // Loads the environment, the flags' or else the scene's (Scene::environment),
     // if any; a subcommand ends on a bad one (command_errors.h).
     BakeClientOptions to_options(const Scene& scene) const;
+    // The builder a bake of `scene` uses: --builder, or for auto the one its
+    // size picks; `why` (if given) is set to the reason auto chose it.
+    std::string resolved_builder(const Scene& scene, std::string* why = nullptr) const;
 };
+
+// Above this many tree lights, --builder auto bakes agglomeratively: the
+// optimal-pair build took 30 s of a 34 s bake at 2^20 lights (docs/BENCHMARKS.md).
+inline constexpr size_t kAutoBuilderLightLimit = size_t{1} << 17;
 
 }  // namespace lc::client

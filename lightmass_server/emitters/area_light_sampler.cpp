@@ -99,7 +99,7 @@ glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& t
 }
 
 Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed) {
+                                             uint64_t seed, IndexRange samples) {
     if (budget == 0) return make_error("the area-light budget is 0; give at least 1 sample");
     std::vector<Emitter> emitters;
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {
@@ -117,7 +117,11 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
     out.budget_raised = budget < emitters.size();
     share_budget(emitters, std::max<uint64_t>(budget, emitters.size()));
 
+    uint64_t first_sample = 0;  // the index of e's first sample in the whole output
     for (const Emitter& e : emitters) {
+        const uint64_t emitter_first = first_sample;
+        first_sample += e.samples;
+        if (first_sample <= samples.begin || emitter_first >= samples.end) continue;
         const SurfaceTriangle& t = geometry.triangles[e.triangle];
         const glm::dvec3 p0(t.positions[0]), e1 = glm::dvec3(t.positions[1]) - p0,
                          e2 = glm::dvec3(t.positions[2]) - p0;
@@ -129,6 +133,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
         SplitMix64 rng(mix64(seed ^ mix64(uint64_t(e.triangle) + kGoldenGamma)));
         const double shift_u = rng.uniform(), shift_v = rng.uniform();
         for (uint32_t k = 0; k < e.samples; ++k) {
+            if (!samples.contains(emitter_first + k)) continue;
             const double u = (double(k) + shift_u) / double(e.samples);
             double v = radical_inverse(k) + shift_v;
             v -= std::floor(v);

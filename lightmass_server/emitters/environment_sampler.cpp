@@ -64,6 +64,7 @@ private:
 struct Stratum {
     double x0, x1, y0, y1;
     uint32_t lights;
+    uint32_t first_slot;  // the stratum's lights take slots [first_slot, first_slot + lights)
 };
 
 // The t in [lo, hi] where power_to(t) reaches target (power_to increasing).
@@ -113,22 +114,25 @@ SceneLight directional_light(const glm::dvec3& towards_light, const glm::dvec3& 
 }  // namespace
 
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed) {
+                                            uint32_t count, uint64_t seed, IndexRange slots) {
     std::vector<SceneLight> lights;
     if (map.empty() || count == 0 || !(intensity > 0.0)) return lights;
     const RadianceIntegral integral(map);
     const double width = map.width, height = map.height;
-    SplitMix64 random(mix64(seed ^ kMapSalt));
     std::vector<Stratum> stack;
-    if (integral.power(0.0, width, 0.0, height) > 0.0) stack.push_back({0.0, width, 0.0, height, count});
-    lights.reserve(count);
+    if (integral.power(0.0, width, 0.0, height) > 0.0) stack.push_back({0.0, width, 0.0, height, count, 0});
     while (!stack.empty()) {
         const Stratum s = stack.back();
         stack.pop_back();
+        // Strata wholly outside this share are never split: a share costs its part.
+        if (s.first_slot >= slots.end || uint64_t(s.first_slot) + s.lights <= slots.begin) continue;
         const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
         if (s.lights == 1 || std::max(dx, dy) < kSmallestStratum) {
             const glm::dvec3 lux = integral.over(s.x0, s.x1, s.y0, s.y1) * (intensity / s.lights);
             for (uint32_t k = 0; k < s.lights; ++k) {
+                if (!slots.contains(s.first_slot + k)) continue;
+                // Each slot draws from its own stream: any share of the slots draws the same.
+                SplitMix64 random(mix64(seed ^ kMapSalt ^ mix64(uint64_t(s.first_slot) + k + 1)));
                 const glm::dvec2 p = draw_point(integral, s, map.width, random);
                 const glm::dvec3 towards = equirect_direction(p.x / width, p.y / height, rotation);
                 lights.push_back(directional_light(towards, lux, draw_guid(random)));
@@ -143,6 +147,7 @@ std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotat
         Stratum a = s, b = s;
         a.lights = s.lights / 2;
         b.lights = s.lights - a.lights;
+        b.first_slot = s.first_slot + a.lights;
         const double target = power * a.lights / s.lights;
         if (split_x)
             a.x1 = b.x0 = bisect(s.x0, s.x1, target, [&](double t) { return integral.power(s.x0, t, s.y0, s.y1); });
@@ -154,6 +159,7 @@ std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotat
         if (!a_lit || !b_lit) {
             Stratum& lit = a_lit ? a : b;
             lit.lights = s.lights;
+            lit.first_slot = s.first_slot;
             if (a_lit || b_lit) stack.push_back(lit);
             continue;
         }
@@ -187,7 +193,8 @@ std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensi
     return lights;
 }
 
-Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed) {
+Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
+                                             uint32_t part, uint32_t parts) {
     if (count == 0) count = kDefaultEnvironmentLights;
     LC_RETURN_IF_ERROR(validate_environment_light_count(environment, count));
     EnvironmentLights out;
@@ -196,11 +203,12 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
         const SkyParameters& sky = *environment.sky;
         const auto sun_lights =
             uint32_t(std::clamp(std::round(count * kSunShareOfSkyLights), 1.0, double(count - 1)));
-        out.lights = sample_sun_disc(sky, environment.intensity, sun_lights, seed);
+        if (part == 0) out.lights = sample_sun_disc(sky, environment.intensity, sun_lights, seed);
         const size_t sun_made = out.lights.size();
         const EquirectMap raster = rasterize_sky(sky, kSkyRasterWidth, kSkyRasterHeight);
         std::vector<SceneLight> sky_lights =
-            sample_equirect_map(raster, 0.0, environment.intensity, count - sun_lights, seed);
+            sample_equirect_map(raster, 0.0, environment.intensity, count - sun_lights, seed,
+                                share_of(count - sun_lights, part, parts));
         out.lights.insert(out.lights.end(), sky_lights.begin(), sky_lights.end());
         char text[160];
         std::snprintf(text, sizeof(text),
@@ -209,7 +217,8 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
                       sun_made, sky_lights.size(), sky.elevation_deg, sky.azimuth_deg, sky.turbidity);
         out.census = text;
     } else {
-        out.lights = sample_equirect_map(environment.map, rotation, environment.intensity, count, seed);
+        out.lights = sample_equirect_map(environment.map, rotation, environment.intensity, count, seed,
+                                         share_of(count, part, parts));
         out.census = "environment: simulated (" + std::to_string(environment.map.width) + " x " +
                      std::to_string(environment.map.height) + " map, " + std::to_string(out.lights.size()) +
                      " lights)";

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "lightmass_server/index_range.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
@@ -36,11 +37,17 @@ struct EnvironmentLights {
 };
 
 // `environment` must be valid (protocol/environment_records.h); count 0 means the default.
-Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed);
+// `part` of `parts` (an MPI rank's share): the map's or sky's light slots in
+// share_of(...) and, for part 0, the sun's disc; the parts' lights, concatenated
+// in part order, are the whole run's.
+Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
+                                             uint32_t part = 0, uint32_t parts = 1);
 
 // The map's lights alone: `count` strata (fewer where a stratum has no power).
+// Light slot i (in output order, gaps where strata had no power) draws from
+// its own stream (seed, i); `slots` makes only those (an MPI rank's share).
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed);
+                                            uint32_t count, uint64_t seed, IndexRange slots = {});
 // The sun's disc: `count` lights of equal irradiance summing to the disc's.
 std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensity, uint32_t count, uint64_t seed);
 

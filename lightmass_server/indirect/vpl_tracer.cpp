@@ -71,15 +71,18 @@ Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& cas
     result.emitted_power = emitters.total_power();
     float epsilon = ray_epsilon(scene_bounds(geometry).extent());
 
-    uint64_t task_count = (options.particle_count + kParticlesPerTask - 1) / kParticlesPerTask;
+    // Tasks cover this process's share of the paths, in particle order.
+    const uint64_t share_begin = std::min(options.particles.begin, options.particle_count);
+    const uint64_t share_end = std::clamp(options.particles.end, share_begin, options.particle_count);
+    uint64_t task_count = (share_end - share_begin + kParticlesPerTask - 1) / kParticlesPerTask;
     std::vector<std::vector<IndirectLight>> per_task(std::min(task_count, kTasksPerBatch));
     for (uint64_t first = 0; first < task_count; first += kTasksPerBatch) {
         uint64_t batch = std::min(kTasksPerBatch, task_count - first);
         tbb::parallel_for(uint64_t(0), batch, [&](uint64_t k) {
             std::vector<IndirectLight>& out = per_task[k];
             out.clear();
-            uint64_t begin = (first + k) * kParticlesPerTask;
-            uint64_t end = std::min(options.particle_count, begin + kParticlesPerTask);
+            uint64_t begin = share_begin + (first + k) * kParticlesPerTask;
+            uint64_t end = std::min(share_end, begin + kParticlesPerTask);
             for (uint64_t i = begin; i < end; ++i) trace_particle(geometry, caster, emitters, options, epsilon, i, out);
         });
         for (uint64_t k = 0; k < batch; ++k) {

@@ -9,6 +9,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/index_range.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/raycast/ray_caster.h"
 #include "lightmass_server/tree_builder.h"
@@ -23,6 +24,8 @@ struct VplOptions {
     uint64_t particle_count = 100000;  // light paths; each leaves up to `bounces` lights
     uint32_t bounces = 1;              // diffuse hits that deposit a light, <= kMaxVplBounces
     uint64_t seed = 0;
+    // The paths this process traces (an MPI rank's share); the default: all.
+    IndexRange particles;
 };
 
 struct VplResult {

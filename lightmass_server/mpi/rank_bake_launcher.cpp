@@ -1,0 +1,160 @@
+#include "lightmass_server/mpi/rank_bake_launcher.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "lightmass_server/mpi/rank_job.h"
+
+namespace lc::bake {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr auto kPollInterval = std::chrono::milliseconds(50);
+// After SIGTERM, mpirun takes its ranks down; past this, the group gets SIGKILL.
+constexpr auto kTerminateGrace = std::chrono::seconds(5);
+
+fs::path rank_program(const MpiLaunchOptions& mpi) {
+    if (!mpi.rank_program.empty()) return mpi.rank_program;
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path("lightmass_rank") : self.parent_path() / "lightmass_rank";
+}
+
+fs::path make_job_dir(const MpiLaunchOptions& mpi) {
+    static std::atomic<uint64_t> counter{0};
+    std::error_code ec;
+    const fs::path root = mpi.work_dir.empty() ? fs::temp_directory_path(ec) : mpi.work_dir;
+    return root / ("lightmass-bake-" + std::to_string(getpid()) + "-" + std::to_string(++counter));
+}
+
+std::vector<std::string> launch_command(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& dir) {
+    std::vector<std::string> argv{mpi.launcher, "-n", std::to_string(ranks)};
+    argv.insert(argv.end(), mpi.launcher_args.begin(), mpi.launcher_args.end());
+    if (!mpi.hostfile.empty()) argv.insert(argv.end(), {"--hostfile", mpi.hostfile.string()});
+    argv.insert(argv.end(), {rank_program(mpi).string(), "--job", dir.string()});
+    argv.insert(argv.end(), mpi.rank_args.begin(), mpi.rank_args.end());
+    return argv;
+}
+
+// Starts argv in a new process group (its id is the child's pid), its output
+// into `log`. posix_spawn: the server has threads, so no code runs after a fork.
+Result<pid_t> spawn_group(const std::vector<std::string>& argv, const fs::path& log) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    posix_spawn_file_actions_t files;
+    posix_spawn_file_actions_init(&files);
+    posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&files, 1, 2);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
+    pid_t pid = 0;
+    const int failed = posix_spawnp(&pid, args[0], &files, &attributes, args.data(), environ);
+    posix_spawn_file_actions_destroy(&files);
+    posix_spawnattr_destroy(&attributes);
+    if (failed != 0)
+        return make_error("cannot start the MPI launcher '" + argv[0] + "': " + std::strerror(failed));
+    return pid;
+}
+
+std::string tail_of(const fs::path& path, size_t bytes) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return text.size() > bytes ? "..." + text.substr(text.size() - bytes) : text;
+}
+
+// Forwards rank 0's latest progress line; false when the bake is cancelled.
+bool forward_progress(const fs::path& dir, const ProgressFn& progress, std::string& last) {
+    if (!progress) return true;
+    std::ifstream in(dir / "progress");
+    std::string line;
+    if (in && std::getline(in, line) && line != last) last = line;
+    const size_t space = last.find(' ');
+    if (space == std::string::npos) return progress("mpi: starting ranks", 0.0);
+    return progress("mpi: " + last.substr(space + 1), std::atof(last.substr(0, space).c_str()));
+}
+
+// Signals the whole group, then waits; SIGKILL to the group if it lingers.
+void stop_group(pid_t pid) {
+    kill(-pid, SIGTERM);
+    const auto deadline = std::chrono::steady_clock::now() + kTerminateGrace;
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            kill(-pid, SIGKILL);
+            waitpid(pid, &status, 0);
+            break;
+        }
+        std::this_thread::sleep_for(kPollInterval);
+    }
+    kill(-pid, SIGKILL);  // whatever of the group outlived mpirun
+}
+
+std::string exit_text(int status) {
+    if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
+    if (WIFSIGNALED(status)) return "was killed by signal " + std::to_string(WTERMSIG(status));
+    return "ended abnormally";
+}
+
+Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const ProgressFn& progress) {
+    Status written = write_rank_job(dir, encode_rank_job(inputs, inputs.ranks));
+    if (!written) return make_error("MPI job: " + written.error());
+    const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, dir);
+    Result<pid_t> pid = spawn_group(argv, dir / "mpirun.log");
+    if (!pid) return pid.failure();
+    std::string last_progress;
+    int status = 0;
+    while (waitpid(*pid, &status, WNOHANG) == 0) {
+        if (!forward_progress(dir, progress, last_progress)) {
+            stop_group(*pid);
+            return make_error(
+                "cancelled: the MPI job of " + std::to_string(inputs.ranks) + " ranks was stopped",
+                ErrorKind::kCancelled);
+        }
+        std::this_thread::sleep_for(kPollInterval);
+    }
+    kill(-*pid, SIGKILL);  // no rank outlives its job
+    if (fs::exists(dir / "error.txt"))
+        return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(dir / "result.lcut")) {
+        const std::string code =
+            WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
+        return make_error("MPI bake over " + std::to_string(inputs.ranks) + " ranks failed: " + argv[0] +
+                          " " + exit_text(status) + code +
+                          " (a rank died or could not start); its log: " + tail_of(dir / "mpirun.log", 1500));
+    }
+    return read_rank_result(dir);
+}
+
+}  // namespace
+
+Result<BuildResult> run_bake_on_ranks(const BakeInputs& inputs, const ProgressFn& progress) {
+    const MpiLaunchOptions& mpi = inputs.mpi;
+    if (inputs.ranks > mpi.max_ranks) {
+        return make_error("the bake asks for " + std::to_string(inputs.ranks) +
+                              " MPI ranks; this server allows at most " + std::to_string(mpi.max_ranks) +
+                              " (lightmass_server --mpi-max-ranks)",
+                          ErrorKind::kRefused);
+    }
+    const fs::path dir = make_job_dir(mpi);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) return make_error("cannot make the MPI job folder " + dir.string() + ": " + ec.message());
+    Result<BuildResult> result = run_job(inputs, dir, progress);
+    if (!mpi.keep_job_dirs) fs::remove_all(dir, ec);
+    return result;
+}
+
+}  // namespace lc::bake

@@ -1,0 +1,152 @@
+// Bakes over MPI ranks (lightmass_server/mpi/): the light set and the tree the
+// same at 1, 2, 3 and 4 ranks as in one process, the LBVH's subtrees merged on
+// the ranks, a rank that dies, a cancelled bake, and a bake asking for more
+// ranks than the server allows. The tests that start mpirun skip, saying why,
+// where mpirun or lightmass_rank is missing (the shares' determinism is checked
+// without MPI in index_shares_test and lbvh_subtrees_test).
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "lightmass_server/bake_pipeline.h"
+#include "multi_rank_fixtures.h"
+#include "protocol/channel_records.h"
+
+namespace lc::bake {
+namespace {
+namespace fs = std::filesystem;
+using test::cornell_inputs;
+using test::scattered_lights;
+
+const fs::path kRankProgram = fs::path(LC_BIN_DIR) / "lightmass_rank";
+
+bool on_path(const std::string& program) {
+    const char* path = std::getenv("PATH");
+    std::string dirs = path ? path : "";
+    for (size_t at = 0; at <= dirs.size();) {
+        const size_t end = std::min(dirs.find(':', at), dirs.size());
+        if (fs::exists(fs::path(dirs.substr(at, end - at)) / program)) return true;
+        at = end + 1;
+    }
+    return false;
+}
+
+#define SKIP_WITHOUT_MPI()                                                                             \
+    do {                                                                                               \
+        if (!on_path("mpirun")) GTEST_SKIP() << "mpirun is not on PATH (apt-get install openmpi-bin)"; \
+        if (!fs::exists(kRankProgram))                                                                 \
+            GTEST_SKIP() << kRankProgram << " was not built (CMake found no MPI: libopenmpi-dev)";     \
+    } while (0)
+
+std::vector<uint8_t> tree_bytes(const Result<BuildResult>& built) {
+    EXPECT_TRUE(built.ok()) << (built ? "" : built.error());
+    return built ? encode_result_channel(built->tree) : std::vector<uint8_t>{};
+}
+
+TEST(MpiBake, TheLbvhTreeIsTheSameWhenTheRanksMergeItsSubtrees) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.lights = std::make_shared<std::vector<SceneLight>>(scattered_lights(20000));
+    const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+    for (uint32_t ranks : {2u, 4u}) {
+        inputs.ranks = ranks;
+        Result<BuildResult> built = run_bake(inputs, {});
+        EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        // Every rank but 0 sent merged nodes back (160 bytes each), beyond its lights.
+        for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{}) {
+            if (effect.rfind("rank ", 0) == 0 && effect.rfind("rank 0 ", 0) != 0) {
+                EXPECT_EQ(effect.find("bytes_sent 0 "), std::string::npos) << effect;
+            }
+        }
+    }
+}
+
+TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+    ASSERT_FALSE(in_process.empty());
+    for (uint32_t ranks : {1u, 2u, 3u, 4u}) {
+        inputs.ranks = ranks;
+        Result<BuildResult> built = run_bake(inputs, {});
+        EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        if (!built) continue;
+        // One "rank R ..." line per rank: every rank took part.
+        size_t rank_lines = 0;
+        for (const std::string& effect : built->report.effects) rank_lines += effect.rfind("rank ", 0) == 0;
+        EXPECT_EQ(rank_lines, ranks);
+    }
+}
+
+TEST(MpiBake, ARankThatDiesFailsTheBakeAndTheNextBakeWorks) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 2;
+    inputs.mpi.rank_args = {"--test-die-rank", "1"};
+    Result<BuildResult> died = run_bake(inputs, {});
+    ASSERT_FALSE(died.ok());
+    EXPECT_EQ(died.error_kind(), ErrorKind::kFailed);
+    EXPECT_NE(died.error().find("MPI bake over 2 ranks failed"), std::string::npos) << died.error();
+    inputs.mpi.rank_args.clear();
+    EXPECT_TRUE(run_bake(inputs, {}).ok());
+}
+
+// The processes whose command line names `needle`.
+size_t processes_naming(const std::string& needle) {
+    size_t found = 0;
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+        std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+        std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        found +=
+            cmdline.find(needle) != std::string::npos && entry.path().filename() != std::to_string(getpid());
+    }
+    return found;
+}
+
+TEST(MpiBake, CancelStopsEveryRank) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 4;
+    inputs.mpi.rank_args = {"--test-stall"};
+    inputs.mpi.work_dir = fs::temp_directory_path() / ("mpi-cancel-test-" + std::to_string(getpid()));
+    fs::create_directories(inputs.mpi.work_dir);
+    bool saw_ranks = false;
+    Result<BuildResult> cancelled = run_bake(inputs, [&](std::string_view stage, double) {
+        // Cancel once every rank has the job, so the ranks are running when stopped.
+        saw_ranks = saw_ranks || stage.find("job received by 4 ranks") != std::string_view::npos;
+        return !saw_ranks;
+    });
+    ASSERT_FALSE(cancelled.ok());
+    EXPECT_TRUE(saw_ranks);
+    EXPECT_EQ(cancelled.error_kind(), ErrorKind::kCancelled) << cancelled.error();
+    EXPECT_EQ(processes_naming(inputs.mpi.work_dir.string()), 0u) << "a rank outlived its cancelled bake";
+    fs::remove_all(inputs.mpi.work_dir);
+}
+
+TEST(MpiBake, MoreRanksThanTheServerAllowsIsRefused) {
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 5;
+    inputs.mpi.max_ranks = 4;
+    Result<BuildResult> refused = run_bake(inputs, {});
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.error_kind(), ErrorKind::kRefused);
+    EXPECT_NE(refused.error().find("asks for 5 MPI ranks; this server allows at most 4"), std::string::npos)
+        << refused.error();
+}
+
+TEST(MpiBake, AMissingLauncherIsNamed) {
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 2;
+    inputs.mpi.launcher = "no-such-mpirun-for-this-test";
+    Result<BuildResult> failed = run_bake(inputs, {});
+    ASSERT_FALSE(failed.ok());
+    EXPECT_NE(failed.error().find("no-such-mpirun-for-this-test"), std::string::npos) << failed.error();
+}
+
+}  // namespace
+}  // namespace lc::bake
