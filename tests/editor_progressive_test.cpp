@@ -317,13 +317,6 @@ TEST(EditorProgressive, AutoExposureFromTheCoarsePassKeepsRefining) {
     EXPECT_EQ(context->validation_message_count(), 0u);
 }
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(EditorProgressive, XvfbViewHandlesInputWhileTheImageRefines) {
     if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
     std::unique_ptr<vk::Context> probe;
@@ -348,7 +341,7 @@ TEST(EditorProgressive, XvfbViewHandlesInputWhileTheImageRefines) {
                                 " --size 96x72 --exposure 1 --frame-budget-ms 0.001 --validation --script " +
                                 script_path.string() + " > " + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
-    const std::string text = read_text(log);
+    const std::string text = test::read_text(log);
     ASSERT_EQ(status, 0) << text;
     EXPECT_NE(text.find("last in lightcuts mode"), std::string::npos) << text;
     EXPECT_NE(text.find("0 validation messages"), std::string::npos) << text;

@@ -8,7 +8,6 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include "editor_client/editor/editor_session.h"
@@ -85,13 +84,6 @@ TEST(EditorRealTime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {
     std::filesystem::remove_all(dir);
 }
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
 TEST(EditorRealTime, XvfbViewSwitchesBetweenRealTimeAndLightcuts) {
     if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
     std::unique_ptr<vk::Context> probe;
@@ -114,7 +106,7 @@ TEST(EditorRealTime, XvfbViewSwitchesBetweenRealTimeAndLightcuts) {
                                 " --mode realtime --size 96x72 --exposure 1 --validation --script " +
                                 script_path.string() + " > " + log.string() + " 2>&1";
     const int status = std::system(command.c_str());
-    const std::string text = read_text(log);
+    const std::string text = test::read_text(log);
     ASSERT_EQ(status, 0) << text;
     EXPECT_NE(text.find("last in realtime mode"), std::string::npos) << text;
     EXPECT_NE(text.find("0 validation messages"), std::string::npos) << text;

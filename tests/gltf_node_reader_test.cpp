@@ -24,11 +24,6 @@ namespace {
 using json = nlohmann::json;
 using lc::test::load_scene_both_ways;
 
-std::string read_text(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 std::optional<GltfNodeSplit> read_nodes(const std::string& bytes,
                                         const ConsumedBytes& on_consumed = {}) {
     return read_gltf_nodes({reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size()},
@@ -77,7 +72,7 @@ TEST_F(GltfNodeReader, GeneratedScenesTakeTheFastPathAndLoadAsWithTinygltf) {
             dir_ / ("scene" + std::to_string(i) + (i < scenes.size() ? ".gltf" : ".glb"));
         const Scene& written = scenes[i % scenes.size()];
         ASSERT_TRUE(write_scene_gltf(written, path).ok());
-        const std::optional<GltfNodeSplit> split = read_nodes(read_text(path));
+        const std::optional<GltfNodeSplit> split = read_nodes(test::read_text(path));
         ASSERT_TRUE(split.has_value()) << path << " fell back to tinygltf";
         EXPECT_EQ(split->table.lights.size(), written.lights.size());
         EXPECT_EQ(split->remainder.find("lightcuts_guid"), std::string::npos);
@@ -168,7 +163,7 @@ TEST_F(GltfNodeReader, LargeFilesAreReadInRunsWithTheSameLights) {
     for (const char* extension : {".gltf", ".glb"}) {
         const auto path = dir_ / (std::string("large") + extension);
         ASSERT_TRUE(write_scene_gltf(room, path).ok());
-        const std::string bytes = read_text(path);
+        const std::string bytes = test::read_text(path);
         ASSERT_GT(bytes.size(), size_t{3} << 20) << "too small to take several runs";
         std::vector<size_t> consumed;
         const std::optional<GltfNodeSplit> split =
@@ -188,7 +183,7 @@ TEST_F(GltfNodeReader, IsDeterministic) {
     const std::vector<Scene> scenes = generated_scenes();
     const auto path = dir_ / "room.gltf";
     ASSERT_TRUE(write_scene_gltf(scenes.back(), path).ok());
-    const std::string text = read_text(path);
+    const std::string text = test::read_text(path);
     const std::optional<GltfNodeSplit> first = read_nodes(text);
     const std::optional<GltfNodeSplit> second = read_nodes(text);
     ASSERT_TRUE(first && second);

@@ -1,6 +1,8 @@
 #include "test_paths.h"
 
 #include <atomic>
+#include <fstream>
+#include <iterator>
 #include <chrono>
 #include <unistd.h>
 
@@ -25,6 +27,11 @@ std::filesystem::path make_temp_dir(const std::string& label) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     return dir;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 }  // namespace lc::test

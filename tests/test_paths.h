@@ -12,6 +12,8 @@ std::filesystem::path bin_dir();
 std::filesystem::path shared_scenes_dir();
 // A fresh empty temporary directory, unique per test.
 std::filesystem::path make_temp_dir(const std::string& label);
+// A file's bytes (a log, a JSON, a glTF), empty when it cannot be read.
+std::string read_text(const std::filesystem::path& path);
 
 }  // namespace lc::test
 

@@ -31,14 +31,17 @@ void specialize_lighting(vk::Specialization& spec, const Frame& frame) {
         spec.set_uint(kSpecErrorRatio, std::bit_cast<uint32_t>(frame.settings->error_ratio));
 }
 
-void LightingPass::record(VkCommandBuffer cmd, const Frame& frame) const {
-    // A new image drops the old contents; a continued one keeps the regions already lit.
+void begin_lighting_images(VkCommandBuffer cmd, const Frame& frame) {
     const VkImageLayout old_layout =
         frame.continues_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
     for (const vk::Image* image : {&frame.targets->hdr, &frame.targets->cut}) {
         vk::transition_image(cmd, {image->handle(), old_layout, VK_IMAGE_LAYOUT_GENERAL,
                                    kComputeStage, kStorageReadWrite, kComputeStage, kStorageWrite});
     }
+}
+
+void LightingPass::record(VkCommandBuffer cmd, const Frame& frame) const {
+    begin_lighting_images(cmd, frame);
     bind(cmd, frame);
     dispatch_all(cmd, frame);
 }

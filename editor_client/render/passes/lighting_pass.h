@@ -9,6 +9,9 @@ namespace lc::client {
 // The effects every lighting shader is specialised for (the scene's light
 // types, shadows, the indirect clamp).
 void specialize_lighting(vk::Specialization& spec, const Frame& frame);
+// The HDR and cut images ready for a lighting pass to write: a new image
+// drops the old contents, a continued one keeps the regions already lit.
+void begin_lighting_images(VkCommandBuffer cmd, const Frame& frame);
 
 class LightingPass : public ComputePass {
 public:

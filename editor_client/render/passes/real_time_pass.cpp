@@ -67,12 +67,7 @@ void RealTimePass::dispatch(VkCommandBuffer cmd, const Frame& frame, Stage stage
 }
 
 void RealTimePass::record(VkCommandBuffer cmd, const Frame& frame) const {
-    const VkImageLayout old_layout =
-        frame.continues_image ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_UNDEFINED;
-    for (const vk::Image* image : {&frame.targets->hdr, &frame.targets->cut}) {
-        vk::transition_image(cmd, {image->handle(), old_layout, VK_IMAGE_LAYOUT_GENERAL,
-                                   kComputeStage, kStorageReadWrite, kComputeStage, kStorageWrite});
-    }
+    begin_lighting_images(cmd, frame);
     history_.record_setup(cmd);
     const std::array<VkDescriptorSet, 2> sets{frame.frame_set, history_.descriptor_set()};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.handle(), 0,
