@@ -27,6 +27,11 @@ struct Texture {
     bool srgb = true;
 };
 
+// glTF alphaMode: OPAQUE ignores alpha, MASK cuts out where alpha (texture x
+// factor) is under alpha_cutoff (in the image and in shadows), BLEND is drawn
+// opaque and casts no shadow.
+enum class AlphaMode : uint8_t { kOpaque, kMask, kBlend };
+
 struct Material {
     glm::vec4 base_color_factor{1.0f};
     int base_color_texture = -1;  // index into Scene::textures
@@ -38,6 +43,9 @@ struct Material {
     // False for surfaces light passes through (alphaMode BLEND, or a
     // KHR_materials_transmission factor > 0): they are drawn but block no light.
     bool casts_shadows = true;
+    AlphaMode alpha_mode = AlphaMode::kOpaque;
+    float alpha_cutoff = 0.5f;  // glTF's default; read for MASK only
+    bool double_sided = false;
 };
 
 struct Mesh {

@@ -45,6 +45,9 @@ void main() {
             metallic *= mr.b;
         }
     }
+    // alphaMode MASK: cut out where alpha is under the cutoff (after every
+    // texture fetch, so the derivatives above stay in uniform control flow).
+    if ((draw.flags & kDrawAlphaMask) != 0u && base.a < draw.alpha_cutoff) discard;
     out_position = vec4(in_position, 1.0);
     out_normal = vec4(n, roughness);
     out_albedo = vec4(base.rgb, metallic);

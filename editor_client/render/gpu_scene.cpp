@@ -152,6 +152,10 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         out.emissive_factor = material.emissive_factor;
         out.metallic = material.metallic;
         out.roughness = material.roughness;
+        if (material.alpha_mode == AlphaMode::kMask) {
+            out.flags |= kDrawAlphaMask;
+            out.alpha_cutoff = material.alpha_cutoff;
+        }
         size_t base = texture_index(material.base_color_texture, kDrawBaseColorTexture, out.flags);
         size_t emissive = texture_index(material.emissive_texture, kDrawEmissiveTexture, out.flags);
         size_t metallic_roughness = texture_index(material.metallic_roughness_texture,

@@ -40,7 +40,8 @@ struct GpuMaterial {
     glm::vec3 emissive_factor{0.0f};
     float metallic = 1.0f;
     float roughness = 1.0f;
-    uint32_t flags = 0;  // kDraw*Texture bits (gpu_layout.h)
+    uint32_t flags = 0;  // kDraw* bits (gpu_layout.h)
+    float alpha_cutoff = 0.0f;  // with kDrawAlphaMask
 };
 
 class GpuScene {

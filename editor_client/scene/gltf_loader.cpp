@@ -330,6 +330,7 @@ private:
     Status validate_node_graph();
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
+    Status read_alpha(const tg::Material& in, const std::string& what, Material& out);
     // `srgb`: colour data (base colour, emissive) rather than linear data
     // (metallic-roughness); an image used both ways becomes two textures.
     Result<int> texture_for(const tg::TextureInfo& info, const std::string& what,
@@ -584,6 +585,22 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
     return index;
 }
 
+// alphaMode, alphaCutoff and doubleSided; an unknown mode is drawn opaque.
+Status Loader::read_alpha(const tg::Material& in, const std::string& what, Material& out) {
+    if (in.alphaMode == "MASK") {
+        out.alpha_mode = AlphaMode::kMask;
+    } else if (in.alphaMode == "BLEND") {
+        out.alpha_mode = AlphaMode::kBlend;
+    } else if (!in.alphaMode.empty() && in.alphaMode != "OPAQUE") {
+        warn(what + ": alphaMode '" + in.alphaMode + "' is not OPAQUE, MASK or BLEND; drawn opaque");
+    }
+    if (!finite(in.alphaCutoff) || in.alphaCutoff < 0.0)
+        return fail(what + ": alphaCutoff must be finite and >= 0");
+    out.alpha_cutoff = float(in.alphaCutoff);
+    out.double_sided = in.doubleSided;
+    return Ok{};
+}
+
 Status Loader::convert_materials() {
     for (size_t i = 0; i < model_.materials.size(); ++i) {
         const tg::Material& in = model_.materials[i];
@@ -643,6 +660,7 @@ Status Loader::convert_materials() {
             glass->second.Get("transmissionFactor").IsNumber())
             transmission = glass->second.Get("transmissionFactor").GetNumberAsDouble();
         out.casts_shadows = in.alphaMode != "BLEND" && !(transmission > 0.0);
+        LC_RETURN_IF_ERROR(read_alpha(in, what, out));
         scene_.materials.push_back(out);
     }
     return Ok{};

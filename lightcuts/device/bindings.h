@@ -25,7 +25,12 @@ LC_CONST uint kBindShadowTriangles = 12u;
 LC_CONST uint kBindWalkStates = 13u;
 LC_CONST uint kBindBackground = 14u;         // GpuBackground, rewritten every frame
 LC_CONST uint kBindEnvironmentTexels = 15u;  // GpuEnvironmentTexel, row 0 at the zenith
-LC_CONST uint kFrameBindingCount = 16u;
+// Alpha-masked shadow triangles (lightcuts/alpha_mask.h): their texture
+// coordinates, their masks, and the masks' texels (a word holds four).
+LC_CONST uint kBindMaskedTriangles = 16u;
+LC_CONST uint kBindAlphaMasks = 17u;
+LC_CONST uint kBindMaskTexels = 18u;
+LC_CONST uint kFrameBindingCount = 19u;
 
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;

@@ -21,6 +21,7 @@ LC_CONST uint kSpecClassicLights = 6u;
 LC_CONST uint kSpecEmissive = 7u;
 LC_CONST uint kSpecOrientedLights = 21u;
 LC_CONST uint kSpecShadows = 19u;   // shadow_rays.glsl
+LC_CONST uint kSpecAlphaMasks = 27u;  // shadow_rays.glsl: some occluder is alpha-masked
 LC_CONST uint kSpecSpecular = 20u;  // material_model.glsl
 // cut_view.comp: what it shows.
 LC_CONST uint kSpecCutView = 9u;

@@ -170,6 +170,7 @@ void GBufferPass::draw(VkCommandBuffer cmd, const Frame& frame) const {
         constants.emissive_metallic = glm::vec4(material.emissive_factor, material.metallic);
         constants.eye_roughness.w = material.roughness;
         constants.flags = material.flags;
+        constants.alpha_cutoff = material.alpha_cutoff;
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.handle(), 0, 1,
                                 &material.set, 0, nullptr);
         vkCmdPushConstants(cmd, layout_.handle(),

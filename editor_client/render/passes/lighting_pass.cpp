@@ -18,6 +18,7 @@ void LightingPass::specialize(vk::Specialization& spec, const Frame& frame) cons
         .set_bool(kSpecClassicLights, effects.classic_lights)
         .set_bool(kSpecEmissive, effects.emissive)
         .set_bool(kSpecShadows, frame.shadows)
+        .set_bool(kSpecAlphaMasks, frame.alpha_masks)
         .set_bool(kSpecSpecular, effects.specular)
         .set_bool(kSpecIndirectClamp, effects.indirect_clamp)
         .set_bool(kSpecIndirectOff, effects.indirect_off);
