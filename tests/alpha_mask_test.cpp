@@ -9,6 +9,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -181,6 +182,103 @@ TEST(AlphaMask, GpuShadowThroughCheckerboardMatchesTheAnalyticFraction) {
     EXPECT_GT(inside, 6000u);  // about 80 x 80 pixels
     EXPECT_NEAR(double(lit) / double(inside), 0.5, 0.01 * 0.5) << lit << " of " << inside;
     EXPECT_GE(double(agree), 0.995 * double(inside));
+    EXPECT_EQ(context->validation_message_count(), 0u);
+}
+
+// The texture coordinate of p on one of `mesh`'s triangles (within `tolerance`
+// of its plane), or nothing.
+std::optional<glm::vec2> uv_on_mesh(const Mesh& mesh, const glm::vec3& p, float tolerance) {
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        const uint32_t* c = &mesh.indices[t];
+        const glm::dvec3 a(mesh.positions[c[0]]), b(mesh.positions[c[1]]), d(mesh.positions[c[2]]);
+        const glm::dvec3 n = glm::cross(b - a, d - a);
+        const double area2 = glm::dot(n, n);
+        if (!(area2 > 0.0)) continue;
+        const glm::dvec3 x(p);
+        if (std::abs(glm::dot(x - a, n)) / std::sqrt(area2) > tolerance) continue;
+        const double wb = glm::dot(glm::cross(x - a, d - a), n) / area2;
+        const double wd = glm::dot(glm::cross(b - a, x - a), n) / area2;
+        if (wb < 0.0 || wd < 0.0 || wb + wd > 1.0) continue;
+        return mesh.uvs[c[0]] * float(1.0 - wb - wd) + mesh.uvs[c[1]] * float(wb) +
+               mesh.uvs[c[2]] * float(wd);
+    }
+    return std::nullopt;
+}
+
+Result<GBufferReadback> gbuffer_of(const vk::Context& context, const Scene& scene,
+                                   const RenderSettings& settings) {
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, nullptr);
+    if (!renderer) return make_error(renderer.error());
+    Result<RenderStats> stats = (*renderer)->render(settings);
+    if (!stats) return make_error(stats.error());
+    return (*renderer)->read_gbuffer();
+}
+
+// Khronos' AlphaBlendModeTest: its three MASK quads (cutoffs 0.25, 0.5, 0.75
+// over one label texture) are cut out where the CPU's mask says, pixel by
+// pixel against the same frame with the masks made opaque; higher cutoffs cut
+// out more; the OPAQUE quad keeps every pixel.
+TEST(AlphaMask, AlphaBlendModeTestCutsOutItsMaskRow) {
+    LC_REQUIRE_SHARED_SCENES();
+    std::string why;
+    std::unique_ptr<vk::Context> context = test::make_headless_context(why);
+    if (!context) GTEST_SKIP() << "no Vulkan device: " << why;
+    Result<Scene> loaded =
+        load_scene(test::shared_scenes_dir() / "AlphaBlendModeTest" / "AlphaBlendModeTest.gltf");
+    ASSERT_TRUE(loaded.ok()) << loaded.error();
+    Scene masked = std::move(loaded).value();
+    masked.lights.push_back(test::directional_light({0.0f, -0.3f, -1.0f}, glm::vec3(1.0f), 3.0f));
+    test::set_unit_guid(masked.lights.back(), 0);
+    Scene opaque = masked;
+    std::vector<size_t> mask_meshes;
+    for (size_t m = 0; m < masked.meshes.size(); ++m) {
+        const int material = masked.meshes[m].material;
+        if (material >= 0 && masked.materials[size_t(material)].alpha_mode == AlphaMode::kMask)
+            mask_meshes.push_back(m);
+    }
+    ASSERT_EQ(mask_meshes.size(), 3u) << "the file's three MASK quads";
+    for (Material& m : opaque.materials) m.alpha_mode = AlphaMode::kOpaque;
+
+    RenderSettings settings;
+    settings.width = 192;
+    settings.height = 96;
+    const glm::vec3 centre = 0.5f * (masked.bounds_min + masked.bounds_max);
+    settings.camera.eye = centre + glm::vec3(0.0f, 0.0f, 8.0f);
+    settings.camera.target = centre;
+    settings.camera.yfov = 0.45f;
+    Result<GBufferReadback> with_masks = gbuffer_of(*context, masked, settings);
+    Result<GBufferReadback> without = gbuffer_of(*context, opaque, settings);
+    ASSERT_TRUE(with_masks.ok() && without.ok());
+    const float tolerance = 1e-3f * glm::length(masked.bounds_max - masked.bounds_min);
+    std::vector<std::pair<float, double>> cut_by_cutoff;
+    for (size_t m : mask_meshes) {
+        const Mesh& mesh = masked.meshes[m];
+        const AlphaMask mask = *alpha_mask_of(masked, masked.materials[size_t(mesh.material)]);
+        size_t covered = 0, cut = 0, agree = 0;
+        for (size_t i = 0; i < size_t(settings.width) * settings.height; ++i) {
+            const float* q = &without->position[4 * i];
+            const float* r = &with_masks->position[4 * i];
+            if (q[3] != 1.0f) continue;
+            const std::optional<glm::vec2> uv = uv_on_mesh(mesh, {q[0], q[1], q[2]}, tolerance);
+            if (!uv) continue;
+            ++covered;
+            const bool drawn = r[3] == 1.0f && glm::length(glm::vec3(r[0], r[1], r[2]) -
+                                                           glm::vec3(q[0], q[1], q[2])) < tolerance;
+            cut += !drawn;
+            agree += drawn == mask_keeps(mask, *uv);
+        }
+        SCOPED_TRACE("mesh " + std::to_string(m));
+        ASSERT_GT(covered, 200u);
+        // Linear filtering in the G-buffer against the nearest texel: edges may differ.
+        EXPECT_GE(double(agree), 0.95 * double(covered));
+        const double fraction = double(cut) / double(covered);
+        EXPECT_GT(fraction, 0.05);
+        EXPECT_LT(fraction, 0.95);
+        cut_by_cutoff.emplace_back(masked.materials[size_t(mesh.material)].alpha_cutoff, fraction);
+    }
+    std::sort(cut_by_cutoff.begin(), cut_by_cutoff.end());
+    for (size_t k = 1; k < cut_by_cutoff.size(); ++k)
+        EXPECT_GT(cut_by_cutoff[k].second, cut_by_cutoff[k - 1].second);
     EXPECT_EQ(context->validation_message_count(), 0u);
 }
 
