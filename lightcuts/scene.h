@@ -40,6 +40,10 @@ struct Material {
     int metallic_roughness_texture = -1;  // scales roughness (G) and metallic (B)
     glm::vec3 emissive_factor{0.0f};
     int emissive_texture = -1;
+    // A tangent-space normal map (linear RGB in [0, 1] -> [-1, 1]); its x and
+    // y are scaled by normal_scale (glTF normalTexture.scale).
+    int normal_texture = -1;
+    float normal_scale = 1.0f;
     // False for surfaces light passes through (alphaMode BLEND, or a
     // KHR_materials_transmission factor > 0): they are drawn but block no light.
     bool casts_shadows = true;
@@ -54,6 +58,9 @@ struct Mesh {
     std::vector<glm::vec2> uvs;        // empty when the primitive has no TEXCOORD_0
     std::vector<uint32_t> indices;     // triangle list
     int material = -1;                 // -1: the glTF default material
+    // World space: xyz unit, w = +-1 the bitangent's sign (glTF TANGENT, or
+    // generated for a normal map); empty when the material has no normal map.
+    std::vector<glm::vec4> tangents;
 };
 
 struct Camera {

@@ -103,7 +103,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuDrawConstants, view_proj), LC_FIELD(GpuDrawConstants, base_color_factor),
            LC_FIELD(GpuDrawConstants, emissive_metallic), LC_FIELD(GpuDrawConstants, eye_roughness),
            LC_FIELD(GpuDrawConstants, flags), LC_FIELD(GpuDrawConstants, alpha_cutoff),
-           LC_FIELD(GpuDrawConstants, pad1), LC_FIELD(GpuDrawConstants, pad2)}}},
+           LC_FIELD(GpuDrawConstants, normal_scale), LC_FIELD(GpuDrawConstants, pad2)}}},
         {"GpuBackground",
          {sizeof(GpuBackground),
           {LC_FIELD(GpuBackground, ray_at_origin), LC_FIELD(GpuBackground, kind),
@@ -179,6 +179,7 @@ const std::map<std::string, uint32_t>& known_images() {
         {"base_color_texture", kBindBaseColorTexture},
         {"emissive_texture", kBindEmissiveTexture},
         {"metallic_roughness_texture", kBindMetallicRoughnessTexture},
+        {"normal_texture", kBindNormalTexture},
     };
     return images;
 }
@@ -252,7 +253,7 @@ bool is_struct_type(const json& types, const json& type) {
 // std430 size of a member of a non-struct type (the shared structs use no others).
 size_t scalar_or_vector_size(const std::string& type) {
     static const std::map<std::string, size_t> sizes = {
-        {"float", 4}, {"uint", 4}, {"int", 4}, {"vec2", 8}, {"vec3", 12}, {"vec4", 16}, {"mat4", 64}};
+        {"float", 4}, {"uint", 4}, {"int", 4}, {"vec2", 8}, {"vec3", 12}, {"vec4", 16}, {"uvec4", 16}, {"mat4", 64}};
     auto it = sizes.find(type);
     return it == sizes.end() ? 0 : it->second;
 }

@@ -24,8 +24,9 @@ struct GpuVertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f};
     glm::vec2 uv{0.0f};
+    glm::vec4 tangent{0.0f};  // xyz, w: bitangent sign; zero without a normal map
 };
-static_assert(sizeof(GpuVertex) == 32);
+static_assert(sizeof(GpuVertex) == 48);
 
 struct GpuDraw {
     uint32_t first_index = 0;
@@ -42,6 +43,7 @@ struct GpuMaterial {
     float roughness = 1.0f;
     uint32_t flags = 0;  // kDraw* bits (gpu_layout.h)
     float alpha_cutoff = 0.0f;  // with kDrawAlphaMask
+    float normal_scale = 1.0f;  // with kDrawNormalTexture
 };
 
 class GpuScene {

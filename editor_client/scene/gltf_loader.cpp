@@ -31,6 +31,7 @@
 #include "editor_client/scene/mapped_file.h"
 #include "editor_client/scene/gltf_resource_access.h"
 #include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/tangent_frames.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
@@ -331,6 +332,10 @@ private:
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
     Status read_alpha(const tg::Material& in, const std::string& what, Material& out);
+    Status read_normal_texture(const tg::Material& in, const std::string& what, Material& out);
+    Status read_tangents(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                         Mesh& mesh) const;
+    Result<std::vector<glm::vec4>> read_vec4(int index, const std::string& what) const;
     // `srgb`: colour data (base colour, emissive) rather than linear data
     // (metallic-roughness); an image used both ways becomes two textures.
     Result<int> texture_for(const tg::TextureInfo& info, const std::string& what,
@@ -585,6 +590,19 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
     return index;
 }
 
+// normalTexture (linear data) and its scale.
+Status Loader::read_normal_texture(const tg::Material& in, const std::string& what, Material& out) {
+    tg::TextureInfo info;
+    info.index = in.normalTexture.index;
+    info.texCoord = in.normalTexture.texCoord;
+    Result<int> texture = texture_for(info, what + " normalTexture", /*srgb=*/false);
+    if (!texture) return Error{texture.error()};
+    if (!finite(in.normalTexture.scale)) return fail(what + ": normalTexture.scale must be finite");
+    out.normal_texture = *texture;
+    out.normal_scale = float(in.normalTexture.scale);
+    return Ok{};
+}
+
 // alphaMode, alphaCutoff and doubleSided; an unknown mode is drawn opaque.
 Status Loader::read_alpha(const tg::Material& in, const std::string& what, Material& out) {
     if (in.alphaMode == "MASK") {
@@ -652,6 +670,7 @@ Status Loader::convert_materials() {
                         what + " metallicRoughnessTexture", /*srgb=*/false);
         if (!metallic_roughness_texture) return Error{metallic_roughness_texture.error()};
         out.metallic_roughness_texture = *metallic_roughness_texture;
+        LC_RETURN_IF_ERROR(read_normal_texture(in, what, out));
         // Light passes through blended and transmissive surfaces (a lamp's
         // glass): they are drawn opaque but hide no light.
         double transmission = 0.0;
@@ -1005,8 +1024,60 @@ Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dma
         }
         mesh.uvs = std::move(*uvs);
     }
+    LC_RETURN_IF_ERROR(read_tangents(prim, what, linear, mesh));
     if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
     return Ok{};
+}
+
+// Tangents only for a material with a normal map: the file's TANGENT through
+// the node's transform (a mirroring one flips the bitangent's sign), else
+// generated (tangent_frames.h).
+Status Loader::read_tangents(const tg::Primitive& prim, const std::string& what,
+                             const glm::dmat3& linear, Mesh& mesh) const {
+    const bool normal_mapped = prim.material >= 0 && size_t(prim.material) < scene_.materials.size() &&
+                               scene_.materials[size_t(prim.material)].normal_texture >= 0;
+    if (!normal_mapped || mesh.uvs.empty()) return Ok{};
+    auto it = prim.attributes.find("TANGENT");
+    if (it == prim.attributes.end()) {
+        mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+        return Ok{};
+    }
+    Result<std::vector<glm::vec4>> tangents = read_vec4(it->second, what + " TANGENT");
+    if (!tangents) return Error{tangents.error()};
+    if (tangents->size() != mesh.positions.size())
+        return fail(what + ": TANGENT has " + std::to_string(tangents->size()) +
+                    " elements but POSITION has " + std::to_string(mesh.positions.size()));
+    const float mirror = glm::determinant(linear) < 0.0 ? -1.0f : 1.0f;
+    mesh.tangents.resize(tangents->size());
+    for (size_t i = 0; i < tangents->size(); ++i) {
+        const glm::dvec3 t = linear * glm::dvec3((*tangents)[i]);
+        const double length = glm::length(t);
+        const float sign = (*tangents)[i].w < 0.0f ? -mirror : mirror;
+        mesh.tangents[i] = length > 1e-20 && std::isfinite(length)
+                               ? glm::vec4(glm::vec3(t / length), sign)
+                               : glm::vec4(any_orthogonal(mesh.normals[i]), sign);
+    }
+    return Ok{};
+}
+
+bool is_vec4_float(const tg::Accessor& a) {
+    return a.type == TINYGLTF_TYPE_VEC4 && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+}
+
+Result<std::vector<glm::vec4>> Loader::read_vec4(int index, const std::string& what) const {
+    Result<AccessorData> data = view_accessor(index, what, "VEC4 FLOAT", &is_vec4_float);
+    if (!data) return Error{data.error()};
+    std::vector<glm::vec4> out(data->count);
+    for (size_t i = 0; i < data->count; ++i) {
+        float v[4];
+        std::memcpy(v, data->base + i * data->stride, sizeof v);
+        for (float c : v)
+            if (!std::isfinite(c))
+                return fail("accessor " + std::to_string(index) + " (" + what +
+                            ") has a non-finite value at element " + std::to_string(i));
+        out[i] = glm::vec4(v[0], v[1], v[2], v[3]);
+    }
+    return out;
 }
 
 Status Loader::add_mesh(int node_index, int mesh_index, const glm::dmat4& world) {

@@ -203,6 +203,7 @@ LC_CONST uint kDrawBaseColorTexture = 1u;
 LC_CONST uint kDrawEmissiveTexture = 2u;
 LC_CONST uint kDrawMetallicRoughnessTexture = 4u;
 LC_CONST uint kDrawAlphaMask = 8u;  // discard where base colour alpha < alpha_cutoff
+LC_CONST uint kDrawNormalTexture = 16u;  // a tangent-space normal map, x and y times normal_scale
 
 // Push constants of one G-buffer draw: 128 bytes, Vulkan's guaranteed
 // push-constant space.
@@ -213,7 +214,7 @@ struct LC_ALIGN16 GpuDrawConstants {
     vec4 eye_roughness LC_DEFAULT(vec4(0.0f));      // xyz: camera position, w: roughness
     uint flags LC_DEFAULT(0u);                      // kDraw*
     float alpha_cutoff LC_DEFAULT(0.0f);            // with kDrawAlphaMask
-    uint pad1 LC_DEFAULT(0u);
+    float normal_scale LC_DEFAULT(1.0f);            // with kDrawNormalTexture
     uint pad2 LC_DEFAULT(0u);
 };
 
