@@ -48,7 +48,8 @@ std::vector<glm::vec4> generate_tangents(const std::vector<glm::vec3>& positions
             for (int k = 0; k < 3; ++k) {
                 const uint32_t i = indices[t + size_t(k)];
                 valid = valid && i < n;
-                if (valid) p[k] = glm::dvec3(positions[i]), uv[k] = glm::dvec2(uvs[i]);
+                // glTF's v runs down the image, the tangent frame's y up it.
+                if (valid) p[k] = glm::dvec3(positions[i]), uv[k] = glm::dvec2(uvs[i].x, -uvs[i].y);
             }
             FrameSum frame;
             if (!valid || !triangle_frame(p, uv, frame)) continue;

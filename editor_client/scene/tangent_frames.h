@@ -2,7 +2,8 @@
 // Tangents for normal maps where the file gives none, in the convention glTF
 // names (MikkTSpace's): per vertex, the direction of increasing u in the
 // surface, made orthogonal to the vertex normal, with w = +-1 the sign that
-// gives the bitangent (direction of increasing v) as cross(normal, tangent) * w.
+// gives the bitangent as cross(normal, tangent) * w: the direction of
+// decreasing v (glTF's v runs down the image; the normal map's y up it).
 // Triangles add their uv-gradient frames to their corners weighted by area,
 // so a mirrored half of a model (u running backwards) gets w = -1.
 // This is not the MikkTSpace reference code: vertices are not split where
