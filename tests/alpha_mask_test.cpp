@@ -17,6 +17,7 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/scene_effects.h"
 #include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/scene_generator.h"
 #include "lightcuts/alpha_mask.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
@@ -141,6 +142,33 @@ TEST(AlphaMask, EffectsReportNamesMaskAndBlend) {
         if (d.name.find("alphaMode BLEND") != std::string::npos)
             blend_named = d.reason.find("1 drawn material") != std::string::npos;
     EXPECT_TRUE(blend_named);
+}
+
+// add-lights --layout surface: lights on a masked surface stand only where
+// its mask keeps it.
+TEST(AlphaMask, SurfaceLightsStandOnlyWhereTheMaskKeepsTheSurface) {
+    const Scene scene = masked_quad_scene(AlphaMode::kMask);
+    LightLayoutOptions options;
+    options.count = 400;
+    options.layout = LightLayout::kSurface;
+    options.seed = 7;
+    options.surfaces = &scene;
+    options.box_min = {-1.5f, 3.5f, -1.5f};  // the masked quad only
+    options.box_max = {1.5f, 4.5f, 1.5f};
+    Result<std::vector<SceneLight>> lights = generate_lights(options);
+    ASSERT_TRUE(lights.ok()) << lights.error();
+    ASSERT_EQ(lights->size(), 400u);
+    const AlphaMask mask = *alpha_mask_of(scene, scene.materials[1]);
+    for (const SceneLight& light : *lights) {
+        const glm::vec2 uv((light.position.x + 1.0f) / 2.0f, (1.0f - light.position.z) / 2.0f);
+        EXPECT_TRUE(mask_keeps(mask, uv)) << light.position.x << ", " << light.position.z;
+    }
+    // A mask that keeps nothing leaves no surface in the box.
+    Scene cut = scene;
+    cut.materials[1].base_color_texture = -1;
+    cut.materials[1].base_color_factor.a = 0.1f;
+    options.surfaces = &cut;
+    EXPECT_FALSE(generate_lights(options).ok());
 }
 
 // The GPU: a frame looking straight down at the footprint (a plane seen
