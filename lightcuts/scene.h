@@ -32,6 +32,17 @@ struct Texture {
 // opaque and casts no shadow.
 enum class AlphaMode : uint8_t { kOpaque, kMask, kBlend };
 
+// The texture coordinates a material's textures are sampled with: the set
+// (TEXCOORD_<set>) and KHR_texture_transform (scale, then rotation
+// counter-clockwise in uv, then offset), applied to the mesh's uvs at load.
+struct TextureCoordinates {
+    int set = 0;
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+    bool transformed = false;  // the file gives KHR_texture_transform
+};
+
 struct Material {
     glm::vec4 base_color_factor{1.0f};
     int base_color_texture = -1;  // index into Scene::textures
@@ -50,6 +61,7 @@ struct Material {
     AlphaMode alpha_mode = AlphaMode::kOpaque;
     float alpha_cutoff = 0.5f;  // glTF's default; read for MASK only
     bool double_sided = false;
+    TextureCoordinates texture_coordinates;
 };
 
 struct Mesh {
@@ -61,6 +73,7 @@ struct Mesh {
     // World space: xyz unit, w = +-1 the bitangent's sign (glTF TANGENT, or
     // generated for a normal map); empty when the material has no normal map.
     std::vector<glm::vec4> tangents;
+    std::vector<glm::vec4> colors;  // COLOR_0 (linear RGBA), empty: white
 };
 
 struct Camera {

@@ -19,6 +19,7 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
+layout(location = 4) in vec4 in_color;  // COLOR_0, times the base colour
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -54,6 +55,8 @@ void main() {
         n = mapped_normal(back ? -n : n, back, texture(normal_texture, in_uv).rgb);
 
     vec4 base = draw.base_color_factor;
+    // Only where the mesh has COLOR_0: an interpolated white may not be exactly 1.
+    if ((draw.flags & kDrawVertexColors) != 0u) base *= in_color;
     vec3 emissive = draw.emissive_metallic.rgb;
     float metallic = draw.emissive_metallic.a;
     float roughness = draw.eye_roughness.w;

@@ -20,6 +20,9 @@ Status check_mesh(const Mesh& mesh, size_t index) {
     if (!mesh.uvs.empty() && mesh.uvs.size() != n)
         return make_error(mesh_name(index) + ": " + std::to_string(mesh.uvs.size()) +
                           " texture coordinates for " + std::to_string(n) + " positions");
+    if (!mesh.colors.empty() && mesh.colors.size() != n)
+        return make_error(mesh_name(index) + ": " + std::to_string(mesh.colors.size()) +
+                          " vertex colours for " + std::to_string(n) + " positions");
     if (!mesh.tangents.empty() && mesh.tangents.size() != n)
         return make_error(mesh_name(index) + ": " + std::to_string(mesh.tangents.size()) +
                           " tangents for " + std::to_string(n) + " positions");
@@ -78,6 +81,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         draw.first_index = uint32_t(indices.size());
         draw.index_count = uint32_t(mesh.indices.size());
         draw.vertex_offset = int32_t(vertices.size());
+        draw.vertex_colors = !mesh.colors.empty();
         draw.material = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size()
                             ? uint32_t(mesh.material)
                             : default_material;
@@ -87,6 +91,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
             if (!mesh.normals.empty()) vertex.normal = mesh.normals[v];
             if (!mesh.uvs.empty()) vertex.uv = mesh.uvs[v];
             if (!mesh.tangents.empty()) vertex.tangent = mesh.tangents[v];
+            if (!mesh.colors.empty()) vertex.color = mesh.colors[v];
             vertices.push_back(vertex);
         }
         indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());

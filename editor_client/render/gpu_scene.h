@@ -25,14 +25,16 @@ struct GpuVertex {
     glm::vec3 normal{0.0f};
     glm::vec2 uv{0.0f};
     glm::vec4 tangent{0.0f};  // xyz, w: bitangent sign; zero without a normal map
+    glm::vec4 color{1.0f};    // COLOR_0, times the base colour
 };
-static_assert(sizeof(GpuVertex) == 48);
+static_assert(sizeof(GpuVertex) == 64);
 
 struct GpuDraw {
     uint32_t first_index = 0;
     uint32_t index_count = 0;
     int32_t vertex_offset = 0;
     uint32_t material = 0;  // index into GpuScene::materials (the last one is glTF's default)
+    bool vertex_colors = false;  // the mesh has COLOR_0 (kDrawVertexColors)
 };
 
 struct GpuMaterial {

@@ -69,6 +69,33 @@ void decide_alpha(const Scene& scene, SceneEffects& effects) {
                             : "no drawn material has alphaMode BLEND"});
 }
 
+// Normal maps, texture coordinate sets and transforms, vertex colours: what
+// the drawn meshes use (all of it is applied at load or in the G-buffer).
+void decide_surface_inputs(const Scene& scene, SceneEffects& effects) {
+    size_t normal_mapped = 0, second_set = 0, transformed = 0, coloured = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        if (mesh.indices.empty()) continue;
+        coloured += !mesh.colors.empty();
+        if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+        const Material& m = scene.materials[size_t(mesh.material)];
+        normal_mapped += !mesh.tangents.empty();
+        second_set += !mesh.uvs.empty() && m.texture_coordinates.set == 1;
+        transformed += !mesh.uvs.empty() && m.texture_coordinates.transformed;
+    }
+    effects.decisions.push_back({"normal maps (normalTexture)", normal_mapped > 0,
+                                 normal_mapped > 0 ? plural(normal_mapped, "drawn mesh") + " normal-mapped"
+                                                   : "no drawn mesh has a normal map"});
+    const bool sets = second_set + transformed > 0;
+    effects.decisions.push_back(
+        {"texture coordinate sets and transforms (TEXCOORD_1, KHR_texture_transform)", sets,
+         sets ? plural(second_set, "drawn mesh") + " sampled with TEXCOORD_1, " +
+                    plural(transformed, "drawn mesh") + " with KHR_texture_transform"
+              : "every drawn texture is sampled with TEXCOORD_0 as it is"});
+    effects.decisions.push_back({"vertex colours (COLOR_0)", coloured > 0,
+                                 coloured > 0 ? plural(coloured, "drawn mesh") + " with COLOR_0"
+                                              : "no drawn mesh has COLOR_0"});
+}
+
 }  // namespace
 
 std::vector<EffectDecision> SceneEffects::simulated() const {
@@ -213,6 +240,7 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         effects.occluder_masks = std::move(occlusion.masks);
     }
     decide_alpha(scene, effects);
+    decide_surface_inputs(scene, effects);
     effects.specular = decide(
         "glossy reflection (a lobe around the mirror direction, material_model.h)",
         glossy_materials > 0,
