@@ -35,8 +35,7 @@ std::optional<AlphaMask> alpha_mask_of(const Scene& scene, const Material& mater
     mask.alpha.resize(texels);
     for (size_t i = 0; i < texels; ++i) mask.alpha[i] = texture.rgba8[4 * i + 3];
     // Every texel kept: the shadow is solid and needs no fetch.
-    if (*std::min_element(mask.alpha.begin(), mask.alpha.end()) >= mask.keep_threshold)
-        return std::nullopt;
+    if (*std::min_element(mask.alpha.begin(), mask.alpha.end()) >= mask.keep_threshold) return std::nullopt;
     return mask;
 }
 
@@ -57,8 +56,8 @@ std::vector<int32_t> mesh_alpha_masks(const Scene& scene, std::vector<AlphaMask>
     return of_mesh;
 }
 
-void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh,
-                       const uint32_t* corners, int32_t mask) {
+void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh, const uint32_t* corners,
+                       int32_t mask) {
     if (mask < 0 && out.triangle_mask.empty()) return;
     if (out.triangle_mask.size() < triangle) {
         out.triangle_mask.resize(triangle, -1);

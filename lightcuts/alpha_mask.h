@@ -61,8 +61,8 @@ std::vector<int32_t> mesh_alpha_masks(const Scene& scene, std::vector<AlphaMask>
 // Records one occluder triangle (mesh vertex indices `corners`) with mask
 // `mask` (-1: opaque). The per-triangle lists start when the first masked
 // triangle comes, the opaque ones before it filled in then.
-void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh,
-                       const uint32_t* corners, int32_t mask);
+void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh, const uint32_t* corners,
+                       int32_t mask);
 
 // The texel at uv: nearest, repeat wrap (the float math the shaders do).
 uint32_t mask_texel(const AlphaMask& mask, glm::vec2 uv);

@@ -256,8 +256,7 @@ ShadowBvh ShadowBvh::build(const Scene& scene) {
         // A trailing partial triple is no triangle: count it as a degenerate one.
         if (mesh.indices.size() % 3 != 0) ++skipped_degenerate;
         const int32_t mask = mesh_mask[m];
-        if (!casts_shadows(scene, mesh) ||
-            (mask >= 0 && mask_cuts_everything(masks.masks[size_t(mask)]))) {
+        if (!casts_shadows(scene, mesh) || (mask >= 0 && mask_cuts_everything(masks.masks[size_t(mask)]))) {
             skipped_non_casting += full_triples;
             continue;
         }

@@ -61,7 +61,6 @@ private:
     void attach_masks(const OccluderMasks& masks, std::span<const uint32_t> source_of_leaf);
     bool blocks(size_t leaf_triangle, double u, double w) const;
 
-
     std::vector<GpuBvhNode> nodes_;
     std::vector<GpuShadowTriangle> triangles_;  // in leaf order
     std::vector<glm::dvec3> vertices_;          // 3 per triangle, in leaf order, for the CPU test

@@ -65,8 +65,8 @@ bool in_footprint(const glm::vec3& p) {
 }
 
 double cpu_visibility(const ShadowBvh& bvh, double bias, const glm::vec3& floor_point) {
-    return light_visibility(bvh, bias, LightType::kDirectional, glm::dvec3(0.0),
-                            glm::dvec3(kLightTravel), glm::dvec3(floor_point), glm::dvec3(0, 1, 0));
+    return light_visibility(bvh, bias, LightType::kDirectional, glm::dvec3(0.0), glm::dvec3(kLightTravel),
+                            glm::dvec3(floor_point), glm::dvec3(0, 1, 0));
 }
 
 TEST(AlphaMask, KeepThresholdMatchesTheFloatComparison) {

@@ -57,8 +57,10 @@ json quad_document(const json& material) {
         bin.resize(offset + bytes);
         std::memcpy(bin.data() + offset, data, bytes);
         views.push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}});
-        accessors.push_back(
-            {{"bufferView", views.size() - 1}, {"componentType", component}, {"count", count}, {"type", type}});
+        accessors.push_back({{"bufferView", views.size() - 1},
+                             {"componentType", component},
+                             {"count", count},
+                             {"type", type}});
         return int(accessors.size() - 1);
     };
     json position = add(positions.data(), 48, 5126, 4, "VEC3");
@@ -69,19 +71,21 @@ json quad_document(const json& material) {
                              {"TEXCOORD_1", add(uv1.data(), 32, 5126, 4, "VEC2")},
                              {"COLOR_0", add(colors.data(), 64, 5126, 4, "VEC4")}};
     const int index_accessor = add(indices.data(), 12, 5123, 6, "SCALAR");
-    json doc = {{"asset", {{"version", "2.0"}}},
-                {"scene", 0},
-                {"scenes", {{{"nodes", {0}}}}},
-                {"nodes", {{{"mesh", 0}}}},
-                {"meshes", {{{"primitives", {{{"attributes", attributes}, {"indices", index_accessor}, {"material", 0}}}}}}},
-                {"materials", {material}},
-                {"images", {{{"uri", kWhitePng}}}},
-                {"textures", {{{"source", 0}}}},
-                {"accessors", accessors},
-                {"bufferViews", views},
-                {"buffers", {{{"byteLength", bin.size()},
-                              {"uri", "data:application/octet-stream;base64," + base64(bin)}}}},
-                {"extensionsUsed", {"KHR_texture_transform"}}};
+    json doc = {
+        {"asset", {{"version", "2.0"}}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes",
+         {{{"primitives", {{{"attributes", attributes}, {"indices", index_accessor}, {"material", 0}}}}}}},
+        {"materials", {material}},
+        {"images", {{{"uri", kWhitePng}}}},
+        {"textures", {{{"source", 0}}}},
+        {"accessors", accessors},
+        {"bufferViews", views},
+        {"buffers",
+         {{{"byteLength", bin.size()}, {"uri", "data:application/octet-stream;base64," + base64(bin)}}}},
+        {"extensionsUsed", {"KHR_texture_transform"}}};
     return doc;
 }
 
@@ -153,8 +157,8 @@ TEST(TextureInputs, TexCoordOneTransformAndVertexColoursAreRead) {
     const SceneEffects effects = analyse_scene_effects(scene, nullptr);
     int named = 0;
     for (const EffectDecision& d : effects.decisions) {
-        if (d.name.find("TEXCOORD_1") != std::string::npos ||
-            d.name.find("COLOR_0") != std::string::npos || d.name.find("normalTexture") != std::string::npos ||
+        if (d.name.find("TEXCOORD_1") != std::string::npos || d.name.find("COLOR_0") != std::string::npos ||
+            d.name.find("normalTexture") != std::string::npos ||
             d.name.find("alphaMode MASK") != std::string::npos) {
             EXPECT_TRUE(d.simulated) << d.name << ": " << d.reason;
             ++named;

@@ -27,8 +27,7 @@ TEST(NormalMap, GeneratedTangentsFollowUAndMirroredHalvesFlipTheSign) {
     const std::vector<glm::vec3> positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                                               {2, 0, 0}, {3, 0, 0}, {3, 1, 0}, {2, 1, 0}};
     const std::vector<glm::vec3> normals(8, glm::vec3(0, 0, 1));
-    const std::vector<glm::vec2> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0},
-                                        {1, 1}, {0, 1}, {0, 0}, {1, 0}};
+    const std::vector<glm::vec2> uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}, {1, 1}, {0, 1}, {0, 0}, {1, 0}};
     const std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7};
     const std::vector<glm::vec4> t = generate_tangents(positions, normals, uvs, indices);
     ASSERT_EQ(t.size(), 8u);
@@ -97,8 +96,6 @@ double convex_fraction(const GBufferReadback& g, size_t& tilted) {
             const float turns_up = normal_at(g, x, y - 1).y - normal_at(g, x, y + 1).y;
             ++tilted;
             convex += turns_right > 0.0f && turns_up > 0.0f;
-
-
         }
     }
     return tilted > 0 ? double(convex) / double(tilted) : 0.0;
@@ -109,8 +106,8 @@ TEST(NormalMap, NormalTangentMirrorTestSpheresLightFromOneSide) {
     std::string why;
     std::unique_ptr<vk::Context> context = test::make_headless_context(why);
     if (!context) GTEST_SKIP() << "no Vulkan device: " << why;
-    Result<Scene> loaded = load_scene(test::shared_scenes_dir() / "NormalTangentMirrorTest" /
-                                      "NormalTangentMirrorTest.gltf");
+    Result<Scene> loaded =
+        load_scene(test::shared_scenes_dir() / "NormalTangentMirrorTest" / "NormalTangentMirrorTest.gltf");
     ASSERT_TRUE(loaded.ok()) << loaded.error();
     Scene scene = std::move(loaded).value();
     scene.lights.push_back(test::directional_light({-1.0f, -1.0f, -1.0f}, glm::vec3(1.0f), 3.0f));
@@ -135,9 +132,10 @@ TEST(NormalMap, NormalTangentMirrorTestSpheresLightFromOneSide) {
     for (Mesh& mesh : regenerated.meshes)
         mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
     const double generated = measure(regenerated, regenerated_tilted);
-    std::printf("NormalTangentMirrorTest: convex-lit fraction %.4f of %zu tilted pixels with the "
-                "file's tangents, %.4f generated, %.4f with the signs ignored\n",
-                with_file_tangents, tilted, generated, signs_ignored);
+    std::printf(
+        "NormalTangentMirrorTest: convex-lit fraction %.4f of %zu tilted pixels with the "
+        "file's tangents, %.4f generated, %.4f with the signs ignored\n",
+        with_file_tangents, tilted, generated, signs_ignored);
     // Measured: 0.750 with the file's or generated tangents, 0.424 with the
     // signs ignored (the mirrored halves then turn left). The rest are
     // silhouettes and the flat cells' rims, where the differences are noise.

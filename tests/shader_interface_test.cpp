@@ -252,8 +252,9 @@ bool is_struct_type(const json& types, const json& type) {
 
 // std430 size of a member of a non-struct type (the shared structs use no others).
 size_t scalar_or_vector_size(const std::string& type) {
-    static const std::map<std::string, size_t> sizes = {
-        {"float", 4}, {"uint", 4}, {"int", 4}, {"vec2", 8}, {"vec3", 12}, {"vec4", 16}, {"uvec4", 16}, {"mat4", 64}};
+    static const std::map<std::string, size_t> sizes = {{"float", 4},  {"uint", 4},  {"int", 4},
+                                                        {"vec2", 8},   {"vec3", 12}, {"vec4", 16},
+                                                        {"uvec4", 16}, {"mat4", 64}};
     auto it = sizes.find(type);
     return it == sizes.end() ? 0 : it->second;
 }

@@ -11,8 +11,8 @@
 #include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
-#include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/heavy_mesh.h"
+#include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/scene_generator.h"
 
 namespace lc::client {
@@ -191,8 +191,9 @@ void add_make_scene(CLI::App& app) {
                     "room | furnished-room | heavy-room | thesis-fig91 | thesis-test1 | thesis-test2")
         ->required();
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
-    cmd->add_option("--triangles", o->triangles,
-                    "heavy-room: triangles of the tessellated sphere in the furnished room (default 1000000)");
+    cmd->add_option(
+        "--triangles", o->triangles,
+        "heavy-room: triangles of the tessellated sphere in the furnished room (default 1000000)");
     cmd->callback([o] {
         Scene scene = or_fail(o->name == "heavy-room" ? make_heavy_room_scene(o->triangles)
                                                       : make_named_scene(o->name));

@@ -24,8 +24,8 @@ Status check_mesh(const Mesh& mesh, size_t index) {
         return make_error(mesh_name(index) + ": " + std::to_string(mesh.colors.size()) +
                           " vertex colours for " + std::to_string(n) + " positions");
     if (!mesh.tangents.empty() && mesh.tangents.size() != n)
-        return make_error(mesh_name(index) + ": " + std::to_string(mesh.tangents.size()) +
-                          " tangents for " + std::to_string(n) + " positions");
+        return make_error(mesh_name(index) + ": " + std::to_string(mesh.tangents.size()) + " tangents for " +
+                          std::to_string(n) + " positions");
     if (mesh.indices.size() % 3 != 0)
         return make_error(mesh_name(index) + ": index count " +
                           std::to_string(mesh.indices.size()) + " is not a multiple of 3");
@@ -176,8 +176,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         out.set = *set;
         vk::DescriptorWriter(out.set)
             .sampled_image(kBindBaseColorTexture, gpu.textures_[base].view(), gpu.sampler_.handle())
-            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(),
-                           gpu.sampler_.handle())
+            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(), gpu.sampler_.handle())
             .sampled_image(kBindMetallicRoughnessTexture, gpu.textures_[metallic_roughness].view(),
                            gpu.sampler_.handle())
             .sampled_image(kBindNormalTexture, gpu.textures_[normal].view(), gpu.sampler_.handle())

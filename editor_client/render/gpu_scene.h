@@ -43,7 +43,7 @@ struct GpuMaterial {
     glm::vec3 emissive_factor{0.0f};
     float metallic = 1.0f;
     float roughness = 1.0f;
-    uint32_t flags = 0;  // kDraw* bits (gpu_layout.h)
+    uint32_t flags = 0;         // kDraw* bits (gpu_layout.h)
     float alpha_cutoff = 0.0f;  // with kDrawAlphaMask
     float normal_scale = 1.0f;  // with kDrawNormalTexture
 };

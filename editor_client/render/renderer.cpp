@@ -183,17 +183,16 @@ Status Renderer::upload_storage(vk::Buffer& out, std::span<const std::byte> byte
 Status Renderer::upload_occluders() {
     shadow_bvh_ = ShadowBvh::build(effects_.occluders, effects_.occluder_masks);
     const ShadowBvhStats& s = shadow_bvh_.stats();
-    spdlog::debug("shadow BVH: {} triangles ({} degenerate, {} not casting, {} masked) in {} nodes, "
-                  "depth {}",
-                  s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.masked, s.nodes, s.depth);
+    spdlog::debug(
+        "shadow BVH: {} triangles ({} degenerate, {} not casting, {} masked) in {} nodes, "
+        "depth {}",
+        s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.masked, s.nodes, s.depth);
     LC_RETURN_IF_ERROR(
         upload_storage(bvh_nodes_, std::as_bytes(std::span(shadow_bvh_.gpu_nodes()))));
-    LC_RETURN_IF_ERROR(upload_storage(
-        masked_triangles_, std::as_bytes(std::span(shadow_bvh_.gpu_masked_triangles()))));
     LC_RETURN_IF_ERROR(
-        upload_storage(alpha_masks_, std::as_bytes(std::span(shadow_bvh_.gpu_alpha_masks()))));
-    LC_RETURN_IF_ERROR(
-        upload_storage(mask_texels_, std::as_bytes(std::span(shadow_bvh_.gpu_mask_texels()))));
+        upload_storage(masked_triangles_, std::as_bytes(std::span(shadow_bvh_.gpu_masked_triangles()))));
+    LC_RETURN_IF_ERROR(upload_storage(alpha_masks_, std::as_bytes(std::span(shadow_bvh_.gpu_alpha_masks()))));
+    LC_RETURN_IF_ERROR(upload_storage(mask_texels_, std::as_bytes(std::span(shadow_bvh_.gpu_mask_texels()))));
     return upload_storage(shadow_triangles_,
                           std::as_bytes(std::span(shadow_bvh_.gpu_triangles())));
 }

@@ -57,16 +57,15 @@ void decide_alpha(const Scene& scene, SceneEffects& effects) {
                                                                [](int32_t m) { return m >= 0; }));
     effects.decisions.push_back(
         {"alpha-masked cut-outs (alphaMode MASK)", census.masked > 0,
-         census.masked > 0 ? plural(census.masked, "drawn material") +
-                                 " cut out where alpha < alphaCutoff; " +
-                                 plural(masked_occluders, "occluder triangle") +
-                                 " let shadow rays through there"
-                           : "no drawn material has alphaMode MASK"});
-    effects.decisions.push_back(
-        {"blended surfaces (alphaMode BLEND)", false,
-         census.blended > 0 ? plural(census.blended, "drawn material") +
-                                  " with alphaMode BLEND: drawn opaque, casting no shadow"
-                            : "no drawn material has alphaMode BLEND"});
+         census.masked > 0
+             ? plural(census.masked, "drawn material") + " cut out where alpha < alphaCutoff; " +
+                   plural(masked_occluders, "occluder triangle") + " let shadow rays through there"
+             : "no drawn material has alphaMode MASK"});
+    effects.decisions.push_back({"blended surfaces (alphaMode BLEND)", false,
+                                 census.blended > 0
+                                     ? plural(census.blended, "drawn material") +
+                                           " with alphaMode BLEND: drawn opaque, casting no shadow"
+                                     : "no drawn material has alphaMode BLEND"});
 }
 
 // Normal maps, texture coordinate sets and transforms, vertex colours: what
@@ -86,14 +85,14 @@ void decide_surface_inputs(const Scene& scene, SceneEffects& effects) {
                                  normal_mapped > 0 ? plural(normal_mapped, "drawn mesh") + " normal-mapped"
                                                    : "no drawn mesh has a normal map"});
     const bool sets = second_set + transformed > 0;
+    effects.decisions.push_back({"texture coordinate sets and transforms (TEXCOORD_1, KHR_texture_transform)",
+                                 sets,
+                                 sets ? plural(second_set, "drawn mesh") + " sampled with TEXCOORD_1, " +
+                                            plural(transformed, "drawn mesh") + " with KHR_texture_transform"
+                                      : "every drawn texture is sampled with TEXCOORD_0 as it is"});
     effects.decisions.push_back(
-        {"texture coordinate sets and transforms (TEXCOORD_1, KHR_texture_transform)", sets,
-         sets ? plural(second_set, "drawn mesh") + " sampled with TEXCOORD_1, " +
-                    plural(transformed, "drawn mesh") + " with KHR_texture_transform"
-              : "every drawn texture is sampled with TEXCOORD_0 as it is"});
-    effects.decisions.push_back({"vertex colours (COLOR_0)", coloured > 0,
-                                 coloured > 0 ? plural(coloured, "drawn mesh") + " with COLOR_0"
-                                              : "no drawn mesh has COLOR_0"});
+        {"vertex colours (COLOR_0)", coloured > 0,
+         coloured > 0 ? plural(coloured, "drawn mesh") + " with COLOR_0" : "no drawn mesh has COLOR_0"});
 }
 
 }  // namespace

@@ -26,10 +26,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "editor_client/scene/gltf_node_reader.h"
 #include "editor_client/scene/gltf_environment.h"
-#include "editor_client/scene/mapped_file.h"
+#include "editor_client/scene/gltf_node_reader.h"
 #include "editor_client/scene/gltf_resource_access.h"
+#include "editor_client/scene/mapped_file.h"
 #include "editor_client/scene/scene_guid.h"
 #include "editor_client/scene/tangent_frames.h"
 #include "editor_client/scene/texture_coordinates.h"
@@ -623,8 +623,8 @@ Result<TextureCoordinates> Loader::coordinates_of(int tex_coord, const tg::Exten
         pair("scale", out.scale);
         if (t.Get("rotation").IsNumber()) out.rotation = float(t.Get("rotation").GetNumberAsDouble());
         if (t.Get("texCoord").IsInt()) out.set = t.Get("texCoord").GetNumberAsInt();
-        if (!std::isfinite(out.offset.x) || !std::isfinite(out.offset.y) ||
-            !std::isfinite(out.scale.x) || !std::isfinite(out.scale.y) || !std::isfinite(out.rotation))
+        if (!std::isfinite(out.offset.x) || !std::isfinite(out.offset.y) || !std::isfinite(out.scale.x) ||
+            !std::isfinite(out.scale.y) || !std::isfinite(out.rotation))
             return fail(what + ": KHR_texture_transform must hold finite numbers");
     }
     if (out.set < 0 || out.set > 1) {
@@ -650,7 +650,8 @@ Status Loader::read_texture_coordinates(const tg::Material& in, const std::strin
         {"baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
          &pbr.baseColorTexture.extensions},
         {"normalTexture", in.normalTexture.index, in.normalTexture.texCoord, &in.normalTexture.extensions},
-        {"emissiveTexture", in.emissiveTexture.index, in.emissiveTexture.texCoord, &in.emissiveTexture.extensions},
+        {"emissiveTexture", in.emissiveTexture.index, in.emissiveTexture.texCoord,
+         &in.emissiveTexture.extensions},
         {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
          pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions}};
     bool chosen = false;
@@ -666,7 +667,8 @@ Status Loader::read_texture_coordinates(const tg::Material& in, const std::strin
         } else if (mine.set != first.set || mine.transformed != first.transformed ||
                    mine.offset != first.offset || mine.scale != first.scale ||
                    mine.rotation != first.rotation) {
-            warn(what + " " + use.name + " asks for other texture coordinates than the material's "
+            warn(what + " " + use.name +
+                 " asks for other texture coordinates than the material's "
                  "first texture; it is sampled with those");
         }
     }
@@ -1122,21 +1124,21 @@ bool is_color(const tg::Accessor& a) {
     const int ct = a.componentType;
     return (a.type == TINYGLTF_TYPE_VEC3 || a.type == TINYGLTF_TYPE_VEC4) &&
            (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-            (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                              ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+            (a.normalized &&
+             (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
 }
 
 // COLOR_0: VEC3 or VEC4, float or normalized unsigned; alpha 1 for VEC3.
 Status Loader::read_colors(const tg::Primitive& prim, const std::string& what, Mesh& mesh) {
     auto it = prim.attributes.find("COLOR_0");
     if (it == prim.attributes.end()) return Ok{};
-    Result<AccessorData> data = view_accessor(
-        it->second, what + " COLOR_0", "VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT",
-        &is_color);
+    Result<AccessorData> data =
+        view_accessor(it->second, what + " COLOR_0",
+                      "VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT", &is_color);
     if (!data) return Error{data.error()};
     if (data->count != mesh.positions.size())
-        return fail(what + ": COLOR_0 has " + std::to_string(data->count) +
-                    " elements but POSITION has " + std::to_string(mesh.positions.size()));
+        return fail(what + ": COLOR_0 has " + std::to_string(data->count) + " elements but POSITION has " +
+                    std::to_string(mesh.positions.size()));
     const int components = data->type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
     mesh.colors.assign(data->count, glm::vec4(1.0f));
     for (size_t i = 0; i < data->count; ++i) {
@@ -1163,8 +1165,8 @@ Status Loader::read_colors(const tg::Primitive& prim, const std::string& what, M
 // Tangents only for a material with a normal map: the file's TANGENT through
 // the node's transform (a mirroring one flips the bitangent's sign), else
 // generated (tangent_frames.h).
-Status Loader::read_tangents(const tg::Primitive& prim, const std::string& what,
-                             const glm::dmat3& linear, Mesh& mesh) const {
+Status Loader::read_tangents(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                             Mesh& mesh) const {
     const bool normal_mapped = prim.material >= 0 && size_t(prim.material) < scene_.materials.size() &&
                                scene_.materials[size_t(prim.material)].normal_texture >= 0;
     if (!normal_mapped || mesh.uvs.empty()) return Ok{};

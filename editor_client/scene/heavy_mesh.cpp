@@ -7,14 +7,13 @@
 #include <numbers>
 #include <string>
 
+#include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/scene/scene_guid.h"
-#include "editor_client/scene/gltf_loader.h"
 
 namespace lc::client {
 
-Mesh make_tessellated_sphere(const glm::vec3& centre, float radius, uint32_t triangles,
-                             int material) {
+Mesh make_tessellated_sphere(const glm::vec3& centre, float radius, uint32_t triangles, int material) {
     // 2 * stacks * slices triangles (the poles' quads keep a zero-area half),
     // twice as many slices as stacks.
     const uint32_t stacks = std::max(2u, uint32_t(std::sqrt(double(std::max(triangles, 8u)) / 4.0)));

@@ -14,8 +14,7 @@ inline constexpr uint32_t kMaxHeavyTriangles = 1u << 26;
 
 // A UV sphere of about `triangles` triangles (at least 8), with outward
 // normals and texture coordinates (u round, v from the top down).
-Mesh make_tessellated_sphere(const glm::vec3& centre, float radius, uint32_t triangles,
-                             int material);
+Mesh make_tessellated_sphere(const glm::vec3& centre, float radius, uint32_t triangles, int material);
 
 // The furnished room plus a sphere of about `triangles` triangles (1 m
 // radius, on the floor at x = 2.5); refused over kMaxHeavyTriangles.

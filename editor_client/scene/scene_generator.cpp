@@ -330,11 +330,10 @@ Result<SurfacePoint> draw_kept_point(const SurfaceSelection& selection, SplitMix
         const double pick = rng.uniform() * total_area;
         const double u1 = rng.uniform();
         const double u2 = rng.uniform();
-        const size_t t = std::min(
-            size_t(std::upper_bound(selection.cumulative_area.begin(),
-                                    selection.cumulative_area.end(), pick) -
-                   selection.cumulative_area.begin()),
-            selection.triangles.size() - 1);
+        const size_t t = std::min(size_t(std::upper_bound(selection.cumulative_area.begin(),
+                                                          selection.cumulative_area.end(), pick) -
+                                         selection.cumulative_area.begin()),
+                                  selection.triangles.size() - 1);
         const SurfaceTriangle& tri = selection.triangles[t];
         // Uniform over the triangle: barycentrics (1 - sqrt(u1), sqrt(u1)(1 - u2), sqrt(u1) u2).
         const double s = std::sqrt(u1);

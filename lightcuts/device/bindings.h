@@ -36,7 +36,7 @@ LC_CONST uint kFrameBindingCount = 19u;
 LC_CONST uint kBindBaseColorTexture = 0u;
 LC_CONST uint kBindEmissiveTexture = 1u;
 LC_CONST uint kBindMetallicRoughnessTexture = 2u;  // linear: G, B
-LC_CONST uint kBindNormalTexture = 3u;  // linear: tangent-space normal
+LC_CONST uint kBindNormalTexture = 3u;             // linear: tangent-space normal
 LC_CONST uint kMaterialBindingCount = 4u;
 
 LC_DEVICE_END

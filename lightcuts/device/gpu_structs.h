@@ -202,7 +202,7 @@ struct LC_ALIGN16 GpuEnvironmentTexel {
 LC_CONST uint kDrawBaseColorTexture = 1u;
 LC_CONST uint kDrawEmissiveTexture = 2u;
 LC_CONST uint kDrawMetallicRoughnessTexture = 4u;
-LC_CONST uint kDrawAlphaMask = 8u;  // discard where base colour alpha < alpha_cutoff
+LC_CONST uint kDrawAlphaMask = 8u;       // discard where base colour alpha < alpha_cutoff
 LC_CONST uint kDrawNormalTexture = 16u;  // a tangent-space normal map, x and y times normal_scale
 LC_CONST uint kDrawVertexColors = 32u;   // the mesh's COLOR_0 multiplies the base colour
 
