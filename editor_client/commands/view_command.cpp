@@ -187,7 +187,8 @@ void run_view(const ViewCommandOptions& options) {
         context.validation_message_count(), options.screenshot.empty() ? "" : " -> ",
         options.screenshot.c_str(), summary.steady_frames, summary.steady_seconds, steady_fps,
         summary.last_frame.width, summary.last_frame.height, session.scene().lights.size());
-    if (loop.progressive) print_refinement(summary);
+    // The real-time mode refines by accumulating whole frames, not in tiles.
+    if (loop.progressive && summary.last_mode != RenderMode::kRealTime) print_refinement(summary);
     if (script && script->state() == ScriptState::kFailed) fail(script->error());
 }
 

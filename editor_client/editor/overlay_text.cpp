@@ -31,15 +31,18 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
             lines.push_back(format("refining: pass %u of %u (full size), %.0f%% of its tiles", r->pass + 1,
                                    r->passes, r->percent));
     }
-    lines.push_back(format("mode %s, criterion %s, error %.3g, max cut %u",
-                           render_mode_name(view.mode), criterion_name(view.criterion),
-                           view.error_ratio, view.max_cut));
+    if (view.mode == RenderMode::kRealTime)
+        lines.push_back(format("mode %s, at most %u shadow rays per pixel and frame",
+                               render_mode_name(view.mode), view.realtime_cut));
+    else
+        lines.push_back(format("mode %s, criterion %s, error %.3g, max cut %u",
+                               render_mode_name(view.mode), criterion_name(view.criterion),
+                               view.error_ratio, view.max_cut));
     if (frame.loop_limit_stops > 0)
         lines.push_back(format("%llu pixels cut short by the device's loop limit",
                                (unsigned long long)frame.loop_limit_stops));
     if (frame.realtime_frames)
-        lines.push_back(format("real time: cut %u (shadow rays per pixel), %u frames accumulated",
-                               view.realtime_cut, *frame.realtime_frames));
+        lines.push_back(format("real time: %u frames of this view accumulated", *frame.realtime_frames));
     if (view.representatives != Representatives::kTree)
         lines.push_back(
             format("representatives drawn per pixel: %s", representatives_name(view.representatives)));
