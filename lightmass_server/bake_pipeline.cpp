@@ -12,8 +12,12 @@
 namespace lc::bake {
 
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
+    const BakeStop* stop = inputs.stop.get();
     auto report = [&](const std::string& stage, double percent) {
-        return !progress || progress(stage, percent);
+        return !stop_requested(stop) && (!progress || progress(stage, percent));
+    };
+    auto stopped = [&](const std::string& stage) {
+        return stop ? stop->reason(stage) : make_error(stage + " cancelled", ErrorKind::kCancelled);
     };
     std::vector<std::string> effects;
     std::vector<std::string> warnings;
@@ -23,14 +27,15 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     std::vector<SceneLight> added;
     std::optional<RayCaster> caster;
     if (inputs.geometry) {
-        if (!report("ray caster", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report("ray caster", 0.0)) return stopped("ray caster");
         Result<RayCaster> built = RayCaster::build(*inputs.geometry, inputs.raycast_threads);
         if (!built) return make_error("ray caster: " + built.error());
         caster.emplace(std::move(built.value()));
 
-        if (!report("area lights", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report("area lights", 0.0)) return stopped("area lights");
         Result<AreaLightSampling> sampled =
-            sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed);
+            sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, stop);
+        if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
         if (!sampled) return make_error("area lights: " + sampled.error());
         if (sampled->budget_raised) {
             warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
@@ -45,16 +50,16 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         }
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
-    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    if (!report(effects.back(), 0.0)) return stopped("area lights");
 
     std::vector<SceneLight> environment_lights;
     if (inputs.environment) {
-        if (!report("sampling environment", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report("sampling environment", 0.0)) return stopped("environment sampling");
         Result<EnvironmentLights> sampled =
-            sample_environment(*inputs.environment, inputs.environment_lights, inputs.build.seed);
+            sample_environment(*inputs.environment, inputs.environment_lights, inputs.build.seed, stop);
         if (!sampled) return sampled.failure();
         effects.push_back(sampled->census);
-        if (!report(sampled->census, 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report(sampled->census, 0.0)) return stopped("environment sampling");
         environment_lights = std::move(sampled->lights);
     }
 
@@ -66,9 +71,11 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         photon_sources.insert(photon_sources.end(), environment_lights.begin(), environment_lights.end());
     }
     const SceneGeometry no_geometry;
+    IndirectOptions indirect_options = inputs.indirect;
+    indirect_options.vpl.stop = indirect_options.radiosity.stop = stop;
     Result<IndirectStageResult> indirect =
         run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
-                           photon_sources.empty() ? *inputs.lights : photon_sources, inputs.indirect,
+                           photon_sources.empty() ? *inputs.lights : photon_sources, indirect_options,
                            progress);
     if (!indirect) return indirect.failure();
     effects.push_back("indirect: " + indirect->census);
@@ -77,7 +84,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         if (!written) warnings.push_back(written.error());
     }
     warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
-    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    if (!report(effects.back(), 0.0)) return stopped("indirect light");
     added.insert(added.end(), environment_lights.begin(), environment_lights.end());
     const std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
     added.insert(added.end(), bounced.begin(), bounced.end());
@@ -88,8 +95,13 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         all_lights = *inputs.lights;
         all_lights.insert(all_lights.end(), added.begin(), added.end());
     }
+    // The builders poll through their progress callback (between levels and merge batches).
+    const ProgressFn build_progress = [&](std::string_view stage, double percent) {
+        return !stop_requested(stop) && (!progress || progress(stage, percent));
+    };
     Result<BuildResult> built =
-        build_light_tree(added.empty() ? *inputs.lights : all_lights, inputs.build, progress);
+        build_light_tree(added.empty() ? *inputs.lights : all_lights, inputs.build, build_progress);
+    if (!built && built.error_kind() == ErrorKind::kCancelled && stop_requested(stop)) return stopped("tree build");
     if (!built) return built;
     built->report.effects = std::move(effects);
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());

@@ -14,6 +14,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/messages.h"
@@ -33,9 +34,12 @@ struct BakeInputs {
     IndirectOptions indirect;  // bounced light, added to the tree as oriented lights
     std::string radiosity_out;  // a radiosity bake writes its patches here (PLY); empty: not
     int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
+    // Cancel and deadline, polled inside every stage's loops; null: never stops.
+    std::shared_ptr<BakeStop> stop;
 };
 
-// A cancelled bake returns an error of kind ErrorKind::kCancelled. The
+// A cancelled bake returns an error of kind ErrorKind::kCancelled (a bake
+// past its deadline, an error naming the deadline). The
 // report's effects hold the census (area lights simulated or skipped, why).
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress);
 

@@ -37,6 +37,10 @@ struct ServerOptions {
     // Announced bytes of every connection's scene channels and stored scenes together;
     // a channel that does not fit is refused as "server busy".
     uint64_t memory_budget_bytes = uint64_t{4096} << 20;
+    // A bake still running this long after its request is stopped with an error saying so.
+    std::chrono::seconds max_bake_time{600};
+    // Big bakes at once; 0: from the cores and the budget (bake_lanes.h).
+    unsigned max_concurrent_bakes = 0;
 };
 
 // True for 127.0.0.0/8, ::1 and "localhost".

@@ -98,8 +98,8 @@ glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& t
     return std::numbers::pi * area * glm::dvec3(geometry.materials[triangle.material].emission);
 }
 
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed) {
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             const BakeStop* stop) {
     if (budget == 0) return make_error("the area-light budget is 0; give at least 1 sample");
     std::vector<Emitter> emitters;
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {
@@ -117,6 +117,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
     out.budget_raised = budget < emitters.size();
     share_budget(emitters, std::max<uint64_t>(budget, emitters.size()));
 
+    StopPoll poll(stop);
     for (const Emitter& e : emitters) {
         const SurfaceTriangle& t = geometry.triangles[e.triangle];
         const glm::dvec3 p0(t.positions[0]), e1 = glm::dvec3(t.positions[1]) - p0,
@@ -129,6 +130,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
         SplitMix64 rng(mix64(seed ^ mix64(uint64_t(e.triangle) + kGoldenGamma)));
         const double shift_u = rng.uniform(), shift_v = rng.uniform();
         for (uint32_t k = 0; k < e.samples; ++k) {
+            if (poll()) return stop->reason("area-light sampling");
             const double u = (double(k) + shift_u) / double(e.samples);
             double v = radical_inverse(k) + shift_v;
             v -= std::floor(v);

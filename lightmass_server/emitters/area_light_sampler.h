@@ -12,6 +12,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 
 namespace lc::bake {
 
@@ -22,9 +23,10 @@ struct AreaLightSampling {
     bool budget_raised = false;
 };
 
-// Deterministic for equal geometry, budget and seed. `budget` >= 1.
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed);
+// Deterministic for equal geometry, budget and seed. `budget` >= 1. Polls
+// `stop` every sample (null: never stops).
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             const BakeStop* stop = nullptr);
 
 // Per channel, pi x L x A: what a triangle of emitted radiance L emits.
 glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& triangle);

@@ -26,9 +26,11 @@ constexpr double kSmallestStratum = 1e-9;
 // table's bilinear interpolation is exact at fractional corners too.
 class RadianceIntegral {
 public:
-    explicit RadianceIntegral(const EquirectMap& map)
+    // Stops early (the table left partial) once `poll` says the bake must stop.
+    RadianceIntegral(const EquirectMap& map, StopPoll& poll)
         : width_(map.width), height_(map.height), sums_(size_t(map.width + 1) * (map.height + 1)) {
         for (uint32_t y = 0; y < height_; ++y) {
+            if (poll()) return;
             const double solid_angle = equirect_texel_solid_angle(y, width_, height_);
             glm::dvec3 row(0.0);
             for (uint32_t x = 0; x < width_; ++x) {
@@ -113,16 +115,17 @@ SceneLight directional_light(const glm::dvec3& towards_light, const glm::dvec3& 
 }  // namespace
 
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed) {
+                                            uint32_t count, uint64_t seed, const BakeStop* stop) {
     std::vector<SceneLight> lights;
     if (map.empty() || count == 0 || !(intensity > 0.0)) return lights;
-    const RadianceIntegral integral(map);
+    StopPoll poll(stop);
+    const RadianceIntegral integral(map, poll);
     const double width = map.width, height = map.height;
     SplitMix64 random(mix64(seed ^ kMapSalt));
     std::vector<Stratum> stack;
     if (integral.power(0.0, width, 0.0, height) > 0.0) stack.push_back({0.0, width, 0.0, height, count});
     lights.reserve(count);
-    while (!stack.empty()) {
+    while (!stack.empty() && !poll()) {
         const Stratum s = stack.back();
         stack.pop_back();
         const double dx = s.x1 - s.x0, dy = s.y1 - s.y0;
@@ -187,7 +190,8 @@ std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensi
     return lights;
 }
 
-Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed) {
+Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
+                                             const BakeStop* stop) {
     if (count == 0) count = kDefaultEnvironmentLights;
     LC_RETURN_IF_ERROR(validate_environment_light_count(environment, count));
     EnvironmentLights out;
@@ -200,7 +204,7 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
         const size_t sun_made = out.lights.size();
         const EquirectMap raster = rasterize_sky(sky, kSkyRasterWidth, kSkyRasterHeight);
         std::vector<SceneLight> sky_lights =
-            sample_equirect_map(raster, 0.0, environment.intensity, count - sun_lights, seed);
+            sample_equirect_map(raster, 0.0, environment.intensity, count - sun_lights, seed, stop);
         out.lights.insert(out.lights.end(), sky_lights.begin(), sky_lights.end());
         char text[160];
         std::snprintf(text, sizeof(text),
@@ -209,11 +213,12 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
                       sun_made, sky_lights.size(), sky.elevation_deg, sky.azimuth_deg, sky.turbidity);
         out.census = text;
     } else {
-        out.lights = sample_equirect_map(environment.map, rotation, environment.intensity, count, seed);
+        out.lights = sample_equirect_map(environment.map, rotation, environment.intensity, count, seed, stop);
         out.census = "environment: simulated (" + std::to_string(environment.map.width) + " x " +
                      std::to_string(environment.map.height) + " map, " + std::to_string(out.lights.size()) +
                      " lights)";
     }
+    if (stop_requested(stop)) return stop->reason("environment sampling");
     if (out.lights.empty()) out.census = (environment.has_sky() ? "sun and sky" : std::string("environment")) +
                                          ": skipped (it emits no light)";
     return out;

@@ -20,6 +20,7 @@
 #include "lightcuts/environment.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 
 namespace lc::bake {
 
@@ -36,11 +37,14 @@ struct EnvironmentLights {
 };
 
 // `environment` must be valid (protocol/environment_records.h); count 0 means the default.
-Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed);
+// Polls `stop` every row of the map and every stratum (null: never stops).
+Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
+                                             const BakeStop* stop = nullptr);
 
-// The map's lights alone: `count` strata (fewer where a stratum has no power).
+// The map's lights alone: `count` strata (fewer where a stratum has no power);
+// a partial list when `stop` asked to stop.
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed);
+                                            uint32_t count, uint64_t seed, const BakeStop* stop = nullptr);
 // The sun's disc: `count` lights of equal irradiance summing to the disc's.
 std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensity, uint32_t count, uint64_t seed);
 
