@@ -10,6 +10,42 @@
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
+namespace {
+
+// The emissive triangles as oriented lights, appended to `added`, with their census line.
+Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added, std::vector<std::string>& effects,
+                       std::vector<std::string>& warnings) {
+    Result<AreaLightSampling> sampled =
+        sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, inputs.stop.get());
+    if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
+    if (!sampled) return make_error("area lights: " + sampled.error());
+    if (sampled->budget_raised) {
+        warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
+                           std::to_string(sampled->emissive_triangles) + " emissive triangles: one sample each");
+    }
+    if (!sampled->lights.empty()) {
+        effects.push_back("area lights: simulated (" + std::to_string(sampled->emissive_triangles) +
+                          " emissive triangles, " + std::to_string(sampled->lights.size()) + " samples)");
+        added = std::move(sampled->lights);
+    }
+    return Ok{};
+}
+
+// The tree of `lights`; the builders poll the stop through their progress
+// callback (between levels and merge batches).
+Result<BuildResult> build_stoppable(std::span<const SceneLight> lights, const BakeInputs& inputs,
+                                    const ProgressFn& progress) {
+    const BakeStop* stop = inputs.stop.get();
+    const ProgressFn build_progress = [&](std::string_view stage, double percent) {
+        return !stop_requested(stop) && (!progress || progress(stage, percent));
+    };
+    Result<BuildResult> built = build_light_tree(lights, inputs.build, build_progress);
+    if (!built && built.error_kind() == ErrorKind::kCancelled && stop_requested(stop))
+        return stop->reason("tree build");
+    return built;
+}
+
+}  // namespace
 
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
     const BakeStop* stop = inputs.stop.get();
@@ -33,21 +69,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         caster.emplace(std::move(built.value()));
 
         if (!report("area lights", 0.0)) return stopped("area lights");
-        Result<AreaLightSampling> sampled =
-            sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, stop);
-        if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
-        if (!sampled) return make_error("area lights: " + sampled.error());
-        if (sampled->budget_raised) {
-            warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
-                               std::to_string(sampled->emissive_triangles) +
-                               " emissive triangles: one sample each");
-        }
-        if (!sampled->lights.empty()) {
-            effects.push_back("area lights: simulated (" +
-                              std::to_string(sampled->emissive_triangles) + " emissive triangles, " +
-                              std::to_string(sampled->lights.size()) + " samples)");
-            added = std::move(sampled->lights);
-        }
+        if (Status sampled = add_area_lights(inputs, added, effects, warnings); !sampled) return sampled.failure();
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
     if (!report(effects.back(), 0.0)) return stopped("area lights");
@@ -95,13 +117,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         all_lights = *inputs.lights;
         all_lights.insert(all_lights.end(), added.begin(), added.end());
     }
-    // The builders poll through their progress callback (between levels and merge batches).
-    const ProgressFn build_progress = [&](std::string_view stage, double percent) {
-        return !stop_requested(stop) && (!progress || progress(stage, percent));
-    };
-    Result<BuildResult> built =
-        build_light_tree(added.empty() ? *inputs.lights : all_lights, inputs.build, build_progress);
-    if (!built && built.error_kind() == ErrorKind::kCancelled && stop_requested(stop)) return stopped("tree build");
+    Result<BuildResult> built = build_stoppable(added.empty() ? *inputs.lights : all_lights, inputs, progress);
     if (!built) return built;
     built->report.effects = std::move(effects);
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());

@@ -23,7 +23,7 @@ Status validate_indirect(const IndirectRequest& indirect) {
     }
     if (indirect.method != IndirectMethod::kRadiosity)
         return make_error("unknown indirect method " + std::to_string(int(indirect.method)));
-    const double patch = indirect.patch_size;
+    const float patch = indirect.patch_size;
     if (!std::isfinite(patch) || patch < kMinPatchSize || patch > kMaxPatchSize)
         return out_of_range("radiosity patch size", readable_number(patch),
                             readable_number(kMinPatchSize) + " to " + readable_number(kMaxPatchSize) +

@@ -22,8 +22,8 @@ inline constexpr uint32_t kMaxBakeBounces = kMaxRecordedBounce;
 // large" when the paths leave more.
 inline constexpr uint64_t kMaxIndirectLights = uint64_t{1} << 22;  // 4,194,304
 // A radiosity patch's target edge, scene units.
-inline constexpr double kMinPatchSize = 1e-6;
-inline constexpr double kMaxPatchSize = 1e6;
+inline constexpr float kMinPatchSize = 1e-6f;
+inline constexpr float kMaxPatchSize = 1e6f;
 // Radiosity patches one bake may make (the patch size decides the count).
 inline constexpr uint64_t kMaxRadiosityPatches = uint64_t{1} << 21;  // 2,097,152
 // Environment lights one bake may sample.

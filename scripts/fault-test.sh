@@ -202,6 +202,8 @@ run_hostile() {
     for scenario in vpl-deep radiosity environment area; do
         hostile_row "$scenario" --cancel-after-ms 1500
     done
+    hostile_row area-fit
+    hostile_row vpl-fit
     hostile_row vpl-huge --cancel-after-ms 1500 --small
     hostile_row silent-channel
     # SIGTERM while the radiosity bake shoots from its point lights.

@@ -38,8 +38,8 @@ TEST(BakeLimits, DefaultsAndLimitsPass) {
     EXPECT_TRUE(validate_bake_settings(BakeRequestMsg{}));
     EXPECT_TRUE(validate_bake_settings(vpl(kMaxBakeBounces, kMaxVplPaths)));
     EXPECT_TRUE(validate_bake_settings(vpl(1, 1)));
-    EXPECT_TRUE(validate_bake_settings(radiosity(float(kMinPatchSize), 0.0f)));
-    EXPECT_TRUE(validate_bake_settings(radiosity(float(kMaxPatchSize), 0.999f)));
+    EXPECT_TRUE(validate_bake_settings(radiosity(kMinPatchSize, 0.0f)));
+    EXPECT_TRUE(validate_bake_settings(radiosity(kMaxPatchSize, 0.999f)));
     BakeRequestMsg counts;
     counts.area_lights = kMaxAreaLights;
     counts.environment_lights = kMaxBakeEnvironmentLights;

@@ -6,6 +6,7 @@
 
 #include "lightmass_server/bake_footprint.h"
 #include "lightmass_server/server_session.h"
+#include "protocol/bake_limits.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/geometry_channel.h"

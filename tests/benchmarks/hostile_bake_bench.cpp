@@ -7,6 +7,9 @@
 //                  20-light bake is timed on a second connection meanwhile
 //   environment    an 8192 x 4096 environment map, 100,000 lights
 //   area           4,194,304 area-light samples of one emissive triangle
+//   area-fit       400,000 samples: a bake that fits 512 MB, run to the end
+//                  (its peak RSS checks the estimate it was admitted by)
+//   vpl-fit        100,000 paths of 3 bounces in a white furnace, to the end
 //   silent-channel opens a 200 MB channel, sends 2 bytes, goes silent
 // A bake is cancelled --cancel-after-ms after its first stage past "queued"
 // (0: not cancelled); the line gives the stage it was in and how long the
@@ -26,7 +29,7 @@
 #include "protocol/channel_name.h"
 #include "protocol/codec.h"
 #include "tests/indirect_scenes.h"
-#include "tests/tree_invariants.h"
+#include "lightcuts/seeded_mixer.h"
 
 namespace {
 
@@ -38,6 +41,21 @@ double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+// `count` point lights inside the box [0.5, 3.5]^3, from `seed`.
+std::vector<lc::SceneLight> point_lights(uint32_t count, uint64_t seed) {
+    lc::SplitMix64 random(seed);
+    std::vector<lc::SceneLight> lights(count);
+    for (uint32_t i = 0; i < count; ++i) {
+        lc::SceneLight& light = lights[i];
+        const uint8_t id[4] = {uint8_t(i), uint8_t(i >> 8), uint8_t(i >> 16), uint8_t(i >> 24)};
+        light.guid = lc::Guid::from_bytes(id);
+        light.type = lc::LightType::kPoint;
+        for (int axis = 0; axis < 3; ++axis) light.position[axis] = float(0.5 + 3.0 * random.uniform());
+        light.intensity = 1.0f;
+    }
+    return lights;
+}
+
 struct Scenario {
     std::vector<lc::SceneLight> lights;
     lc::client::BakeClientOptions options;
@@ -47,15 +65,19 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
     Scenario s;
     s.options.server = server;
     s.options.timeout_seconds = 900.0;
-    s.lights = lc::test::random_lights(4, 9, lc::LightType::kPoint, 4.0f);
+    s.lights = point_lights(4, 9);
     const glm::vec3 white(1.0f), black(0.0f), none(0.0f);
-    if (name == "vpl-deep" || name == "vpl-huge") {
+    if (name == "vpl-fit") {
+        s.options.geometry =
+            std::make_shared<const lc::SceneGeometry>(lc::test::closed_box({white, none}, 4.0f));
+        s.options.indirect = {lc::IndirectMethod::kVpl, 3, 100000};
+    } else if (name == "vpl-deep" || name == "vpl-huge") {
         s.options.geometry = std::make_shared<const lc::SceneGeometry>(
             lc::test::closed_box({name == "vpl-deep" ? white : black, none}, 4.0f));
         s.options.indirect = name == "vpl-deep" ? lc::IndirectRequest{lc::IndirectMethod::kVpl, 65535, 1000}
                                                 : lc::IndirectRequest{lc::IndirectMethod::kVpl, 1, 1000000000};
     } else if (name == "radiosity") {
-        s.lights = lc::test::random_lights(1000, 9, lc::LightType::kPoint, 4.0f);
+        s.lights = point_lights(1000, 9);
         s.options.geometry =
             std::make_shared<const lc::SceneGeometry>(lc::test::closed_box({glm::vec3(0.5f), none}, 4.0f));
         s.options.indirect = {lc::IndirectMethod::kRadiosity, 1, 1, 0.0141f, 0.01f};
@@ -66,12 +88,12 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
         environment->map.texels.assign(size_t(8192) * 4096, glm::vec3(0.5f));
         s.options.environment = environment;
         s.options.environment_lights = 100000;
-    } else if (name == "area") {
+    } else if (name == "area" || name == "area-fit") {
         lc::SceneGeometry panel;
         panel.materials.push_back({glm::vec3(0.5f), glm::vec3(1.0f)});
         panel.triangles.push_back(lc::test::flat_triangle({0, 2, 0}, {1, 2, 0}, {0, 2, 1}, 0));
         s.options.geometry = std::make_shared<const lc::SceneGeometry>(std::move(panel));
-        s.options.area_lights = lc::kMaxAreaLights;
+        s.options.area_lights = name == "area" ? lc::kMaxAreaLights : 400000;
     }
     return s;
 }
@@ -119,7 +141,7 @@ int main(int argc, char** argv) {
         lc::client::BakeClientOptions quick;
         quick.server = server;
         const auto t0 = Clock::now();
-        auto little = lc::client::bake_lights(lc::test::random_lights(20, 3, lc::LightType::kPoint), kSceneGuid, quick);
+        auto little = lc::client::bake_lights(point_lights(20, 3), kSceneGuid, quick);
         return little.ok() ? ms_since(t0) : -2.0;
     };
     double small_idle_ms = -1.0;
