@@ -32,14 +32,17 @@ Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
 }
 
 // The tree of `lights`; the builders poll the stop through their progress
-// callback (between levels and merge batches).
+// callback (between levels and merge batches), the optimal-pair builder's
+// approximate levels inside their loops too.
 Result<BuildResult> build_stoppable(std::span<const SceneLight> lights, const BakeInputs& inputs,
                                     const ProgressFn& progress) {
     const BakeStop* stop = inputs.stop.get();
     const ProgressFn build_progress = [&](std::string_view stage, double percent) {
         return !stop_requested(stop) && (!progress || progress(stage, percent));
     };
-    Result<BuildResult> built = build_light_tree(lights, inputs.build, build_progress);
+    BuildOptions options = inputs.build;
+    options.stop = stop;
+    Result<BuildResult> built = build_light_tree(lights, options, build_progress);
     if (!built && built.error_kind() == ErrorKind::kCancelled && stop_requested(stop))
         return stop->reason("tree build");
     return built;

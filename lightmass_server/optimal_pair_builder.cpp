@@ -65,7 +65,10 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
                     format_double(pairing.lower_bound));
             }
         } else {
-            pairing = approximate_pairing(points);
+            pairing = approximate_pairing(points, options.stop);
+            if (stop_requested(options.stop))
+                return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
+                                  ErrorKind::kCancelled);
             if (options.pairing == PairingMode::kAuto) {
                 report.warnings.push_back(
                     std::string("optimal-pair: level ") + std::to_string(level_number) + " has " +

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "lightmass_server/bake_stop.h"
 #include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
@@ -25,6 +26,9 @@ struct BuildOptions {
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = kDefaultExactPairingLimit;
     uint64_t seed = 0;
+    // Polled inside the optimal-pair builder's approximate levels, besides the
+    // progress callback between levels; null: never stops.
+    const BakeStop* stop = nullptr;
 };
 
 // Stage name and percent in [0, 100]; return false to cancel the build.

@@ -175,11 +175,11 @@ run_stall() {
 # peak_rss_mib CSV: the largest RSS sample, in MiB.
 peak_rss_mib() { awk -F, 'NR > 1 && $2 > p { p = $2 } END { printf "%.0f", p / 1024 }' "$1"; }
 
-# hostile_row SCENARIO [BENCH ARGS...]: one scenario against a fresh server; appends its CSV row.
+# hostile_row BUDGET_MB SCENARIO [BENCH ARGS...]: one scenario against a fresh server; appends its CSV row.
 hostile_row() {
-    local scenario=$1
-    shift
-    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$budget_mb" --max-bake-seconds 120 \
+    local budget=$1 scenario=$2
+    shift 2
+    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$budget" --max-bake-seconds 120 \
         --read-timeout-ms 2000 --idle-timeout-ms 600000
     sample_rss "$LC_SERVER_PID" "$work/rss_$scenario.csv" 0.05 &
     local sampler=$! row
@@ -191,7 +191,27 @@ hostile_row() {
     stop_server
     wait "$sampler" 2>/dev/null || true
     background=()
-    echo "$row,$(peak_rss_mib "$work/rss_$scenario.csv"),$after,$budget_mb" | tee -a "$hostile_csv"
+    echo "$row,$(peak_rss_mib "$work/rss_$scenario.csv"),$after,$budget" | tee -a "$hostile_csv"
+}
+
+# SIGTERM while a radiosity bake shoots from its 1,000 point lights: milliseconds until the process is gone.
+hostile_sigterm() {
+    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$1"
+    timeout 120 "$hostile_bin" "127.0.0.1:$LC_SERVER_PORT" radiosity >/dev/null 2>&1 &
+    local client=$! t0 t1 exited=yes
+    background=("$client")
+    sleep 5  # the patches are made; the point-light pass runs for minutes
+    t0=$(date +%s%N)
+    kill -TERM "$LC_SERVER_PID"
+    for _ in $(seq 1 500); do kill -0 "$LC_SERVER_PID" 2>/dev/null || break; sleep 0.002; done
+    t1=$(date +%s%N)
+    kill -0 "$LC_SERVER_PID" 2>/dev/null && exited=no
+    stop_server
+    wait "$client" 2>/dev/null || true
+    background=()
+    echo "sigterm,$([ $exited = yes ] && echo exited || echo RUNNING),radiosity,$(( (t1 - t0) / 1000000 )),,,SIGTERM to exit,,,$1" \
+        | tee -a "$hostile_csv"
+    [ "$exited" = yes ]
 }
 
 run_hostile() {
@@ -199,30 +219,17 @@ run_hostile() {
     mkdir -p "$(dirname "$hostile_csv")"
     echo "scenario,outcome,stage,cancel_ms,small_idle_ms,small_busy_ms,detail,peak_rss_mib,rss_after_mib,budget_mib" \
         >"$hostile_csv"
-    for scenario in vpl-deep radiosity environment area; do
-        hostile_row "$scenario" --cancel-after-ms 1500
+    # The issue's rows under a small budget: each refused up front, or baked within it.
+    for scenario in vpl-deep radiosity environment area vpl-huge area-fit vpl-fit; do
+        hostile_row "$budget_mb" "$scenario" --cancel-after-ms 1500
     done
-    hostile_row area-fit
-    hostile_row vpl-fit
-    hostile_row vpl-huge --cancel-after-ms 1500 --small
-    hostile_row silent-channel
-    # SIGTERM while the radiosity bake shoots from its point lights.
-    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$budget_mb"
-    timeout 120 "$hostile_bin" "127.0.0.1:$LC_SERVER_PORT" radiosity >/dev/null 2>&1 &
-    local client=$! t0 t1 exited=yes
-    background=("$client")
-    sleep 3
-    t0=$(date +%s%N)
-    kill -TERM "$LC_SERVER_PID"
-    for _ in $(seq 1 100); do kill -0 "$LC_SERVER_PID" 2>/dev/null || break; sleep 0.01; done
-    t1=$(date +%s%N)
-    kill -0 "$LC_SERVER_PID" 2>/dev/null && exited=no
-    stop_server
-    wait "$client" 2>/dev/null || true
-    background=()
-    echo "sigterm,$([ $exited = yes ] && echo exited || echo RUNNING),radiosity,$(( (t1 - t0) / 1000000 )),,,SIGTERM to exit,,,$budget_mb" \
-        | tee -a "$hostile_csv"
-    [ "$exited" = yes ]
+    hostile_row "$budget_mb" silent-channel
+    # The same heavy bakes admitted (the default 4 GiB budget), each cancelled 1.5 s into its work.
+    for scenario in vpl-deep radiosity environment area; do
+        hostile_row 4096 "$scenario" --cancel-after-ms 1500
+    done
+    hostile_row 4096 vpl-huge --cancel-after-ms 1500 --small
+    hostile_sigterm 4096
 }
 
 run_soak() {

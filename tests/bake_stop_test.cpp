@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "indirect_scenes.h"
+#include "lightmass_server/approximate_pairing.h"
 #include "lightmass_server/bake_pipeline.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
@@ -137,6 +138,22 @@ TEST(EmitterSamplingLimits, AreaAndEnvironmentSamplingStopWhenAsked) {
     ASSERT_FALSE(sky.ok());
     EXPECT_NE(sky.error().find("environment sampling stopped"), std::string::npos) << sky.error();
     EXPECT_TRUE(sample_environment(environment, 5000, 1).ok());
+}
+
+TEST(TreeBuildLimits, ApproximatePairingStopsInsideALevel) {
+    const std::vector<SceneLight> lights = test::random_lights(20000, 5, LightType::kPoint);
+    std::vector<glm::dvec3> points;
+    for (const SceneLight& light : lights) points.emplace_back(light.position);
+    auto cancelled = cancelled_stop();
+    EXPECT_TRUE(approximate_pairing(points, cancelled.get()).pairs.empty());
+    EXPECT_EQ(approximate_pairing(points).pairs.size(), 10000u);
+    BuildOptions options;
+    options.pairing = PairingMode::kApproximate;
+    options.stop = cancelled.get();
+    auto built = build_light_tree(lights, options, nullptr);
+    ASSERT_FALSE(built.ok());
+    EXPECT_EQ(built.error_kind(), ErrorKind::kCancelled);
+    EXPECT_NE(built.error().find("optimal-pair level 0"), std::string::npos) << built.error();
 }
 
 TEST(BakePipelineLimits, AStoppedBakeEndsWithTheStopsReason) {

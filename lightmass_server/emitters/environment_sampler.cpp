@@ -26,16 +26,21 @@ constexpr double kSmallestStratum = 1e-9;
 // table's bilinear interpolation is exact at fractional corners too.
 class RadianceIntegral {
 public:
-    // Stops early (the table left partial) once `poll` says the bake must stop.
-    RadianceIntegral(const EquirectMap& map, StopPoll& poll)
-        : width_(map.width), height_(map.height), sums_(size_t(map.width + 1) * (map.height + 1)) {
+    // Stops early, the table partial and unusable, once `poll` says the bake must stop.
+    // The table (24 bytes a texel: 805 MB for 8192 x 4096) is written row by
+    // row as it is computed, never zero-filled whole first, so a stop is seen
+    // within one row's work.
+    RadianceIntegral(const EquirectMap& map, StopPoll& poll) : width_(map.width), height_(map.height) {
+        sums_.reserve(size_t(width_ + 1) * (height_ + 1));
+        sums_.resize(width_ + 1, glm::dvec3(0.0));
         for (uint32_t y = 0; y < height_; ++y) {
-            if (poll()) return;
+            if (poll()) return;  // partial: the caller asks the poll again before using it
             const double solid_angle = equirect_texel_solid_angle(y, width_, height_);
             glm::dvec3 row(0.0);
+            sums_.push_back(glm::dvec3(0.0));
             for (uint32_t x = 0; x < width_; ++x) {
                 row += glm::dvec3(map.at(x, y)) * solid_angle;
-                sum(x + 1, y + 1) = sum(x + 1, y) + row;
+                sums_.push_back(sum(x + 1, y) + row);
             }
         }
     }
@@ -120,6 +125,7 @@ std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotat
     if (map.empty() || count == 0 || !(intensity > 0.0)) return lights;
     StopPoll poll(stop);
     const RadianceIntegral integral(map, poll);
+    if (poll()) return lights;
     const double width = map.width, height = map.height;
     SplitMix64 random(mix64(seed ^ kMapSalt));
     std::vector<Stratum> stack;
