@@ -23,6 +23,24 @@ struct CandidateEdge {
     bool operator==(const CandidateEdge& o) const { return u == o.u && v == o.v; }
 };
 
+// std::sort in runs merged pairwise, asking the poll between runs and merges:
+// the same order (the comparison is a total order on distinct edges), and a
+// stop seen within one run's work instead of after sorting 32 million edges.
+void sort_edges(std::vector<CandidateEdge>& edges, StopPoll& poll) {
+    constexpr size_t kRun = size_t(1) << 18;
+    const auto at = [&](size_t i) { return edges.begin() + std::ptrdiff_t(std::min(i, edges.size())); };
+    for (size_t begin = 0; begin < edges.size(); begin += kRun) {
+        if (poll.now()) return;
+        std::sort(at(begin), at(begin + kRun));
+    }
+    for (size_t width = kRun; width < edges.size(); width *= 2) {
+        for (size_t begin = 0; begin + width < edges.size(); begin += 2 * width) {
+            if (poll.now()) return;
+            std::inplace_merge(at(begin), at(begin + width), at(begin + 2 * width));
+        }
+    }
+}
+
 // Undirected candidate edges (u < v) from k-NN lists, mapped through `ids`,
 // sorted by (distance, u, v) and without duplicates.
 std::vector<CandidateEdge> candidate_edges(const KnnResult& knn, std::span<const uint32_t> ids, StopPoll& poll) {
@@ -36,7 +54,7 @@ std::vector<CandidateEdge> candidate_edges(const KnnResult& knn, std::span<const
             edges.push_back(CandidateEdge{nb.distance, std::min(a, b), std::max(a, b)});
         }
     }
-    std::sort(edges.begin(), edges.end());
+    sort_edges(edges, poll);
     edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
     return edges;
 }
@@ -116,7 +134,8 @@ LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeS
     for (uint32_t i = 0; i < n; ++i) all_ids[i] = i;
     // A stop leaves the pairing partial: the builder asks the stop and drops it.
     StopPoll poll(stop);
-    const KnnResult knn = k_nearest_neighbors(points, kCandidateNeighbors);
+    const KnnResult knn = k_nearest_neighbors(points, kCandidateNeighbors, stop);
+    if (poll.now()) return {};
     const std::vector<CandidateEdge> edges = candidate_edges(knn, all_ids, poll);
     if (poll()) return {};
 
@@ -128,7 +147,7 @@ LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeS
     // round matches at least the closest remaining pair, so this terminates.
     std::vector<uint32_t> free_ids;
     std::vector<glm::dvec3> free_points;
-    while (!poll()) {
+    while (!poll.now()) {
         free_ids.clear();
         free_points.clear();
         for (uint32_t u = 0; u < n; ++u) {
@@ -138,7 +157,7 @@ LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeS
             }
         }
         if (free_ids.size() < 2) break;
-        const KnnResult free_knn = k_nearest_neighbors(free_points, kRetryNeighbors);
+        const KnnResult free_knn = k_nearest_neighbors(free_points, kRetryNeighbors, stop);
         greedy_match(candidate_edges(free_knn, free_ids, poll), mate, poll);
     }
     if (free_ids.size() == 1) {

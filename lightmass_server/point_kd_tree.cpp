@@ -199,7 +199,7 @@ std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
     return pairs;
 }
 
-KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k) {
+KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop) {
     KnnResult result;
     if (points.size() < 2) return result;
     result.k_used = std::min<uint32_t>(k, uint32_t(points.size() - 1));
@@ -207,6 +207,7 @@ KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k) {
     const KdTree tree = build_kd_tree(points);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
                       [&](const tbb::blocked_range<uint32_t>& range) {
+                          if (stop_requested(stop)) return;  // the result is dropped
                           std::vector<Candidate> best;
                           std::vector<std::pair<double, uint32_t>> stack;
                           for (uint32_t i = range.begin(); i != range.end(); ++i) {
