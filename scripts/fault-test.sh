@@ -220,14 +220,19 @@ run_hostile() {
     echo "scenario,outcome,stage,cancel_ms,small_idle_ms,small_busy_ms,detail,peak_rss_mib,rss_after_mib,budget_mib" \
         >"$hostile_csv"
     # The rows under a small budget: each refused up front, or baked within it.
-    for scenario in vpl-deep radiosity environment area vpl-huge area-fit vpl-fit; do
+    for scenario in vpl-deep radiosity environment area vpl-huge; do
         hostile_row "$budget_mb" "$scenario" --cancel-after-ms 1500
     done
+    # Bakes that fit, run to the end: their peak RSS against the estimate they were admitted by.
+    hostile_row "$budget_mb" area-fit
+    hostile_row "$budget_mb" vpl-fit
     hostile_row "$budget_mb" silent-channel
-    # The same heavy bakes admitted (the default 4 GiB budget), each cancelled 1.5 s into its work.
-    for scenario in vpl-deep radiosity environment area; do
-        hostile_row 4096 "$scenario" --cancel-after-ms 1500
-    done
+    # The same heavy bakes admitted (the default 4 GiB budget), each cancelled inside its heaviest stage.
+    hostile_row 4096 vpl-deep --cancel-after-ms 1000
+    hostile_row 4096 radiosity --cancel-after-ms 1500
+    hostile_row 4096 environment --cancel-after-ms 150
+    hostile_row 4096 area --cancel-after-ms 1500
+    hostile_row 4096 area --cancel-after-ms 4000
     hostile_row 4096 vpl-huge --cancel-after-ms 1500 --small
     hostile_sigterm 4096
 }
