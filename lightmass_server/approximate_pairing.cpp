@@ -43,7 +43,8 @@ void sort_edges(std::vector<CandidateEdge>& edges, StopPoll& poll) {
 
 // Undirected candidate edges (u < v) from k-NN lists, mapped through `ids`,
 // sorted by (distance, u, v) and without duplicates.
-std::vector<CandidateEdge> candidate_edges(const KnnResult& knn, std::span<const uint32_t> ids, StopPoll& poll) {
+std::vector<CandidateEdge> candidate_edges(const KnnResult& knn, std::span<const uint32_t> ids,
+                                           StopPoll& poll) {
     std::vector<CandidateEdge> edges;
     edges.reserve(ids.size() * knn.k_used);
     for (uint32_t i = 0; i < ids.size(); ++i) {

@@ -47,8 +47,8 @@ void add_indirect(const BakeInputs& inputs, BakeFootprint& out, uint64_t& larges
         out.bytes += most * kBytesPerVpl;
         if (part > largest_part) largest_part = part, out.largest = "up to " + std::to_string(most) + " VPLs";
     } else if (indirect.method == IndirectMethod::kRadiosity) {
-        const uint64_t patches = std::min<uint64_t>(count_patches(*inputs.geometry, indirect.radiosity.patch_size),
-                                                    indirect.radiosity.max_patches);
+        const uint64_t patches = std::min<uint64_t>(
+            count_patches(*inputs.geometry, indirect.radiosity.patch_size), indirect.radiosity.max_patches);
         out.tree_lights += patches;
         const uint64_t part = patches * (kBytesPerPatch + kTreeBytesPerLight);
         out.bytes += patches * kBytesPerPatch;

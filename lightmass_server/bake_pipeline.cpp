@@ -13,15 +13,16 @@ namespace lc::bake {
 namespace {
 
 // The emissive triangles as oriented lights, appended to `added`, with their census line.
-Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added, std::vector<std::string>& effects,
-                       std::vector<std::string>& warnings) {
+Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
+                       std::vector<std::string>& effects, std::vector<std::string>& warnings) {
     Result<AreaLightSampling> sampled =
         sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, inputs.stop.get());
     if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
     if (!sampled) return make_error("area lights: " + sampled.error());
     if (sampled->budget_raised) {
         warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
-                           std::to_string(sampled->emissive_triangles) + " emissive triangles: one sample each");
+                           std::to_string(sampled->emissive_triangles) +
+                           " emissive triangles: one sample each");
     }
     if (!sampled->lights.empty()) {
         effects.push_back("area lights: simulated (" + std::to_string(sampled->emissive_triangles) +
@@ -72,7 +73,8 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         caster.emplace(std::move(built.value()));
 
         if (!report("area lights", 0.0)) return stopped("area lights");
-        if (Status sampled = add_area_lights(inputs, added, effects, warnings); !sampled) return sampled.failure();
+        if (Status sampled = add_area_lights(inputs, added, effects, warnings); !sampled)
+            return sampled.failure();
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
     if (!report(effects.back(), 0.0)) return stopped("area lights");
@@ -98,10 +100,9 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     const SceneGeometry no_geometry;
     IndirectOptions indirect_options = inputs.indirect;
     indirect_options.vpl.stop = indirect_options.radiosity.stop = stop;
-    Result<IndirectStageResult> indirect =
-        run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
-                           photon_sources.empty() ? *inputs.lights : photon_sources, indirect_options,
-                           progress);
+    Result<IndirectStageResult> indirect = run_indirect_stage(
+        inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
+        photon_sources.empty() ? *inputs.lights : photon_sources, indirect_options, progress);
     if (!indirect) return indirect.failure();
     effects.push_back("indirect: " + indirect->census);
     if (!inputs.radiosity_out.empty() && !indirect->patches.empty()) {
@@ -120,7 +121,8 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         all_lights = *inputs.lights;
         all_lights.insert(all_lights.end(), added.begin(), added.end());
     }
-    Result<BuildResult> built = build_stoppable(added.empty() ? *inputs.lights : all_lights, inputs, progress);
+    Result<BuildResult> built =
+        build_stoppable(added.empty() ? *inputs.lights : all_lights, inputs, progress);
     if (!built) return built;
     built->report.effects = std::move(effects);
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());

@@ -63,6 +63,8 @@ private:
     bool stopped_ = false;
 };
 
-inline bool stop_requested(const BakeStop* stop) { return stop && stop->requested(); }
+inline bool stop_requested(const BakeStop* stop) {
+    return stop && stop->requested();
+}
 
 }  // namespace lc::bake

@@ -35,8 +35,8 @@ Connection::Connection(Transport transport, const ServerOptions& options, BakeLa
       workers_(workers),
       recorder_(recorder),
       id_(id),
-      session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason), &memory_budget,
-                                    options.memory_budget_bytes / 2}),
+      session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason),
+                                    &memory_budget, options.memory_budget_bytes / 2}),
       decoder_(options.max_frame_bytes),
       wake_(transport_.get_executor()),
       deadline_timer_(transport_.get_executor()) {
@@ -128,9 +128,10 @@ void Connection::apply(ServerActions actions) {
 void Connection::start_bake(StartBake start) {
     start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
     start.inputs.radiosity_out = options_.radiosity_out.string();
-    auto stop = std::make_shared<BakeStop>(Clock::now() + options_.max_bake_time,
-                                           "--max-bake-seconds " + std::to_string(options_.max_bake_time.count()) +
-                                               " (the server's limit on one bake's time)");
+    auto stop =
+        std::make_shared<BakeStop>(Clock::now() + options_.max_bake_time,
+                                   "--max-bake-seconds " + std::to_string(options_.max_bake_time.count()) +
+                                       " (the server's limit on one bake's time)");
     start.inputs.stop = stop;
     bake_stop_ = stop;
     auto self = shared_from_this();
@@ -152,8 +153,9 @@ void Connection::start_bake(StartBake start) {
             }
             return !stop->requested();
         };
-        Result<BuildResult> result = stop->requested() ? Result<BuildResult>(stop->reason("bake before its start"))
-                                                       : run_bake(start.inputs, progress);
+        Result<BuildResult> result = stop->requested()
+                                         ? Result<BuildResult>(stop->reason("bake before its start"))
+                                         : run_bake(start.inputs, progress);
         // A stage that saw only "stop" reports a cancel; the deadline is the reason to give.
         if (!result && !stop->cancelled() && stop->deadline_passed()) result = stop->reason("bake");
         asio::post(executor, [self, bake_id, stop, result = std::move(result)]() mutable {

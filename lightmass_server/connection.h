@@ -49,7 +49,14 @@ private:
     awaitable<void> watch_deadline();
 
     enum class DeadlineKind {
-        kNone, kTlsHandshake, kHello, kFlush, kStalledFrame, kSlowFrame, kStalledChannel, kIdle
+        kNone,
+        kTlsHandshake,
+        kHello,
+        kFlush,
+        kStalledFrame,
+        kSlowFrame,
+        kStalledChannel,
+        kIdle
     };
     struct Deadline {
         Clock::time_point at = Clock::time_point::max();

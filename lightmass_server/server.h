@@ -7,13 +7,13 @@
 #include <memory>
 #include <vector>
 
-#include "protocol/asio.h"
+#include "lightcuts/result.h"
 #include "lightmass_server/bake_lanes.h"
 #include "lightmass_server/connection.h"
 #include "lightmass_server/memory_budget.h"
 #include "lightmass_server/server_options.h"
+#include "protocol/asio.h"
 #include "protocol/channel_recorder.h"
-#include "lightcuts/result.h"
 #include "protocol/transport.h"
 
 namespace lc::bake {

@@ -284,11 +284,12 @@ void ServerSession::store_geometry(IncomingScene& channel) {
 
 bool ServerSession::check_bake_request(const BakeRequestMsg& request) {
     if (Status settings = validate_bake_settings(request); !settings) {
-        send_error(request.bake_id, ErrorCode::kInvalidScene, "bake " + std::to_string(request.bake_id) +
-                                                                  " refused: " + settings.error());
+        send_error(request.bake_id, ErrorCode::kInvalidScene,
+                   "bake " + std::to_string(request.bake_id) + " refused: " + settings.error());
         return false;
     }
-    if (request.indirect.method != IndirectMethod::kRadiosity || request.geometry_channel.empty()) return true;
+    if (request.indirect.method != IndirectMethod::kRadiosity || request.geometry_channel.empty())
+        return true;
     auto geometry = geometries_.find(request.geometry_channel);
     if (geometry == geometries_.end()) return true;  // named in the next check
     Status patches =
@@ -365,8 +366,9 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     if (!reserve_bake(request.bake_id, start, reservation)) return true;
 
     if (classic > 0)
-        send(WarningMsg{request.bake_id,
-                        std::to_string(classic) + " classic lights in the scene channel were left out of the tree"});
+        send(WarningMsg{
+            request.bake_id,
+            std::to_string(classic) + " classic lights in the scene channel were left out of the tree"});
     spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
                  request.bake_id, start.inputs.lights->size(), start.inputs.geometry ? " and geometry" : "",
                  builder_name(build.builder), build.seed);
@@ -384,15 +386,16 @@ bool ServerSession::reserve_bake(uint32_t bake_id, StartBake& start, BudgetReser
     if (!budget) return true;
     if (footprint.bytes > budget->limit()) {
         send_error(bake_id, ErrorCode::kTooLarge,
-                   "bake " + std::to_string(bake_id) + " too large: needs " + megabytes_text(footprint.bytes) +
-                       " (" + footprint.largest + "), the budget is " + megabytes_text(budget->limit()) +
-                       " (--memory-budget-mb)");
+                   "bake " + std::to_string(bake_id) + " too large: needs " +
+                       megabytes_text(footprint.bytes) + " (" + footprint.largest + "), the budget is " +
+                       megabytes_text(budget->limit()) + " (--memory-budget-mb)");
         return false;
     }
     if (!budget->try_reserve(footprint.bytes)) {
         send_error(bake_id, ErrorCode::kBusy,
-                   "server busy: bake " + std::to_string(bake_id) + " needs " + megabytes_text(footprint.bytes) +
-                       " and " + megabytes_text(budget->limit() - std::min(budget->limit(), budget->used())) +
+                   "server busy: bake " + std::to_string(bake_id) + " needs " +
+                       megabytes_text(footprint.bytes) + " and " +
+                       megabytes_text(budget->limit() - std::min(budget->limit(), budget->used())) +
                        " of the " + megabytes_text(budget->limit()) + " budget is free; try again later");
         return false;
     }

@@ -7,11 +7,11 @@
 #include <string_view>
 #include <vector>
 
-#include "lightmass_server/bake_stop.h"
 #include "lightcuts/light_tree.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 
 namespace lc::bake {
 
@@ -26,7 +26,7 @@ struct BuildOptions {
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = kDefaultExactPairingLimit;
     uint64_t seed = 0;
-    // Polled inside the optimal-pair builder's approximate levels, besides the
+    // Polled inside the optimal-pair builder's levels (approximate pairing, merges), besides the
     // progress callback between levels; null: never stops.
     const BakeStop* stop = nullptr;
 };

@@ -25,9 +25,9 @@ Status validate_indirect(const IndirectRequest& indirect) {
         return make_error("unknown indirect method " + std::to_string(int(indirect.method)));
     const float patch = indirect.patch_size;
     if (!std::isfinite(patch) || patch < kMinPatchSize || patch > kMaxPatchSize)
-        return out_of_range("radiosity patch size", readable_number(patch),
-                            readable_number(kMinPatchSize) + " to " + readable_number(kMaxPatchSize) +
-                                " scene units");
+        return out_of_range(
+            "radiosity patch size", readable_number(patch),
+            readable_number(kMinPatchSize) + " to " + readable_number(kMaxPatchSize) + " scene units");
     const double tolerance = indirect.tolerance;
     if (!std::isfinite(tolerance) || tolerance < 0.0 || tolerance >= 1.0)
         return out_of_range("radiosity tolerance", readable_number(tolerance), "in [0, 1)");

@@ -43,9 +43,11 @@ TEST(BakeFootprint, AnEnvironmentMapCountsItsSamplersTable) {
 TEST(BakeFootprint, AreaLightSamplesCountOnlyWhenATriangleEmits) {
     BakeInputs inputs = with_lights(0);
     inputs.area_lights = kMaxAreaLights;
-    inputs.geometry = std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
     EXPECT_EQ(estimate_bake_footprint(inputs, false).tree_lights, 0u);
-    inputs.geometry = std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(1.0f)}));
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(1.0f)}));
     const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
     EXPECT_EQ(footprint.tree_lights, kMaxAreaLights);
     EXPECT_GT(footprint.bytes, 3000 * kMiB);  // the 2.5 GB the audit saw, refused at 512 MB
@@ -53,7 +55,8 @@ TEST(BakeFootprint, AreaLightSamplesCountOnlyWhenATriangleEmits) {
 
 TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {
     BakeInputs inputs = with_lights(4);
-    inputs.geometry = std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(1.0f), glm::vec3(0.0f)}));
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(1.0f), glm::vec3(0.0f)}));
     inputs.indirect.method = IndirectMethod::kVpl;
     inputs.indirect.vpl.particle_count = 1000;
     inputs.indirect.vpl.bounces = 3;
@@ -69,7 +72,8 @@ TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {
 
 TEST(BakeFootprint, RadiosityCountsItsPatches) {
     BakeInputs inputs = with_lights(0);
-    inputs.geometry = std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
     inputs.indirect.method = IndirectMethod::kRadiosity;
     inputs.indirect.radiosity.patch_size = 0.25f;  // edges 1 and 1.41: k = 6 on every triangle
     const BakeFootprint footprint = estimate_bake_footprint(inputs, false);

@@ -49,7 +49,8 @@ TEST(BakeLimits, DefaultsAndLimitsPass) {
 TEST(BakeLimits, EachSettingPastItsLimitIsNamed) {
     EXPECT_NE(refusal(vpl(0, 100)).find("vpl bounces 0"), std::string::npos);
     EXPECT_NE(refusal(vpl(kMaxBakeBounces + 1, 100)).find("1 to 65535"), std::string::npos);
-    EXPECT_NE(refusal(vpl(1, 1000000000000ull)).find("vpl count (light paths) 1000000000000"), std::string::npos);
+    EXPECT_NE(refusal(vpl(1, 1000000000000ull)).find("vpl count (light paths) 1000000000000"),
+              std::string::npos);
     EXPECT_NE(refusal(vpl(1, 0)).find("out of range"), std::string::npos);
     EXPECT_NE(refusal(radiosity(1e-37f, 0.01f)).find("patch size 1e-37 is out of range"), std::string::npos)
         << refusal(radiosity(1e-37f, 0.01f));

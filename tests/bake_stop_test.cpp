@@ -22,7 +22,9 @@ namespace lc::bake {
 namespace {
 
 // A closed white furnace: every path bounces until its bounce limit.
-SceneGeometry white_furnace() { return test::closed_box({glm::vec3(1.0f), glm::vec3(1.0f)}); }
+SceneGeometry white_furnace() {
+    return test::closed_box({glm::vec3(1.0f), glm::vec3(1.0f)});
+}
 
 std::unique_ptr<BakeStop> cancelled_stop() {
     auto stop = std::make_unique<BakeStop>();
@@ -158,7 +160,8 @@ TEST(TreeBuildLimits, ApproximatePairingStopsInsideALevel) {
 
 TEST(BakePipelineLimits, AStoppedBakeEndsWithTheStopsReason) {
     BakeInputs inputs;
-    inputs.lights = std::make_shared<const std::vector<SceneLight>>(test::random_lights(2000, 3, LightType::kPoint));
+    inputs.lights =
+        std::make_shared<const std::vector<SceneLight>>(test::random_lights(2000, 3, LightType::kPoint));
     inputs.geometry = std::make_shared<const SceneGeometry>(white_furnace());
     inputs.indirect.method = IndirectMethod::kVpl;
     inputs.indirect.vpl.bounces = kMaxVplBounces;

@@ -81,7 +81,8 @@ TEST(EnvironmentImage, RefusesWhatIsNotARegularFileByName) {
     for (const std::filesystem::path& path : {dir, fifo, std::filesystem::path("/dev/zero")}) {
         auto map = load_environment_image(path);
         ASSERT_FALSE(map);
-        EXPECT_NE(map.error().find("'" + path.string() + "': not a regular file"), std::string::npos) << map.error();
+        EXPECT_NE(map.error().find("'" + path.string() + "': not a regular file"), std::string::npos)
+            << map.error();
     }
     std::filesystem::remove_all(dir);
 }

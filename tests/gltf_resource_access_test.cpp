@@ -118,11 +118,13 @@ TEST_F(GltfResourceAccess, BufferFileOfAnotherSizeThanItsByteLengthIsRefusedUnre
     ASSERT_EQ(::truncate(huge.c_str(), off_t(2) << 30), 0) << std::strerror(errno);
     Result<Scene> scene = load(triangle_scene("buffers/huge.bin"));
     ASSERT_FALSE(scene.ok());
-    EXPECT_THAT(scene.error(), HasSubstr("holds 2147483648 bytes but its buffer's byteLength is 44; not read"));
+    EXPECT_THAT(scene.error(),
+                HasSubstr("holds 2147483648 bytes but its buffer's byteLength is 44; not read"));
 }
 
 TEST(GltfBufferSizes, ReadFromGltfTextAndGlbJsonChunkWithoutDataUris) {
-    const std::string text = R"({"buffers":[{"uri":"a.bin","byteLength":7},{"uri":"data:,x","byteLength":1}]})";
+    const std::string text =
+        R"({"buffers":[{"uri":"a.bin","byteLength":7},{"uri":"data:,x","byteLength":1}]})";
     const auto* bytes = reinterpret_cast<const uint8_t*>(text.data());
     std::vector<BufferFileSize> sizes = external_buffer_sizes({bytes, text.size()});
     ASSERT_EQ(sizes.size(), 1u);

@@ -45,7 +45,9 @@ client::BakeClientOptions furnace_bake(const client::ServerProcess& server, Indi
     return options;
 }
 
-std::vector<SceneLight> point_lights(uint32_t count) { return test::random_lights(count, 9, LightType::kPoint, 4.0f); }
+std::vector<SceneLight> point_lights(uint32_t count) {
+    return test::random_lights(count, 9, LightType::kPoint, 4.0f);
+}
 
 // A bake on its own thread that says when its server reports a stage past the queue.
 struct BackgroundBake {
@@ -78,8 +80,8 @@ struct BackgroundBake {
 };
 
 TEST(HostileBake, APeerSilentWithAChannelOpenIsClosedAndItsBytesFreed) {
-    auto server = start_server({"--read-timeout-ms", "500", "--idle-timeout-ms", "600000", "--memory-budget-mb",
-                                "512"});
+    auto server = start_server(
+        {"--read-timeout-ms", "500", "--idle-timeout-ms", "600000", "--memory-budget-mb", "512"});
     ASSERT_TRUE(server);
     const uint64_t announced = uint64_t{200} << 20;  // within the 256 MB a connection may hold
     test::RawClient silent(test::port_of(server->address()), 10s);
@@ -120,7 +122,8 @@ TEST(HostileBake, SigtermStopsARadiosityBakeInItsPointLightPass) {
     auto server = start_server({"--threads", "1"});
     ASSERT_TRUE(server);
     // 1,000 point lights over about 150,000 patches: minutes of shadow rays.
-    BackgroundBake bake(point_lights(1000), furnace_bake(*server, {IndirectMethod::kRadiosity, 1, 1, 0.05f, 0.01f}));
+    BackgroundBake bake(point_lights(1000),
+                        furnace_bake(*server, {IndirectMethod::kRadiosity, 1, 1, 0.05f, 0.01f}));
     ASSERT_TRUE(bake.wait_started());
     std::this_thread::sleep_for(300ms);  // inside the point-light pass
     EXPECT_EQ(server->terminate(), 0) << "the server did not exit within 5 s of SIGTERM";
@@ -131,7 +134,8 @@ TEST(HostileBake, SigtermStopsARadiosityBakeInItsPointLightPass) {
 TEST(HostileBake, ASmallBakeIsNotStuckBehindAHugeOne) {
     auto server = start_server({"--threads", "1"});
     ASSERT_TRUE(server);
-    BackgroundBake huge(point_lights(4), furnace_bake(*server, {IndirectMethod::kVpl, 1, 1000000000, 0.25f, 0.01f}));
+    BackgroundBake huge(point_lights(4),
+                        furnace_bake(*server, {IndirectMethod::kVpl, 1, 1000000000, 0.25f, 0.01f}));
     ASSERT_TRUE(huge.wait_started());
     client::BakeClientOptions small;
     small.server = server->address();

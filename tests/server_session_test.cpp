@@ -227,8 +227,9 @@ TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
         EXPECT_EQ(budget.used(), scene_bytes);
         ServerSession other(options);
         hello(other);
-        EXPECT_EQ(error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), bake_bytes + 1})),
-                  std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_EQ(
+            error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), bake_bytes + 1})),
+            std::vector<ErrorCode>{ErrorCode::kBusy});
         EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request())), 1u);
     }
     EXPECT_EQ(budget.used(), 0u);  // a session gives its bytes back when it ends
@@ -485,9 +486,10 @@ TEST(ServerSession, DegenerateGeometryOnlyWarnsAndBakes) {
 TEST(ServerSession, SettingsOutOfRangeAreRefusedOnArrival) {
     ServerSession session = session_with_scene();
     std::vector<BakeRequestMsg> bad(6, bake_request());
-    bad[0].indirect = {IndirectMethod::kVpl, 0, 1000, 0.25f, 0.01f};                  // no bounce
-    bad[1].indirect = {IndirectMethod::kVpl, kMaxBakeBounces + 1, 1000, 0.25f, 0.01f};  // deeper than recorded
-    bad[2].indirect = {IndirectMethod::kVpl, 1, kMaxVplPaths + 1, 0.25f, 0.01f};       // 10^12 paths and the like
+    bad[0].indirect = {IndirectMethod::kVpl, 0, 1000, 0.25f, 0.01f};  // no bounce
+    bad[1].indirect = {IndirectMethod::kVpl, kMaxBakeBounces + 1, 1000, 0.25f,
+                       0.01f};                                                    // deeper than recorded
+    bad[2].indirect = {IndirectMethod::kVpl, 1, kMaxVplPaths + 1, 0.25f, 0.01f};  // 10^12 paths and the like
     bad[3].indirect = {IndirectMethod::kRadiosity, 1, 1000, 1e-37f, 0.01f};
     bad[4].indirect = {IndirectMethod::kRadiosity, 1, 1000, 0.25f, 1.0f};
     bad[5].area_lights = kMaxAreaLights + 1;

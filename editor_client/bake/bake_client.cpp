@@ -312,7 +312,8 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              // Only a bake with geometry has area lights to sample.
                                              .area_lights = options.geometry ? options.area_lights : 0u,
                                              .indirect = options.indirect};
-    // The server checks the same limits on arrival; checked here, nothing is sent for a request it would refuse.
+    // The server checks the same limits on arrival; checked here, nothing is sent for a request it would
+    // refuse.
     if (Status settings = validate_bake_settings(session_options.request); !settings)
         return make_error("bake settings refused before sending: " + settings.error());
     session_options.environment = options.environment;

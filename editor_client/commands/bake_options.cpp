@@ -63,7 +63,8 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
     cmd.add_option("--bounces", indirect_request.bounces, "vpl: diffuse bounces that leave a light")
         ->capture_default_str()
         ->check(CLI::Range(1u, kMaxBakeBounces));
-    cmd.add_option("--vpl-count", indirect_request.vpl_count, "vpl: light paths traced (each leaves up to --bounces lights)")
+    cmd.add_option("--vpl-count", indirect_request.vpl_count,
+                   "vpl: light paths traced (each leaves up to --bounces lights)")
         ->capture_default_str()
         ->check(CLI::Range(uint64_t{1}, kMaxVplPaths));
     cmd.add_option("--patch-size", indirect_request.patch_size, "radiosity: target patch edge, scene units")

@@ -34,7 +34,8 @@ std::string_view json_text(std::span<const uint8_t> gltf) {
 std::vector<BufferFileSize> external_buffer_sizes(std::span<const uint8_t> gltf) {
     std::vector<BufferFileSize> sizes;
     const nlohmann::json document = nlohmann::json::parse(json_text(gltf), nullptr, false);
-    if (!document.is_object() || !document.contains("buffers") || !document["buffers"].is_array()) return sizes;
+    if (!document.is_object() || !document.contains("buffers") || !document["buffers"].is_array())
+        return sizes;
     for (const nlohmann::json& buffer : document["buffers"]) {
         if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
         if (!buffer.contains("byteLength") || !buffer["byteLength"].is_number_unsigned()) continue;

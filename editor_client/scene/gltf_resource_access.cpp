@@ -94,8 +94,8 @@ bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path, st
         return false;
     }
     if (expected_size && uint64_t(info.st_size) != *expected_size) {
-        error = "'" + path.string() + "' holds " + std::to_string(info.st_size) + " bytes but its buffer's byteLength is " +
-                std::to_string(*expected_size) + "; not read";
+        error = "'" + path.string() + "' holds " + std::to_string(info.st_size) +
+                " bytes but its buffer's byteLength is " + std::to_string(*expected_size) + "; not read";
         return false;
     }
     out.resize(size_t(info.st_size));

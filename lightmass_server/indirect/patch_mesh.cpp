@@ -46,13 +46,15 @@ uint64_t count_patches(const SceneGeometry& geometry, float patch_size) {
 
 Status check_patch_count(const SceneGeometry& geometry, float patch_size, size_t max_patches) {
     if (!(patch_size > 0.0f) || !std::isfinite(patch_size)) {
-        return make_error("radiosity patch size must be positive and finite, got " + readable_number(patch_size));
+        return make_error("radiosity patch size must be positive and finite, got " +
+                          readable_number(patch_size));
     }
     const uint64_t total = count_patches(geometry, patch_size);
     if (total > max_patches) {
-        return make_error("too large: radiosity would make " + std::to_string(total) + " patches at patch size " +
-                              readable_number(patch_size) + ", more than the limit of " +
-                              std::to_string(max_patches) + "; use a larger --patch-size",
+        return make_error("too large: radiosity would make " + std::to_string(total) +
+                              " patches at patch size " + readable_number(patch_size) +
+                              ", more than the limit of " + std::to_string(max_patches) +
+                              "; use a larger --patch-size",
                           ErrorKind::kRefused);
     }
     return Ok{};

@@ -12,10 +12,10 @@
 #include <numbers>
 
 #include "lightcuts/shading_model.h"
-#include "protocol/bake_limits.h"
 #include "lightmass_server/indirect/photon_emitters.h"
 #include "lightmass_server/indirect/point_polygon_form_factor.h"
 #include "lightmass_server/indirect/surface_sampling.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::bake {
 namespace {

@@ -73,8 +73,9 @@ bool trace_particle(const SceneGeometry& geometry, const RayCaster& caster, cons
 
 Error quota_error(const VplOptions& options) {
     return make_error("too large: the " + std::to_string(options.particle_count) + " light paths of " +
-                      std::to_string(options.bounces) + " bounces leave more than " +
-                      std::to_string(options.max_lights) + " VPLs, the limit; ask for fewer paths or bounces",
+                          std::to_string(options.bounces) + " bounces leave more than " +
+                          std::to_string(options.max_lights) +
+                          " VPLs, the limit; ask for fewer paths or bounces",
                       ErrorKind::kRefused);
 }
 
@@ -106,7 +107,8 @@ Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& cas
             uint64_t begin = (first + k) * kParticlesPerTask;
             uint64_t end = std::min(options.particle_count, begin + kParticlesPerTask);
             for (uint64_t i = begin; i < end; ++i)
-                if (!trace_particle(geometry, caster, emitters, options, epsilon, i, out, poll, quota)) return;
+                if (!trace_particle(geometry, caster, emitters, options, epsilon, i, out, poll, quota))
+                    return;
         });
         if (quota.exceeded.load()) return quota_error(options);
         if (stop_requested(options.stop)) return options.stop->reason("indirect light tracing");

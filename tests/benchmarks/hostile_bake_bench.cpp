@@ -25,11 +25,11 @@
 #include <thread>
 
 #include "editor_client/bake/bake_client.h"
+#include "lightcuts/seeded_mixer.h"
 #include "protocol/asio.h"
 #include "protocol/channel_name.h"
 #include "protocol/codec.h"
 #include "tests/indirect_scenes.h"
-#include "lightcuts/seeded_mixer.h"
 
 namespace {
 
@@ -74,8 +74,9 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
     } else if (name == "vpl-deep" || name == "vpl-huge") {
         s.options.geometry = std::make_shared<const lc::SceneGeometry>(
             lc::test::closed_box({name == "vpl-deep" ? white : black, none}, 4.0f));
-        s.options.indirect = name == "vpl-deep" ? lc::IndirectRequest{lc::IndirectMethod::kVpl, 65535, 1000}
-                                                : lc::IndirectRequest{lc::IndirectMethod::kVpl, 1, 1000000000};
+        s.options.indirect = name == "vpl-deep"
+                                 ? lc::IndirectRequest{lc::IndirectMethod::kVpl, 65535, 1000}
+                                 : lc::IndirectRequest{lc::IndirectMethod::kVpl, 1, 1000000000};
     } else if (name == "radiosity") {
         s.lights = point_lights(1000, 9);
         s.options.geometry =
@@ -104,8 +105,9 @@ int silent_channel(const std::string& server) {
     lc::asio::io_context io;
     lc::tcp::socket socket(io);
     boost::system::error_code ec;
-    socket.connect({lc::asio::ip::make_address(server.substr(0, colon)),
-                    uint16_t(std::stoi(server.substr(colon + 1)))}, ec);
+    socket.connect(
+        {lc::asio::ip::make_address(server.substr(0, colon)), uint16_t(std::stoi(server.substr(colon + 1)))},
+        ec);
     if (ec) return std::fprintf(stderr, "connect: %s\n", ec.message().c_str()), 1;
     for (const lc::Message& message :
          {lc::Message(lc::HelloMsg{lc::kProtocolVersion, "hostile", ""}),
@@ -133,8 +135,10 @@ int main(int argc, char** argv) {
     int cancel_after_ms = 0;
     bool small = false;
     for (int i = 3; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--cancel-after-ms") && i + 1 < argc) cancel_after_ms = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--small")) small = true;
+        if (!std::strcmp(argv[i], "--cancel-after-ms") && i + 1 < argc)
+            cancel_after_ms = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--small"))
+            small = true;
     }
     if (name == "silent-channel") return silent_channel(server);
     auto small_bake_ms = [&] {
@@ -190,7 +194,8 @@ int main(int argc, char** argv) {
         }
     }
     if (bake.joinable()) bake.join();
-    std::string detail = outcome.ok() ? std::to_string(outcome->tree.leaf_count) + " leaves" : outcome.error();
+    std::string detail =
+        outcome.ok() ? std::to_string(outcome->tree.leaf_count) + " leaves" : outcome.error();
     for (char& c : detail)
         if (c == ',' || c == '\n') c = ';';
     std::printf("%s,%s,%s,%.1f,%.1f,%.1f,%s\n", name.c_str(), outcome.ok() ? "baked" : "refused-or-stopped",
