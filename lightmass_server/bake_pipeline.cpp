@@ -16,9 +16,8 @@ namespace {
 // The emissive triangles as oriented lights, appended to `added`, with their census line.
 Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
                        std::vector<std::string>& effects, std::vector<std::string>& warnings) {
-    Result<AreaLightSampling> sampled =
-        sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, IndexRange{},
-                           inputs.stop.get());
+    Result<AreaLightSampling> sampled = sample_area_lights(
+        *inputs.geometry, inputs.area_lights, inputs.build.seed, IndexRange{}, inputs.stop.get());
     if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
     if (!sampled) return make_error("area lights: " + sampled.error());
     if (sampled->budget_raised) {

@@ -574,6 +574,25 @@ TEST(ServerSession, VplBakesCarryTheirLightCapAndSmallBakesTheSmallLane) {
     EXPECT_EQ(start->inputs.indirect.vpl.max_lights, 2000u);
 }
 
+// A bake over MPI ranks waits on its job for its whole length, so it never takes
+// the small lane; its estimated peak is reserved like a bake in the process.
+TEST(ServerSession, ABakeOverRanksTakesTheBigPoolAndReservesItsFootprint) {
+    MemoryBudget budget(uint64_t{64} << 20);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    ServerSession session = session_with_scene(options);
+    BakeRequestMsg request = bake_request(1);
+    request.ranks = 2;
+    const uint64_t held = budget.used();
+    const StartBake* start = first_of<StartBake>(session.on_message(request));
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->inputs.ranks, 2u);
+    EXPECT_FALSE(start->small);
+    EXPECT_GT(budget.used(), held);
+    session.on_bake_finished(1, make_error("cancelled", ErrorKind::kCancelled));
+    EXPECT_EQ(budget.used(), held);
+}
+
 TEST(ServerSession, OpenChannelsAreCappedPerConnectionAndFreedOnClose) {
     MemoryBudget budget(uint64_t{1} << 30);
     ServerSessionOptions options;

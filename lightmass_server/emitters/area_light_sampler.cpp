@@ -98,8 +98,8 @@ glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& t
     return std::numbers::pi * area * glm::dvec3(geometry.materials[triangle.material].emission);
 }
 
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed, IndexRange samples, const BakeStop* stop) {
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             IndexRange samples, const BakeStop* stop) {
     if (budget == 0) return make_error("the area-light budget is 0; give at least 1 sample");
     std::vector<Emitter> emitters;
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {

@@ -29,9 +29,8 @@ struct AreaLightSampling {
 // (an MPI rank's share; each triangle's draws depend only on the seed and the
 // triangle, so the shares concatenated are the whole run's lights). Polls
 // `stop` every sample made (null: never stops).
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed, IndexRange samples = {},
-                                             const BakeStop* stop = nullptr);
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             IndexRange samples = {}, const BakeStop* stop = nullptr);
 
 // Per channel, pi x L x A: what a triangle of emitted radiance L emits.
 glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& triangle);
