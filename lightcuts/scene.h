@@ -27,6 +27,22 @@ struct Texture {
     bool srgb = true;
 };
 
+// glTF alphaMode: OPAQUE ignores alpha, MASK cuts out where alpha (texture x
+// factor) is under alpha_cutoff (in the image and in shadows), BLEND is drawn
+// opaque and casts no shadow.
+enum class AlphaMode : uint8_t { kOpaque, kMask, kBlend };
+
+// The texture coordinates a material's textures are sampled with: the set
+// (TEXCOORD_<set>) and KHR_texture_transform (scale, then rotation
+// counter-clockwise in uv, then offset), applied to the mesh's uvs at load.
+struct TextureCoordinates {
+    int set = 0;
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+    bool transformed = false;  // the file gives KHR_texture_transform
+};
+
 struct Material {
     glm::vec4 base_color_factor{1.0f};
     int base_color_texture = -1;  // index into Scene::textures
@@ -35,9 +51,17 @@ struct Material {
     int metallic_roughness_texture = -1;  // scales roughness (G) and metallic (B)
     glm::vec3 emissive_factor{0.0f};
     int emissive_texture = -1;
+    // A tangent-space normal map (linear RGB in [0, 1] -> [-1, 1]); its x and
+    // y are scaled by normal_scale (glTF normalTexture.scale).
+    int normal_texture = -1;
+    float normal_scale = 1.0f;
     // False for surfaces light passes through (alphaMode BLEND, or a
     // KHR_materials_transmission factor > 0): they are drawn but block no light.
     bool casts_shadows = true;
+    AlphaMode alpha_mode = AlphaMode::kOpaque;
+    float alpha_cutoff = 0.5f;  // glTF's default; read for MASK only
+    bool double_sided = false;
+    TextureCoordinates texture_coordinates;
 };
 
 struct Mesh {
@@ -46,6 +70,10 @@ struct Mesh {
     std::vector<glm::vec2> uvs;        // empty when the primitive has no TEXCOORD_0
     std::vector<uint32_t> indices;     // triangle list
     int material = -1;                 // -1: the glTF default material
+    // World space: xyz unit, w = +-1 the bitangent's sign (glTF TANGENT, or
+    // generated for a normal map); empty when the material has no normal map.
+    std::vector<glm::vec4> tangents;
+    std::vector<glm::vec4> colors;  // COLOR_0 (linear RGBA), empty: white
 };
 
 struct Camera {

@@ -223,8 +223,9 @@ bool segment_touches_box(const glm::dvec3& origin, const glm::dvec3& direction,
 
 // Moller-Trumbore, both faces: a hit strictly inside (0, t_max). The barycentric
 // tests are negated so a NaN (a near-parallel ray whose 1 / det overflows) misses.
+// u and w: the hit's barycentric weights of v[1] and v[2].
 bool segment_hits_triangle(const glm::dvec3& origin, const glm::dvec3& direction, double t_max,
-                           const glm::dvec3* v) {
+                           const glm::dvec3* v, double& u, double& w) {
     const glm::dvec3 edge1 = v[1] - v[0];
     const glm::dvec3 edge2 = v[2] - v[0];
     const glm::dvec3 p = glm::cross(direction, edge2);
@@ -232,10 +233,10 @@ bool segment_hits_triangle(const glm::dvec3& origin, const glm::dvec3& direction
     if (det == 0.0) return false;  // the ray is parallel to (or in) the triangle's plane
     const double inv_det = 1.0 / det;
     const glm::dvec3 s = origin - v[0];
-    const double u = glm::dot(s, p) * inv_det;
+    u = glm::dot(s, p) * inv_det;
     if (!(u >= 0.0 && u <= 1.0)) return false;
     const glm::dvec3 q = glm::cross(s, edge1);
-    const double w = glm::dot(direction, q) * inv_det;
+    w = glm::dot(direction, q) * inv_det;
     if (!(w >= 0.0 && u + w <= 1.0)) return false;
     const double t = glm::dot(edge2, q) * inv_det;
     return t > 0.0 && t < t_max;
@@ -245,13 +246,17 @@ bool segment_hits_triangle(const glm::dvec3& origin, const glm::dvec3& direction
 
 ShadowBvh ShadowBvh::build(const Scene& scene) {
     std::vector<glm::vec3> casting;
+    OccluderMasks masks;
+    const std::vector<int32_t> mesh_mask = mesh_alpha_masks(scene, masks.masks);
     size_t skipped_degenerate = 0;
     size_t skipped_non_casting = 0;
-    for (const Mesh& mesh : scene.meshes) {
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
         const size_t full_triples = mesh.indices.size() / 3;
         // A trailing partial triple is no triangle: count it as a degenerate one.
         if (mesh.indices.size() % 3 != 0) ++skipped_degenerate;
-        if (!casts_shadows(scene, mesh)) {
+        const int32_t mask = mesh_mask[m];
+        if (!casts_shadows(scene, mesh) || (mask >= 0 && mask_cuts_everything(masks.masks[size_t(mask)]))) {
             skipped_non_casting += full_triples;
             continue;
         }
@@ -262,18 +267,23 @@ ShadowBvh ShadowBvh::build(const Scene& scene) {
                 ++skipped_degenerate;
                 continue;
             }
+            add_occluder_mask(masks, casting.size() / 3, mesh, idx, mask);
             casting.push_back(mesh.positions[idx[0]]);
             casting.push_back(mesh.positions[idx[1]]);
             casting.push_back(mesh.positions[idx[2]]);
         }
     }
-    ShadowBvh bvh = build(std::span<const glm::vec3>(casting));
+    ShadowBvh bvh = build(std::span<const glm::vec3>(casting), masks);
     bvh.stats_.skipped_degenerate = saturate_u32(bvh.stats_.skipped_degenerate + skipped_degenerate);
     bvh.stats_.skipped_non_casting = saturate_u32(skipped_non_casting);
     return bvh;
 }
 
 ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
+    return build(triangle_vertices, OccluderMasks{});
+}
+
+ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices, const OccluderMasks& masks) {
     ShadowBvh bvh;
     size_t skipped = triangle_vertices.size() % 3 != 0 ? 1 : 0;  // a trailing partial triangle
 
@@ -371,7 +381,63 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
         g.edge2 = glm::vec3(v2 - v0);
     }
     bvh.stats_.nodes = static_cast<uint32_t>(node_count);
+    if (masks.any()) {
+        std::vector<uint32_t> source_of_leaf(count);
+        for (uint32_t i = 0; i < count; ++i) source_of_leaf[i] = tris[i].index;
+        bvh.attach_masks(masks, source_of_leaf);
+    }
     return bvh;
+}
+
+// The masked triangles in leaf order, their masks and the masks' texels
+// packed sixteen to a GpuMaskTexels. A triangle the list does not cover, or
+// with a mask index out of range, stays opaque.
+void ShadowBvh::attach_masks(const OccluderMasks& masks, std::span<const uint32_t> source_of_leaf) {
+    masks_ = masks.masks;
+    size_t texel_count = 0;
+    for (const AlphaMask& mask : masks_) {
+        GpuAlphaMask g;
+        g.texel_offset = static_cast<uint32_t>(texel_count);
+        g.width = static_cast<uint32_t>(mask.width);
+        g.height = static_cast<uint32_t>(mask.height);
+        g.keep_threshold = mask.keep_threshold;
+        gpu_masks_.push_back(g);
+        texel_count += mask.alpha.size();
+    }
+    gpu_texels_.assign((texel_count + 15) / 16, GpuMaskTexels{});
+    size_t at = 0;
+    for (const AlphaMask& mask : masks_) {
+        for (uint8_t a : mask.alpha) {
+            gpu_texels_[at / 16].words[int((at / 4) % 4)] |= uint32_t(a) << (8 * (at % 4));
+            ++at;
+        }
+    }
+    for (size_t i = 0; i < source_of_leaf.size(); ++i) {
+        const size_t source = source_of_leaf[i];
+        if (source >= masks.triangle_mask.size() || 3 * source + 2 >= masks.triangle_uvs.size()) continue;
+        const int32_t mask = masks.triangle_mask[source];
+        if (mask < 0 || size_t(mask) >= masks_.size()) continue;
+        GpuMaskedTriangle g;
+        g.uv0 = masks.triangle_uvs[3 * source];
+        g.uv1 = masks.triangle_uvs[3 * source + 1];
+        g.uv2 = masks.triangle_uvs[3 * source + 2];
+        g.mask = static_cast<uint32_t>(mask);
+        triangles_[i].masked = static_cast<uint32_t>(gpu_masked_.size()) + 1;
+        gpu_masked_.push_back(g);
+    }
+    stats_.masked = static_cast<uint32_t>(gpu_masked_.size());
+}
+
+// Does the leaf-order triangle block a ray at barycentrics (u, w)? The
+// texture coordinate is interpolated in float, as the shaders do.
+bool ShadowBvh::blocks(size_t leaf_triangle, double u, double w) const {
+    const uint32_t masked = triangles_[leaf_triangle].masked;
+    if (masked == 0) return true;
+    const GpuMaskedTriangle& m = gpu_masked_[masked - 1];
+    const float fu = static_cast<float>(u);
+    const float fw = static_cast<float>(w);
+    const glm::vec2 uv = m.uv0 * (1.0f - fu - fw) + m.uv1 * fu + m.uv2 * fw;
+    return mask_keeps(masks_[m.mask], uv);
 }
 
 bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
@@ -395,7 +461,10 @@ bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, 
         const uint32_t n = node.triangles & ((1u << kBvhLeafCountBits) - 1);
         for (uint32_t k = 0; k < n; ++k) {
             const glm::dvec3* v = &vertices_[3 * (static_cast<size_t>(first) + k)];
-            if (segment_hits_triangle(origin, direction, t_max, v)) return true;
+            double u = 0.0, w = 0.0;
+            if (segment_hits_triangle(origin, direction, t_max, v, u, w) &&
+                blocks(static_cast<size_t>(first) + k, u, w))
+                return true;
         }
         i = node.escape;
     }

@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "lightcuts/alpha_mask.h"
 #include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/scene.h"
 
@@ -23,6 +24,7 @@ struct ShadowBvhStats {
     uint32_t triangles = 0;            // shadow-casting triangles kept
     uint32_t skipped_degenerate = 0;   // zero-area or non-finite triangles dropped
     uint32_t skipped_non_casting = 0;  // triangles of materials that cast no shadow
+    uint32_t masked = 0;               // kept triangles a ray may pass through (alpha masks)
     uint32_t nodes = 0;
     uint32_t depth = 0;  // longest root-to-leaf path, in edges
 };
@@ -30,26 +32,42 @@ struct ShadowBvhStats {
 class ShadowBvh {
 public:
     // Every triangle of every mesh whose material casts shadows
-    // (Material::casts_shadows). Deterministic: the same scene gives the same nodes.
+    // (Material::casts_shadows), alpha-masked ones with their masks.
+    // Deterministic: the same scene gives the same nodes.
     static ShadowBvh build(const Scene& scene);
     // From a flat triangle list (3 vertices per triangle), for tests and tools.
     static ShadowBvh build(std::span<const glm::vec3> triangle_vertices);
+    // The same, where `masks` names the alpha-masked triangles (by input index).
+    static ShadowBvh build(std::span<const glm::vec3> triangle_vertices, const OccluderMasks& masks);
 
     bool empty() const { return nodes_.empty(); }
     const ShadowBvhStats& stats() const { return stats_; }
 
     // Any triangle hit at origin + t * direction with 0 < t < t_max?
-    // `direction` need not be unit length (t is in its units). Both faces occlude.
+    // `direction` need not be unit length (t is in its units). Both faces
+    // occlude; an alpha-masked triangle only where its mask keeps it.
     bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const;
 
     // The stackless layout the shaders traverse (node 0 is the root).
     const std::vector<GpuBvhNode>& gpu_nodes() const { return nodes_; }
     const std::vector<GpuShadowTriangle>& gpu_triangles() const { return triangles_; }
+    // The alpha-masked triangles (GpuShadowTriangle::masked - 1 indexes them),
+    // their masks and the masks' texels; empty when every triangle is opaque.
+    const std::vector<GpuMaskedTriangle>& gpu_masked_triangles() const { return gpu_masked_; }
+    const std::vector<GpuAlphaMask>& gpu_alpha_masks() const { return gpu_masks_; }
+    const std::vector<GpuMaskTexels>& gpu_mask_texels() const { return gpu_texels_; }
 
 private:
+    void attach_masks(const OccluderMasks& masks, std::span<const uint32_t> source_of_leaf);
+    bool blocks(size_t leaf_triangle, double u, double w) const;
+
     std::vector<GpuBvhNode> nodes_;
     std::vector<GpuShadowTriangle> triangles_;  // in leaf order
     std::vector<glm::dvec3> vertices_;          // 3 per triangle, in leaf order, for the CPU test
+    std::vector<AlphaMask> masks_;
+    std::vector<GpuMaskedTriangle> gpu_masked_;  // the CPU test reads them too
+    std::vector<GpuAlphaMask> gpu_masks_;
+    std::vector<GpuMaskTexels> gpu_texels_;
     ShadowBvhStats stats_;
 };
 

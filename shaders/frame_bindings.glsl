@@ -23,6 +23,10 @@ layout(std430, set = 0, binding = kBindCounters) buffer FrameCounters { GpuFrame
 // The shadow-casting triangles and their BVH (lightcuts/shadow_bvh.h).
 layout(std430, set = 0, binding = kBindBvhNodes) readonly buffer BvhNodes { GpuBvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = kBindShadowTriangles) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };
+// Alpha-masked shadow triangles (lightcuts/alpha_mask.h): texture coordinates, masks, texels.
+layout(std430, set = 0, binding = kBindMaskedTriangles) readonly buffer MaskedTriangles { GpuMaskedTriangle masked_triangles[]; };
+layout(std430, set = 0, binding = kBindAlphaMasks) readonly buffer AlphaMasks { GpuAlphaMask alpha_masks[]; };
+layout(std430, set = 0, binding = kBindMaskTexels) readonly buffer MaskTexels { GpuMaskTexels mask_texels[]; };
 // The walk search's state per pixel between its passes (row-major pixels).
 layout(std430, set = 0, binding = kBindWalkStates) buffer WalkStates { GpuWalkState walk_states[]; };
 // What pixels without geometry show (shaders/background.glsl).

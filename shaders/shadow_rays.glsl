@@ -13,6 +13,8 @@
 #include "frame_bindings.glsl"
 
 layout(constant_id = kSpecShadows) const bool kShadows = false;
+// Some occluder is alpha-masked: a hit on it fetches a mask texel.
+layout(constant_id = kSpecAlphaMasks) const bool kAlphaMasks = false;
 
 // Beyond any scene: the far end of a ray towards a directional light.
 const float kShadowRayFar = 1e30;
@@ -41,9 +43,11 @@ bool ray_hits_box(vec3 origin, vec3 inv_direction, float t_max, vec3 lo, vec3 hi
 }
 
 // Moller-Trumbore, both faces; a hit strictly between the ends of the ray.
-bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri) {
+// uv: the hit's barycentric weights of the second and third vertices.
+bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri, out vec2 uv) {
     vec3 p = cross(direction, tri.edge2);
     float det = dot(tri.edge1, p);
+    uv = vec2(0.0);
     if (det == 0.0) return false;  // the ray lies in the triangle's plane
     float inv_det = 1.0 / det;
     vec3 s = origin - tri.v0;
@@ -51,7 +55,39 @@ bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriang
     vec3 q = cross(s, tri.edge1);
     float v = dot(direction, q) * inv_det;
     float t = dot(tri.edge2, q) * inv_det;
+    uv = vec2(u, v);
     return u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
+}
+
+bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri) {
+    vec2 unused;
+    return ray_hits_triangle(origin, direction, t_max, tri, unused);
+}
+
+// The 8-bit texel of `mask` at uv: nearest, repeat wrap (lightcuts/alpha_mask.cpp).
+uint mask_texel(GpuAlphaMask mask, vec2 uv) {
+    vec2 wrapped = uv - floor(uv);
+    float fx = clamp(wrapped.x * float(mask.width), 0.0, float(mask.width - 1u));
+    float fy = clamp(wrapped.y * float(mask.height), 0.0, float(mask.height - 1u));
+    uint texel = mask.texel_offset + uint(fy) * mask.width + uint(fx);
+    uint word = mask_texels[texel >> 4u].words[(texel >> 2u) & 3u];
+    return (word >> (8u * (texel & 3u))) & 0xffu;
+}
+
+// Does a hit at barycentrics `bary` block the light? Opaque triangles always
+// do; a masked one where its mask keeps the surface.
+bool triangle_blocks(GpuShadowTriangle tri, vec2 bary) {
+    if (!kAlphaMasks || tri.masked == 0u) return true;
+    GpuMaskedTriangle m = masked_triangles[tri.masked - 1u];
+    vec2 uv = m.uv0 * (1.0 - bary.x - bary.y) + m.uv1 * bary.x + m.uv2 * bary.y;
+    GpuAlphaMask mask = alpha_masks[m.mask];
+    return mask_texel(mask, uv) >= mask.keep_threshold;
+}
+
+// Any-hit: a hit that the triangle's mask (if any) keeps.
+bool ray_blocked_by(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri) {
+    vec2 bary;
+    return ray_hits_triangle(origin, direction, t_max, tri, bary) && triangle_blocks(tri, bary);
 }
 
 // One step of the subgroup's shared walk: every lane reads the same node (a
@@ -75,7 +111,7 @@ void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
     for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
         if (k < count) {
             GpuShadowTriangle tri = shadow_triangles[first + k];
-            if (enter && ray_hits_triangle(origin, direction, t_max, tri)) {
+            if (enter && ray_blocked_by(origin, direction, t_max, tri)) {
                 hit = true;
                 g_last_occluder = int(first + k);
             }
@@ -91,7 +127,7 @@ bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
     int i = 0;
     bool hit = !searching;
     if (searching && g_last_occluder >= 0)
-        hit = ray_hits_triangle(origin, direction, t_max, shadow_triangles[g_last_occluder]);
+        hit = ray_blocked_by(origin, direction, t_max, shadow_triangles[g_last_occluder]);
     // Every node is visited at most once; the bound only guards a corrupt upload.
     for (uint step = 0u; i != kEndOfWalk && subgroupAny(!hit) && step < frame.bvh_node_count;
          step += kShadowUnroll) {

@@ -110,8 +110,8 @@ const std::map<std::string, CppStruct>& cpp_structs() {
          {sizeof(GpuDrawConstants),
           {LC_FIELD(GpuDrawConstants, view_proj), LC_FIELD(GpuDrawConstants, base_color_factor),
            LC_FIELD(GpuDrawConstants, emissive_metallic), LC_FIELD(GpuDrawConstants, eye_roughness),
-           LC_FIELD(GpuDrawConstants, flags), LC_FIELD(GpuDrawConstants, pad0),
-           LC_FIELD(GpuDrawConstants, pad1), LC_FIELD(GpuDrawConstants, pad2)}}},
+           LC_FIELD(GpuDrawConstants, flags), LC_FIELD(GpuDrawConstants, alpha_cutoff),
+           LC_FIELD(GpuDrawConstants, normal_scale), LC_FIELD(GpuDrawConstants, pad2)}}},
         {"GpuBackground",
          {sizeof(GpuBackground),
           {LC_FIELD(GpuBackground, ray_at_origin), LC_FIELD(GpuBackground, kind),
@@ -130,9 +130,19 @@ const std::map<std::string, CppStruct>& cpp_structs() {
            LC_FIELD(GpuBvhNode, triangles)}}},
         {"GpuShadowTriangle",
          {sizeof(GpuShadowTriangle),
-          {LC_FIELD(GpuShadowTriangle, v0), LC_FIELD(GpuShadowTriangle, pad0),
+          {LC_FIELD(GpuShadowTriangle, v0), LC_FIELD(GpuShadowTriangle, masked),
            LC_FIELD(GpuShadowTriangle, edge1), LC_FIELD(GpuShadowTriangle, pad1),
            LC_FIELD(GpuShadowTriangle, edge2), LC_FIELD(GpuShadowTriangle, pad2)}}},
+        {"GpuMaskedTriangle",
+         {sizeof(GpuMaskedTriangle),
+          {LC_FIELD(GpuMaskedTriangle, uv0), LC_FIELD(GpuMaskedTriangle, uv1),
+           LC_FIELD(GpuMaskedTriangle, uv2), LC_FIELD(GpuMaskedTriangle, mask),
+           LC_FIELD(GpuMaskedTriangle, pad0)}}},
+        {"GpuMaskTexels", {sizeof(GpuMaskTexels), {LC_FIELD(GpuMaskTexels, words)}}},
+        {"GpuAlphaMask",
+         {sizeof(GpuAlphaMask),
+          {LC_FIELD(GpuAlphaMask, texel_offset), LC_FIELD(GpuAlphaMask, width),
+           LC_FIELD(GpuAlphaMask, height), LC_FIELD(GpuAlphaMask, keep_threshold)}}},
     };
     return structs;
 }
@@ -154,6 +164,9 @@ const std::map<std::string, Block>& known_blocks() {
         {"FrameCounters", {kBindCounters, "GpuFrameCounters"}},
         {"BvhNodes", {kBindBvhNodes, "GpuBvhNode"}},
         {"ShadowTriangles", {kBindShadowTriangles, "GpuShadowTriangle"}},
+        {"MaskedTriangles", {kBindMaskedTriangles, "GpuMaskedTriangle"}},
+        {"AlphaMasks", {kBindAlphaMasks, "GpuAlphaMask"}},
+        {"MaskTexels", {kBindMaskTexels, "GpuMaskTexels"}},
         {"WalkStates", {kBindWalkStates, "GpuWalkState"}},
         {"Background", {kBindBackground, "GpuBackground"}},
         {"EnvironmentTexels", {kBindEnvironmentTexels, "GpuEnvironmentTexel"}},
@@ -176,6 +189,7 @@ const std::map<std::string, uint32_t>& known_images() {
         {"base_color_texture", kBindBaseColorTexture},
         {"emissive_texture", kBindEmissiveTexture},
         {"metallic_roughness_texture", kBindMetallicRoughnessTexture},
+        {"normal_texture", kBindNormalTexture},
     };
     return images;
 }
@@ -201,6 +215,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kClassicLights", kSpecClassicLights},
         {"kEmissive", kSpecEmissive},
         {"kShadows", kSpecShadows},
+        {"kAlphaMasks", kSpecAlphaMasks},
         {"kSpecular", kSpecSpecular},
         {"kView", kSpecCutView},
         {"kTextures", kSpecTextures},
@@ -259,8 +274,9 @@ bool is_struct_type(const json& types, const json& type) {
 
 // std430 size of a member of a non-struct type (the shared structs use no others).
 size_t scalar_or_vector_size(const std::string& type) {
-    static const std::map<std::string, size_t> sizes = {
-        {"float", 4}, {"uint", 4}, {"int", 4}, {"vec2", 8}, {"vec3", 12}, {"vec4", 16}, {"mat4", 64}};
+    static const std::map<std::string, size_t> sizes = {{"float", 4},  {"uint", 4},  {"int", 4},
+                                                        {"vec2", 8},   {"vec3", 12}, {"vec4", 16},
+                                                        {"uvec4", 16}, {"mat4", 64}};
     auto it = sizes.find(type);
     return it == sizes.end() ? 0 : it->second;
 }

@@ -311,7 +311,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
     std::vector<TriangleKey> actual;
     actual.reserve(kept_count);
     for (const GpuShadowTriangle& g : tris) {
-        EXPECT_EQ(g.pad0, 0.0f);
+        EXPECT_EQ(g.masked, 0u);  // opaque
         actual.push_back(key_of(g));
     }
     std::sort(actual.begin(), actual.end());

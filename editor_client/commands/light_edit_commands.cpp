@@ -11,6 +11,7 @@
 #include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/heavy_mesh.h"
 #include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/scene_generator.h"
 
@@ -182,15 +183,20 @@ void add_make_scene(CLI::App& app) {
     struct Options {
         std::string name;
         std::string out;
+        uint32_t triangles = 1000000;
     };
     auto o = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("make-scene", "Write a procedural scene to glTF");
     cmd->add_option("name", o->name,
-                    "room | furnished-room | thesis-fig91 | thesis-test1 | thesis-test2")
+                    "room | furnished-room | heavy-room | thesis-fig91 | thesis-test1 | thesis-test2")
         ->required();
     cmd->add_option("-o,--output", o->out, "Output .gltf or .glb")->required();
+    cmd->add_option(
+        "--triangles", o->triangles,
+        "heavy-room: triangles of the tessellated sphere in the furnished room (default 1000000)");
     cmd->callback([o] {
-        Scene scene = or_fail(make_named_scene(o->name));
+        Scene scene = or_fail(o->name == "heavy-room" ? make_heavy_room_scene(o->triangles)
+                                                      : make_named_scene(o->name));
         or_fail(write_scene_gltf(scene, o->out));
         // The GUID a bake will use is the written file's (directions pass
         // through quaternions and may differ in the last bit).

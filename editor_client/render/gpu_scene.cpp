@@ -20,6 +20,12 @@ Status check_mesh(const Mesh& mesh, size_t index) {
     if (!mesh.uvs.empty() && mesh.uvs.size() != n)
         return make_error(mesh_name(index) + ": " + std::to_string(mesh.uvs.size()) +
                           " texture coordinates for " + std::to_string(n) + " positions");
+    if (!mesh.colors.empty() && mesh.colors.size() != n)
+        return make_error(mesh_name(index) + ": " + std::to_string(mesh.colors.size()) +
+                          " vertex colours for " + std::to_string(n) + " positions");
+    if (!mesh.tangents.empty() && mesh.tangents.size() != n)
+        return make_error(mesh_name(index) + ": " + std::to_string(mesh.tangents.size()) + " tangents for " +
+                          std::to_string(n) + " positions");
     if (mesh.indices.size() % 3 != 0)
         return make_error(mesh_name(index) + ": index count " +
                           std::to_string(mesh.indices.size()) + " is not a multiple of 3");
@@ -75,6 +81,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         draw.first_index = uint32_t(indices.size());
         draw.index_count = uint32_t(mesh.indices.size());
         draw.vertex_offset = int32_t(vertices.size());
+        draw.vertex_colors = !mesh.colors.empty();
         draw.material = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size()
                             ? uint32_t(mesh.material)
                             : default_material;
@@ -83,6 +90,8 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
             vertex.position = mesh.positions[v];
             if (!mesh.normals.empty()) vertex.normal = mesh.normals[v];
             if (!mesh.uvs.empty()) vertex.uv = mesh.uvs[v];
+            if (!mesh.tangents.empty()) vertex.tangent = mesh.tangents[v];
+            if (!mesh.colors.empty()) vertex.color = mesh.colors[v];
             vertices.push_back(vertex);
         }
         indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
@@ -152,19 +161,25 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         out.emissive_factor = material.emissive_factor;
         out.metallic = material.metallic;
         out.roughness = material.roughness;
+        if (material.alpha_mode == AlphaMode::kMask) {
+            out.flags |= kDrawAlphaMask;
+            out.alpha_cutoff = material.alpha_cutoff;
+        }
         size_t base = texture_index(material.base_color_texture, kDrawBaseColorTexture, out.flags);
         size_t emissive = texture_index(material.emissive_texture, kDrawEmissiveTexture, out.flags);
         size_t metallic_roughness = texture_index(material.metallic_roughness_texture,
                                                   kDrawMetallicRoughnessTexture, out.flags);
+        size_t normal = texture_index(material.normal_texture, kDrawNormalTexture, out.flags);
+        out.normal_scale = material.normal_scale;
         Result<VkDescriptorSet> set = gpu.material_pool_.allocate(gpu.material_layout_);
         if (!set) return make_error(set.error());
         out.set = *set;
         vk::DescriptorWriter(out.set)
             .sampled_image(kBindBaseColorTexture, gpu.textures_[base].view(), gpu.sampler_.handle())
-            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(),
-                           gpu.sampler_.handle())
+            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(), gpu.sampler_.handle())
             .sampled_image(kBindMetallicRoughnessTexture, gpu.textures_[metallic_roughness].view(),
                            gpu.sampler_.handle())
+            .sampled_image(kBindNormalTexture, gpu.textures_[normal].view(), gpu.sampler_.handle())
             .update(device.handle());
         gpu.materials_.push_back(out);
     }

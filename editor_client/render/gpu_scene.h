@@ -24,14 +24,17 @@ struct GpuVertex {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f};
     glm::vec2 uv{0.0f};
+    glm::vec4 tangent{0.0f};  // xyz, w: bitangent sign; zero without a normal map
+    glm::vec4 color{1.0f};    // COLOR_0, times the base colour
 };
-static_assert(sizeof(GpuVertex) == 32);
+static_assert(sizeof(GpuVertex) == 64);
 
 struct GpuDraw {
     uint32_t first_index = 0;
     uint32_t index_count = 0;
     int32_t vertex_offset = 0;
     uint32_t material = 0;  // index into GpuScene::materials (the last one is glTF's default)
+    bool vertex_colors = false;  // the mesh has COLOR_0 (kDrawVertexColors)
 };
 
 struct GpuMaterial {
@@ -40,7 +43,9 @@ struct GpuMaterial {
     glm::vec3 emissive_factor{0.0f};
     float metallic = 1.0f;
     float roughness = 1.0f;
-    uint32_t flags = 0;  // kDraw*Texture bits (gpu_layout.h)
+    uint32_t flags = 0;         // kDraw* bits (gpu_layout.h)
+    float alpha_cutoff = 0.0f;  // with kDrawAlphaMask
+    float normal_scale = 1.0f;  // with kDrawNormalTexture
 };
 
 class GpuScene {

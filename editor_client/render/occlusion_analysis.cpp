@@ -11,6 +11,9 @@ namespace {
 
 struct Triangle {
     glm::dvec3 v[3];
+    const Mesh* mesh = nullptr;
+    const uint32_t* corners = nullptr;  // into mesh->indices
+    int32_t mask = -1;                  // alpha mask (OccluderMasks::masks), -1: opaque
     glm::dvec3 normal;  // unit
     double offset = 0.0;
     double distance(const glm::dvec3& x) const { return glm::dot(normal, x) - offset; }
@@ -58,10 +61,17 @@ OcclusionAnalysis analyse_occlusion(const Scene& scene, std::span<const glm::vec
     OcclusionAnalysis out;
     std::vector<Triangle> triangles;
     std::vector<glm::dvec3> vertices;
-    for (const Mesh& mesh : scene.meshes) {
+    const std::vector<int32_t> mesh_mask = mesh_alpha_masks(scene, out.masks.masks);
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
         if (!casts_shadows(scene, mesh)) continue;
+        // A mask that keeps nothing casts no shadow at all.
+        if (mesh_mask[m] >= 0 && mask_cuts_everything(out.masks.masks[size_t(mesh_mask[m])])) continue;
         for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
             Triangle t;
+            t.mesh = &mesh;
+            t.corners = &mesh.indices[i];
+            t.mask = mesh_mask[m];
             bool valid = true;
             for (int k = 0; k < 3 && valid; ++k) {
                 const uint32_t index = mesh.indices[i + size_t(k)];
@@ -98,9 +108,11 @@ OcclusionAnalysis analyse_occlusion(const Scene& scene, std::span<const glm::vec
             ++out.bounding_triangles;
             continue;
         }
+        add_occluder_mask(out.masks, out.occluders.size() / 3, *t.mesh, t.corners, t.mask);
         out.occluders.insert(out.occluders.end(), {glm::vec3(t.v[0]), glm::vec3(t.v[1]),
                                                    glm::vec3(t.v[2])});
     }
+    if (!out.masks.any()) out.masks.masks.clear();  // no kept triangle uses one
     const size_t kept = out.occluders.size() / 3;
     out.possible = kept > 0;
     const std::string bounding =

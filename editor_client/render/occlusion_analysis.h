@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "lightcuts/alpha_mask.h"
 #include "lightcuts/scene.h"
 
 namespace lc::client {
@@ -26,6 +27,8 @@ struct OcclusionAnalysis {
     std::string reason;
     // The triangles that may hide a light, three vertices each (world space).
     std::vector<glm::vec3> occluders;
+    // Which of them are alpha-masked, and their masks (lightcuts/alpha_mask.h).
+    OccluderMasks masks;
     size_t casting_triangles = 0;   // non-degenerate triangles whose material casts shadows
     size_t bounding_triangles = 0;  // of those, dropped: the scene lies on their inner side
 };

@@ -182,12 +182,18 @@ Status Renderer::upload_storage(vk::Buffer& out, std::span<const std::byte> byte
 }
 
 Status Renderer::upload_occluders() {
-    shadow_bvh_ = ShadowBvh::build(effects_.occluders);
+    shadow_bvh_ = ShadowBvh::build(effects_.occluders, effects_.occluder_masks);
     const ShadowBvhStats& s = shadow_bvh_.stats();
-    spdlog::debug("shadow BVH: {} triangles ({} degenerate, {} not casting) in {} nodes, depth {}",
-                  s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.nodes, s.depth);
+    spdlog::debug(
+        "shadow BVH: {} triangles ({} degenerate, {} not casting, {} masked) in {} nodes, "
+        "depth {}",
+        s.triangles, s.skipped_degenerate, s.skipped_non_casting, s.masked, s.nodes, s.depth);
     LC_RETURN_IF_ERROR(
         upload_storage(bvh_nodes_, std::as_bytes(std::span(shadow_bvh_.gpu_nodes()))));
+    LC_RETURN_IF_ERROR(
+        upload_storage(masked_triangles_, std::as_bytes(std::span(shadow_bvh_.gpu_masked_triangles()))));
+    LC_RETURN_IF_ERROR(upload_storage(alpha_masks_, std::as_bytes(std::span(shadow_bvh_.gpu_alpha_masks()))));
+    LC_RETURN_IF_ERROR(upload_storage(mask_texels_, std::as_bytes(std::span(shadow_bvh_.gpu_mask_texels()))));
     return upload_storage(shadow_triangles_,
                           std::as_bytes(std::span(shadow_bvh_.gpu_triangles())));
 }
@@ -199,7 +205,8 @@ Status Renderer::set_tree(const LightTree* tree) {
     SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most
     // light edits leave them as they were, and the BVH stays.
-    const bool same_occluders = bvh_nodes_ && effects.occluders == effects_.occluders;
+    const bool same_occluders = bvh_nodes_ && effects.occluders == effects_.occluders &&
+                                effects.occluder_masks == effects_.occluder_masks;
     effects_ = std::move(effects);
     if (!same_occluders) LC_RETURN_IF_ERROR(upload_occluders());
     shadow_bias_ = shadow_ray_bias(scene_);  // the scene's bounds hold its lights
@@ -303,6 +310,9 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindCounters, counters_.handle())
         .storage_buffer(kBindBvhNodes, bvh_nodes_.handle())
         .storage_buffer(kBindShadowTriangles, shadow_triangles_.handle())
+        .storage_buffer(kBindMaskedTriangles, masked_triangles_.handle())
+        .storage_buffer(kBindAlphaMasks, alpha_masks_.handle())
+        .storage_buffer(kBindMaskTexels, mask_texels_.handle())
         .storage_buffer(kBindWalkStates, targets_.walk_states.handle())
         .storage_buffer(kBindBackground, background_.handle())
         .storage_buffer(kBindEnvironmentTexels, environment_texels_.handle())
@@ -316,6 +326,7 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
     frame.targets = &targets_;
     frame.effects = &effects_;
     frame.shadows = traces_shadows();
+    frame.alpha_masks = frame.shadows && shadow_bvh_.stats().masked > 0;
     frame.workgroup_size = options_.workgroup_size;
     frame.compute_layout = compute_layout_.handle();
     frame.frame_set = frame_set_;

@@ -215,6 +215,9 @@ private:
     glm::vec3 last_eye_{0.0f};  // camera of the last frame (read_gbuffer)
     vk::Buffer bvh_nodes_;         // GpuBvhNode, pre-order
     vk::Buffer shadow_triangles_;  // GpuShadowTriangle, in leaf order
+    vk::Buffer masked_triangles_;  // GpuMaskedTriangle (alpha-masked occluders)
+    vk::Buffer alpha_masks_;       // GpuAlphaMask
+    vk::Buffer mask_texels_;       // GpuMaskTexels
     vk::TimestampQueryPool timestamps_;
 
     vk::DescriptorSetLayout frame_layout_;

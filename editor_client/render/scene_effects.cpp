@@ -28,6 +28,73 @@ std::string plural(size_t n, const char* noun) {
     return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
 }
 
+// Materials of drawn meshes with alphaMode MASK and BLEND.
+struct AlphaCensus {
+    size_t masked = 0;
+    size_t blended = 0;
+};
+
+AlphaCensus count_alpha_materials(const Scene& scene) {
+    std::vector<bool> drawn(scene.materials.size(), false);
+    for (const Mesh& mesh : scene.meshes)
+        if (!mesh.indices.empty() && mesh.material >= 0 && size_t(mesh.material) < drawn.size())
+            drawn[size_t(mesh.material)] = true;
+    AlphaCensus census;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        if (!drawn[m]) continue;
+        census.masked += scene.materials[m].alpha_mode == AlphaMode::kMask;
+        census.blended += scene.materials[m].alpha_mode == AlphaMode::kBlend;
+    }
+    return census;
+}
+
+void decide_alpha(const Scene& scene, SceneEffects& effects) {
+    const AlphaCensus census = count_alpha_materials(scene);
+    const size_t masked_occluders = effects.occluder_masks.triangle_mask.empty()
+                                        ? 0
+                                        : size_t(std::count_if(effects.occluder_masks.triangle_mask.begin(),
+                                                               effects.occluder_masks.triangle_mask.end(),
+                                                               [](int32_t m) { return m >= 0; }));
+    effects.decisions.push_back(
+        {"alpha-masked cut-outs (alphaMode MASK)", census.masked > 0,
+         census.masked > 0
+             ? plural(census.masked, "drawn material") + " cut out where alpha < alphaCutoff; " +
+                   plural(masked_occluders, "occluder triangle") + " let shadow rays through there"
+             : "no drawn material has alphaMode MASK"});
+    effects.decisions.push_back({"blended surfaces (alphaMode BLEND)", false,
+                                 census.blended > 0
+                                     ? plural(census.blended, "drawn material") +
+                                           " with alphaMode BLEND: drawn opaque, casting no shadow"
+                                     : "no drawn material has alphaMode BLEND"});
+}
+
+// Normal maps, texture coordinate sets and transforms, vertex colours: what
+// the drawn meshes use (all of it is applied at load or in the G-buffer).
+void decide_surface_inputs(const Scene& scene, SceneEffects& effects) {
+    size_t normal_mapped = 0, second_set = 0, transformed = 0, coloured = 0;
+    for (const Mesh& mesh : scene.meshes) {
+        if (mesh.indices.empty()) continue;
+        coloured += !mesh.colors.empty();
+        if (mesh.material < 0 || size_t(mesh.material) >= scene.materials.size()) continue;
+        const Material& m = scene.materials[size_t(mesh.material)];
+        normal_mapped += !mesh.tangents.empty();
+        second_set += !mesh.uvs.empty() && m.texture_coordinates.set == 1;
+        transformed += !mesh.uvs.empty() && m.texture_coordinates.transformed;
+    }
+    effects.decisions.push_back({"normal maps (normalTexture)", normal_mapped > 0,
+                                 normal_mapped > 0 ? plural(normal_mapped, "drawn mesh") + " normal-mapped"
+                                                   : "no drawn mesh has a normal map"});
+    const bool sets = second_set + transformed > 0;
+    effects.decisions.push_back({"texture coordinate sets and transforms (TEXCOORD_1, KHR_texture_transform)",
+                                 sets,
+                                 sets ? plural(second_set, "drawn mesh") + " sampled with TEXCOORD_1, " +
+                                            plural(transformed, "drawn mesh") + " with KHR_texture_transform"
+                                      : "every drawn texture is sampled with TEXCOORD_0 as it is"});
+    effects.decisions.push_back(
+        {"vertex colours (COLOR_0)", coloured > 0,
+         coloured > 0 ? plural(coloured, "drawn mesh") + " with COLOR_0" : "no drawn mesh has COLOR_0"});
+}
+
 }  // namespace
 
 std::vector<EffectDecision> SceneEffects::simulated() const {
@@ -169,7 +236,10 @@ SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
         const std::string why = (forced ? "--shadows on: " : "") + occlusion.reason;
         effects.shadows = decide(shadows, occlusion.possible, why, why + "; V = 1");
         effects.occluders = std::move(occlusion.occluders);
+        effects.occluder_masks = std::move(occlusion.masks);
     }
+    decide_alpha(scene, effects);
+    decide_surface_inputs(scene, effects);
     effects.specular = decide(
         "glossy reflection (a lobe around the mirror direction, material_model.h)",
         glossy_materials > 0,

@@ -38,6 +38,7 @@ struct SceneEffects {
     uint64_t indirect_patches = 0;  // of them, radiosity patches (the others are VPLs)
     // What shadow rays test: three vertices per triangle (occlusion_analysis.h).
     std::vector<glm::vec3> occluders;
+    OccluderMasks occluder_masks;  // which occluders are alpha-masked
 
     std::vector<EffectDecision> decisions;
 

@@ -26,11 +26,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "editor_client/scene/gltf_node_reader.h"
 #include "editor_client/scene/gltf_environment.h"
-#include "editor_client/scene/mapped_file.h"
+#include "editor_client/scene/gltf_node_reader.h"
 #include "editor_client/scene/gltf_resource_access.h"
+#include "editor_client/scene/mapped_file.h"
 #include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/tangent_frames.h"
+#include "editor_client/scene/texture_coordinates.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
@@ -330,6 +332,16 @@ private:
     Status validate_node_graph();
     Result<std::vector<int>> scene_roots();
     Status convert_materials();
+    Status read_alpha(const tg::Material& in, const std::string& what, Material& out);
+    Status read_normal_texture(const tg::Material& in, const std::string& what, Material& out);
+    Status read_texture_coordinates(const tg::Material& in, const std::string& what, Material& out);
+    Result<TextureCoordinates> coordinates_of(int tex_coord, const tg::ExtensionMap& extensions,
+                                              const std::string& what);
+    Status read_uvs(const tg::Primitive& prim, const std::string& what, Mesh& mesh);
+    Status read_colors(const tg::Primitive& prim, const std::string& what, Mesh& mesh);
+    Status read_tangents(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                         Mesh& mesh) const;
+    Result<std::vector<glm::vec4>> read_vec4(int index, const std::string& what) const;
     // `srgb`: colour data (base colour, emissive) rather than linear data
     // (metallic-roughness); an image used both ways becomes two textures.
     Result<int> texture_for(const tg::TextureInfo& info, const std::string& what,
@@ -538,10 +550,6 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
         return fail("texture " + std::to_string(info.index) + " uses image " +
                     std::to_string(texture.source) + ", which does not exist");
     }
-    if (info.texCoord != 0) {
-        warn(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-             "; only TEXCOORD_0 is loaded, so it is sampled with TEXCOORD_0");
-    }
     const std::pair<int, bool> key{texture.source, srgb};
     auto found = image_to_texture_.find(key);
     if (found != image_to_texture_.end()) return found->second;
@@ -583,6 +591,105 @@ Result<int> Loader::texture_for(const tg::TextureInfo& info, const std::string& 
     scene_.textures.push_back(std::move(out));
     image_to_texture_[key] = index;
     return index;
+}
+
+// normalTexture (linear data) and its scale.
+Status Loader::read_normal_texture(const tg::Material& in, const std::string& what, Material& out) {
+    tg::TextureInfo info;
+    info.index = in.normalTexture.index;
+    info.texCoord = in.normalTexture.texCoord;
+    Result<int> texture = texture_for(info, what + " normalTexture", /*srgb=*/false);
+    if (!texture) return Error{texture.error()};
+    if (!finite(in.normalTexture.scale)) return fail(what + ": normalTexture.scale must be finite");
+    out.normal_texture = *texture;
+    out.normal_scale = float(in.normalTexture.scale);
+    return Ok{};
+}
+
+// One texture's set and KHR_texture_transform.
+Result<TextureCoordinates> Loader::coordinates_of(int tex_coord, const tg::ExtensionMap& extensions,
+                                                  const std::string& what) {
+    TextureCoordinates out;
+    out.set = tex_coord;
+    auto ext = extensions.find("KHR_texture_transform");
+    if (ext != extensions.end() && ext->second.IsObject()) {
+        const tg::Value& t = ext->second;
+        out.transformed = true;
+        auto pair = [&](const char* key, glm::vec2& into) {
+            const tg::Value& v = t.Get(key);
+            if (v.IsArray() && v.ArrayLen() == 2 && v.Get(0).IsNumber() && v.Get(1).IsNumber())
+                into = glm::vec2(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+        };
+        pair("offset", out.offset);
+        pair("scale", out.scale);
+        if (t.Get("rotation").IsNumber()) out.rotation = float(t.Get("rotation").GetNumberAsDouble());
+        if (t.Get("texCoord").IsInt()) out.set = t.Get("texCoord").GetNumberAsInt();
+        if (!std::isfinite(out.offset.x) || !std::isfinite(out.offset.y) || !std::isfinite(out.scale.x) ||
+            !std::isfinite(out.scale.y) || !std::isfinite(out.rotation))
+            return fail(what + ": KHR_texture_transform must hold finite numbers");
+    }
+    if (out.set < 0 || out.set > 1) {
+        warn(what + " uses TEXCOORD_" + std::to_string(out.set) +
+             "; only TEXCOORD_0 and TEXCOORD_1 are read, so it is sampled with TEXCOORD_0");
+        out.set = 0;
+    }
+    return out;
+}
+
+// The coordinates of the material's first texture (base colour, normal,
+// emissive, metallic-roughness); another texture asking for others is
+// sampled with these, with a warning.
+Status Loader::read_texture_coordinates(const tg::Material& in, const std::string& what, Material& out) {
+    const tg::PbrMetallicRoughness& pbr = in.pbrMetallicRoughness;
+    struct Use {
+        const char* name;
+        int index;
+        int tex_coord;
+        const tg::ExtensionMap* extensions;
+    };
+    const Use uses[] = {
+        {"baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+         &pbr.baseColorTexture.extensions},
+        {"normalTexture", in.normalTexture.index, in.normalTexture.texCoord, &in.normalTexture.extensions},
+        {"emissiveTexture", in.emissiveTexture.index, in.emissiveTexture.texCoord,
+         &in.emissiveTexture.extensions},
+        {"metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
+         pbr.metallicRoughnessTexture.texCoord, &pbr.metallicRoughnessTexture.extensions}};
+    bool chosen = false;
+    for (const Use& use : uses) {
+        if (use.index < 0) continue;
+        Result<TextureCoordinates> c = coordinates_of(use.tex_coord, *use.extensions, what + " " + use.name);
+        if (!c) return Error{c.error()};
+        const TextureCoordinates& mine = *c;
+        const TextureCoordinates& first = out.texture_coordinates;
+        if (!chosen) {
+            out.texture_coordinates = mine;
+            chosen = true;
+        } else if (mine.set != first.set || mine.transformed != first.transformed ||
+                   mine.offset != first.offset || mine.scale != first.scale ||
+                   mine.rotation != first.rotation) {
+            warn(what + " " + use.name +
+                 " asks for other texture coordinates than the material's "
+                 "first texture; it is sampled with those");
+        }
+    }
+    return Ok{};
+}
+
+// alphaMode, alphaCutoff and doubleSided; an unknown mode is drawn opaque.
+Status Loader::read_alpha(const tg::Material& in, const std::string& what, Material& out) {
+    if (in.alphaMode == "MASK") {
+        out.alpha_mode = AlphaMode::kMask;
+    } else if (in.alphaMode == "BLEND") {
+        out.alpha_mode = AlphaMode::kBlend;
+    } else if (!in.alphaMode.empty() && in.alphaMode != "OPAQUE") {
+        warn(what + ": alphaMode '" + in.alphaMode + "' is not OPAQUE, MASK or BLEND; drawn opaque");
+    }
+    if (!finite(in.alphaCutoff) || in.alphaCutoff < 0.0)
+        return fail(what + ": alphaCutoff must be finite and >= 0");
+    out.alpha_cutoff = float(in.alphaCutoff);
+    out.double_sided = in.doubleSided;
+    return Ok{};
 }
 
 Status Loader::convert_materials() {
@@ -636,6 +743,8 @@ Status Loader::convert_materials() {
                         what + " metallicRoughnessTexture", /*srgb=*/false);
         if (!metallic_roughness_texture) return Error{metallic_roughness_texture.error()};
         out.metallic_roughness_texture = *metallic_roughness_texture;
+        LC_RETURN_IF_ERROR(read_normal_texture(in, what, out));
+        LC_RETURN_IF_ERROR(read_texture_coordinates(in, what, out));
         // Light passes through blended and transmissive surfaces (a lamp's
         // glass): they are drawn opaque but hide no light.
         double transmission = 0.0;
@@ -644,6 +753,7 @@ Status Loader::convert_materials() {
             glass->second.Get("transmissionFactor").IsNumber())
             transmission = glass->second.Get("transmissionFactor").GetNumberAsDouble();
         out.casts_shadows = in.alphaMode != "BLEND" && !(transmission > 0.0);
+        LC_RETURN_IF_ERROR(read_alpha(in, what, out));
         scene_.materials.push_back(out);
     }
     return Ok{};
@@ -978,18 +1088,130 @@ Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dma
         mesh.normals = generate_normals(mesh.positions, mesh.indices);
     }
 
-    auto uv_it = prim.attributes.find("TEXCOORD_0");
-    if (uv_it != prim.attributes.end()) {
-        Result<std::vector<glm::vec2>> uvs = read_uv(uv_it->second, what + " TEXCOORD_0");
-        if (!uvs) return Error{uvs.error()};
-        if (uvs->size() != vertex_count) {
-            return fail(what + ": TEXCOORD_0 has " + std::to_string(uvs->size()) +
-                        " elements but POSITION has " + std::to_string(vertex_count));
-        }
-        mesh.uvs = std::move(*uvs);
-    }
+    LC_RETURN_IF_ERROR(read_uvs(prim, what, mesh));
+    LC_RETURN_IF_ERROR(read_colors(prim, what, mesh));
+    LC_RETURN_IF_ERROR(read_tangents(prim, what, linear, mesh));
     if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
     return Ok{};
+}
+
+// The set the material's textures use (TEXCOORD_0 where the asked-for one is
+// missing), through its KHR_texture_transform.
+Status Loader::read_uvs(const tg::Primitive& prim, const std::string& what, Mesh& mesh) {
+    TextureCoordinates coordinates;
+    if (prim.material >= 0 && size_t(prim.material) < scene_.materials.size())
+        coordinates = scene_.materials[size_t(prim.material)].texture_coordinates;
+    std::string name = "TEXCOORD_" + std::to_string(coordinates.set);
+    auto uv_it = prim.attributes.find(name);
+    if (uv_it == prim.attributes.end() && coordinates.set != 0) {
+        warn(what + " has no " + name + " for its material's textures; TEXCOORD_0 is used");
+        name = "TEXCOORD_0";
+        uv_it = prim.attributes.find(name);
+    }
+    if (uv_it == prim.attributes.end()) return Ok{};
+    Result<std::vector<glm::vec2>> uvs = read_uv(uv_it->second, what + " " + name);
+    if (!uvs) return Error{uvs.error()};
+    if (uvs->size() != mesh.positions.size()) {
+        return fail(what + ": " + name + " has " + std::to_string(uvs->size()) +
+                    " elements but POSITION has " + std::to_string(mesh.positions.size()));
+    }
+    mesh.uvs = std::move(*uvs);
+    if (coordinates.transformed)
+        for (glm::vec2& uv : mesh.uvs) uv = transform_uv(coordinates, uv);
+    return Ok{};
+}
+
+bool is_color(const tg::Accessor& a) {
+    const int ct = a.componentType;
+    return (a.type == TINYGLTF_TYPE_VEC3 || a.type == TINYGLTF_TYPE_VEC4) &&
+           (ct == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+            (a.normalized &&
+             (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)));
+}
+
+// COLOR_0: VEC3 or VEC4, float or normalized unsigned; alpha 1 for VEC3.
+Status Loader::read_colors(const tg::Primitive& prim, const std::string& what, Mesh& mesh) {
+    auto it = prim.attributes.find("COLOR_0");
+    if (it == prim.attributes.end()) return Ok{};
+    Result<AccessorData> data =
+        view_accessor(it->second, what + " COLOR_0",
+                      "VEC3/VEC4 FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT", &is_color);
+    if (!data) return Error{data.error()};
+    if (data->count != mesh.positions.size())
+        return fail(what + ": COLOR_0 has " + std::to_string(data->count) + " elements but POSITION has " +
+                    std::to_string(mesh.positions.size()));
+    const int components = data->type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    mesh.colors.assign(data->count, glm::vec4(1.0f));
+    for (size_t i = 0; i < data->count; ++i) {
+        const uint8_t* p = data->base + i * data->stride;
+        for (int c = 0; c < components; ++c) {
+            float v = 0.0f;
+            if (data->component_type == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+                std::memcpy(&v, p + 4 * c, sizeof v);
+            } else if (data->component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+                v = float(p[c]) / 255.0f;
+            } else {
+                uint16_t u;
+                std::memcpy(&u, p + 2 * c, sizeof u);
+                v = float(u) / 65535.0f;
+            }
+            if (!std::isfinite(v))
+                return fail(what + ": COLOR_0 has a non-finite value at element " + std::to_string(i));
+            mesh.colors[i][c] = std::clamp(v, 0.0f, 1.0f);
+        }
+    }
+    return Ok{};
+}
+
+// Tangents only for a material with a normal map: the file's TANGENT through
+// the node's transform (a mirroring one flips the bitangent's sign), else
+// generated (tangent_frames.h).
+Status Loader::read_tangents(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                             Mesh& mesh) const {
+    const bool normal_mapped = prim.material >= 0 && size_t(prim.material) < scene_.materials.size() &&
+                               scene_.materials[size_t(prim.material)].normal_texture >= 0;
+    if (!normal_mapped || mesh.uvs.empty()) return Ok{};
+    auto it = prim.attributes.find("TANGENT");
+    if (it == prim.attributes.end()) {
+        mesh.tangents = generate_tangents(mesh.positions, mesh.normals, mesh.uvs, mesh.indices);
+        return Ok{};
+    }
+    Result<std::vector<glm::vec4>> tangents = read_vec4(it->second, what + " TANGENT");
+    if (!tangents) return Error{tangents.error()};
+    if (tangents->size() != mesh.positions.size())
+        return fail(what + ": TANGENT has " + std::to_string(tangents->size()) +
+                    " elements but POSITION has " + std::to_string(mesh.positions.size()));
+    const float mirror = glm::determinant(linear) < 0.0 ? -1.0f : 1.0f;
+    mesh.tangents.resize(tangents->size());
+    for (size_t i = 0; i < tangents->size(); ++i) {
+        const glm::dvec3 t = linear * glm::dvec3((*tangents)[i]);
+        const double length = glm::length(t);
+        const float sign = (*tangents)[i].w < 0.0f ? -mirror : mirror;
+        mesh.tangents[i] = length > 1e-20 && std::isfinite(length)
+                               ? glm::vec4(glm::vec3(t / length), sign)
+                               : glm::vec4(any_orthogonal(mesh.normals[i]), sign);
+    }
+    return Ok{};
+}
+
+bool is_vec4_float(const tg::Accessor& a) {
+    return a.type == TINYGLTF_TYPE_VEC4 && a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+}
+
+Result<std::vector<glm::vec4>> Loader::read_vec4(int index, const std::string& what) const {
+    Result<AccessorData> data = view_accessor(index, what, "VEC4 FLOAT", &is_vec4_float);
+    if (!data) return Error{data.error()};
+    std::vector<glm::vec4> out(data->count);
+    for (size_t i = 0; i < data->count; ++i) {
+        float v[4];
+        std::memcpy(v, data->base + i * data->stride, sizeof v);
+        for (float c : v)
+            if (!std::isfinite(c))
+                return fail("accessor " + std::to_string(index) + " (" + what +
+                            ") has a non-finite value at element " + std::to_string(i));
+        out[i] = glm::vec4(v[0], v[1], v[2], v[3]);
+    }
+    return out;
 }
 
 Status Loader::add_mesh(int node_index, int mesh_index, const glm::dmat4& world) {

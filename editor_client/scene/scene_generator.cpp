@@ -12,6 +12,7 @@
 
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_guid.h"
+#include "lightcuts/alpha_mask.h"
 #include "lightcuts/seeded_mixer.h"
 #include "protocol/channel_records.h"
 
@@ -228,6 +229,8 @@ Status check_layout_options(const LightLayoutOptions& options) {
 struct SurfaceTriangle {
     glm::dvec3 a, b, c;
     glm::dvec3 front;  // unit geometric normal, turned to the side the shading normal faces
+    int32_t mask = -1;  // alpha mask (SurfaceSelection::masks) cutting it out in places
+    glm::vec2 uv[3]{};  // with a mask
 };
 
 struct SurfaceSelection {
@@ -235,6 +238,7 @@ struct SurfaceSelection {
     std::vector<double> cumulative_area;  // prefix sums of the areas, for area-weighted picks
     double scene_diagonal = 0.0;          // of every mesh, inside the box or not
     size_t usable_triangles = 0;          // non-degenerate ones anywhere in the scene
+    std::vector<AlphaMask> masks;         // of alphaMode MASK materials (alpha_mask.h)
 };
 
 std::string box_text(const glm::vec3& lo, const glm::vec3& hi) {
@@ -251,9 +255,13 @@ Result<SurfaceSelection> select_surfaces(const Scene& scene, const glm::dvec3& l
     glm::dvec3 scene_min(std::numeric_limits<double>::max());
     glm::dvec3 scene_max(std::numeric_limits<double>::lowest());
     double total_area = 0.0;
+    const std::vector<int32_t> mesh_mask = mesh_alpha_masks(scene, selection.masks);
     for (size_t m = 0; m < scene.meshes.size(); ++m) {
         const Mesh& mesh = scene.meshes[m];
         const bool has_normals = mesh.normals.size() == mesh.positions.size();
+        const int32_t mask = mesh.uvs.size() == mesh.positions.size() ? mesh_mask[m] : -1;
+        // A surface its mask cuts out everywhere is not there to stand on.
+        if (mesh_mask[m] >= 0 && mask_cuts_everything(selection.masks[size_t(mesh_mask[m])])) continue;
         for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
             auto what = [&] {
                 return "mesh " + std::to_string(m) + ", triangle " + std::to_string(t / 3);
@@ -288,7 +296,12 @@ Result<SurfaceSelection> select_surfaces(const Scene& scene, const glm::dvec3& l
             // (or if they cancel out), the winding's side.
             const double side = glm::dot(front, shading_sum);
             if (std::isfinite(side) && side < 0.0) front = -front;
-            selection.triangles.push_back({v[0], v[1], v[2], front});
+            SurfaceTriangle kept{v[0], v[1], v[2], front};
+            if (mask >= 0) {
+                kept.mask = mask;
+                for (size_t k = 0; k < 3; ++k) kept.uv[k] = mesh.uvs[mesh.indices[t + k]];
+            }
+            selection.triangles.push_back(kept);
             total_area += 0.5 * twice_area;
             selection.cumulative_area.push_back(total_area);
         }
@@ -297,6 +310,42 @@ Result<SurfaceSelection> select_surfaces(const Scene& scene, const glm::dvec3& l
         selection.scene_diagonal = glm::length(scene_max - scene_min);
     }
     return selection;
+}
+
+struct SurfacePoint {
+    const SurfaceTriangle* triangle = nullptr;
+    glm::dvec3 position{0.0};
+};
+
+// Draws at this many points at most for one light before deciding that the
+// masks cut out (nearly) every surface in the box.
+constexpr int kMaskedDrawLimit = 10000;
+
+// A point uniform over the selected area that no alpha mask cuts out:
+// three draws per try whatever the light's type, so positions do not depend
+// on types; a scene without masks takes the first try, as it always did.
+Result<SurfacePoint> draw_kept_point(const SurfaceSelection& selection, SplitMix64& rng) {
+    const double total_area = selection.cumulative_area.back();
+    for (int attempt = 0; attempt < kMaskedDrawLimit; ++attempt) {
+        const double pick = rng.uniform() * total_area;
+        const double u1 = rng.uniform();
+        const double u2 = rng.uniform();
+        const size_t t = std::min(size_t(std::upper_bound(selection.cumulative_area.begin(),
+                                                          selection.cumulative_area.end(), pick) -
+                                         selection.cumulative_area.begin()),
+                                  selection.triangles.size() - 1);
+        const SurfaceTriangle& tri = selection.triangles[t];
+        // Uniform over the triangle: barycentrics (1 - sqrt(u1), sqrt(u1)(1 - u2), sqrt(u1) u2).
+        const double s = std::sqrt(u1);
+        const double wa = 1.0 - s, wb = s * (1.0 - u2), wc = s * u2;
+        if (tri.mask >= 0) {
+            const glm::vec2 uv = tri.uv[0] * float(wa) + tri.uv[1] * float(wb) + tri.uv[2] * float(wc);
+            if (!mask_keeps(selection.masks[size_t(tri.mask)], uv)) continue;
+        }
+        return SurfacePoint{&tri, wa * tri.a + wb * tri.b + wc * tri.c};
+    }
+    return make_error("the alpha masks cut out (nearly) every surface in the box: no point kept in " +
+                      std::to_string(kMaskedDrawLimit) + " draws");
 }
 
 // Surface layout: see generate_lights in the header.
@@ -326,25 +375,15 @@ Result<std::vector<SceneLight>> generate_surface_lights(const LightLayoutOptions
     // make the surface's own shading degenerate (0/0 direction at the light's
     // foot), so it stands a little in front of it.
     const double offset = kSurfaceLightOffset * selection.scene_diagonal;
-    const double total_area = selection.cumulative_area.back();
     SplitMix64 rng(options.seed ^ kLayoutSeedSalt);
 
     std::vector<SceneLight> lights;
     lights.reserve(options.count);
     for (uint32_t i = 0; i < options.count; ++i) {
-        // Three draws per light whatever its type, so positions do not depend on types.
-        const double pick = rng.uniform() * total_area;
-        const double u1 = rng.uniform();
-        const double u2 = rng.uniform();
-        const size_t t = std::min(
-            size_t(std::upper_bound(selection.cumulative_area.begin(),
-                                    selection.cumulative_area.end(), pick) -
-                   selection.cumulative_area.begin()),
-            selection.triangles.size() - 1);
-        const SurfaceTriangle& tri = selection.triangles[t];
-        // Uniform over the triangle: barycentrics (1 - sqrt(u1), sqrt(u1)(1 - u2), sqrt(u1) u2).
-        const double s = std::sqrt(u1);
-        const glm::dvec3 on_surface = (1.0 - s) * tri.a + s * (1.0 - u2) * tri.b + s * u2 * tri.c;
+        Result<SurfacePoint> drawn = draw_kept_point(selection, rng);
+        if (!drawn) return make_error(drawn.error());
+        const SurfaceTriangle& tri = *drawn->triangle;
+        const glm::dvec3 on_surface = drawn->position;
         // Far from the origin a float step may exceed the offset and round the
         // light onto or behind its surface: double the offset until it is in front.
         glm::vec3 position(0.0f);

@@ -25,7 +25,12 @@ LC_CONST uint kBindShadowTriangles = 12u;
 LC_CONST uint kBindWalkStates = 13u;
 LC_CONST uint kBindBackground = 14u;         // GpuBackground, rewritten every frame
 LC_CONST uint kBindEnvironmentTexels = 15u;  // GpuEnvironmentTexel, row 0 at the zenith
-LC_CONST uint kFrameBindingCount = 16u;
+// Alpha-masked shadow triangles (lightcuts/alpha_mask.h): their texture
+// coordinates, their masks, and the masks' texels (a word holds four).
+LC_CONST uint kBindMaskedTriangles = 16u;
+LC_CONST uint kBindAlphaMasks = 17u;
+LC_CONST uint kBindMaskTexels = 18u;
+LC_CONST uint kFrameBindingCount = 19u;
 
 // The real-time mode's own set (set 1, shaders/temporal_bindings.glsl): the
 // accumulated history and the positions it was shaded at, the previous frame's
@@ -42,7 +47,8 @@ LC_CONST uint kTemporalBindingCount = 5u;
 LC_CONST uint kBindBaseColorTexture = 0u;
 LC_CONST uint kBindEmissiveTexture = 1u;
 LC_CONST uint kBindMetallicRoughnessTexture = 2u;  // linear: G, B
-LC_CONST uint kMaterialBindingCount = 3u;
+LC_CONST uint kBindNormalTexture = 3u;             // linear: tangent-space normal
+LC_CONST uint kMaterialBindingCount = 4u;
 
 LC_DEVICE_END
 

@@ -8,6 +8,7 @@
 
 #ifdef __cplusplus
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -15,8 +16,10 @@
 
 namespace lc {
 using uint = uint32_t;
+using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
 using mat4 = glm::mat4;
 }  // namespace lc
 

@@ -222,6 +222,9 @@ struct LC_ALIGN16 GpuEnvironmentTexel {
 LC_CONST uint kDrawBaseColorTexture = 1u;
 LC_CONST uint kDrawEmissiveTexture = 2u;
 LC_CONST uint kDrawMetallicRoughnessTexture = 4u;
+LC_CONST uint kDrawAlphaMask = 8u;       // discard where base colour alpha < alpha_cutoff
+LC_CONST uint kDrawNormalTexture = 16u;  // a tangent-space normal map, x and y times normal_scale
+LC_CONST uint kDrawVertexColors = 32u;   // the mesh's COLOR_0 multiplies the base colour
 
 // Push constants of one G-buffer draw: 128 bytes, Vulkan's guaranteed
 // push-constant space.
@@ -231,8 +234,8 @@ struct LC_ALIGN16 GpuDrawConstants {
     vec4 emissive_metallic LC_DEFAULT(vec4(0.0f));  // rgb: emissive factor, a: metallic
     vec4 eye_roughness LC_DEFAULT(vec4(0.0f));      // xyz: camera position, w: roughness
     uint flags LC_DEFAULT(0u);                      // kDraw*
-    uint pad0 LC_DEFAULT(0u);
-    uint pad1 LC_DEFAULT(0u);
+    float alpha_cutoff LC_DEFAULT(0.0f);            // with kDrawAlphaMask
+    float normal_scale LC_DEFAULT(1.0f);            // with kDrawNormalTexture
     uint pad2 LC_DEFAULT(0u);
 };
 
@@ -254,11 +257,36 @@ struct LC_ALIGN16 GpuBvhNode {
 // One triangle as the shaders test it (Moller-Trumbore: a vertex and two edges).
 struct LC_ALIGN16 GpuShadowTriangle {
     vec3 v0 LC_DEFAULT(vec3(0.0f));
-    float pad0 LC_DEFAULT(0.0f);
+    // 0: opaque; else 1 + its index in the masked triangles (an alpha-masked
+    // surface: the ray passes where the mask cuts it out, lightcuts/alpha_mask.h).
+    uint masked LC_DEFAULT(0u);
     vec3 edge1 LC_DEFAULT(vec3(0.0f));  // v1 - v0
     float pad1 LC_DEFAULT(0.0f);
     vec3 edge2 LC_DEFAULT(vec3(0.0f));  // v2 - v0
     float pad2 LC_DEFAULT(0.0f);
+};
+
+// The texture coordinates of an alpha-masked shadow triangle and its mask.
+struct LC_ALIGN16 GpuMaskedTriangle {
+    vec2 uv0 LC_DEFAULT(vec2(0.0f));
+    vec2 uv1 LC_DEFAULT(vec2(0.0f));
+    vec2 uv2 LC_DEFAULT(vec2(0.0f));
+    uint mask LC_DEFAULT(0u);  // index into the alpha masks
+    uint pad0 LC_DEFAULT(0u);
+};
+
+// Sixteen 8-bit mask texels: four to a word, lowest byte first.
+struct LC_ALIGN16 GpuMaskTexels {
+    uvec4 words LC_DEFAULT(uvec4(0u));
+};
+
+// One alpha mask: width x height 8-bit texels (row 0 at v = 0) from texel
+// texel_offset on; a texel >= keep_threshold keeps the surface.
+struct LC_ALIGN16 GpuAlphaMask {
+    uint texel_offset LC_DEFAULT(0u);
+    uint width LC_DEFAULT(0u);
+    uint height LC_DEFAULT(0u);
+    uint keep_threshold LC_DEFAULT(0u);
 };
 
 LC_DEVICE_END

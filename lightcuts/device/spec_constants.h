@@ -21,6 +21,7 @@ LC_CONST uint kSpecClassicLights = 6u;
 LC_CONST uint kSpecEmissive = 7u;
 LC_CONST uint kSpecOrientedLights = 21u;
 LC_CONST uint kSpecShadows = 19u;   // shadow_rays.glsl
+LC_CONST uint kSpecAlphaMasks = 27u;  // shadow_rays.glsl: some occluder is alpha-masked
 LC_CONST uint kSpecSpecular = 20u;  // material_model.glsl
 // cut_view.comp: what it shows.
 LC_CONST uint kSpecCutView = 9u;
@@ -50,7 +51,7 @@ LC_CONST uint kSpecRepresentatives = 25u;
 LC_CONST uint kSpecRepresentativeSeed = 26u;
 // The real-time mode (stochastic_cuts.comp): nodes in a block's cut, at most
 // kMaxStochasticCut (limits.h).
-LC_CONST uint kSpecStochasticCut = 27u;
+LC_CONST uint kSpecStochasticCut = 28u;
 
 LC_DEVICE_END
 

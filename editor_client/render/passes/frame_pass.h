@@ -31,6 +31,7 @@ struct Frame {
     const RenderTargets* targets = nullptr;
     const SceneEffects* effects = nullptr;
     bool shadows = false;  // shadow rays are traced (asked for, and something occludes)
+    bool alpha_masks = false;  // of the occluders, some are alpha-masked (kSpecAlphaMasks)
     uint32_t workgroup_size = 8;
     VkPipelineLayout compute_layout = VK_NULL_HANDLE;
     VkDescriptorSet frame_set = VK_NULL_HANDLE;

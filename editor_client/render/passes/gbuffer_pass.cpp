@@ -82,7 +82,9 @@ Status GBufferPass::prepare(PipelineCache& pipelines, const Frame& frame) {
     desc.vertex_bindings = {{0, sizeof(GpuVertex), VK_VERTEX_INPUT_RATE_VERTEX}};
     desc.vertex_attributes = {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, position)},
                               {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(GpuVertex, normal)},
-                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)}};
+                              {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(GpuVertex, uv)},
+                              {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, tangent)},
+                              {4, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(GpuVertex, color)}};
     desc.color_formats = {kGBufferFormat, kGBufferFormat, kGBufferFormat, kGBufferFormat};
     desc.depth_format = kDepthFormat;
     desc.cull_mode = VK_CULL_MODE_NONE;  // surfaces are lit on the side the camera sees
@@ -169,7 +171,9 @@ void GBufferPass::draw(VkCommandBuffer cmd, const Frame& frame) const {
         constants.base_color_factor = material.base_color_factor;
         constants.emissive_metallic = glm::vec4(material.emissive_factor, material.metallic);
         constants.eye_roughness.w = material.roughness;
-        constants.flags = material.flags;
+        constants.flags = material.flags | (d.vertex_colors ? kDrawVertexColors : 0u);
+        constants.alpha_cutoff = material.alpha_cutoff;
+        constants.normal_scale = material.normal_scale;
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.handle(), 0, 1,
                                 &material.set, 0, nullptr);
         vkCmdPushConstants(cmd, layout_.handle(),

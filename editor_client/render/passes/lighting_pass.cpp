@@ -22,6 +22,7 @@ void specialize_lighting(vk::Specialization& spec, const Frame& frame) {
         .set_bool(kSpecClassicLights, effects.classic_lights)
         .set_bool(kSpecEmissive, effects.emissive)
         .set_bool(kSpecShadows, frame.shadows)
+        .set_bool(kSpecAlphaMasks, frame.alpha_masks)
         .set_bool(kSpecSpecular, effects.specular)
         .set_bool(kSpecIndirectClamp, effects.indirect_clamp)
         .set_bool(kSpecIndirectOff, effects.indirect_off);
