@@ -6,6 +6,7 @@
 
 #include <span>
 
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/level_pairing.h"
 
 namespace lc::bake {
@@ -14,7 +15,7 @@ namespace lc::bake {
 // bound: in any pairing, a paired point u pays at least nn(u) / 2 of its edge,
 // where nn(u) is its nearest-neighbour distance, so
 //   optimum >= (sum_u nn(u) - [odd] max_u nn(u)) / 2.
-LevelPairing approximate_pairing(std::span<const glm::dvec3> points);
+LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeStop* stop = nullptr);
 
 // The lower bound above on its own (used by the exact path's tests too).
 double nearest_neighbor_lower_bound(std::span<const glm::dvec3> points);

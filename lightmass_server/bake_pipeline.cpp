@@ -11,11 +11,55 @@
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
+namespace {
+
+// The emissive triangles as oriented lights, appended to `added`, with their census line.
+Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
+                       std::vector<std::string>& effects, std::vector<std::string>& warnings) {
+    Result<AreaLightSampling> sampled = sample_area_lights(
+        *inputs.geometry, inputs.area_lights, inputs.build.seed, IndexRange{}, inputs.stop.get());
+    if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
+    if (!sampled) return make_error("area lights: " + sampled.error());
+    if (sampled->budget_raised) {
+        warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
+                           std::to_string(sampled->emissive_triangles) +
+                           " emissive triangles: one sample each");
+    }
+    if (!sampled->lights.empty()) {
+        effects.push_back("area lights: simulated (" + std::to_string(sampled->emissive_triangles) +
+                          " emissive triangles, " + std::to_string(sampled->lights.size()) + " samples)");
+        added = std::move(sampled->lights);
+    }
+    return Ok{};
+}
+
+// The tree of `lights`; the builders poll the stop through their progress
+// callback (between levels and merge batches), the optimal-pair builder's
+// approximate levels inside their loops too.
+Result<BuildResult> build_stoppable(std::span<const SceneLight> lights, const BakeInputs& inputs,
+                                    const ProgressFn& progress) {
+    const BakeStop* stop = inputs.stop.get();
+    const ProgressFn build_progress = [&](std::string_view stage, double percent) {
+        return !stop_requested(stop) && (!progress || progress(stage, percent));
+    };
+    BuildOptions options = inputs.build;
+    options.stop = stop;
+    Result<BuildResult> built = build_light_tree(lights, options, build_progress);
+    if (!built && built.error_kind() == ErrorKind::kCancelled && stop_requested(stop))
+        return stop->reason("tree build");
+    return built;
+}
+
+}  // namespace
 
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
     if (inputs.ranks > 0) return run_bake_on_ranks(inputs, progress);
+    const BakeStop* stop = inputs.stop.get();
     auto report = [&](const std::string& stage, double percent) {
-        return !progress || progress(stage, percent);
+        return !stop_requested(stop) && (!progress || progress(stage, percent));
+    };
+    auto stopped = [&](const std::string& stage) {
+        return stop ? stop->reason(stage) : make_error(stage + " cancelled", ErrorKind::kCancelled);
     };
     std::vector<std::string> effects;
     std::vector<std::string> warnings;
@@ -25,38 +69,26 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     std::vector<SceneLight> added;
     std::optional<RayCaster> caster;
     if (inputs.geometry) {
-        if (!report("ray caster", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report("ray caster", 0.0)) return stopped("ray caster");
         Result<RayCaster> built = RayCaster::build(*inputs.geometry, inputs.raycast_threads);
         if (!built) return make_error("ray caster: " + built.error());
         caster.emplace(std::move(built.value()));
 
-        if (!report("area lights", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
-        Result<AreaLightSampling> sampled =
-            sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed);
-        if (!sampled) return make_error("area lights: " + sampled.error());
-        if (sampled->budget_raised) {
-            warnings.push_back("--area-lights " + std::to_string(inputs.area_lights) + " is below the " +
-                               std::to_string(sampled->emissive_triangles) +
-                               " emissive triangles: one sample each");
-        }
-        if (!sampled->lights.empty()) {
-            effects.push_back("area lights: simulated (" +
-                              std::to_string(sampled->emissive_triangles) + " emissive triangles, " +
-                              std::to_string(sampled->lights.size()) + " samples)");
-            added = std::move(sampled->lights);
-        }
+        if (!report("area lights", 0.0)) return stopped("area lights");
+        if (Status sampled = add_area_lights(inputs, added, effects, warnings); !sampled)
+            return sampled.failure();
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
-    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    if (!report(effects.back(), 0.0)) return stopped("area lights");
 
     std::vector<SceneLight> environment_lights;
     if (inputs.environment) {
-        if (!report("sampling environment", 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report("sampling environment", 0.0)) return stopped("environment sampling");
         Result<EnvironmentLights> sampled =
-            sample_environment(*inputs.environment, inputs.environment_lights, inputs.build.seed);
+            sample_environment(*inputs.environment, inputs.environment_lights, inputs.build.seed, 0, 1, stop);
         if (!sampled) return sampled.failure();
         effects.push_back(sampled->census);
-        if (!report(sampled->census, 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+        if (!report(sampled->census, 0.0)) return stopped("environment sampling");
         environment_lights = std::move(sampled->lights);
     }
 
@@ -68,10 +100,11 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         photon_sources.insert(photon_sources.end(), environment_lights.begin(), environment_lights.end());
     }
     const SceneGeometry no_geometry;
-    Result<IndirectStageResult> indirect =
-        run_indirect_stage(inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
-                           photon_sources.empty() ? *inputs.lights : photon_sources, inputs.indirect,
-                           progress);
+    IndirectOptions indirect_options = inputs.indirect;
+    indirect_options.vpl.stop = indirect_options.radiosity.stop = stop;
+    Result<IndirectStageResult> indirect = run_indirect_stage(
+        inputs.geometry ? *inputs.geometry : no_geometry, caster ? &*caster : nullptr,
+        photon_sources.empty() ? *inputs.lights : photon_sources, indirect_options, progress);
     if (!indirect) return indirect.failure();
     effects.push_back("indirect: " + indirect->census);
     if (!inputs.radiosity_out.empty() && !indirect->patches.empty()) {
@@ -79,7 +112,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         if (!written) warnings.push_back(written.error());
     }
     warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
-    if (!report(effects.back(), 0.0)) return make_error("cancelled", ErrorKind::kCancelled);
+    if (!report(effects.back(), 0.0)) return stopped("indirect light");
     added.insert(added.end(), environment_lights.begin(), environment_lights.end());
     const std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
     added.insert(added.end(), bounced.begin(), bounced.end());
@@ -91,7 +124,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
         all_lights.insert(all_lights.end(), added.begin(), added.end());
     }
     Result<BuildResult> built =
-        build_light_tree(added.empty() ? *inputs.lights : all_lights, inputs.build, progress);
+        build_stoppable(added.empty() ? *inputs.lights : all_lights, inputs, progress);
     if (!built) return built;
     built->report.effects = std::move(effects);
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());

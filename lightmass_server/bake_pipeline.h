@@ -14,6 +14,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/mpi/mpi_launch_options.h"
 #include "lightmass_server/tree_builder.h"
@@ -37,9 +38,12 @@ struct BakeInputs {
     // 0: baked in this process; N: over N MPI ranks (mpi/rank_bake_launcher.h).
     uint32_t ranks = 0;
     MpiLaunchOptions mpi;
+    // Cancel and deadline, polled inside every stage's loops; null: never stops.
+    std::shared_ptr<BakeStop> stop;
 };
 
-// A cancelled bake returns an error of kind ErrorKind::kCancelled. The
+// A cancelled bake returns an error of kind ErrorKind::kCancelled (a bake
+// past its deadline, an error naming the deadline). The
 // report's effects hold the census (area lights simulated or skipped, why).
 Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress);
 

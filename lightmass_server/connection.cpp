@@ -27,7 +27,7 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 }  // namespace
 
-Connection::Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
+Connection::Connection(Transport transport, const ServerOptions& options, BakeLanes& workers,
                        const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
                        std::string busy_reason)
     : transport_(std::move(transport)),
@@ -35,7 +35,8 @@ Connection::Connection(Transport transport, const ServerOptions& options, asio::
       workers_(workers),
       recorder_(recorder),
       id_(id),
-      session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason), &memory_budget}),
+      session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason),
+                                    &memory_budget, options.memory_budget_bytes / 2}),
       decoder_(options.max_frame_bytes),
       wake_(transport_.get_executor()),
       deadline_timer_(transport_.get_executor()) {
@@ -76,7 +77,7 @@ void Connection::close(const std::string& reason) {
     closed_ = true;
     spdlog::info("connection {}: closed ({})", id_, reason);
     session_.on_closing();
-    if (build_cancel_) build_cancel_->store(true);  // a client that disconnects cancels its bake
+    if (bake_stop_) bake_stop_->cancel();  // a client that disconnects cancels its bake
     stream_.reset();
     transport_.close();
     wake_.cancel();
@@ -89,7 +90,7 @@ void Connection::close_after_flush(const std::string& reason) {
     closing_reason_ = reason;
     closing_since_ = Clock::now();
     apply(session_.on_closing());
-    if (build_cancel_) build_cancel_->store(true);
+    if (bake_stop_) bake_stop_->cancel();
     wake_writer();
     rearm_deadline();
 }
@@ -104,7 +105,7 @@ void Connection::apply(ServerActions actions) {
                        },
                        [&](StartBake& start) { start_bake(std::move(start)); },
                        [&](CancelBake&) {
-                           if (build_cancel_) build_cancel_->store(true);
+                           if (bake_stop_) bake_stop_->cancel();
                        },
                        [&](StreamResult& result) {
                            stream_.emplace(std::move(result.tree), result.channel_id, std::move(result.done),
@@ -128,11 +129,16 @@ void Connection::start_bake(StartBake start) {
     start.inputs.raycast_threads = int(std::max(1u, options_.bake_threads));
     start.inputs.radiosity_out = options_.radiosity_out.string();
     start.inputs.mpi = options_.mpi;
-    auto cancel = std::make_shared<std::atomic<bool>>(false);
-    build_cancel_ = cancel;
+    auto stop =
+        std::make_shared<BakeStop>(Clock::now() + options_.max_bake_time,
+                                   "--max-bake-seconds " + std::to_string(options_.max_bake_time.count()) +
+                                       " (the server's limit on one bake's time)");
+    start.inputs.stop = stop;
+    bake_stop_ = stop;
     auto self = shared_from_this();
     auto executor = transport_.get_executor();
-    asio::post(workers_, [self, executor, start = std::move(start), cancel] {
+    asio::thread_pool& lane = workers_.lane(start.small);
+    asio::post(lane, [self, executor, start = std::move(start), stop] {
         const uint32_t bake_id = start.bake_id;
         auto last_sent = Clock::now() - kProgressInterval;
         std::string last_stage;
@@ -146,13 +152,15 @@ void Connection::start_bake(StartBake start) {
                     if (!self->closed()) self->apply(self->session_.on_bake_progress(msg));
                 });
             }
-            return !cancel->load();
+            return !stop->requested();
         };
-        Result<BuildResult> result =
-            cancel->load() ? Result<BuildResult>(make_error("cancelled before start", ErrorKind::kCancelled))
-                           : run_bake(start.inputs, progress);
-        asio::post(executor, [self, bake_id, cancel, result = std::move(result)]() mutable {
-            if (self->build_cancel_ == cancel) self->build_cancel_.reset();
+        Result<BuildResult> result = stop->requested()
+                                         ? Result<BuildResult>(stop->reason("bake before its start"))
+                                         : run_bake(start.inputs, progress);
+        // A stage that saw only "stop" reports a cancel; the deadline is the reason to give.
+        if (!result && !stop->cancelled() && stop->deadline_passed()) result = stop->reason("bake");
+        asio::post(executor, [self, bake_id, stop, result = std::move(result)]() mutable {
+            if (self->bake_stop_ == stop) self->bake_stop_.reset();
             if (!self->closed()) self->apply(self->session_.on_bake_finished(bake_id, std::move(result)));
         });
     });
@@ -241,6 +249,9 @@ Connection::Deadline Connection::next_deadline() const {
     if (decoder_.buffered_bytes() > 0) {
         consider(last_read_ + options_.read_timeout, DeadlineKind::kStalledFrame);
         consider(frame_started_ + options_.frame_timeout, DeadlineKind::kSlowFrame);
+    } else if (session_.receiving_channel()) {
+        // Between frames of an open channel: the peer owes the rest of it, whatever its size.
+        consider(last_read_ + options_.read_timeout, DeadlineKind::kStalledChannel);
     } else if (session_.idle() && !stream_) {
         consider(last_read_ + options_.idle_timeout, DeadlineKind::kIdle);
     }
@@ -256,6 +267,8 @@ std::string Connection::deadline_reason(DeadlineKind kind) const {
         case DeadlineKind::kStalledFrame: return "stalled in the middle of a frame for " + ms(options_.read_timeout);
         case DeadlineKind::kSlowFrame:
             return "a frame did not arrive whole within " + ms(options_.frame_timeout) + " of its first byte";
+        case DeadlineKind::kStalledChannel:
+            return "sent nothing for " + ms(options_.read_timeout) + " with a channel open";
         case DeadlineKind::kIdle: return "idle for " + ms(options_.idle_timeout);
         case DeadlineKind::kNone: break;
     }

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "lightmass_server/bake_lanes.h"
 #include "lightmass_server/result_stream.h"
 #include "lightmass_server/server_options.h"
 #include "lightmass_server/server_session.h"
@@ -28,7 +29,7 @@ namespace lc::bake {
 class Connection : public std::enable_shared_from_this<Connection> {
 public:
     // `busy_reason` non-empty: the server is full, this peer is told so after its Hello.
-    Connection(Transport transport, const ServerOptions& options, asio::thread_pool& workers,
+    Connection(Transport transport, const ServerOptions& options, BakeLanes& workers,
                const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
                std::string busy_reason);
 
@@ -47,7 +48,16 @@ private:
     // Sleeps until the deadline; closes the connection when it passes unmoved.
     awaitable<void> watch_deadline();
 
-    enum class DeadlineKind { kNone, kTlsHandshake, kHello, kFlush, kStalledFrame, kSlowFrame, kIdle };
+    enum class DeadlineKind {
+        kNone,
+        kTlsHandshake,
+        kHello,
+        kFlush,
+        kStalledFrame,
+        kSlowFrame,
+        kStalledChannel,
+        kIdle
+    };
     struct Deadline {
         Clock::time_point at = Clock::time_point::max();
         DeadlineKind kind = DeadlineKind::kNone;
@@ -66,7 +76,7 @@ private:
 
     Transport transport_;
     const ServerOptions& options_;
-    asio::thread_pool& workers_;
+    BakeLanes& workers_;
     const ChannelRecorder& recorder_;
     uint64_t id_;
     std::string peer_;
@@ -77,7 +87,7 @@ private:
     asio::steady_timer deadline_timer_;
     std::deque<EncodedFrame> outbox_;
     std::optional<ResultStream> stream_;
-    std::shared_ptr<std::atomic<bool>> build_cancel_;  // the running build's; null when none
+    std::shared_ptr<BakeStop> bake_stop_;  // the running bake's; null when none
     bool closed_ = false;
     bool handshaken_ = false;  // TLS handshake done (plain TCP: at once)
     bool closing_ = false;

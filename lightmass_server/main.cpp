@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
     int connect_timeout_ms = 10000;
     uint32_t max_connections = 256;
     uint64_t memory_budget_mb = 4096;
+    unsigned max_bake_seconds = 600;
+    unsigned max_concurrent_bakes = 0;
     bool quiet = false;
     app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
         ->capture_default_str();
@@ -96,9 +98,19 @@ int main(int argc, char** argv) {
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
     app.add_option("--memory-budget-mb", memory_budget_mb,
-                   "MiB of scene channels and stored scenes over all connections; beyond: 'server busy'")
+                   "MiB of channels, stored scenes and running bakes' estimated peaks over all connections; "
+                   "beyond: 'server busy' (or 'too large' for a bake that could never fit)")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
+    app.add_option("--max-bake-seconds", max_bake_seconds,
+                   "Stop a bake still running this many seconds after its request, with an error saying so")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 7u * 24u * 3600u));
+    app.add_option("--max-concurrent-bakes", max_concurrent_bakes,
+                   "Big bakes run at once (small ones have a lane of their own); 0: one per --threads cores, "
+                   "at most one per 256 MiB of --memory-budget-mb")
+        ->capture_default_str()
+        ->check(CLI::Range(0u, 256u));
     app.add_flag("--quiet", quiet, "Log warnings and errors only");
     lc::bake::MpiLaunchOptions mpi;
     lc::bake::add_mpi_flags(app, mpi);
@@ -121,6 +133,8 @@ int main(int argc, char** argv) {
     options.connect_timeout = std::chrono::milliseconds(connect_timeout_ms);
     options.max_connections = max_connections;
     options.memory_budget_bytes = memory_budget_mb << 20;
+    options.max_bake_time = std::chrono::seconds(max_bake_seconds);
+    options.max_concurrent_bakes = max_concurrent_bakes;
     options.tls_certificate = tls_cert;
     options.tls_private_key = tls_key;
     options.mpi = mpi;

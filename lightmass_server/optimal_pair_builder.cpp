@@ -65,7 +65,7 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
                     format_double(pairing.lower_bound));
             }
         } else {
-            pairing = approximate_pairing(points);
+            pairing = approximate_pairing(points, options.stop);  // stopped: no pairs, caught below
             if (options.pairing == PairingMode::kAuto) {
                 report.warnings.push_back(
                     std::string("optimal-pair: level ") + std::to_string(level_number) + " has " +
@@ -81,12 +81,17 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
         report.exact = report.exact && pairing.exact;
 
         next.clear();
+        StopPoll merging(options.stop);
         for (const auto& [a, b] : pairing.pairs) {
+            if (merging()) break;
             const BuildNode cluster = merge_clusters(arena, level[a], level[b],
                                                      options.representative_rule, options.seed);
             next.push_back(uint32_t(arena.nodes.size()));
             arena.nodes.push_back(cluster);
         }
+        if (stop_requested(options.stop))
+            return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
+                              ErrorKind::kCancelled);
         if (pairing.carried != kNoCarriedNode) next.push_back(level[pairing.carried]);
         std::sort(next.begin(), next.end(), [&](uint32_t a, uint32_t b) {
             return arena.min_light_index_of(a) < arena.min_light_index_of(b);

@@ -28,7 +28,8 @@ struct KdTree {
     std::vector<KdNode> nodes;
 };
 
-KdTree build_kd_tree(std::span<const glm::dvec3> points) {
+// A stop leaves the tree partial (unsplit nodes, no boxes): the caller asks it and drops the tree.
+KdTree build_kd_tree(std::span<const glm::dvec3> points, const BakeStop* stop = nullptr) {
     KdTree tree;
     tree.order.resize(points.size());
     for (uint32_t i = 0; i < points.size(); ++i) tree.order[i] = i;
@@ -38,7 +39,7 @@ KdTree build_kd_tree(std::span<const glm::dvec3> points) {
     // Explicit work list instead of recursion: depth is log n anyway, but the
     // builder never relies on it.
     std::vector<uint32_t> pending{0};
-    while (!pending.empty()) {
+    while (!pending.empty() && !stop_requested(stop)) {
         const uint32_t node_index = pending.back();
         pending.pop_back();
         const uint32_t begin = tree.nodes[node_index].begin;
@@ -199,14 +200,16 @@ std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
     return pairs;
 }
 
-KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k) {
+KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop) {
     KnnResult result;
     if (points.size() < 2) return result;
     result.k_used = std::min<uint32_t>(k, uint32_t(points.size() - 1));
     result.neighbors.resize(points.size() * result.k_used);
-    const KdTree tree = build_kd_tree(points);
+    const KdTree tree = build_kd_tree(points, stop);
+    if (stop_requested(stop)) return result;
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
                       [&](const tbb::blocked_range<uint32_t>& range) {
+                          if (stop_requested(stop)) return;  // the result is dropped
                           std::vector<Candidate> best;
                           std::vector<std::pair<double, uint32_t>> stack;
                           for (uint32_t i = range.begin(); i != range.end(); ++i) {

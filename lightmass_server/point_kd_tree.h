@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "lightmass_server/bake_stop.h"
+
 namespace lc::bake {
 
 struct Neighbor {
@@ -28,7 +30,8 @@ struct KnnResult {
 };
 
 // The k nearest other points of every point (Euclidean).
-KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k);
+// A stop (bake_stop.h) leaves the lists partial: the caller asks it and drops them.
+KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop = nullptr);
 
 // Every pair u < v with |p_u - p_v| + offset[u] + offset[v] < -tolerance,
 // sorted. The kd-tree keeps each subtree's smallest offset, so a subtree whose

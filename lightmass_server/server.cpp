@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <thread>
+
 #include "lightmass_server/accept_backoff.h"
 #include "protocol/tls_context.h"
 
@@ -11,7 +13,10 @@ Server::Server(ServerOptions options)
     : options_(std::move(options)),
       bake_parallelism_(tbb::global_control::max_allowed_parallelism, std::max(1u, options_.bake_threads)),
       memory_budget_(options_.memory_budget_bytes),
-      workers_(std::max(1u, options_.bake_threads)),
+      workers_(options_.max_concurrent_bakes != 0
+                   ? options_.max_concurrent_bakes
+                   : default_concurrent_bakes(std::thread::hardware_concurrency(), options_.bake_threads,
+                                              options_.memory_budget_bytes)),
       acceptor_(io_),
       recorder_(options_.record_dir) {}
 

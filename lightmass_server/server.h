@@ -7,12 +7,13 @@
 #include <memory>
 #include <vector>
 
-#include "protocol/asio.h"
+#include "lightcuts/result.h"
+#include "lightmass_server/bake_lanes.h"
 #include "lightmass_server/connection.h"
 #include "lightmass_server/memory_budget.h"
 #include "lightmass_server/server_options.h"
+#include "protocol/asio.h"
 #include "protocol/channel_recorder.h"
-#include "lightcuts/result.h"
 #include "protocol/transport.h"
 
 namespace lc::bake {
@@ -44,7 +45,7 @@ private:
     // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.
     MemoryBudget memory_budget_;
     asio::io_context io_;
-    asio::thread_pool workers_;
+    BakeLanes workers_;
     tcp::acceptor acceptor_;
     ChannelRecorder recorder_;
     std::vector<std::weak_ptr<Connection>> connections_;

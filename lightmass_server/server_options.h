@@ -40,6 +40,10 @@ struct ServerOptions {
     uint64_t memory_budget_bytes = uint64_t{4096} << 20;
     // How a bake that asks for MPI ranks is launched (--mpi-* flags).
     MpiLaunchOptions mpi;
+    // A bake still running this long after its request is stopped with an error saying so.
+    std::chrono::seconds max_bake_time{600};
+    // Big bakes at once; 0: from the cores and the budget (bake_lanes.h).
+    unsigned max_concurrent_bakes = 0;
 };
 
 // True for 127.0.0.0/8, ::1 and "localhost".

@@ -5,7 +5,10 @@
 #include <utility>
 
 #include "lightmass_server/auth_token.h"
+#include "lightmass_server/bake_footprint.h"
 #include "lightmass_server/emitters/environment_sampler.h"
+#include "lightmass_server/indirect/patch_mesh.h"
+#include "protocol/bake_limits.h"
 #include "protocol/channel_name.h"
 
 namespace lc::bake {
@@ -72,6 +75,7 @@ void ServerSession::close_after_flush(std::string reason) {
 ServerActions ServerSession::on_closing() {
     if (closing_) return {};
     closing_ = true;
+    incoming_.clear();  // half-received channels give their reservations back now
     if (bake_ && !bake_->streaming && !bake_->cancel_requested) {
         bake_->cancel_requested = true;
         return {CancelBake{bake_->bake_id}};
@@ -145,6 +149,12 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     if (incoming_.size() >= kMaxOpenChannels)
         return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
                                             std::to_string(kMaxOpenChannels) + ")");
+    const uint64_t cap = options_.max_connection_channel_bytes;
+    if (cap != 0 && open.total_bytes > cap - std::min(cap, open_channel_bytes()))
+        return refuse(ErrorCode::kBusy, "this connection's open channels would hold " +
+                                            std::to_string(open_channel_bytes() + open.total_bytes) +
+                                            " bytes, more than its cap of " + std::to_string(cap) +
+                                            " (half of --memory-budget-mb); close one first");
     MemoryBudget* budget = options_.memory_budget;
     if (budget && !budget->try_reserve(open.total_bytes))
         return refuse(ErrorCode::kBusy, "server busy: " + std::to_string(open.total_bytes) +
@@ -158,6 +168,12 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     scene.total_bytes = open.total_bytes;
     scene.reservation = BudgetReservation(budget, open.total_bytes);
     return true;
+}
+
+uint64_t ServerSession::open_channel_bytes() const {
+    uint64_t bytes = 0;
+    for (const auto& [id, channel] : incoming_) bytes += channel.total_bytes;
+    return bytes;
 }
 
 bool ServerSession::on_write_channel(WriteChannelMsg& write) {
@@ -266,12 +282,29 @@ void ServerSession::store_geometry(IncomingScene& channel) {
                                                std::move(channel.reservation)};
 }
 
+bool ServerSession::check_bake_request(const BakeRequestMsg& request) {
+    if (Status settings = validate_bake_settings(request); !settings) {
+        send_error(request.bake_id, ErrorCode::kInvalidScene,
+                   "bake " + std::to_string(request.bake_id) + " refused: " + settings.error());
+        return false;
+    }
+    if (request.indirect.method != IndirectMethod::kRadiosity || request.geometry_channel.empty())
+        return true;
+    auto geometry = geometries_.find(request.geometry_channel);
+    if (geometry == geometries_.end()) return true;  // named in the next check
+    Status patches =
+        check_patch_count(*geometry->second.geometry, request.indirect.patch_size, kMaxRadiosityPatches);
+    if (!patches) send_error(request.bake_id, ErrorCode::kTooLarge, patches.error());
+    return patches.ok();
+}
+
 bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     if (bake_) {
         send_error(request.bake_id, ErrorCode::kBusy,
                    "bake " + std::to_string(bake_->bake_id) + " is still running on this connection");
         return true;
     }
+    if (!check_bake_request(request)) return true;
     auto scene = scenes_.find(request.scene_channel);
     if (scene == scenes_.end()) {
         send_error(request.bake_id, ErrorCode::kUnknownChannel,
@@ -308,21 +341,12 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
         }
         geometry = stored->second.geometry;
     }
-    if (request.area_lights > kMaxAreaLights) {
-        send_error(request.bake_id, ErrorCode::kInvalidScene,
-                   "area-light budget " + std::to_string(request.area_lights) + " exceeds the limit of " +
-                       std::to_string(kMaxAreaLights));
-        return true;
-    }
     auto lights = std::make_shared<std::vector<SceneLight>>();
     size_t classic = 0;
     for (const SceneLight& light : scene->second.lights) {
         if (light.classic) ++classic;
         else lights->push_back(light);
     }
-    if (classic > 0)
-        send(WarningMsg{request.bake_id,
-                        std::to_string(classic) + " classic lights in the scene channel were left out of the tree"});
 
     StartBake start;
     start.bake_id = request.bake_id;
@@ -332,9 +356,6 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     build.pairing = request.pairing;
     build.seed = request.seed;
     if (request.exact_pairing_limit != 0) build.exact_pairing_limit = request.exact_pairing_limit;
-    spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
-                 request.bake_id, lights->size(), geometry ? " and geometry" : "", builder_name(build.builder),
-                 build.seed);
     start.inputs.indirect = indirect_options(request.indirect, request.seed);
     start.inputs.lights = std::move(lights);
     start.inputs.geometry = std::move(geometry);
@@ -342,10 +363,46 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     start.inputs.environment = std::move(environment);
     start.inputs.environment_lights = request.environment_lights;
     start.inputs.ranks = request.ranks;
+    BudgetReservation reservation;
+    if (!reserve_bake(request.bake_id, start, reservation)) return true;
 
-    bake_ = ActiveBake{request.bake_id};
+    if (classic > 0)
+        send(WarningMsg{
+            request.bake_id,
+            std::to_string(classic) + " classic lights in the scene channel were left out of the tree"});
+    spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
+                 request.bake_id, start.inputs.lights->size(), start.inputs.geometry ? " and geometry" : "",
+                 builder_name(build.builder), build.seed);
+    bake_ = ActiveBake{request.bake_id, false, false, std::move(reservation)};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});
     actions_.push_back(std::move(start));
+    return true;
+}
+
+bool ServerSession::reserve_bake(uint32_t bake_id, StartBake& start, BudgetReservation& reservation) {
+    const BakeFootprint footprint = estimate_bake_footprint(start.inputs, options_.record_channels);
+    start.inputs.indirect.vpl.max_lights = footprint.max_vpls;
+    // A bake over ranks waits on its MPI job for its whole length: never on the small lane.
+    start.small = footprint.bytes <= kSmallBakeBytes && start.inputs.indirect.method == IndirectMethod::kOff &&
+                  start.inputs.ranks == 0;
+    MemoryBudget* budget = options_.memory_budget;
+    if (!budget) return true;
+    if (footprint.bytes > budget->limit()) {
+        send_error(bake_id, ErrorCode::kTooLarge,
+                   "bake " + std::to_string(bake_id) + " too large: needs " +
+                       megabytes_text(footprint.bytes) + " (" + footprint.largest + "), the budget is " +
+                       megabytes_text(budget->limit()) + " (--memory-budget-mb)");
+        return false;
+    }
+    if (!budget->try_reserve(footprint.bytes)) {
+        send_error(bake_id, ErrorCode::kBusy,
+                   "server busy: bake " + std::to_string(bake_id) + " needs " +
+                       megabytes_text(footprint.bytes) + " and " +
+                       megabytes_text(budget->limit() - std::min(budget->limit(), budget->used())) +
+                       " of the " + megabytes_text(budget->limit()) + " budget is free; try again later");
+        return false;
+    }
+    reservation = BudgetReservation(budget, footprint.bytes);
     return true;
 }
 

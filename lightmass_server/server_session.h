@@ -33,8 +33,12 @@ struct ServerSessionOptions {
     bool record_channels = false;      // emit RecordChannel for every channel received or sent
     // Non-empty: the server is full; Hello is answered kBusy with this text and the connection closes.
     std::string busy_reason;
-    // Shared by every connection; null: unlimited.
+    // Shared by every connection; null: unlimited. Holds the channels and
+    // each bake's estimated peak (bake_footprint.h).
     MemoryBudget* memory_budget = nullptr;
+    // Announced bytes of this connection's open channels together; 0: no cap
+    // beyond the budget. Keeps one connection from holding the whole budget.
+    uint64_t max_connection_channel_bytes = 0;
 };
 
 // Send this message now (after those already queued).
@@ -45,6 +49,8 @@ struct SendMessage {
 struct StartBake {
     uint32_t bake_id = 0;
     BakeInputs inputs;
+    // Small enough for the small-bake lane (bake_lanes.h), so it does not wait behind big ones.
+    bool small = false;
 };
 // Stop the running build (it reports back with a cancelled error).
 struct CancelBake {
@@ -95,6 +101,8 @@ public:
     bool greeted() const { return greeted_; }
     // No bake running or streaming and no channel half-received: the idle timeout applies.
     bool idle() const { return !bake_ && incoming_.empty(); }
+    // A channel is open and not yet complete: the peer must keep sending (the read deadline applies).
+    bool receiving_channel() const { return !incoming_.empty(); }
     bool bake_running() const { return bake_.has_value(); }
     bool streaming() const { return bake_ && bake_->streaming; }
 
@@ -129,6 +137,7 @@ private:
         uint32_t bake_id = 0;
         bool cancel_requested = false;
         bool streaming = false;
+        BudgetReservation reservation;  // the bake's estimated peak, until it is delivered or dropped
     };
 
     // Each returns false when the peer broke the protocol and the connection must close.
@@ -138,6 +147,12 @@ private:
     bool on_close_channel(const CloseChannelMsg& close);
     void store_geometry(IncomingScene& channel);
     bool on_bake_request(const BakeRequestMsg& request);
+    // The request's settings against the protocol's limits and its stored
+    // channels; false: refused, the error sent.
+    bool check_bake_request(const BakeRequestMsg& request);
+    // The inputs' estimated peak against the budget; false: refused (busy or too large), the error sent.
+    bool reserve_bake(uint32_t bake_id, StartBake& start, BudgetReservation& reservation);
+    uint64_t open_channel_bytes() const;
     void on_cancel(const CancelMsg& cancel);
 
     void send(Message message);

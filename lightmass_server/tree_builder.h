@@ -11,6 +11,7 @@
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 
 namespace lc::bake {
 
@@ -29,6 +30,9 @@ struct BuildOptions {
     uint64_t seed = 0;
     // LBVH only: whole subtrees merged by MPI ranks; null: all here.
     const LbvhRemoteMerges* lbvh_remote = nullptr;
+    // Polled inside the optimal-pair builder's levels (approximate pairing, merges), besides the
+    // progress callback between levels; null: never stops.
+    const BakeStop* stop = nullptr;
 };
 
 // Stage name and percent in [0, 100]; return false to cancel the build.

@@ -6,6 +6,13 @@
 #   scripts/fault-test.sh stall [--peers 16] [--seconds 30]
 #       slow-byte peers (one byte every 0.5 s) and silent peers, while normal
 #       bakes run: when does the server drop them, and do the bakes still pass?
+#   scripts/fault-test.sh hostile [--budget-mb 512] [--hostile-csv docs/bench/hostile_bake.csv]
+#       issue 27's rows, each against a fresh server at --memory-budget-mb
+#       BUDGET with its RSS sampled every 50 ms: deep and huge VPL bakes,
+#       radiosity with 1,000 point lights, an 8192 x 4096 environment, 4 M
+#       area-light samples (each cancelled 1.5 s into its first stage: cancel
+#       latency, peak RSS), a small bake beside a 10^9-path one, SIGTERM during
+#       a radiosity bake, and a peer silent after opening a channel
 #   scripts/fault-test.sh soak [--minutes 60] [--csv docs/bench/soak_rss.csv]
 #       4 clients bake without pause; the server's RSS is sampled every 2 s
 #   scripts/fault-test.sh all  (kill, stall, then a 10-minute soak)
@@ -24,6 +31,9 @@ minutes=60
 server_bin=build/bin/lightmass_server
 client_bin=build/bin/editor_client
 csv=docs/bench/soak_rss.csv
+budget_mb=512
+hostile_csv=docs/bench/hostile_bake.csv
+hostile_bin=build/bin/hostile_bake_bench
 while [ $# -gt 0 ]; do
     case "$1" in
         --iterations) iterations="$2"; shift 2 ;;
@@ -32,6 +42,9 @@ while [ $# -gt 0 ]; do
         --seconds) seconds="$2"; shift 2 ;;
         --minutes) minutes="$2"; shift 2 ;;
         --csv) csv="$2"; shift 2 ;;
+        --budget-mb) budget_mb="$2"; shift 2 ;;
+        --hostile-csv) hostile_csv="$2"; shift 2 ;;
+        --hostile-bin) hostile_bin="$2"; shift 2 ;;
         --server-bin) server_bin="$2"; shift 2 ;;
         --client-bin) client_bin="$2"; shift 2 ;;
         *) echo "unknown option $1" >&2; exit 2 ;;
@@ -159,6 +172,71 @@ run_stall() {
     [ "$failed" -eq 0 ]
 }
 
+# peak_rss_mib CSV: the largest RSS sample, in MiB.
+peak_rss_mib() { awk -F, 'NR > 1 && $2 > p { p = $2 } END { printf "%.0f", p / 1024 }' "$1"; }
+
+# hostile_row BUDGET_MB SCENARIO [BENCH ARGS...]: one scenario against a fresh server; appends its CSV row.
+hostile_row() {
+    local budget=$1 scenario=$2
+    shift 2
+    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$budget" --max-bake-seconds 120 \
+        --read-timeout-ms 2000 --idle-timeout-ms 600000
+    sample_rss "$LC_SERVER_PID" "$work/rss_$scenario.csv" 0.05 &
+    local sampler=$! row
+    background=("$sampler")
+    row=$(timeout 300 "$hostile_bin" "127.0.0.1:$LC_SERVER_PORT" "$scenario" "$@" || echo "$scenario,FAILED,,,,,")
+    sleep 0.3  # the memory the bake held, given back
+    local after
+    after=$(awk '/^VmRSS:/ { printf "%.0f", $2 / 1024 }' "/proc/$LC_SERVER_PID/status" 2>/dev/null || echo "?")
+    stop_server
+    wait "$sampler" 2>/dev/null || true
+    background=()
+    echo "$row,$(peak_rss_mib "$work/rss_$scenario.csv"),$after,$budget" | tee -a "$hostile_csv"
+}
+
+# SIGTERM while a radiosity bake shoots from its 1,000 point lights: milliseconds until the process is gone.
+hostile_sigterm() {
+    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$1"
+    timeout 120 "$hostile_bin" "127.0.0.1:$LC_SERVER_PORT" radiosity >/dev/null 2>&1 &
+    local client=$! t0 t1 exited=yes
+    background=("$client")
+    sleep 5  # the patches are made; the point-light pass runs for minutes
+    t0=$(date +%s%N)
+    kill -TERM "$LC_SERVER_PID"
+    for _ in $(seq 1 500); do kill -0 "$LC_SERVER_PID" 2>/dev/null || break; sleep 0.002; done
+    t1=$(date +%s%N)
+    kill -0 "$LC_SERVER_PID" 2>/dev/null && exited=no
+    stop_server
+    wait "$client" 2>/dev/null || true
+    background=()
+    echo "sigterm,$([ $exited = yes ] && echo exited || echo RUNNING),radiosity,$(( (t1 - t0) / 1000000 )),,,SIGTERM to exit,,,$1" \
+        | tee -a "$hostile_csv"
+    [ "$exited" = yes ]
+}
+
+run_hostile() {
+    [ -x "$hostile_bin" ] || { echo "build $hostile_bin first (cmake --build build --target hostile_bake_bench)" >&2; return 2; }
+    mkdir -p "$(dirname "$hostile_csv")"
+    echo "scenario,outcome,stage,cancel_ms,small_idle_ms,small_busy_ms,detail,peak_rss_mib,rss_after_mib,budget_mib" \
+        >"$hostile_csv"
+    # The issue's rows under a small budget: each refused up front, or baked within it.
+    for scenario in vpl-deep radiosity environment area vpl-huge; do
+        hostile_row "$budget_mb" "$scenario" --cancel-after-ms 1500
+    done
+    # Bakes that fit, run to the end: their peak RSS against the estimate they were admitted by.
+    hostile_row "$budget_mb" area-fit
+    hostile_row "$budget_mb" vpl-fit
+    hostile_row "$budget_mb" silent-channel
+    # The same heavy bakes admitted (the default 4 GiB budget), each cancelled inside its heaviest stage.
+    hostile_row 4096 vpl-deep --cancel-after-ms 1000
+    hostile_row 4096 radiosity --cancel-after-ms 1500
+    hostile_row 4096 environment --cancel-after-ms 150
+    hostile_row 4096 area --cancel-after-ms 1500
+    hostile_row 4096 area --cancel-after-ms 4000
+    hostile_row 4096 vpl-huge --cancel-after-ms 1500 --small
+    hostile_sigterm 4096
+}
+
 run_soak() {
     make_scene 4096 "$work/soak.gltf"
     start_local_server "$server_bin" "$work" --threads 2 --quiet
@@ -214,6 +292,7 @@ case "$mode" in
     kill) run_kill ;;
     stall) run_stall ;;
     soak) run_soak ;;
+    hostile) run_hostile ;;
     all) run_kill; run_stall; minutes=10; run_soak ;;
-    *) sed -n '2,15p' "$0"; exit 2 ;;
+    *) sed -n '2,22p' "$0"; exit 2 ;;
 esac

@@ -3,8 +3,10 @@
 # the libFuzzer targets of tests/fuzz/, one after the other.
 #   scripts/fuzz.sh                      every target, 60 seconds each
 #   scripts/fuzz.sh --seconds 600        every target, 10 minutes each
-#   scripts/fuzz.sh --runs 1000000 dump_fuzz gltf_loader_fuzz
+#   scripts/fuzz.sh --runs 1000000 geometry_channel_fuzz environment_channel_fuzz
+#   scripts/fuzz.sh --seed 7             libFuzzer's random seed (default 1: runs repeat)
 # With --runs and --seconds, a target stops at whichever comes first.
+# Every target has seeds: a target named here without seeds is an error.
 # Corpora grow in build-fuzz/corpus/TARGET; seeds are build-fuzz/seeds (written
 # from tests/data at build time), tests/data itself and tests/fuzz/regressions/
 # TARGET (the reproducers of fixed findings). A finding is saved in
@@ -14,18 +16,21 @@ cd "$(dirname "$0")/.."
 
 seconds=""
 runs=""
+seed=1
 targets=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --seconds) seconds="$2"; shift 2 ;;
         --runs) runs="$2"; shift 2 ;;
-        -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+        --seed) seed="$2"; shift 2 ;;
+        -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
         -*) echo "unknown option $1" >&2; exit 2 ;;
         *) targets+=("$1"); shift ;;
     esac
 done
 if [ -z "$seconds" ] && [ -z "$runs" ]; then seconds=60; fi
-all=(frame_decoder_fuzz message_fuzz scene_channel_fuzz result_channel_fuzz dump_fuzz gltf_loader_fuzz)
+all=(frame_decoder_fuzz message_fuzz scene_channel_fuzz result_channel_fuzz geometry_channel_fuzz
+     environment_channel_fuzz dump_fuzz gltf_loader_fuzz)
 if [ ${#targets[@]} -eq 0 ]; then targets=("${all[@]}"); fi
 
 cmake --preset fuzz >/dev/null
@@ -39,6 +44,8 @@ seeds_of() {
         message_fuzz) echo "$build/seeds/messages" ;;
         scene_channel_fuzz) echo "$build/seeds/scene" ;;
         result_channel_fuzz) echo "$build/seeds/result" ;;
+        geometry_channel_fuzz) echo "$build/seeds/geometry" ;;
+        environment_channel_fuzz) echo "$build/seeds/environment" ;;
         dump_fuzz) ls -d "$data"/replay/*/server "$data"/replay/*/client ;;
         gltf_loader_fuzz) echo "$data/broken_gltf" ;;
         *) echo "unknown target $1" >&2; return 1 ;;
@@ -60,8 +67,14 @@ for target in "${targets[@]}"; do
     mkdir -p "$build/corpus/$target" "$build/artifacts/$target" "$build/logs"
     # shellcheck disable=SC2207
     seed_dirs=($(seeds_of "$target"))
+    for dir in "${seed_dirs[@]}"; do
+        if [ -z "$(ls -A "$dir" 2>/dev/null)" ]; then
+            echo "$target: its seed folder $dir is missing or empty" >&2
+            exit 2
+        fi
+    done
     if [ -d "tests/fuzz/regressions/$target" ]; then seed_dirs+=("tests/fuzz/regressions/$target"); fi
-    limits=()
+    limits=(-seed="$seed")
     if [ -n "$runs" ]; then limits+=("-runs=$runs"); fi
     if [ -n "$seconds" ]; then limits+=("-max_total_time=$seconds"); fi
     log="$build/logs/$target.log"

@@ -7,7 +7,10 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
+
 #include "editor_client/scene/environment_image.h"
+#include "test_paths.h"
 
 namespace lc::client {
 namespace {
@@ -68,6 +71,20 @@ TEST(EnvironmentImage, RefusesAMissingFile) {
     auto map = load_environment_image("/nonexistent/sky.hdr");
     ASSERT_FALSE(map);
     EXPECT_NE(map.error().find("'/nonexistent/sky.hdr': no such file"), std::string::npos) << map.error();
+}
+
+// Issue 27: a directory, a FIFO or a device said "no such file".
+TEST(EnvironmentImage, RefusesWhatIsNotARegularFileByName) {
+    const std::filesystem::path dir = test::make_temp_dir("environment-not-regular");
+    const std::filesystem::path fifo = dir / "sky.hdr";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    for (const std::filesystem::path& path : {dir, fifo, std::filesystem::path("/dev/zero")}) {
+        auto map = load_environment_image(path);
+        ASSERT_FALSE(map);
+        EXPECT_NE(map.error().find("'" + path.string() + "': not a regular file"), std::string::npos)
+            << map.error();
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(EnvironmentImage, RefusesEmptyAndNonHdrFiles) {

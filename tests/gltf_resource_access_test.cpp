@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "editor_client/scene/gltf_buffer_sizes.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "test_paths.h"
 
@@ -107,6 +108,37 @@ TEST_F(GltfResourceAccess, RelativeUriInsideTheSceneFolderLoads) {
     EXPECT_EQ(scene->meshes[0].indices.size(), 3u);
     // "./" and a detour that stays inside are still inside.
     EXPECT_TRUE(load(triangle_scene("./buffers/../buffers/triangle.bin")).ok());
+}
+
+// Issue 27: a buffer of byteLength 44 naming a 2 GB (sparse) file read all of
+// it before tinygltf's "File size mismatch"; the size is compared first now.
+TEST_F(GltfResourceAccess, BufferFileOfAnotherSizeThanItsByteLengthIsRefusedUnread) {
+    const std::filesystem::path huge = scene_dir_ / "buffers" / "huge.bin";
+    write_bytes(huge, {});
+    ASSERT_EQ(::truncate(huge.c_str(), off_t(2) << 30), 0) << std::strerror(errno);
+    Result<Scene> scene = load(triangle_scene("buffers/huge.bin"));
+    ASSERT_FALSE(scene.ok());
+    EXPECT_THAT(scene.error(),
+                HasSubstr("holds 2147483648 bytes but its buffer's byteLength is 44; not read"));
+}
+
+TEST(GltfBufferSizes, ReadFromGltfTextAndGlbJsonChunkWithoutDataUris) {
+    const std::string text =
+        R"({"buffers":[{"uri":"a.bin","byteLength":7},{"uri":"data:,x","byteLength":1}]})";
+    const auto* bytes = reinterpret_cast<const uint8_t*>(text.data());
+    std::vector<BufferFileSize> sizes = external_buffer_sizes({bytes, text.size()});
+    ASSERT_EQ(sizes.size(), 1u);
+    EXPECT_EQ(sizes[0].uri, "a.bin");
+    EXPECT_EQ(sizes[0].byte_length, 7u);
+    // The same JSON as a .glb's first chunk.
+    std::vector<uint8_t> glb = {'g', 'l', 'T', 'F', 2, 0, 0, 0, 0, 0, 0, 0};
+    const uint32_t length = uint32_t(text.size());
+    glb.insert(glb.end(), {uint8_t(length), uint8_t(length >> 8), 0, 0, 'J', 'S', 'O', 'N'});
+    glb.insert(glb.end(), text.begin(), text.end());
+    sizes = external_buffer_sizes(glb);
+    ASSERT_EQ(sizes.size(), 1u);
+    EXPECT_EQ(sizes[0].byte_length, 7u);
+    EXPECT_TRUE(external_buffer_sizes(std::vector<uint8_t>{'{'}).empty());
 }
 
 TEST_F(GltfResourceAccess, ParentDirectoryUriIsRefusedUnlessAllowed) {

@@ -1,7 +1,7 @@
 // Bakes over MPI ranks (lightmass_server/mpi/): the light set and the tree the
 // same at 1, 2, 3 and 4 ranks as in one process, the LBVH's subtrees merged on
-// the ranks, a rank that dies, a cancelled bake, and a bake asking for more
-// ranks than the server allows. The tests that start mpirun skip, saying why,
+// the ranks, a rank that dies, a cancelled bake, the bake's own stop (a
+// deadline, a cancel) and a bake asking for more ranks than the server allows. The tests that start mpirun skip, saying why,
 // where mpirun or lightmass_rank is missing (the shares' determinism is checked
 // without MPI in index_shares_test and lbvh_subtrees_test).
 #include <gtest/gtest.h>
@@ -125,6 +125,33 @@ TEST(MpiBake, CancelStopsEveryRank) {
     EXPECT_TRUE(saw_ranks);
     EXPECT_EQ(cancelled.error_kind(), ErrorKind::kCancelled) << cancelled.error();
     EXPECT_EQ(processes_naming(inputs.mpi.work_dir.string()), 0u) << "a rank outlived its cancelled bake";
+    fs::remove_all(inputs.mpi.work_dir);
+}
+
+// The bake's own stop, with no progress callback to ask: the coordinator polls
+// it while it waits on the job. A deadline already passed fails the bake naming
+// the limit; a cancel through the stop is a cancel. No rank outlives either.
+TEST(MpiBake, TheBakesStopEndsTheJobWithoutAProgressCallback) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 3;
+    inputs.mpi.rank_args = {"--test-stall"};
+    inputs.mpi.work_dir = fs::temp_directory_path() / ("mpi-stop-test-" + std::to_string(getpid()));
+    fs::create_directories(inputs.mpi.work_dir);
+    inputs.stop = std::make_shared<BakeStop>(BakeStop::Clock::now(), "--max-bake-seconds 1 (a test's limit)");
+    Result<BuildResult> late = run_bake(inputs, {});
+    ASSERT_FALSE(late.ok());
+    EXPECT_EQ(late.error_kind(), ErrorKind::kFailed) << late.error();
+    EXPECT_NE(late.error().find("the MPI job of 3 ranks stopped: the bake ran past --max-bake-seconds 1"),
+              std::string::npos)
+        << late.error();
+
+    inputs.stop = std::make_shared<BakeStop>();
+    inputs.stop->cancel();
+    Result<BuildResult> cancelled = run_bake(inputs, {});
+    ASSERT_FALSE(cancelled.ok());
+    EXPECT_EQ(cancelled.error_kind(), ErrorKind::kCancelled) << cancelled.error();
+    EXPECT_EQ(processes_naming(inputs.mpi.work_dir.string()), 0u) << "a rank outlived its stopped bake";
     fs::remove_all(inputs.mpi.work_dir);
 }
 

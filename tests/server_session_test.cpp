@@ -4,7 +4,9 @@
 
 #include <vector>
 
+#include "lightmass_server/bake_footprint.h"
 #include "lightmass_server/server_session.h"
+#include "protocol/bake_limits.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/geometry_channel.h"
@@ -205,7 +207,9 @@ TEST(ServerSession, FullServerAnswersHelloBusy) {
 TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
     const std::vector<SceneLight> lights = scene_lights();
     const uint64_t scene_bytes = encode_scene_channel(lights).size();
-    MemoryBudget budget(scene_bytes + 10);
+    // Room for the scene channel and its bake's estimated peak, not for another channel that size.
+    const uint64_t bake_bytes = lights.size() * kTreeBytesPerLight;
+    MemoryBudget budget(scene_bytes + bake_bytes);
     ServerSessionOptions options;
     options.memory_budget = &budget;
     {
@@ -214,7 +218,8 @@ TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
         open_and_write(session, lights);
         EXPECT_EQ(budget.used(), scene_bytes);
         // A second channel does not fit while the first is held: busy, and the connection stays.
-        ServerActions busy = session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), scene_bytes});
+        ServerActions busy =
+            session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), bake_bytes + 1});
         EXPECT_EQ(error_codes(busy), std::vector<ErrorCode>{ErrorCode::kBusy});
         EXPECT_FALSE(closes(busy));
         // The stored scene keeps its bytes; another session cannot take them either.
@@ -222,8 +227,9 @@ TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
         EXPECT_EQ(budget.used(), scene_bytes);
         ServerSession other(options);
         hello(other);
-        EXPECT_EQ(error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), scene_bytes})),
-                  std::vector<ErrorCode>{ErrorCode::kBusy});
+        EXPECT_EQ(
+            error_codes(other.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), bake_bytes + 1})),
+            std::vector<ErrorCode>{ErrorCode::kBusy});
         EXPECT_EQ(count_of<StartBake>(session.on_message(bake_request())), 1u);
     }
     EXPECT_EQ(budget.used(), 0u);  // a session gives its bytes back when it ends
@@ -474,6 +480,136 @@ TEST(ServerSession, DegenerateGeometryOnlyWarnsAndBakes) {
     ASSERT_NE(start, nullptr);
     ASSERT_NE(start->inputs.geometry, nullptr);
     EXPECT_TRUE(start->inputs.geometry->triangles.empty());
+}
+
+// Issue 27: a request's settings are checked when it arrives, before it is queued.
+TEST(ServerSession, SettingsOutOfRangeAreRefusedOnArrival) {
+    ServerSession session = session_with_scene();
+    std::vector<BakeRequestMsg> bad(6, bake_request());
+    bad[0].indirect = {IndirectMethod::kVpl, 0, 1000, 0.25f, 0.01f};  // no bounce
+    bad[1].indirect = {IndirectMethod::kVpl, kMaxBakeBounces + 1, 1000, 0.25f,
+                       0.01f};                                                    // deeper than recorded
+    bad[2].indirect = {IndirectMethod::kVpl, 1, kMaxVplPaths + 1, 0.25f, 0.01f};  // 10^12 paths and the like
+    bad[3].indirect = {IndirectMethod::kRadiosity, 1, 1000, 1e-37f, 0.01f};
+    bad[4].indirect = {IndirectMethod::kRadiosity, 1, 1000, 0.25f, 1.0f};
+    bad[5].area_lights = kMaxAreaLights + 1;
+    for (const BakeRequestMsg& request : bad) {
+        ServerActions refused = session.on_message(request);
+        EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kInvalidScene});
+        EXPECT_EQ(count_of<StartBake>(refused), 0u);
+        EXPECT_FALSE(closes(refused));
+    }
+    // The numbers read as numbers: 1e-37, not 0.000000.
+    const std::string text = std::get<ErrorMsg>(sent(session.on_message(bad[3]))[0]).text;
+    EXPECT_NE(text.find("patch size 1e-37"), std::string::npos) << text;
+    EXPECT_FALSE(session.bake_running());
+}
+
+TEST(ServerSession, RadiosityPatchesBeyondTheLimitAreTooLargeOnArrival) {
+    ServerSession session = session_with_scene();
+    EXPECT_TRUE(error_codes(send_geometry(session, emissive_geometry(1.0f))).empty());
+    BakeRequestMsg request = bake_request();
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    request.indirect = {IndirectMethod::kRadiosity, 1, 1000, 1e-4f, 0.01f};  // 200 million patches
+    ServerActions refused = session.on_message(request);
+    EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kTooLarge});
+    EXPECT_EQ(count_of<StartBake>(refused), 0u);
+}
+
+TEST(ServerSession, ABakeBeyondTheBudgetIsTooLargeAndOneThatDoesNotFitNowIsBusy) {
+    MemoryBudget budget(uint64_t{64} << 20);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    ServerSession session = session_with_scene(options);
+    EXPECT_TRUE(error_codes(send_geometry(session, emissive_geometry(1.0f))).empty());
+    // 4,194,304 area-light samples need gigabytes: refused up front, whatever is free.
+    BakeRequestMsg request = bake_request();
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    request.area_lights = kMaxAreaLights;
+    ServerActions refused = session.on_message(request);
+    ASSERT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kTooLarge});
+    const std::string text = std::get<ErrorMsg>(sent(refused)[0]).text;
+    EXPECT_NE(text.find("the budget is 64 MB"), std::string::npos) << text;
+    EXPECT_NE(text.find("needs 3,"), std::string::npos) << text;  // 4.2 M lights x 768 bytes
+
+    // 50,000 samples (37 MB) fit once; a second session's while the first runs does not.
+    request.area_lights = 50000;
+    const uint64_t held = budget.used();
+    ServerActions first = session.on_message(request);
+    ASSERT_EQ(count_of<StartBake>(first), 1u);
+    const uint64_t reserved = budget.used() - held;
+    EXPECT_GE(reserved, 50000 * kTreeBytesPerLight);
+    ServerSession other = session_with_scene(options);
+    EXPECT_TRUE(error_codes(send_geometry(other, emissive_geometry(1.0f))).empty());
+    EXPECT_EQ(error_codes(other.on_message(request)), std::vector<ErrorCode>{ErrorCode::kBusy});
+    // The first bake ends (here cancelled): its bytes are free again, and the other bake fits.
+    const uint64_t before = budget.used();
+    session.on_bake_finished(kBake, make_error("cancelled", ErrorKind::kCancelled));
+    EXPECT_EQ(budget.used(), before - reserved);
+    EXPECT_EQ(count_of<StartBake>(other.on_message(request)), 1u);
+}
+
+TEST(ServerSession, VplBakesCarryTheirLightCapAndSmallBakesTheSmallLane) {
+    ServerSession session = session_with_scene();
+    EXPECT_TRUE(error_codes(send_geometry(session, emissive_geometry(1.0f))).empty());
+    ServerActions small = session.on_message(bake_request(1));
+    ASSERT_NE(first_of<StartBake>(small), nullptr);
+    EXPECT_TRUE(first_of<StartBake>(small)->small);
+    session.on_bake_finished(1, make_error("cancelled", ErrorKind::kCancelled));
+
+    BakeRequestMsg request = bake_request(2);
+    request.geometry_channel = geometry_channel_name(kSceneGuid);
+    request.indirect = {IndirectMethod::kVpl, 65535, 1000, 0.25f, 0.01f};
+    ServerActions deep = session.on_message(request);
+    const StartBake* start = first_of<StartBake>(deep);
+    ASSERT_NE(start, nullptr);
+    EXPECT_FALSE(start->small);
+    EXPECT_EQ(start->inputs.indirect.vpl.max_lights, kMaxIndirectLights);  // not 65,535,000
+    session.on_bake_finished(2, make_error("cancelled", ErrorKind::kCancelled));
+
+    request.bake_id = 3;
+    request.indirect = {IndirectMethod::kVpl, 2, 1000, 0.25f, 0.01f};
+    start = first_of<StartBake>(session.on_message(request));
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->inputs.indirect.vpl.max_lights, 2000u);
+}
+
+// A bake over MPI ranks waits on its job for its whole length, so it never takes
+// the small lane; its estimated peak is reserved like a bake in the process.
+TEST(ServerSession, ABakeOverRanksTakesTheBigPoolAndReservesItsFootprint) {
+    MemoryBudget budget(uint64_t{64} << 20);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    ServerSession session = session_with_scene(options);
+    BakeRequestMsg request = bake_request(1);
+    request.ranks = 2;
+    const uint64_t held = budget.used();
+    const StartBake* start = first_of<StartBake>(session.on_message(request));
+    ASSERT_NE(start, nullptr);
+    EXPECT_EQ(start->inputs.ranks, 2u);
+    EXPECT_FALSE(start->small);
+    EXPECT_GT(budget.used(), held);
+    session.on_bake_finished(1, make_error("cancelled", ErrorKind::kCancelled));
+    EXPECT_EQ(budget.used(), held);
+}
+
+TEST(ServerSession, OpenChannelsAreCappedPerConnectionAndFreedOnClose) {
+    MemoryBudget budget(uint64_t{1} << 30);
+    ServerSessionOptions options;
+    options.memory_budget = &budget;
+    options.max_connection_channel_bytes = 1000;
+    ServerSession session(options);
+    hello(session);
+    EXPECT_TRUE(session.on_message(OpenChannelMsg{1, scene_channel_name(kSceneGuid), 600}).empty());
+    EXPECT_TRUE(session.receiving_channel());
+    ServerActions over = session.on_message(OpenChannelMsg{2, scene_channel_name(kSceneGuid), 401});
+    EXPECT_EQ(error_codes(over), std::vector<ErrorCode>{ErrorCode::kBusy});
+    EXPECT_FALSE(closes(over));
+    EXPECT_TRUE(session.on_message(OpenChannelMsg{3, scene_channel_name(kSceneGuid), 400}).empty());
+    EXPECT_EQ(budget.used(), 1000u);
+    // A peer that goes silent is closed by its deadline: the half-received channels' bytes come back at once.
+    session.on_closing();
+    EXPECT_EQ(budget.used(), 0u);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "editor_client/bake/client_session.h"
 #include "editor_client/bake/server_process.h"
 #include "protocol/asio.h"
+#include "protocol/bake_limits.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
@@ -312,6 +313,10 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
                                              .area_lights = options.geometry ? options.area_lights : 0u,
                                              .indirect = options.indirect,
                                              .ranks = options.ranks};
+    // The server checks the same limits on arrival; checked here, nothing is sent for a request it would
+    // refuse.
+    if (Status settings = validate_bake_settings(session_options.request); !settings)
+        return make_error("bake settings refused before sending: " + settings.error());
     session_options.environment = options.environment;
     session_options.geometry = options.geometry;
     session_options.on_progress = options.on_progress;

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "editor_client/commands/command_errors.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::client {
 
@@ -65,9 +66,12 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
             ->capture_default_str();
     }
     cmd.add_option("--bounces", indirect_request.bounces, "vpl: diffuse bounces that leave a light")
-        ->capture_default_str();
-    cmd.add_option("--vpl-count", indirect_request.vpl_count, "vpl: light paths traced (each leaves up to --bounces lights)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::Range(1u, kMaxBakeBounces));
+    cmd.add_option("--vpl-count", indirect_request.vpl_count,
+                   "vpl: light paths traced (each leaves up to --bounces lights)")
+        ->capture_default_str()
+        ->check(CLI::Range(uint64_t{1}, kMaxVplPaths));
     cmd.add_option("--patch-size", indirect_request.patch_size, "radiosity: target patch edge, scene units")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);

@@ -119,7 +119,10 @@ Result<EquirectMap> decode_environment_image(std::span<const uint8_t> bytes, con
 Result<EquirectMap> load_environment_image(const std::filesystem::path& path) {
     const std::string label = "environment '" + path.string() + "'";
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return make_error(label + ": no such file");
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) return make_error(label + ": no such file");
+    // A directory, FIFO or device is refused before it is opened (a FIFO would block, /dev/zero never ends).
+    if (!std::filesystem::is_regular_file(status)) return make_error(label + ": not a regular file");
     std::ifstream in(path, std::ios::binary);
     if (!in) return make_error(label + ": cannot be opened");
     const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -427,6 +427,7 @@ Status Loader::parse_with_tinygltf(std::span<const uint8_t> bytes,
     ImageLoadContext image_context{&model_};
     gltf.SetImageLoader(&load_image_checked, &image_context);
     GltfResourceAccess access(resource_folder, options_.allow_external_resources);
+    access.expect_buffer_sizes(external_buffer_sizes(bytes));
     gltf.SetFsCallbacks(access.callbacks());
     const std::string base_dir = resource_folder.string();
     std::string err;

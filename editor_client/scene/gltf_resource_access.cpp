@@ -67,8 +67,18 @@ bool GltfResourceAccess::admits(const std::string& path) {
     return true;
 }
 
-bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path,
-                                           std::vector<unsigned char>& out, std::string& error) {
+void GltfResourceAccess::expect_buffer_sizes(const std::vector<BufferFileSize>& sizes) {
+    for (const BufferFileSize& buffer : sizes) {
+        // tinygltf joins the base folder and the URI with one '/'.
+        const std::string joined = base_dir_.empty()          ? buffer.uri
+                                   : base_dir_.ends_with('/') ? base_dir_ + buffer.uri
+                                                              : base_dir_ + "/" + buffer.uri;
+        expected_sizes_[std::filesystem::path(joined).lexically_normal()] = buffer.byte_length;
+    }
+}
+
+bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path, std::vector<unsigned char>& out,
+                                           std::string& error, std::optional<uint64_t> expected_size) {
     FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
     if (file.fd < 0) {
         error = "cannot open '" + path.string() + "': " + std::strerror(errno);
@@ -81,6 +91,11 @@ bool GltfResourceAccess::read_regular_file(const std::filesystem::path& path,
     }
     if (info.st_size > kMaxResourceBytes) {
         error = "'" + path.string() + "' is larger than 4 GiB";
+        return false;
+    }
+    if (expected_size && uint64_t(info.st_size) != *expected_size) {
+        error = "'" + path.string() + "' holds " + std::to_string(info.st_size) +
+                " bytes but its buffer's byteLength is " + std::to_string(*expected_size) + "; not read";
         return false;
     }
     out.resize(size_t(info.st_size));
@@ -141,8 +156,11 @@ bool GltfResourceAccess::read(std::vector<unsigned char>* out, std::string* err,
         if (err) *err += "refused to read '" + path + "'\n";
         return false;
     }
+    const auto& expected = static_cast<GltfResourceAccess*>(self)->expected_sizes_;
+    const auto size = expected.find(std::filesystem::path(path).lexically_normal());
     std::string error;
-    if (!read_regular_file(path, *out, error)) {
+    if (!read_regular_file(path, *out, error,
+                           size == expected.end() ? std::nullopt : std::optional<uint64_t>(size->second))) {
         if (err) *err += error + "\n";
         return false;
     }

@@ -5,9 +5,14 @@
 // files inside the scene's folder are read (data: URIs never touch the disk).
 #include <tiny_gltf.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "editor_client/scene/gltf_buffer_sizes.h"
 
 namespace lc::client {
 
@@ -28,13 +33,18 @@ public:
     bool read_resource(const std::filesystem::path& path, std::vector<unsigned char>& out,
                        std::string& error);
 
+    // The buffers' byteLengths (gltf_buffer_sizes.h): a buffer file of another
+    // size is refused by its size before a byte of it is read.
+    void expect_buffer_sizes(const std::vector<BufferFileSize>& sizes);
+
     // Why each refused URI was refused, in order ("'../x.bin' lies outside ...").
     const std::vector<std::string>& refusals() const { return refusals_; }
 
     // Reads a regular file without blocking on a FIFO or a device: the file is
-    // opened non-blocking and checked with fstat before a byte is read.
-    static bool read_regular_file(const std::filesystem::path& path,
-                                  std::vector<unsigned char>& out, std::string& error);
+    // opened non-blocking and checked with fstat before a byte is read, and
+    // refused when `expected_size` is set and the file's size differs.
+    static bool read_regular_file(const std::filesystem::path& path, std::vector<unsigned char>& out,
+                                  std::string& error, std::optional<uint64_t> expected_size = std::nullopt);
 
 private:
     // True when `path` may be read; otherwise records why in refusals_. A path
@@ -52,6 +62,8 @@ private:
     std::filesystem::path folder_;  // canonical; empty when nothing may be read
     bool allow_external_ = false;
     std::vector<std::string> refusals_;
+    // Normalised path (as tinygltf joins it) -> the byteLength its buffer announces.
+    std::map<std::filesystem::path, uint64_t> expected_sizes_;
 };
 
 }  // namespace lc::client

@@ -98,8 +98,8 @@ glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& t
     return std::numbers::pi * area * glm::dvec3(geometry.materials[triangle.material].emission);
 }
 
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed, IndexRange samples) {
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             IndexRange samples, const BakeStop* stop) {
     if (budget == 0) return make_error("the area-light budget is 0; give at least 1 sample");
     std::vector<Emitter> emitters;
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {
@@ -118,6 +118,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
     share_budget(emitters, std::max<uint64_t>(budget, emitters.size()));
 
     uint64_t first_sample = 0;  // the index of e's first sample in the whole output
+    StopPoll poll(stop);
     for (const Emitter& e : emitters) {
         const uint64_t emitter_first = first_sample;
         first_sample += e.samples;
@@ -134,6 +135,7 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
         const double shift_u = rng.uniform(), shift_v = rng.uniform();
         for (uint32_t k = 0; k < e.samples; ++k) {
             if (!samples.contains(emitter_first + k)) continue;
+            if (poll()) return stop->reason("area-light sampling");
             const double u = (double(k) + shift_u) / double(e.samples);
             double v = radical_inverse(k) + shift_v;
             v -= std::floor(v);

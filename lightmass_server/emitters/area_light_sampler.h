@@ -12,6 +12,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/index_range.h"
 
 namespace lc::bake {
@@ -26,9 +27,10 @@ struct AreaLightSampling {
 // Deterministic for equal geometry, budget and seed. `budget` >= 1.
 // `samples`: which samples to make, by their index in the whole run's output
 // (an MPI rank's share; each triangle's draws depend only on the seed and the
-// triangle, so the shares concatenated are the whole run's lights).
-Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget,
-                                             uint64_t seed, IndexRange samples = {});
+// triangle, so the shares concatenated are the whole run's lights). Polls
+// `stop` every sample made (null: never stops).
+Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
+                                             IndexRange samples = {}, const BakeStop* stop = nullptr);
 
 // Per channel, pi x L x A: what a triangle of emitted radiance L emits.
 glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& triangle);

@@ -26,14 +26,21 @@ constexpr double kSmallestStratum = 1e-9;
 // table's bilinear interpolation is exact at fractional corners too.
 class RadianceIntegral {
 public:
-    explicit RadianceIntegral(const EquirectMap& map)
-        : width_(map.width), height_(map.height), sums_(size_t(map.width + 1) * (map.height + 1)) {
+    // Stops early, the table partial and unusable, once `poll` says the bake must stop.
+    // The table (24 bytes a texel: 805 MB for 8192 x 4096) is written row by
+    // row as it is computed, never zero-filled whole first, so a stop is seen
+    // within one row's work.
+    RadianceIntegral(const EquirectMap& map, StopPoll& poll) : width_(map.width), height_(map.height) {
+        sums_.reserve(size_t(width_ + 1) * (height_ + 1));
+        sums_.resize(width_ + 1, glm::dvec3(0.0));
         for (uint32_t y = 0; y < height_; ++y) {
+            if (poll()) return;  // partial: the caller asks the poll again before using it
             const double solid_angle = equirect_texel_solid_angle(y, width_, height_);
             glm::dvec3 row(0.0);
+            sums_.push_back(glm::dvec3(0.0));
             for (uint32_t x = 0; x < width_; ++x) {
                 row += glm::dvec3(map.at(x, y)) * solid_angle;
-                sum(x + 1, y + 1) = sum(x + 1, y) + row;
+                sums_.push_back(sum(x + 1, y) + row);
             }
         }
     }
@@ -114,14 +121,17 @@ SceneLight directional_light(const glm::dvec3& towards_light, const glm::dvec3& 
 }  // namespace
 
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed, IndexRange slots) {
+                                            uint32_t count, uint64_t seed, IndexRange slots,
+                                            const BakeStop* stop) {
     std::vector<SceneLight> lights;
     if (map.empty() || count == 0 || !(intensity > 0.0)) return lights;
-    const RadianceIntegral integral(map);
+    StopPoll poll(stop);
+    const RadianceIntegral integral(map, poll);
+    if (poll()) return lights;
     const double width = map.width, height = map.height;
     std::vector<Stratum> stack;
     if (integral.power(0.0, width, 0.0, height) > 0.0) stack.push_back({0.0, width, 0.0, height, count, 0});
-    while (!stack.empty()) {
+    while (!stack.empty() && !poll()) {
         const Stratum s = stack.back();
         stack.pop_back();
         // Strata wholly outside this share are never split: a share costs its part.
@@ -194,7 +204,7 @@ std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensi
 }
 
 Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
-                                             uint32_t part, uint32_t parts) {
+                                             uint32_t part, uint32_t parts, const BakeStop* stop) {
     if (count == 0) count = kDefaultEnvironmentLights;
     LC_RETURN_IF_ERROR(validate_environment_light_count(environment, count));
     EnvironmentLights out;
@@ -208,7 +218,7 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
         const EquirectMap raster = rasterize_sky(sky, kSkyRasterWidth, kSkyRasterHeight);
         std::vector<SceneLight> sky_lights =
             sample_equirect_map(raster, 0.0, environment.intensity, count - sun_lights, seed,
-                                share_of(count - sun_lights, part, parts));
+                                share_of(count - sun_lights, part, parts), stop);
         out.lights.insert(out.lights.end(), sky_lights.begin(), sky_lights.end());
         char text[160];
         std::snprintf(text, sizeof(text),
@@ -218,11 +228,12 @@ Result<EnvironmentLights> sample_environment(const Environment& environment, uin
         out.census = text;
     } else {
         out.lights = sample_equirect_map(environment.map, rotation, environment.intensity, count, seed,
-                                         share_of(count, part, parts));
+                                         share_of(count, part, parts), stop);
         out.census = "environment: simulated (" + std::to_string(environment.map.width) + " x " +
                      std::to_string(environment.map.height) + " map, " + std::to_string(out.lights.size()) +
                      " lights)";
     }
+    if (stop_requested(stop)) return stop->reason("environment sampling");
     if (out.lights.empty()) out.census = (environment.has_sky() ? "sun and sky" : std::string("environment")) +
                                          ": skipped (it emits no light)";
     return out;

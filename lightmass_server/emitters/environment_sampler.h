@@ -17,10 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "lightmass_server/index_range.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
+#include "lightmass_server/index_range.h"
 
 namespace lc::bake {
 
@@ -39,15 +40,19 @@ struct EnvironmentLights {
 // `environment` must be valid (protocol/environment_records.h); count 0 means the default.
 // `part` of `parts` (an MPI rank's share): the map's or sky's light slots in
 // share_of(...) and, for part 0, the sun's disc; the parts' lights, concatenated
-// in part order, are the whole run's.
+// in part order, are the whole run's. Polls `stop` every row of the map and
+// every stratum (null: never stops).
 Result<EnvironmentLights> sample_environment(const Environment& environment, uint32_t count, uint64_t seed,
-                                             uint32_t part = 0, uint32_t parts = 1);
+                                             uint32_t part = 0, uint32_t parts = 1,
+                                             const BakeStop* stop = nullptr);
 
-// The map's lights alone: `count` strata (fewer where a stratum has no power).
+// The map's lights alone: `count` strata (fewer where a stratum has no power);
+// a partial list when `stop` asked to stop.
 // Light slot i (in output order, gaps where strata had no power) draws from
 // its own stream (seed, i); `slots` makes only those (an MPI rank's share).
 std::vector<SceneLight> sample_equirect_map(const EquirectMap& map, double rotation, double intensity,
-                                            uint32_t count, uint64_t seed, IndexRange slots = {});
+                                            uint32_t count, uint64_t seed, IndexRange slots = {},
+                                            const BakeStop* stop = nullptr);
 // The sun's disc: `count` lights of equal irradiance summing to the disc's.
 std::vector<SceneLight> sample_sun_disc(const SkyParameters& sky, double intensity, uint32_t count, uint64_t seed);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "lightmass_server/indirect/surface_sampling.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::bake {
 namespace {
@@ -33,22 +34,36 @@ Patch make_patch(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 normal, uint32
 
 }  // namespace
 
-Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches) {
-    if (!(patch_size > 0.0f) || !std::isfinite(patch_size)) {
-        return make_error("radiosity patch size must be positive and finite, got " + std::to_string(patch_size));
-    }
-    PatchMesh mesh;
+uint64_t count_patches(const SceneGeometry& geometry, float patch_size) {
     uint64_t total = 0;
     for (const SurfaceTriangle& t : geometry.triangles) {
         if (is_degenerate(t)) continue;
-        uint64_t k = splits_for(t, patch_size);
+        uint64_t k = splits_for(t, patch_size);  // at most 2^16: the sum cannot overflow
         total += k * k;
     }
-    if (total > max_patches) {
-        return make_error("radiosity would make " + std::to_string(total) + " patches at patch size " +
-                          std::to_string(patch_size) + ", more than the limit of " + std::to_string(max_patches) +
-                          "; use a larger --patch-size");
+    return total;
+}
+
+Status check_patch_count(const SceneGeometry& geometry, float patch_size, size_t max_patches) {
+    if (!(patch_size > 0.0f) || !std::isfinite(patch_size)) {
+        return make_error("radiosity patch size must be positive and finite, got " +
+                          readable_number(patch_size));
     }
+    const uint64_t total = count_patches(geometry, patch_size);
+    if (total > max_patches) {
+        return make_error("too large: radiosity would make " + std::to_string(total) +
+                              " patches at patch size " + readable_number(patch_size) +
+                              ", more than the limit of " + std::to_string(max_patches) +
+                              "; use a larger --patch-size",
+                          ErrorKind::kRefused);
+    }
+    return Ok{};
+}
+
+Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches) {
+    if (Status count = check_patch_count(geometry, patch_size, max_patches); !count) return count.failure();
+    const uint64_t total = count_patches(geometry, patch_size);
+    PatchMesh mesh;
     mesh.patches.reserve(total);
     for (uint32_t index = 0; index < geometry.triangles.size(); ++index) {
         const SurfaceTriangle& t = geometry.triangles[index];

@@ -24,6 +24,12 @@ struct PatchMesh {
     size_t skipped_degenerate = 0;  // triangles with no area make no patch
 };
 
+// Patches make_patches would make.
+uint64_t count_patches(const SceneGeometry& geometry, float patch_size);
+// The patch size is positive and finite and makes at most `max_patches`; the
+// error names the count and the limit ("too large", kRefused).
+Status check_patch_count(const SceneGeometry& geometry, float patch_size, size_t max_patches);
+
 // Fails, naming the count, when the patches would exceed `max_patches`.
 Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches);
 

@@ -1,5 +1,6 @@
 #include "lightmass_server/indirect/radiosity_solver.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <glm/geometric.hpp>
@@ -14,6 +15,7 @@
 #include "lightmass_server/indirect/photon_emitters.h"
 #include "lightmass_server/indirect/point_polygon_form_factor.h"
 #include "lightmass_server/indirect/surface_sampling.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::bake {
 namespace {
@@ -21,6 +23,9 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Progress at least this often, in steps, besides every whole percent.
 constexpr uint64_t kProgressSteps = 256;
+// Receivers per parallel chunk: a chunk is a few milliseconds of rays, and
+// each chunk first asks whether the bake must stop.
+constexpr size_t kPatchesPerChunk = 512;
 // Visibility segments stop short of their end point, which sits on the shooter.
 constexpr float kSegmentEnd = 1.0f - 1e-4f;
 
@@ -78,11 +83,21 @@ public:
         }
     }
 
+    // f(j) for every patch, in parallel chunks that stop early once the bake must stop.
+    template <class Receiver>
+    void for_each_receiver(const Receiver& f) const {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, patches_.size(), kPatchesPerChunk),
+                          [&](const tbb::blocked_range<size_t>& chunk) {
+                              if (stop_requested(options_.stop)) return;
+                              for (size_t j = chunk.begin(); j != chunk.end(); ++j) f(j);
+                          });
+    }
+
     // Direct light of a punctual light: E = I G V at each patch centre, reflected at once.
     void shoot_punctual(const SceneLight& light) {
         shading::Emitter e = emitter_for(light);
         glm::dvec3 radiant = glm::dvec3(light.color) * double(light.intensity);
-        tbb::parallel_for(size_t(0), patches_.size(), [&](size_t j) {
+        for_each_receiver([&](size_t j) {
             const Patch& p = patches_[j];
             glm::dvec3 l;
             double g = shading::light_geometry(e, glm::dvec3(p.centre), glm::dvec3(p.normal), l);
@@ -122,7 +137,7 @@ public:
                                  glm::dvec3(shooter.vertices[2])};
         glm::vec3 targets[4];
         int target_count = visibility_targets(shooter, options_.visibility_samples, epsilon_, targets);
-        tbb::parallel_for(size_t(0), patches_.size(), [&](size_t j) {
+        for_each_receiver([&](size_t j) {
             if (j == i || !(mean(albedo_[j]) > 0.0)) return;
             const Patch& p = patches_[j];
             // Only the shooter's front side emits.
@@ -179,7 +194,7 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
                                         std::span<const SceneLight> lights, const RadiosityOptions& options,
                                         const ProgressFn& progress) {
     if (!(options.tolerance >= 0.0 && options.tolerance < 1.0)) {
-        return make_error("radiosity tolerance must be in [0, 1), got " + std::to_string(options.tolerance));
+        return make_error("radiosity tolerance must be in [0, 1), got " + readable_number(options.tolerance));
     }
     auto start = std::chrono::steady_clock::now();
     auto seconds = [&] {
@@ -190,7 +205,10 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
     if (!mesh.ok()) return mesh.failure();
     result.mesh = std::move(mesh).value();
     Solver solver(geometry, caster, options, result);
-    for (const SceneLight& light : lights) solver.shoot_punctual(light);
+    for (const SceneLight& light : lights) {
+        solver.shoot_punctual(light);
+        if (stop_requested(options.stop)) return options.stop->reason("radiosity");
+    }
 
     double total = solver.unshot_power();
     double unshot = total;
@@ -215,6 +233,7 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
             break;
         }
         solver.shoot(solver.brightest_unshot());
+        if (stop_requested(options.stop)) return options.stop->reason("radiosity");
         ++result.steps;
         unshot = solver.unshot_power();
     }

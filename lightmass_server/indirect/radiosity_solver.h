@@ -15,6 +15,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/indirect/patch_mesh.h"
 #include "lightmass_server/raycast/ray_caster.h"
@@ -29,6 +30,7 @@ struct RadiosityOptions {
     size_t max_patches = size_t(1) << 21;
     // Visibility rays per shooter-receiver pair: 1 (the shooter's centre) or 4.
     uint32_t visibility_samples = 4;
+    const BakeStop* stop = nullptr;  // polled every chunk of patches; null: runs to the end
 };
 
 struct ConvergencePoint {

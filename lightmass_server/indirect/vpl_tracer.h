@@ -9,6 +9,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/index_range.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/raycast/ray_caster.h"
@@ -26,6 +27,9 @@ struct VplOptions {
     uint64_t seed = 0;
     // The paths this process traces (an MPI rank's share); the default: all.
     IndexRange particles;
+    // The tracer stops with a "too large" error once the paths have left this many lights.
+    uint64_t max_lights = uint64_t{1} << 22;
+    const BakeStop* stop = nullptr;  // polled every bounce; null: runs to the end
 };
 
 struct VplResult {
@@ -39,7 +43,8 @@ struct VplResult {
 // Surfaces reflect from their front side (the side their normals face), like
 // radiosity patches; a particle that reaches a back face is absorbed.
 // Progress: stage "indirect", percent of particles traced; cancelling (the
-// callback returns false) gives an error of kind ErrorKind::kCancelled.
+// callback returns false, or `stop` asks) gives an error of kind
+// ErrorKind::kCancelled; `stop`'s deadline gives its own error.
 Result<VplResult> trace_vpls(const SceneGeometry& geometry, const RayCaster& caster,
                              std::span<const SceneLight> lights, const VplOptions& options,
                              const ProgressFn& progress);

@@ -116,12 +116,16 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     if (!pid) return pid.failure();
     std::string last_progress;
     int status = 0;
+    const BakeStop* stop = inputs.stop.get();
     while (waitpid(*pid, &status, WNOHANG) == 0) {
-        if (!forward_progress(dir, progress, last_progress)) {
+        // The bake's own stop (Cancel, disconnect, --max-bake-seconds) ends the job even without a
+        // progress callback to ask.
+        const bool stopped = stop_requested(stop);
+        if (stopped || !forward_progress(dir, progress, last_progress)) {
             stop_group(*pid);
-            return make_error(
-                "cancelled: the MPI job of " + std::to_string(inputs.ranks) + " ranks was stopped",
-                ErrorKind::kCancelled);
+            const std::string job = "the MPI job of " + std::to_string(inputs.ranks) + " ranks";
+            if (stop && stop->requested()) return stop->reason(job);
+            return make_error("cancelled: " + job + " was stopped", ErrorKind::kCancelled);
         }
         std::this_thread::sleep_for(kPollInterval);
     }

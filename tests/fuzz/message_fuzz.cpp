@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "fuzz_check.h"
+#include "protocol/bake_limits.h"
 #include "protocol/codec.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -13,6 +14,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!message) {
         check(!message.error().empty(), "a refused body says why");
         return 0;
+    }
+    // Any settings a request may carry are judged, with a reason when refused (issue 27).
+    if (const auto* request = std::get_if<lc::BakeRequestMsg>(&*message)) {
+        lc::Status settings = lc::validate_bake_settings(*request);
+        check(settings.ok() || !settings.error().empty(), "a refused bake request says why");
     }
     const std::vector<uint8_t> body = lc::encode_message(*message);
     lc::Result<lc::Message> again = lc::decode_message(body);

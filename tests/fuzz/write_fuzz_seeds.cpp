@@ -29,6 +29,11 @@ std::vector<lc::Message> sample_messages() {
         lc::CloseChannelMsg{1},
         lc::BakeRequestMsg{3, "scene.channel", lc::BuilderKind::kAgglomerative, 42,
                            lc::RepresentativeRule::kThesisFirst, lc::PairingMode::kExact, 64},
+        // Every field, the indirect light's included (issue 27's limits).
+        lc::BakeRequestMsg{4, "scene.channel", lc::BuilderKind::kOptimalPair, 7,
+                           lc::RepresentativeRule::kIntensity, lc::PairingMode::kAuto, 0, "env.channel", 3000,
+                           "geom.channel", 4096,
+                           lc::IndirectRequest{lc::IndirectMethod::kVpl, 65535, 1000, 0.25f, 0.01f}},
         lc::ProgressMsg{3, "pairing", 37.5f},
         lc::WarningMsg{3, "two lights share a position"},
         lc::ErrorMsg{3, lc::ErrorCode::kInvalidScene, "light 4: intensity is negative"},

@@ -10,6 +10,7 @@
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "lightmass_server/mpi/rank/remote_subtrees.h"
 #include "lightmass_server/raycast/ray_caster.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::bake {
 namespace {
@@ -65,6 +66,15 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
     }
     stats.lights_made += stage->lights.size();
     Result<std::vector<IndirectLight>> all = gather_in_rank_order(stage->lights, stats.bytes_sent);
+    // The same cap as a bake in one process (bake_footprint.h), over all the ranks' paths together.
+    if (all && share.root() && all->size() > kMaxIndirectLights) {
+        return make_error("too large: the " + std::to_string(options.vpl.particle_count) +
+                              " light paths of " + std::to_string(options.vpl.bounces) + " bounces leave " +
+                              std::to_string(all->size()) + " VPLs over " + std::to_string(share.ranks) +
+                              " ranks, more than the limit of " + std::to_string(kMaxIndirectLights) +
+                              "; ask for fewer paths or bounces",
+                          ErrorKind::kRefused);
+    }
     if (all && share.root()) {
         char text[160];
         std::snprintf(text, sizeof text,

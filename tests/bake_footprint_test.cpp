@@ -1,0 +1,92 @@
+// The estimate a bake is admitted by (issue 27): each heavy part of the
+// table's rows counted from the request, before anything runs.
+#include "lightmass_server/bake_footprint.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "indirect_scenes.h"
+#include "protocol/bake_limits.h"
+
+namespace lc::bake {
+namespace {
+
+constexpr uint64_t kMiB = uint64_t{1} << 20;
+
+BakeInputs with_lights(size_t count) {
+    BakeInputs inputs;
+    inputs.lights = std::make_shared<const std::vector<SceneLight>>(count);
+    return inputs;
+}
+
+TEST(BakeFootprint, TreeLightsCostTheirBytesEach) {
+    const BakeFootprint footprint = estimate_bake_footprint(with_lights(1000), false);
+    EXPECT_EQ(footprint.tree_lights, 1000u);
+    EXPECT_EQ(footprint.bytes, 1000 * kTreeBytesPerLight);
+    EXPECT_GT(estimate_bake_footprint(with_lights(1000), true).bytes, footprint.bytes);  // a recorded result
+}
+
+TEST(BakeFootprint, AnEnvironmentMapCountsItsSamplersTable) {
+    // 8192 x 4096: the summed-area table alone is 770 MiB, beyond a 512 MiB budget.
+    BakeInputs inputs = with_lights(0);
+    auto environment = std::make_shared<Environment>();
+    environment->map.width = 8192;
+    environment->map.height = 4096;
+    inputs.environment = environment;
+    const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
+    EXPECT_GT(footprint.bytes, 768 * kMiB);
+    EXPECT_EQ(footprint.tree_lights, kDefaultEnvironmentLights);
+    EXPECT_EQ(footprint.largest, "the environment sampler's table");
+}
+
+TEST(BakeFootprint, AreaLightSamplesCountOnlyWhenATriangleEmits) {
+    BakeInputs inputs = with_lights(0);
+    inputs.area_lights = kMaxAreaLights;
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).tree_lights, 0u);
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(1.0f)}));
+    const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
+    EXPECT_EQ(footprint.tree_lights, kMaxAreaLights);
+    EXPECT_GT(footprint.bytes, 3000 * kMiB);  // the 2.5 GB the audit saw, refused at 512 MB
+}
+
+TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {
+    BakeInputs inputs = with_lights(4);
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(1.0f), glm::vec3(0.0f)}));
+    inputs.indirect.method = IndirectMethod::kVpl;
+    inputs.indirect.vpl.particle_count = 1000;
+    inputs.indirect.vpl.bounces = 3;
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, 3000u);
+    inputs.indirect.vpl.bounces = 65535;  // 65.5 million: capped
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, kMaxIndirectLights);
+    inputs.indirect.vpl.particle_count = uint64_t{1} << 30;
+    inputs.indirect.vpl.bounces = 1;
+    const BakeFootprint huge = estimate_bake_footprint(inputs, false);
+    EXPECT_EQ(huge.max_vpls, kMaxIndirectLights);
+    EXPECT_EQ(huge.tree_lights, 4 + kMaxIndirectLights);
+}
+
+TEST(BakeFootprint, RadiosityCountsItsPatches) {
+    BakeInputs inputs = with_lights(0);
+    inputs.geometry =
+        std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)}));
+    inputs.indirect.method = IndirectMethod::kRadiosity;
+    inputs.indirect.radiosity.patch_size = 0.25f;  // edges 1 and 1.41: k = 6 on every triangle
+    const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
+    EXPECT_EQ(footprint.tree_lights, 12u * 36u);
+    EXPECT_EQ(footprint.bytes,
+              12 * kRayCasterBytesPerTriangle + 12 * 36 * (kBytesPerPatch + kTreeBytesPerLight));
+}
+
+TEST(BakeFootprint, MegabytesReadWithThousandsSeparators) {
+    EXPECT_EQ(megabytes_text(1), "1 MB");
+    EXPECT_EQ(megabytes_text(3072 * kMiB), "3,072 MB");
+    EXPECT_EQ(megabytes_text(1234567 * kMiB), "1,234,567 MB");
+}
+
+}  // namespace
+}  // namespace lc::bake
