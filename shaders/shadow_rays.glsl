@@ -59,11 +59,6 @@ bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriang
     return u >= 0.0 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
 }
 
-bool ray_hits_triangle(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle tri) {
-    vec2 unused;
-    return ray_hits_triangle(origin, direction, t_max, tri, unused);
-}
-
 // The 8-bit texel of `mask` at uv: nearest, repeat wrap (lightcuts/alpha_mask.cpp).
 uint mask_texel(GpuAlphaMask mask, vec2 uv) {
     vec2 wrapped = uv - floor(uv);
