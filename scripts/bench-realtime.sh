@@ -21,14 +21,22 @@
 # docs/bench/realtime_editor.csv (K, frames, seconds, fps, GPU ms of the last frame).
 # Usage: scripts/bench-realtime.sh [build-dir] [lights] [size]
 # LC_BENCH_CACHE=DIR keeps the scene, tree and reference in DIR/realtime_LIGHTS/.
+# On a device machine (scripts/gpu-bench.sh): LC_CLIENT=PATH uses that client
+# without building, LC_BENCH_OUT=DIR writes the CSVs and plot there instead of
+# docs/bench, LC_EDITOR_SIZE=WxH sizes the editor's frames, LC_KEEP=DIR keeps
+# every frame's stats JSON (and the K = 16 PNGs) there, LC_PYTHON=PATH is a
+# Python with numpy and matplotlib.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir="${1:-build}"
 lights="${2:-16384}"
 size="${3:-256x256}"
 source scripts/lib/furnished_bench.sh
-build_bench_client "$build_dir"
+if [[ -z "${LC_CLIENT:-}" ]]; then build_bench_client "$build_dir"; fi
 client="$LC_CLIENT"
+bench_out="${LC_BENCH_OUT:-docs/bench}"
+editor_size="${LC_EDITOR_SIZE:-480x300}"
+mkdir -p "$bench_out"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 base="$work"
@@ -53,12 +61,17 @@ done
 echo "realtime_cut,width,height,frames,seconds,fps,gpu_ms_last" > "$work/editor.csv"
 for k in 8 16; do
     line="$("$client" view "$base/scene.gltf" --tree "$base/tree.lcut" --mode realtime --realtime-cut "$k" \
-        --headless --size 480x300 --frames 30 --exposure 1 2>/dev/null | grep -E '^steady:|ms GPU')"
+        --headless --size "$editor_size" --frames 30 --exposure 1 2>/dev/null | grep -E '^steady:|ms GPU')"
     gpu="$(echo "$line" | sed -n 's/.*, \([0-9.]*\) ms GPU.*/\1/p')"
     steady="$(echo "$line" | sed -n 's/^steady: \([0-9]*\) frames in \([0-9.]*\) s = \([0-9.]*\) fps.*/\1,\2,\3/p')"
-    echo "$k,480,300,$steady,$gpu" >> "$work/editor.csv"
+    echo "$k,${editor_size%x*},${editor_size#*x},$steady,$gpu" >> "$work/editor.csv"
 done
-cp "$work/editor.csv" docs/bench/realtime_editor.csv
-cat docs/bench/realtime_editor.csv
-/usr/bin/python3 scripts/realtime_report.py "$work" "$base" "$lights" "$size" docs/bench/realtime.csv \
-    docs/bench/realtime.png
+cp "$work/editor.csv" "$bench_out/realtime_editor.csv"
+cat "$bench_out/realtime_editor.csv"
+if [[ -n "${LC_KEEP:-}" ]]; then
+    mkdir -p "$LC_KEEP"; cp "$work"/*.json "$LC_KEEP/"
+    [[ -f "$LC_KEEP/reference.json" ]] || cp "$base/reference.json" "$LC_KEEP/"
+    cp "$work"/realtime_16_1.png "$work"/filtered_16.png "$work"/lightcuts_0.02.png "$LC_KEEP/" 2>/dev/null || true
+fi
+"${LC_PYTHON:-/usr/bin/python3}" scripts/realtime_report.py "$work" "$base" "$lights" "$size" "$bench_out/realtime.csv" \
+    "$bench_out/realtime.png"

@@ -87,6 +87,6 @@ mean = sum(errors) / max(len(errors), 1)
 print("GPU against CPU lightcuts on the same eye rays: mean relative difference %.5f over %d pixels" % (mean, len(errors)))
 sys.exit(0 if mean < 0.01 else 1)
 PY
-column -s, -t < "$csv" | cut -c1-180
+{ column -s, -t < "$csv" 2>/dev/null || cat "$csv"; } | cut -c1-180
 echo "gpu-check: $failures failure(s); $csv"
 [ "$failures" -eq 0 ]

@@ -36,7 +36,7 @@ def row(work, tag, reference, geometry_pixels, lights, size):
     return r
 
 
-def plot(rows, out):
+def plot(rows, out, device):
     fig, (by_frames, by_time) = plt.subplots(1, 2, figsize=(11, 4.2))
     deterministic = next(r for r in rows if r["method"] == "lightcuts")
     for k in sorted({r["realtime_cut"] for r in rows if r["method"] == "realtime"}):
@@ -59,7 +59,7 @@ def plot(rows, out):
     for ax in (by_frames, by_time):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle(f"Real-time mode: {rows[0]['lights']} lights, {rows[0]['size']}, lavapipe")
+    fig.suptitle(f"Real-time mode: {rows[0]['lights']} lights, {rows[0]['size']}, {device}")
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
@@ -78,7 +78,7 @@ def main():
                     "shadow_rays_per_pixel": round(ref_stats["shadow_rays"] / max(geometry_pixels, 1), 2),
                     "rel_mse": 0.0})
     write_rows(csv_out, COLUMNS, rows)
-    plot(rows[1:], png_out)
+    plot(rows[1:], png_out, ref_stats.get("device", "unknown device"))
     for r in rows:
         print(", ".join(f"{c} {r.get(c, '')}" for c in COLUMNS if r.get(c, "") != ""))
 

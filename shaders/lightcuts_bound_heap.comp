@@ -1,22 +1,26 @@
 #version 460
 // Lightcuts with the bound criterion, heap search (the paper's order, Sec. 4):
 // a max-heap of (bound, node, unit response) entries in private memory, at
-// most max-cut of them (a specialization constant, so the array is sized at
-// pipeline creation). The node with the largest error bound is refined until
-// every bound is <= error x the total estimate, or the cut holds max-cut nodes
-// (the pixel is then counted in counters.max_cut_hits). Mirrors bound_cut() in
+// most kHeapCapacity of them (a specialization constant, so the array is
+// sized at pipeline creation: max-cut, or less where the driver refuses that
+// much private memory, as NVIDIA's does 20 KB). The node with the largest
+// error bound is refined until every bound is <= error x the total estimate,
+// or the cut holds max-cut nodes or fills the heap (the pixel is then counted
+// in counters.max_cut_hits). Mirrors bound_cut() in
 // cpu_evaluator.cpp, including its tie order and the largest-channel
 // comparisons.
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"
 
-// Heap capacity: the max-cut setting, at least 2 so one refinement fits.
+// The max-cut setting, and the heap's capacity: at most max-cut, at least 2
+// so one refinement fits.
 layout(constant_id = kSpecMaxCut) const int kMaxCut = 2;
+layout(constant_id = kSpecHeapCapacity) const int kHeapCapacity = 2;
 
-float heap_key[kMaxCut];
-int heap_node[kMaxCut];
-vec3 heap_unit[kMaxCut];  // f_r * G of the representative per unit intensity
+float heap_key[kHeapCapacity];
+int heap_node[kHeapCapacity];
+vec3 heap_unit[kHeapCapacity];  // f_r * G of the representative per unit intensity
 
 // cpu_evaluator's heap_less on (key, node) pairs: larger bound first, then the
 // smaller node index.
@@ -104,7 +108,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         }
         // A mixed-type junction is refined past max-cut like on the CPU, as
         // long as the array has room.
-        if ((!isinf(key) && size >= kMaxCut) || size + 1 > kMaxCut) {
+        if ((!isinf(key) && size >= kMaxCut) || size + 1 > kHeapCapacity) {
             max_cut_hit = true;
             break;
         }

@@ -4,7 +4,7 @@
 // light tree, refined at a pivot pixel drawn anew every frame, at most
 // kStochasticCut nodes. Every pixel then draws one light inside each cut node,
 // descending the node's subtree with probabilities from the children's
-// importance at the pixel (pixel_representative.glsl, kRepresentativesStochastic),
+// importance at the pixel (stochastic_draw.glsl, one GpuDrawPair a level),
 // and shades it with its intensity over its probability and one shadow ray:
 // an unbiased estimate of the tree's light with at most kStochasticCut shadow
 // rays per pixel, whatever the number of lights. The temporal pass averages
@@ -12,6 +12,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"
+#include "stochastic_draw.glsl"
 
 layout(constant_id = kSpecStochasticCut) const uint kStochasticCut = 16u;
 
@@ -87,14 +88,39 @@ int block_pivot() {
     return -1;
 }
 
-// One drawn light of cut node i at p, with its shadow ray. In uniform control
+// A drawn light's radiance at p, with its shadow ray. In uniform control
 // flow (the shadow walk is the subgroup's); `shaded` false adds nothing.
-vec3 drawn_light_radiance(int i, SurfacePoint p, bool shaded) {
-    GpuLight light = cluster_light(i, tree_nodes[i], p);
+vec3 drawn_light_radiance(GpuLight light, SurfacePoint p, bool shaded) {
     vec3 l;
     vec3 e = shaded ? light_irradiance(light, p.position, p.normal, l) : vec3(0.0);
     if (kShadows) e *= light_visibility(light, p.position, p.normal, max_channel(e) > 0.0);
     return shaded ? brdf_toward(p, l) * e : vec3(0.0);
+}
+
+void add_to_cut(inout Cut cut, int i, GpuTreeNode node, vec3 contribution) {
+    cut.radiance += contribution;
+    tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
+    cut.hash += cut_hash_term(uint(i));
+}
+
+// Every cut node's drawn light at p, two descents at a time. The number of
+// nodes is the workgroup's, so the branch on a second one is uniform.
+Cut shade_block_cut(SurfacePoint p, bool surface) {
+    Cut cut = empty_cut();
+    for (uint k = 0u; k < s_cut_size; k += 2u) {
+        bool second = k + 1u < s_cut_size;
+        int i0 = s_cut_node[k];
+        int i1 = s_cut_node[second ? k + 1u : k];
+        GpuTreeNode node0 = tree_nodes[i0];
+        GpuTreeNode node1 = tree_nodes[i1];
+        Descent d0 = start_descent(i0, node0);
+        Descent d1 = second ? start_descent(i1, node1) : Descent(-1, 1.0);
+        descend_both(d0, d1, p);
+        add_to_cut(cut, i0, node0, drawn_light_radiance(finish_descent(d0, node0), p, surface));
+        if (second) add_to_cut(cut, i1, node1, drawn_light_radiance(finish_descent(d1, node1), p, surface));
+    }
+    cut.size = s_cut_size;
+    return cut;
 }
 
 void main() {
@@ -114,16 +140,7 @@ void main() {
         return;  // the whole workgroup: no barrier follows
     }
     g_pixel_key = pixel_representative_key(uint(pixel.x), uint(pixel.y), frame.frame_seed);
-    Cut cut = empty_cut();
-    for (uint k = 0u; k < s_cut_size; ++k) {
-        int i = s_cut_node[k];
-        vec3 contribution = drawn_light_radiance(i, p, surface);
-        cut.radiance += contribution;
-        tally_indirect(cut.indirect, tree_nodes[i].flags, tree_nodes[i].first_child == kEndOfWalk,
-                       contribution);
-        cut.hash += cut_hash_term(uint(i));
-    }
-    cut.size = s_cut_size;
+    Cut cut = shade_block_cut(p, surface);
     if (!inside) return;
     if (!surface) {
         store_background(pixel);

@@ -99,6 +99,11 @@ const std::map<std::string, CppStruct>& cpp_structs() {
            LC_FIELD(GpuFrameConstants, clamp_passes), LC_FIELD(GpuFrameConstants, lattice_step),
            LC_FIELD(GpuFrameConstants, lattice_origin_x), LC_FIELD(GpuFrameConstants, lattice_origin_y),
            LC_FIELD(GpuFrameConstants, frame_seed)}}},
+        {"GpuDrawPair",
+         {sizeof(GpuDrawPair),
+          {LC_FIELD(GpuDrawPair, centre0), LC_FIELD(GpuDrawPair, radius0), LC_FIELD(GpuDrawPair, centre1),
+           LC_FIELD(GpuDrawPair, radius1), LC_FIELD(GpuDrawPair, intensity0), LC_FIELD(GpuDrawPair, intensity1),
+           LC_FIELD(GpuDrawPair, child0), LC_FIELD(GpuDrawPair, child1)}}},
         {"GpuTemporalParams",
          {sizeof(GpuTemporalParams),
           {LC_FIELD(GpuTemporalParams, previous_view_proj), LC_FIELD(GpuTemporalParams, history_valid),
@@ -173,6 +178,7 @@ const std::map<std::string, Block>& known_blocks() {
         {"FrameConstants", {-1, "GpuFrameConstants"}},
         {"DrawConstants", {-1, "GpuDrawConstants"}},
         {"TemporalParams", {kBindTemporalParams, "GpuTemporalParams", kTemporalSet}},
+        {"DrawPairs", {kBindDrawPairs, "GpuDrawPair", kDrawPairSet}},
     };
     return blocks;
 }
@@ -221,6 +227,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kTextures", kSpecTextures},
         {"kErrorRatio", kSpecErrorRatio},
         {"kMaxCut", kSpecMaxCut},
+        {"kHeapCapacity", kSpecHeapCapacity},
         {"kWalkMaxCut", kSpecWalkMaxCut},
         {"kWalkMaxPasses", kSpecWalkMaxPasses},
         {"kWalkShrink", kSpecWalkShrink},

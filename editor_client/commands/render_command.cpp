@@ -415,6 +415,10 @@ void run_render(const RenderOptions& options) {
         indirect_facts.scene_has_geometry = !extract_surface_geometry(scene).triangles.empty();
     if (std::string census = indirect_census(indirect_facts); !census.empty())
         std::printf("indirect: %s\n", census.c_str());
+    if (stats.heap_capacity > 0 && stats.heap_capacity < stats.max_cut_setting)
+        std::printf("heap search: %u entries on this device (its driver refused private memory for "
+                    "max cut %u); %llu pixels filled the heap\n",
+                    stats.heap_capacity, stats.max_cut_setting, (unsigned long long)stats.max_cut_hits);
     if (stats.has_error_stats)
         std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
                     "over %.3f, max %.4f, %llu max-cut hits\n",

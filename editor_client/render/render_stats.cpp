@@ -62,6 +62,7 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;
         j["bound_search"] = s.bound_search;
+        if (s.heap_capacity > 0) j["heap_capacity"] = s.heap_capacity;
         j["representatives"] = s.representatives;
         if (s.representatives == "pixel") j["representative_seed"] = s.representative_seed;
     }

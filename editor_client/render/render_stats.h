@@ -45,6 +45,8 @@ struct RenderStats {
     // Bound criterion: its settings and the pixels whose cut stopped at max_cut.
     float error_ratio = 0.0f;
     uint32_t max_cut_setting = 0;
+    // The heap search's entries (max-cut, or less where the driver refused it).
+    uint32_t heap_capacity = 0;
     std::string bound_search;  // walk or heap
     std::string representatives;  // tree or pixel
     uint32_t representative_seed = 0;

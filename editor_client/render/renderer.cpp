@@ -166,6 +166,7 @@ Status Renderer::upload_lights(const LightTree* tree) {
     LC_RETURN_IF_ERROR(upload_storage(leaf_lights_, std::as_bytes(std::span(leaves))));
     LC_RETURN_IF_ERROR(upload_storage(classic_lights_, std::as_bytes(std::span(classic))));
     LC_RETURN_IF_ERROR(upload_storage(tree_nodes_, std::as_bytes(std::span(nodes))));
+    LC_RETURN_IF_ERROR(passes_->real_time().set_tree_nodes(context_.command_pool(), nodes));
     leaf_count_ = uint32_t(leaves.size());
     classic_count_ = uint32_t(classic.size());
     node_count_ = uint32_t(nodes.size());
@@ -548,6 +549,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;
         stats.bound_search = bound_search_name(settings.bound_search);
+        if (settings.bound_search == BoundSearch::kHeap) stats.heap_capacity = passes_->bound_heap().capacity();
         stats.representatives = representatives_name(settings.representatives);
         stats.representative_seed = settings.representative_seed;
     }

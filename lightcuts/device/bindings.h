@@ -43,6 +43,11 @@ LC_CONST uint kBindHistoryPositionOut = 3u;
 LC_CONST uint kBindTemporalParams = 4u;      // GpuTemporalParams
 LC_CONST uint kTemporalBindingCount = 5u;
 
+// The real-time mode's light-draw records (set 2, owned by RealTimePass,
+// shaders/stochastic_cuts.comp): GpuDrawPair per tree node, made when the tree is.
+LC_CONST uint kDrawPairSet = 2u;
+LC_CONST uint kBindDrawPairs = 0u;
+
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;
 LC_CONST uint kBindEmissiveTexture = 1u;

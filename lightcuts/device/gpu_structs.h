@@ -184,6 +184,26 @@ struct LC_ALIGN16 GpuTemporalParams {
     uint pad1 LC_DEFAULT(0u);
 };
 
+// The real-time mode's light draw (stochastic_cuts.comp) reads one record per
+// level of its descent instead of three dependent node loads (the node, its
+// first child for the sibling's index, the sibling): record i holds what the
+// draw weighs node i's two children by, and where each leads. 48 bytes,
+// made from the compact nodes by lightcuts/draw_pairs.h. A child is a node
+// index, or ~light (negative) for a leaf: the leaf light the draw ends at.
+struct LC_ALIGN16 GpuDrawPair {
+    // Each child's bounding sphere of light positions, relative to nothing
+    // (world space); radius < 0: the child weighs by its intensity alone (a
+    // directional or mixed-type child).
+    vec3 centre0 LC_DEFAULT(vec3(0.0f));
+    float radius0 LC_DEFAULT(-1.0f);
+    vec3 centre1 LC_DEFAULT(vec3(0.0f));
+    float radius1 LC_DEFAULT(-1.0f);
+    float intensity0 LC_DEFAULT(0.0f);  // scalar (the sum of RGB, representative_scalar)
+    float intensity1 LC_DEFAULT(0.0f);  // 0 where node i has one child
+    int child0 LC_DEFAULT(0);
+    int child1 LC_DEFAULT(0);
+};
+
 // GpuBackground::kind: what a pixel without geometry shows.
 LC_CONST uint kBackgroundBlack = 0u;  // no environment
 LC_CONST uint kBackgroundMap = 1u;    // the equirectangular map (kBindEnvironmentTexels)

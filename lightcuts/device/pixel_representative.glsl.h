@@ -15,6 +15,7 @@
 
 #include "lightcuts/device/cut_hash.glsl.h"
 #include "lightcuts/device/glsl_compat.h"
+#include "lightcuts/device/real_math.glsl.h"
 
 #ifdef __cplusplus
 namespace lc::device {
@@ -84,23 +85,26 @@ LC_INLINE float importance_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n
     return min(1.0f, z_max / sqrt(d2)) / d2;
 }
 
-// The real-time mode's weight: an estimate of cos / d^2 over a child's box
-// rather than a bound. d is the distance to the box's centre, kept at least
-// half the box's diagonal: a box the point sits in or beside weighs like its
-// lights on average, not like the nearest corner (the bound above gives such
-// a box 1e4 and its sibling 1 / d^2, and a light drawn from the sibling a
-// weight 1e4 times too large: fireflies). Zero only where the whole box is
-// behind the surface, as the bound's, so the draw stays unbiased.
+// The real-time mode's weight: an estimate of cos / d^2 over a child's
+// bounding sphere (centre c relative to the point x, radius r) rather than a
+// bound. d is the distance to the centre, kept at least r: a child the point
+// sits in or beside weighs like its lights on average, not like the nearest
+// one (the bound above gives such a box 1e4 and its sibling 1 / d^2, and a
+// light drawn from the sibling a weight 1e4 times too large: fireflies). Zero
+// only where the whole sphere is behind the surface (dot(n, c) + r <= 0), so
+// the draw stays unbiased. The shader's descent reads c and r from
+// GpuDrawPair records (lightcuts/draw_pairs.h).
+LC_INLINE float stochastic_sphere_geometry(vec3 c, float r, vec3 n) {
+    float z_max = dot(n, c) + r;
+    if (!(z_max > 0.0f)) return 0.0f;
+    float d2 = max(max(dot(c, c), r * r), 1e-4f);
+    return min(1.0f, z_max / sqrt(d2)) / d2;
+}
+
+// The same for a box of positions: its bounding sphere.
 LC_INLINE float stochastic_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n, bool directional) {
     if (directional) return 1.0f;
-    vec3 lo = bbox_min - x;
-    vec3 hi = bbox_max - x;
-    vec3 centre = 0.5f * (lo + hi);
-    vec3 half_extent = 0.5f * (hi - lo);
-    float z_max = dot(n, centre) + dot(abs(n), half_extent);
-    if (!(z_max > 0.0f)) return 0.0f;
-    float d2 = max(max(dot(centre, centre), dot(half_extent, half_extent)), 1e-4f);
-    return min(1.0f, z_max / sqrt(d2)) / d2;
+    return stochastic_sphere_geometry(0.5f * (bbox_min + bbox_max) - x, 0.5f * length(bbox_max - bbox_min), n);
 }
 
 LC_INLINE float importance_weight(vec3 I, float geometry) {

@@ -32,7 +32,10 @@ LC_CONST uint kSpecTextures = 10u;
 // The bound criterion (lightcuts_bound_walk.comp, lightcuts_bound_heap.comp);
 // the error ratio also sets every lighting pass's indirect clamp.
 LC_CONST uint kSpecErrorRatio = 11u;  // float bits
-LC_CONST uint kSpecMaxCut = 12u;      // the heap's capacity
+LC_CONST uint kSpecMaxCut = 12u;      // the max-cut setting
+// The heap's entries in private memory: max-cut, or less where the driver
+// refuses that much (BoundHeapPass).
+LC_CONST uint kSpecHeapCapacity = 29u;
 LC_CONST uint kSpecWalkMaxCut = 14u;
 LC_CONST uint kSpecWalkMaxPasses = 15u;
 LC_CONST uint kSpecWalkShrink = 16u;  // float bits

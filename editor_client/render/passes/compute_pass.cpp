@@ -7,12 +7,21 @@
 
 namespace lc::client {
 
-Status ComputePass::prepare(PipelineCache& pipelines, const Frame& frame) {
+vk::Specialization ComputePass::specialization(const Frame& frame) const {
     vk::Specialization spec;
     spec.set_uint(kSpecWorkgroupX, frame.workgroup_size)
         .set_uint(kSpecWorkgroupY, frame.workgroup_size);
     specialize(spec, frame);
-    Result<VkPipeline> pipeline = pipelines.compute(frame.compute_layout, module(frame), spec);
+    return spec;
+}
+
+Result<VkPipeline> ComputePass::create_pipeline(PipelineCache& pipelines, const Frame& frame) {
+    vk::Specialization spec = specialization(frame);
+    return pipelines.compute(frame.compute_layout, module(frame), spec);
+}
+
+Status ComputePass::prepare(PipelineCache& pipelines, const Frame& frame) {
+    Result<VkPipeline> pipeline = create_pipeline(pipelines, frame);
     if (!pipeline) return make_error(std::string(role()) + " pipeline: " + pipeline.error());
     pipeline_ = *pipeline;
     return Ok{};

@@ -29,6 +29,11 @@ protected:
     virtual std::span<const uint32_t> module(const Frame& frame) const = 0;
     // Adds this pass's constants to the workgroup size already set.
     virtual void specialize(vk::Specialization& spec, const Frame& frame) const = 0;
+    // The workgroup size and specialize()'s constants.
+    vk::Specialization specialization(const Frame& frame) const;
+    // The pipeline of specialization(frame); a pass whose constants the
+    // driver may refuse (BoundHeapPass) tries others.
+    virtual Result<VkPipeline> create_pipeline(PipelineCache& pipelines, const Frame& frame);
 
     // Binds the frame's set and this pass's pipeline.
     void bind(VkCommandBuffer cmd, const Frame& frame) const;

@@ -28,6 +28,7 @@ public:
     FramePass& gbuffer() { return *gbuffer_; }
     RealTimePass& real_time() { return *real_time_; }
     const RealTimePass& real_time() const { return *real_time_; }
+    const BoundHeapPass& bound_heap() const { return bound_heap_; }
 
 private:
     std::unique_ptr<GBufferPass> gbuffer_;

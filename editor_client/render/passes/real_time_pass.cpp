@@ -20,13 +20,16 @@ Result<std::unique_ptr<RealTimePass>> RealTimePass::create(const vk::Device& dev
                                                            VkDescriptorSetLayout frame_layout) {
     Result<TemporalHistory> history = TemporalHistory::create(device);
     if (!history) return make_error(history.error());
-    std::array<VkDescriptorSetLayout, 2> sets{frame_layout, history->set_layout()};
+    Result<DrawPairSet> draws = DrawPairSet::create(device);
+    if (!draws) return make_error(draws.error());
+    static_assert(kTemporalSet == 1u && kDrawPairSet == 2u);
+    std::array<VkDescriptorSetLayout, 3> sets{frame_layout, history->set_layout(), draws->set_layout()};
     VkPushConstantRange constants{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(GpuFrameConstants)};
     Result<vk::PipelineLayout> layout =
         vk::PipelineLayout::create(device.handle(), sets, std::span(&constants, 1));
     if (!layout) return make_error(layout.error());
     return std::unique_ptr<RealTimePass>(
-        new RealTimePass(std::move(history).value(), std::move(layout).value()));
+        new RealTimePass(std::move(history).value(), std::move(draws).value(), std::move(layout).value()));
 }
 
 Status RealTimePass::prepare(PipelineCache& pipelines, const Frame& frame) {
@@ -69,7 +72,8 @@ void RealTimePass::dispatch(VkCommandBuffer cmd, const Frame& frame, Stage stage
 void RealTimePass::record(VkCommandBuffer cmd, const Frame& frame) const {
     begin_lighting_images(cmd, frame);
     history_.record_setup(cmd);
-    const std::array<VkDescriptorSet, 2> sets{frame.frame_set, history_.descriptor_set()};
+    const std::array<VkDescriptorSet, 3> sets{frame.frame_set, history_.descriptor_set(),
+                                              draws_.descriptor_set()};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.handle(), 0,
                             uint32_t(sets.size()), sets.data(), 0, nullptr);
     for (int stage = 0; stage < kStageCount; ++stage) {

@@ -12,6 +12,7 @@
 #include <array>
 #include <memory>
 
+#include "editor_client/render/passes/draw_pair_set.h"
 #include "editor_client/render/passes/frame_pass.h"
 #include "editor_client/render/passes/temporal_history.h"
 #include "editor_client/vk/pipeline_layout.h"
@@ -20,7 +21,8 @@ namespace lc::client {
 
 class RealTimePass final : public FramePass {
 public:
-    // `frame_layout` is the frame's set 0, bound beside the pass's own set 1.
+    // `frame_layout` is the frame's set 0, bound beside the pass's own sets 1
+    // (the history) and 2 (the light-draw records).
     static Result<std::unique_ptr<RealTimePass>> create(const vk::Device& device,
                                                         VkDescriptorSetLayout frame_layout);
 
@@ -36,15 +38,20 @@ public:
     // Frames in the history after the last recorded frame (1: a new start).
     uint32_t frames_accumulated() const { return history_.frames_accumulated(); }
     void set_policy(const TemporalPolicy& policy) { history_.set_policy(policy); }
+    // The light-draw records of a new tree (its compact nodes; empty: none).
+    Status set_tree_nodes(const vk::CommandPool& pool, std::span<const GpuTreeNode> nodes) {
+        return draws_.upload(pool, nodes);
+    }
 
 private:
     enum Stage { kLighting = 0, kTemporal = 1, kFilter = 2, kStageCount = 3 };
 
-    RealTimePass(TemporalHistory history, vk::PipelineLayout layout)
-        : history_(std::move(history)), layout_(std::move(layout)) {}
+    RealTimePass(TemporalHistory history, DrawPairSet draws, vk::PipelineLayout layout)
+        : history_(std::move(history)), draws_(std::move(draws)), layout_(std::move(layout)) {}
     void dispatch(VkCommandBuffer cmd, const Frame& frame, Stage stage) const;
 
     TemporalHistory history_;
+    DrawPairSet draws_;
     vk::PipelineLayout layout_;
     std::array<VkPipeline, kStageCount> pipelines_{};
     uint32_t frames_recorded_ = 0;  // every frame's draws are seeded by its number
