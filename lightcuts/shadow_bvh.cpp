@@ -381,11 +381,9 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices, const O
         g.edge2 = glm::vec3(v2 - v0);
     }
     bvh.stats_.nodes = static_cast<uint32_t>(node_count);
-    if (masks.any()) {
-        std::vector<uint32_t> source_of_leaf(count);
-        for (uint32_t i = 0; i < count; ++i) source_of_leaf[i] = tris[i].index;
-        bvh.attach_masks(masks, source_of_leaf);
-    }
+    bvh.sources_.resize(count);
+    for (uint32_t i = 0; i < count; ++i) bvh.sources_[i] = tris[i].index;
+    if (masks.any()) bvh.attach_masks(masks, bvh.sources_);
     return bvh;
 }
 

@@ -56,6 +56,9 @@ public:
     const std::vector<GpuMaskedTriangle>& gpu_masked_triangles() const { return gpu_masked_; }
     const std::vector<GpuAlphaMask>& gpu_alpha_masks() const { return gpu_masks_; }
     const std::vector<GpuMaskTexels>& gpu_mask_texels() const { return gpu_texels_; }
+    // Each leaf-order triangle's index in the input list (degenerate ones are
+    // dropped): primary rays find a hit triangle's vertices through it.
+    const std::vector<uint32_t>& leaf_sources() const { return sources_; }
 
 private:
     void attach_masks(const OccluderMasks& masks, std::span<const uint32_t> source_of_leaf);
@@ -64,6 +67,7 @@ private:
     std::vector<GpuBvhNode> nodes_;
     std::vector<GpuShadowTriangle> triangles_;  // in leaf order
     std::vector<glm::dvec3> vertices_;          // 3 per triangle, in leaf order, for the CPU test
+    std::vector<uint32_t> sources_;             // input triangle of each, in leaf order
     std::vector<AlphaMask> masks_;
     std::vector<GpuMaskedTriangle> gpu_masked_;  // the CPU test reads them too
     std::vector<GpuAlphaMask> gpu_masks_;

@@ -10,7 +10,8 @@
 #    reference, lightcuts E = 0.02, the real-time mode at K = 8/16/32 over
 #    1-64 frames, the editor at SIZE; then the same frames without shadow rays
 #    (what the walk and the light draws cost) and the deterministic editor;
-# 4. BIG_LIGHTS (1,048,576): bake time, the real-time frame at K = 16, the
+# 3b. the G-buffer rasterised and cast as rays (--primary) at three sizes;
+# 4. BIG_LIGHTS (1,048,576): bake time, the real-time frame at K = 8 and 16, the
 #    deterministic E = 0.02 frame and the real-time editor (no reference: it
 #    would take minutes).
 # Writes OUT/gpu_bench.tar.gz (CSVs, stats JSONs, logs, a few PNGs) and prints
@@ -83,15 +84,19 @@ splits() {  # the same frames without shadow rays, and the deterministic editor
     frame "$dir" lightcuts_0.02_shared --mode lightcuts --error 0.02 --share-cuts
     editor "$dir" lightcuts --mode lightcuts --no-progressive
 }
-gbuffer_scaling() {  # whether the G-buffer's time follows the pixel count (raster-bound)
+gbuffer_scaling() {  # the raster G-buffer's time against the pixels, and primary rays beside it
     local dir="$cache/realtime_$lights" s
     for s in 1920x1080 960x540 480x270; do
-        size=$s frame "$dir" "gbuffer_$s" --mode realtime --realtime-cut 8 --frames 8
+        size=$s frame "$dir" "gbuffer_raster_$s" --mode realtime --realtime-cut 8 --frames 8 --primary raster
+        size=$s frame "$dir" "gbuffer_rays_$s" --mode realtime --realtime-cut 8 --frames 8 --primary rays
     done
+    frame "$dir" lightcuts_0.02_rays --mode lightcuts --error 0.02 --primary rays
+    frame "$dir" realtime_16_raster --mode realtime --realtime-cut 16 --frames 8 --primary raster
 }
 big() {
     local dir="$cache/big"
     frame "$dir" big_realtime_16 --mode realtime --realtime-cut 16 --frames 8
+    frame "$dir" big_realtime_8 --mode realtime --realtime-cut 8 --frames 8
     frame "$dir" big_realtime_16_noshadow --mode realtime --realtime-cut 16 --frames 8 --shadows off
     frame "$dir" big_lightcuts_0.02 --mode lightcuts --error 0.02
     editor "$dir" big_realtime --mode realtime --realtime-cut 16
@@ -113,7 +118,7 @@ summary() {  # one CSV of every frame's stats JSON: the figures the closing note
     "$LC_PYTHON" - "$out" <<'PY'
 import glob, json, os, sys
 out = sys.argv[1]
-keys = ["device", "mode", "render_ms", "gbuffer_ms", "lighting_ms", "output_ms", "wall_ms", "avg_cut",
+keys = ["device", "mode", "primary", "render_ms", "gbuffer_ms", "lighting_ms", "output_ms", "wall_ms", "avg_cut",
         "shadow_rays", "geometry_pixels", "realtime_cut", "realtime_frames", "loop_limit_stops",
         "nonfinite_pixels"]
 rows = []

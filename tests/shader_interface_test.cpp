@@ -104,6 +104,23 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuDrawPair, centre0), LC_FIELD(GpuDrawPair, radius0), LC_FIELD(GpuDrawPair, centre1),
            LC_FIELD(GpuDrawPair, radius1), LC_FIELD(GpuDrawPair, intensity0), LC_FIELD(GpuDrawPair, intensity1),
            LC_FIELD(GpuDrawPair, child0), LC_FIELD(GpuDrawPair, child1)}}},
+        {"GpuPrimaryTriangle",
+         {sizeof(GpuPrimaryTriangle),
+          {LC_FIELD(GpuPrimaryTriangle, v0), LC_FIELD(GpuPrimaryTriangle, v1), LC_FIELD(GpuPrimaryTriangle, v2),
+           LC_FIELD(GpuPrimaryTriangle, draw)}}},
+        {"GpuSurfaceMaterial",
+         {sizeof(GpuSurfaceMaterial),
+          {LC_FIELD(GpuSurfaceMaterial, base_color_factor), LC_FIELD(GpuSurfaceMaterial, emissive_metallic),
+           LC_FIELD(GpuSurfaceMaterial, roughness), LC_FIELD(GpuSurfaceMaterial, flags),
+           LC_FIELD(GpuSurfaceMaterial, pad0), LC_FIELD(GpuSurfaceMaterial, pad1)}}},
+        {"GpuSceneVertex",
+         {sizeof(GpuSceneVertex),
+          {LC_FIELD(GpuSceneVertex, position_normal_x), LC_FIELD(GpuSceneVertex, normal_yz_uv),
+           LC_FIELD(GpuSceneVertex, tangent), LC_FIELD(GpuSceneVertex, color)}}},
+        {"GpuPrimaryParams",
+         {sizeof(GpuPrimaryParams),
+          {LC_FIELD(GpuPrimaryParams, inverse_view_proj), LC_FIELD(GpuPrimaryParams, eye),
+           LC_FIELD(GpuPrimaryParams, node_count)}}},
         {"GpuTemporalParams",
          {sizeof(GpuTemporalParams),
           {LC_FIELD(GpuTemporalParams, previous_view_proj), LC_FIELD(GpuTemporalParams, history_valid),
@@ -158,6 +175,9 @@ struct Block {
     int64_t binding;  // -1: push constants
     std::string element;
     int64_t set = 0;  // the frame's set, or the real-time mode's (kTemporalSet)
+    // The pipeline layout beside the frame's set 0 ("": the frame's alone,
+    // "primary": PrimaryRaysPass's, whose set 1 is not the temporal set).
+    std::string layout;
 };
 
 // Every block, image and specialization constant a shader may declare.
@@ -179,6 +199,12 @@ const std::map<std::string, Block>& known_blocks() {
         {"DrawConstants", {-1, "GpuDrawConstants"}},
         {"TemporalParams", {kBindTemporalParams, "GpuTemporalParams", kTemporalSet}},
         {"DrawPairs", {kBindDrawPairs, "GpuDrawPair", kDrawPairSet}},
+        {"PrimaryNodes", {kBindPrimaryNodes, "GpuBvhNode", kPrimarySet, "primary"}},
+        {"PrimaryTriangles", {kBindPrimaryTriangles, "GpuShadowTriangle", kPrimarySet, "primary"}},
+        {"PrimarySources", {kBindPrimarySources, "GpuPrimaryTriangle", kPrimarySet, "primary"}},
+        {"SceneVertices", {kBindSceneVertices, "GpuSceneVertex", kPrimarySet, "primary"}},
+        {"SurfaceMaterials", {kBindSurfaceMaterials, "GpuSurfaceMaterial", kPrimarySet, "primary"}},
+        {"PrimaryParams", {kBindPrimaryParams, "GpuPrimaryParams", kPrimarySet, "primary"}},
     };
     return blocks;
 }
@@ -456,7 +482,7 @@ TEST(ShaderInterface, TemporalSetHasEveryBindingOnce) {
         ++uses[binding];
     }
     for (const auto& [name, block] : known_blocks()) {
-        if (block.set != kTemporalSet) continue;
+        if (block.set != kTemporalSet || !block.layout.empty()) continue;
         ASSERT_LT(block.binding, int64_t(kTemporalBindingCount)) << name;
         ++uses[size_t(block.binding)];
     }

@@ -74,6 +74,7 @@ struct RenderOptions {
     std::string representatives = "tree";
     uint32_t representative_seed = 0;
     std::string shadows = "auto";
+    std::string primary = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
     bool compare_reference = false;
@@ -279,6 +280,9 @@ void run_render(const RenderOptions& options) {
     RendererOptions renderer_options;
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
     renderer_options.indirect = options.bake.renders_indirect();
+    const std::optional<PrimaryChoice> primary = parse_primary_choice(options.primary);
+    if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
+    renderer_options.primary = *primary;
     if (!options.realtime_filter) renderer_options.realtime.filter_frames = 0;
     std::unique_ptr<Renderer> renderer =
         or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
@@ -419,6 +423,7 @@ void run_render(const RenderOptions& options) {
         std::printf("heap search: %u entries on this device (its driver refused private memory for "
                     "max cut %u); %llu pixels filled the heap\n",
                     stats.heap_capacity, stats.max_cut_setting, (unsigned long long)stats.max_cut_hits);
+    if (stats.primary == "rays") std::printf("G-buffer: primary rays in compute (%.2f ms GPU)\n", stats.gbuffer_ms);
     if (stats.has_error_stats)
         std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
                     "over %.3f, max %.4f, %llu max-cut hits\n",
@@ -548,6 +553,11 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("--realtime-filter", options->realtime_filter,
                     "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
                     "plain mean of the frames, as the convergence benchmark measures it)")
+        ->capture_default_str();
+    cmd->add_option("--primary", options->primary,
+                    "How the G-buffer is made: raster, rays (a compute pass: faster on GPUs that "
+                    "rasterise on few units; untextured scenes), or auto (rays for the real-time "
+                    "mode on a GPU, raster otherwise)")
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

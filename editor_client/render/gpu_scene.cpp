@@ -99,7 +99,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     }
     Result<vk::Buffer> vertex_buffer = vk::Buffer::create_with_data(
         device, context.command_pool(), std::as_bytes(std::span(vertices)),
-        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
+        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);  // primary rays read it too
     if (!vertex_buffer) return make_error(vertex_buffer.error());
     gpu.vertices_ = std::move(vertex_buffer).value();
     Result<vk::Buffer> index_buffer = vk::Buffer::create_with_data(

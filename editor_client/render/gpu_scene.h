@@ -5,6 +5,7 @@
 // for none).
 #include <vulkan/vulkan.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct GpuVertex {
     glm::vec4 color{1.0f};    // COLOR_0, times the base colour
 };
 static_assert(sizeof(GpuVertex) == 64);
+// Primary rays read the same buffer as GpuSceneVertex (gpu_structs.h).
+static_assert(sizeof(GpuSceneVertex) == sizeof(GpuVertex) && offsetof(GpuVertex, normal) == 12 &&
+              offsetof(GpuVertex, uv) == 24 && offsetof(GpuVertex, tangent) == 32 &&
+              offsetof(GpuVertex, color) == 48);
 
 struct GpuDraw {
     uint32_t first_index = 0;
@@ -54,6 +59,7 @@ public:
     // uploads them; an error names the mesh and the problem.
     static Result<GpuScene> upload(const vk::Context& context, const Scene& scene);
 
+    // Vertex (and storage: primary rays read it) buffer of GpuVertex.
     VkBuffer vertex_buffer() const { return vertices_.handle(); }
     VkBuffer index_buffer() const { return indices_.handle(); }
     const std::vector<GpuDraw>& draws() const { return draws_; }

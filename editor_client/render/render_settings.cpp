@@ -108,6 +108,17 @@ std::optional<BoundSearch> parse_bound_search(std::string_view text) {
     return std::nullopt;
 }
 
+const char* primary_visibility_name(PrimaryVisibility primary) {
+    return primary == PrimaryVisibility::kRays ? "rays" : "raster";
+}
+
+std::optional<PrimaryChoice> parse_primary_choice(std::string_view text) {
+    if (text == "auto") return PrimaryChoice::kAuto;
+    if (text == "raster") return PrimaryChoice::kRaster;
+    if (text == "rays") return PrimaryChoice::kRays;
+    return std::nullopt;
+}
+
 const char* representatives_name(Representatives representatives) {
     switch (representatives) {
         case Representatives::kTree:

@@ -22,6 +22,7 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["render_ms"] = s.render_ms;
     j["render_clock"] = s.render_clock;
     j["gbuffer_ms"] = s.gbuffer_ms;
+    j["primary"] = s.primary;
     j["lighting_ms"] = s.lighting_ms;
     j["output_ms"] = s.output_ms;
     j["wall_ms"] = s.wall_ms;

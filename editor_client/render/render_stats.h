@@ -15,6 +15,7 @@ namespace lc::client {
 struct RenderStats {
     std::string scene;
     std::string mode;
+    std::string primary = "raster";  // how the G-buffer was made: raster or rays
     std::string criterion;
     std::string device;
     uint32_t width = 0;

@@ -84,7 +84,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, c
     renderer->gpu_scene_ = std::move(gpu_scene).value();
     LC_RETURN_IF_ERROR(renderer->create_frame_resources());
     Result<FramePasses> passes = FramePasses::create(
-        context.device(), renderer->frame_layout_.handle(), renderer->gpu_scene_, scene);
+        context, renderer->frame_layout_.handle(), renderer->gpu_scene_, scene, options.primary);
     if (!passes) return make_error(passes.error());
     renderer->passes_.emplace(std::move(passes).value());
     renderer->passes_->real_time().set_policy(options.realtime);
@@ -423,13 +423,13 @@ Status Renderer::render_gbuffer(const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
     update_frame_descriptors();
     const Frame frame = make_frame(settings);
-    FramePass& gbuffer = passes_->gbuffer();
+    FramePass& gbuffer = passes_->gbuffer(settings);
     LC_RETURN_IF_ERROR(gbuffer.prepare(pipelines_, frame));
     last_eye_ = settings.camera.eye;
     return context_.command_pool().run_one_time(context_.device(), [&](VkCommandBuffer cmd) {
         gbuffer.record(cmd, frame);
-        vk::memory_barrier(cmd, gbuffer.last_stage() | kComputeStage,
-                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+        vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT | kComputeStage,
+                           VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                            VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     });
 }
@@ -518,6 +518,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
 
     stats.render_ms = timings.total_ms;
     stats.gbuffer_ms = timings.gbuffer_ms;
+    stats.primary = primary_visibility_name(passes_->primary_for(settings));
     stats.lighting_ms = timings.lighting_ms;
     stats.output_ms = timings.output_ms;
 

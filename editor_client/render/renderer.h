@@ -49,6 +49,8 @@ struct RendererOptions {
     uint64_t reference_evaluations_per_submission = uint64_t(1) << 27;
     // The real-time mode's history: how long, and the spatial filter's fade.
     TemporalPolicy realtime;
+    // How the G-buffer is made (render --primary).
+    PrimaryChoice primary = PrimaryChoice::kAuto;
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.

@@ -48,6 +48,18 @@ LC_CONST uint kTemporalBindingCount = 5u;
 LC_CONST uint kDrawPairSet = 2u;
 LC_CONST uint kBindDrawPairs = 0u;
 
+// Primary visibility by rays (set 1 of PrimaryRaysPass's layout,
+// shaders/primary_rays.comp): a BVH over every triangle, each triangle's
+// vertices and draw, the scene's vertices, the draws' materials, the eye rays.
+LC_CONST uint kPrimarySet = 1u;
+LC_CONST uint kBindPrimaryNodes = 0u;      // GpuBvhNode
+LC_CONST uint kBindPrimaryTriangles = 1u;  // GpuShadowTriangle
+LC_CONST uint kBindPrimarySources = 2u;    // GpuPrimaryTriangle, in the BVH's order
+LC_CONST uint kBindSceneVertices = 3u;     // GpuVertex as 16 floats
+LC_CONST uint kBindSurfaceMaterials = 4u;  // GpuSurfaceMaterial per draw
+LC_CONST uint kBindPrimaryParams = 5u;     // GpuPrimaryParams
+LC_CONST uint kPrimaryBindingCount = 6u;
+
 // The G-buffer pass's material set (shaders/gbuffer.frag): combined image samplers.
 LC_CONST uint kBindBaseColorTexture = 0u;
 LC_CONST uint kBindEmissiveTexture = 1u;

@@ -259,6 +259,46 @@ struct LC_ALIGN16 GpuDrawConstants {
     uint pad2 LC_DEFAULT(0u);
 };
 
+// Primary visibility cast as rays (shaders/primary_rays.comp; RenderSettings::
+// primary): a compute pass writes the G-buffer the raster pass would, from a
+// BVH over every triangle (GpuBvhNode, GpuShadowTriangle). Each BVH triangle
+// names its three vertices in the scene's vertex array (GpuVertex, 16 floats
+// each) and its draw.
+struct LC_ALIGN16 GpuPrimaryTriangle {
+    uint v0 LC_DEFAULT(0u);
+    uint v1 LC_DEFAULT(0u);
+    uint v2 LC_DEFAULT(0u);
+    uint draw LC_DEFAULT(0u);  // index into the surface materials
+};
+
+// The scene's vertex buffer (client::GpuVertex, 16 tightly packed floats:
+// position, normal, uv, tangent, colour) as four vec4s for std430.
+struct LC_ALIGN16 GpuSceneVertex {
+    vec4 position_normal_x LC_DEFAULT(vec4(0.0f));  // xyz: position, w: normal.x
+    vec4 normal_yz_uv LC_DEFAULT(vec4(0.0f));       // xy: normal.yz, zw: uv
+    vec4 tangent LC_DEFAULT(vec4(0.0f));
+    vec4 color LC_DEFAULT(vec4(1.0f));
+};
+
+// A draw's material as gbuffer.frag stores it from its draw constants
+// (textures are the raster pass's alone: a scene with any stays on raster).
+struct LC_ALIGN16 GpuSurfaceMaterial {
+    vec4 base_color_factor LC_DEFAULT(vec4(1.0f));
+    vec4 emissive_metallic LC_DEFAULT(vec4(0.0f));  // rgb: emissive factor, a: metallic
+    float roughness LC_DEFAULT(1.0f);
+    uint flags LC_DEFAULT(0u);  // kDrawVertexColors
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
+};
+
+// The frame's eye rays: clip space back to world space (the raster pass's
+// eye_ray_view_projection, inverted), and the camera.
+struct LC_ALIGN16 GpuPrimaryParams {
+    mat4 inverse_view_proj LC_DEFAULT(mat4(1.0f));
+    vec3 eye LC_DEFAULT(vec3(0.0f));
+    uint node_count LC_DEFAULT(0u);  // BVH nodes; 0: no triangle
+};
+
 // GpuBvhNode::triangles of a leaf: first triangle << kBvhLeafCountBits | count.
 LC_CONST uint kBvhLeafCountBits = 3u;
 LC_CONST uint kBvhLeafCountMask = (1u << kBvhLeafCountBits) - 1u;

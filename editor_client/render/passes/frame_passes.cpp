@@ -1,15 +1,25 @@
 #include "editor_client/render/passes/frame_passes.h"
 
+#include "editor_client/render/primary_geometry.h"
+
 namespace lc::client {
 
-Result<FramePasses> FramePasses::create(const vk::Device& device, VkDescriptorSetLayout frame_layout,
-                                        const GpuScene& gpu_scene, const Scene& scene) {
+Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptorSetLayout frame_layout,
+                                        const GpuScene& gpu_scene, const Scene& scene,
+                                        PrimaryChoice primary) {
+    const vk::Device& device = context.device();
     Result<std::unique_ptr<GBufferPass>> gbuffer =
         GBufferPass::create(device.handle(), gpu_scene, scene);
     if (!gbuffer) return make_error(gbuffer.error());
     Result<std::unique_ptr<RealTimePass>> real_time = RealTimePass::create(device, frame_layout);
     if (!real_time) return make_error(real_time.error());
+    Result<std::unique_ptr<PrimaryRaysPass>> primary_rays =
+        PrimaryRaysPass::create(context, frame_layout, gpu_scene, scene);
+    if (!primary_rays) return make_error(primary_rays.error());
     FramePasses passes;
+    passes.primary_rays_ = std::move(primary_rays).value();
+    passes.primary_choice_ = primary;
+    passes.rays_fit_ = !context.physical().is_software() && primary_rays_unsupported(gpu_scene).empty();
     passes.gbuffer_ = std::move(gbuffer).value();
     passes.real_time_ = std::move(real_time).value();
     return passes;
@@ -29,7 +39,19 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
     }
     FramePass* output = &tone_map_;
     if (!mode_is_shaded(settings.mode)) output = &cut_view_;
-    return {gbuffer_.get(), lighting, output};
+    return {&gbuffer(settings), lighting, output};
+}
+
+FramePass& FramePasses::gbuffer(const RenderSettings& settings) {
+    if (primary_for(settings) == PrimaryVisibility::kRays) return *primary_rays_;
+    return *gbuffer_;
+}
+
+PrimaryVisibility FramePasses::primary_for(const RenderSettings& settings) const {
+    if (primary_choice_ == PrimaryChoice::kRays) return PrimaryVisibility::kRays;
+    if (primary_choice_ == PrimaryChoice::kRaster) return PrimaryVisibility::kRaster;
+    return settings.mode == RenderMode::kRealTime && rays_fit_ ? PrimaryVisibility::kRays
+                                                               : PrimaryVisibility::kRaster;
 }
 
 }  // namespace lc::client

@@ -8,6 +8,7 @@
 #include "editor_client/render/passes/bound_walk_pass.h"
 #include "editor_client/render/passes/cut_view_pass.h"
 #include "editor_client/render/passes/gbuffer_pass.h"
+#include "editor_client/render/passes/primary_rays_pass.h"
 #include "editor_client/render/passes/radius_walk_pass.h"
 #include "editor_client/render/passes/real_time_pass.h"
 #include "editor_client/render/passes/reference_pass.h"
@@ -19,19 +20,25 @@ class FramePasses {
 public:
     // Both must outlive the passes.
     // `frame_layout` is the compute passes' set 0.
-    static Result<FramePasses> create(const vk::Device& device, VkDescriptorSetLayout frame_layout,
-                                      const GpuScene& gpu_scene, const Scene& scene);
+    static Result<FramePasses> create(const vk::Context& context, VkDescriptorSetLayout frame_layout,
+                                      const GpuScene& gpu_scene, const Scene& scene,
+                                      PrimaryChoice primary);
 
     // The passes that render `settings`, in recording order.
     std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
-    // The G-buffer pass alone (Renderer::render_gbuffer).
-    FramePass& gbuffer() { return *gbuffer_; }
+    // The G-buffer pass alone (Renderer::render_gbuffer): raster or rays.
+    FramePass& gbuffer(const RenderSettings& settings);
+    // How the G-buffer of a frame with `settings` is made (PrimaryChoice's rule).
+    PrimaryVisibility primary_for(const RenderSettings& settings) const;
     RealTimePass& real_time() { return *real_time_; }
     const RealTimePass& real_time() const { return *real_time_; }
     const BoundHeapPass& bound_heap() const { return bound_heap_; }
 
 private:
     std::unique_ptr<GBufferPass> gbuffer_;
+    std::unique_ptr<PrimaryRaysPass> primary_rays_;
+    PrimaryChoice primary_choice_ = PrimaryChoice::kAuto;
+    bool rays_fit_ = false;  // a GPU device and a scene without raster-only materials
     ReferencePass reference_;
     RadiusWalkPass radius_walk_;
     BoundWalkPass bound_walk_;
