@@ -32,6 +32,8 @@ runs=(
   "radius|--mode lightcuts --criterion radius"
   "bound_walk|--mode lightcuts"
   "bound_walk_shared|--mode lightcuts --share-cuts"
+  "bound_walk_raster|--mode lightcuts --primary raster"
+  "bound_walk_rays|--mode lightcuts --primary rays"
   "bound_heap|--mode lightcuts --bound-search heap"
   "pixel_representatives|--mode lightcuts --representatives pixel"
   "importance_representatives|--mode lightcuts --representatives importance"

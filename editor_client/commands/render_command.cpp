@@ -556,8 +556,8 @@ void add_render_command(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--primary", options->primary,
                     "How the G-buffer is made: raster, rays (a compute pass: faster on GPUs that "
-                    "rasterise on few units; untextured scenes), or auto (rays for the real-time "
-                    "mode on a GPU, raster otherwise)")
+                    "rasterise on few units; untextured scenes), or auto (rays on a GPU for a scene "
+                    "without textures, raster otherwise)")
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

@@ -19,9 +19,9 @@ namespace lc::client {
 // compute (PrimaryRaysPass: faster where the GPU rasterises on few units).
 enum class PrimaryVisibility : uint8_t { kRaster = 0, kRays = 1 };
 const char* primary_visibility_name(PrimaryVisibility primary);
-// The renderer's choice (RendererOptions::primary): auto casts rays for the
-// real-time mode on a GPU (not a CPU device such as lavapipe, which
-// rasterises fast) when no material needs the raster pass's textures.
+// The renderer's choice (RendererOptions::primary): auto casts rays on a GPU
+// (not on a CPU device such as lavapipe, which rasterises fast) when no
+// material needs the raster pass's textures.
 enum class PrimaryChoice : uint8_t { kAuto = 0, kRaster = 1, kRays = 2 };
 std::optional<PrimaryChoice> parse_primary_choice(std::string_view text);
 

@@ -423,7 +423,7 @@ Status Renderer::render_gbuffer(const RenderSettings& settings) {
     LC_RETURN_IF_ERROR(ensure_targets(settings.width, settings.height));
     update_frame_descriptors();
     const Frame frame = make_frame(settings);
-    FramePass& gbuffer = passes_->gbuffer(settings);
+    FramePass& gbuffer = passes_->gbuffer();
     LC_RETURN_IF_ERROR(gbuffer.prepare(pipelines_, frame));
     last_eye_ = settings.camera.eye;
     return context_.command_pool().run_one_time(context_.device(), [&](VkCommandBuffer cmd) {
@@ -518,7 +518,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
 
     stats.render_ms = timings.total_ms;
     stats.gbuffer_ms = timings.gbuffer_ms;
-    stats.primary = primary_visibility_name(passes_->primary_for(settings));
+    stats.primary = primary_visibility_name(passes_->primary());
     stats.lighting_ms = timings.lighting_ms;
     stats.output_ms = timings.output_ms;
 

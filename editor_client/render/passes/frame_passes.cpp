@@ -39,19 +39,18 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
     }
     FramePass* output = &tone_map_;
     if (!mode_is_shaded(settings.mode)) output = &cut_view_;
-    return {&gbuffer(settings), lighting, output};
+    return {&gbuffer(), lighting, output};
 }
 
-FramePass& FramePasses::gbuffer(const RenderSettings& settings) {
-    if (primary_for(settings) == PrimaryVisibility::kRays) return *primary_rays_;
+FramePass& FramePasses::gbuffer() {
+    if (primary() == PrimaryVisibility::kRays) return *primary_rays_;
     return *gbuffer_;
 }
 
-PrimaryVisibility FramePasses::primary_for(const RenderSettings& settings) const {
+PrimaryVisibility FramePasses::primary() const {
     if (primary_choice_ == PrimaryChoice::kRays) return PrimaryVisibility::kRays;
     if (primary_choice_ == PrimaryChoice::kRaster) return PrimaryVisibility::kRaster;
-    return settings.mode == RenderMode::kRealTime && rays_fit_ ? PrimaryVisibility::kRays
-                                                               : PrimaryVisibility::kRaster;
+    return rays_fit_ ? PrimaryVisibility::kRays : PrimaryVisibility::kRaster;
 }
 
 }  // namespace lc::client

@@ -27,9 +27,9 @@ public:
     // The passes that render `settings`, in recording order.
     std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
     // The G-buffer pass alone (Renderer::render_gbuffer): raster or rays.
-    FramePass& gbuffer(const RenderSettings& settings);
-    // How the G-buffer of a frame with `settings` is made (PrimaryChoice's rule).
-    PrimaryVisibility primary_for(const RenderSettings& settings) const;
+    FramePass& gbuffer();
+    // How the G-buffer is made (PrimaryChoice's rule, the same for every mode).
+    PrimaryVisibility primary() const;
     RealTimePass& real_time() { return *real_time_; }
     const RealTimePass& real_time() const { return *real_time_; }
     const BoundHeapPass& bound_heap() const { return bound_heap_; }
