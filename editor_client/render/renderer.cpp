@@ -351,9 +351,7 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
 }
 
 Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
-    std::array<FramePass*, 3> passes = passes_->for_settings(*frame.settings);
-    for (FramePass* pass : passes) LC_RETURN_IF_ERROR(pass->prepare(pipelines_, frame));
-    return passes;
+    return passes_->prepare(pipelines_, frame);
 }
 
 Result<std::array<FramePass*, 3>> Renderer::prepare_regions(Frame& frame,

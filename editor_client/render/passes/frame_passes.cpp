@@ -1,6 +1,9 @@
 #include "editor_client/render/passes/frame_passes.h"
 
+#include <spdlog/spdlog.h>
+
 #include "editor_client/render/primary_geometry.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 
@@ -40,6 +43,20 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
     FramePass* output = &tone_map_;
     if (!mode_is_shaded(settings.mode)) output = &cut_view_;
     return {&gbuffer(), lighting, output};
+}
+
+Result<std::array<FramePass*, 3>> FramePasses::prepare(PipelineCache& pipelines, const Frame& frame) {
+    std::array<FramePass*, 3> passes = for_settings(*frame.settings);
+    if (Status rays = passes[0]->prepare(pipelines, frame); !rays) {
+        if (passes[0] != primary_rays_.get() || primary_choice_ != PrimaryChoice::kAuto)
+            return make_error(rays.error());
+        spdlog::warn("{}: the G-buffer is rasterised instead", rays.error());
+        rays_fit_ = false;
+        passes[0] = gbuffer_.get();
+        LC_RETURN_IF_ERROR(passes[0]->prepare(pipelines, frame));
+    }
+    for (size_t i = 1; i < passes.size(); ++i) LC_RETURN_IF_ERROR(passes[i]->prepare(pipelines, frame));
+    return passes;
 }
 
 FramePass& FramePasses::gbuffer() {

@@ -26,6 +26,10 @@ public:
 
     // The passes that render `settings`, in recording order.
     std::array<FramePass*, 3> for_settings(const RenderSettings& settings);
+    // Prepares the passes that render frame.settings and returns them. Where
+    // auto chose rays and the driver cannot build their pipeline, the frame
+    // (and every later one) falls back to the raster pass, with a warning.
+    Result<std::array<FramePass*, 3>> prepare(PipelineCache& pipelines, const Frame& frame);
     // The G-buffer pass alone (Renderer::render_gbuffer): raster or rays.
     FramePass& gbuffer();
     // How the G-buffer is made (PrimaryChoice's rule, the same for every mode).
