@@ -27,6 +27,8 @@ layout(std430, set = 0, binding = kBindShadowTriangles) readonly buffer ShadowTr
 layout(std430, set = 0, binding = kBindMaskedTriangles) readonly buffer MaskedTriangles { GpuMaskedTriangle masked_triangles[]; };
 layout(std430, set = 0, binding = kBindAlphaMasks) readonly buffer AlphaMasks { GpuAlphaMask alpha_masks[]; };
 layout(std430, set = 0, binding = kBindMaskTexels) readonly buffer MaskTexels { GpuMaskTexels mask_texels[]; };
+// Reference mode's exact clamp: which VPLs' shadow rays were blocked, per pixel.
+layout(std430, set = 0, binding = kBindVplVisibility) buffer VplVisibility { GpuVisibilityBits vpl_visibility[]; };
 // The walk search's state per pixel between its passes (row-major pixels).
 layout(std430, set = 0, binding = kBindWalkStates) buffer WalkStates { GpuWalkState walk_states[]; };
 // What pixels without geometry show (shaders/background.glsl).

@@ -26,12 +26,51 @@
 // sums the leaves (frame.clamp_pass 0), frame.clamp_passes more passes over
 // them (same dispatches, same parts) tally the VPLs at the pixel's threshold
 // and take Newton's step; the last one stores the pixel. Those passes shade
-// the VPLs only: the rest of the pixel is known from the sums.
+// the VPLs only: the rest of the pixel is known from the sums. Where the
+// frame keeps visibility (frame.vpl_visibility_stride > 0), the sums' pass
+// records which VPLs' shadow rays were blocked and Newton's passes read the
+// bits instead of tracing each ray again: the same values, one ray per VPL.
 #extension GL_GOOGLE_include_directive : require
 
 #include "lighting_pass.glsl"
 
 layout(local_size_x_id = kSpecWorkgroupX, local_size_y_id = kSpecWorkgroupY) in;
+
+// This invocation's pixel, row-major (the kept visibility's index).
+uint g_pixel_index = 0u;
+
+bool keeps_vpl_visibility() { return kShadows && frame.vpl_visibility_stride > 0u; }
+
+// Where leaf i's bit is: the GpuVisibilityBits word and the bit in it.
+uvec2 visibility_bit(uint i) {
+    return uvec2(g_pixel_index * frame.vpl_visibility_stride + (i >> 7u), i & 127u);
+}
+
+// A VPL's radiance with its shadow ray, the ray's answer kept for Newton's
+// passes; light_radiance's arithmetic, so the sums are the same bits.
+vec3 vpl_radiance_keeping_visibility(uint i, SurfacePoint p) {
+    GpuLight light = leaf_lights[i];
+    vec3 l;
+    vec3 e = light_irradiance(light, p.position, p.normal, l);
+    float v = light_visibility(light, p.position, p.normal, max(e.x, max(e.y, e.z)) > 0.0);
+    if (v == 0.0) {
+        uvec2 bit = visibility_bit(i);
+        atomicOr(vpl_visibility[bit.x].words[bit.y >> 5u], 1u << (bit.y & 31u));
+    }
+    e *= v;
+    return brdf_toward(p, l) * e;
+}
+
+// The same VPL in Newton's passes: its kept visibility, no ray.
+vec3 vpl_radiance_from_kept_visibility(uint i, SurfacePoint p) {
+    GpuLight light = leaf_lights[i];
+    vec3 l;
+    vec3 e = light_irradiance(light, p.position, p.normal, l);
+    uvec2 bit = visibility_bit(i);
+    bool blocked = (vpl_visibility[bit.x].words[bit.y >> 5u] & (1u << (bit.y & 31u))) != 0u;
+    e *= blocked ? 0.0 : 1.0;
+    return brdf_toward(p, l) * e;
+}
 
 vec3 leaves_radiance(uint begin, uint end, SurfacePoint p) {
     vec3 radiance = vec3(0.0);
@@ -50,9 +89,11 @@ vec3 leaves_radiance(uint begin, uint end, SurfacePoint p) {
 void add_leaf(inout vec3 radiance, inout IndirectSums s, uint i, SurfacePoint p) {
     bool indirect = (leaf_lights[i].flags & kGpuLightIndirect) != 0u;
     if (kIndirectOff && indirect) return;
-    vec3 contribution = light_radiance(leaf_lights[i], p);
-    radiance += contribution;
     bool is_patch = (leaf_lights[i].flags & kGpuLightPatch) != 0u;
+    // The VPLs Newton's passes tally again (tally_exact_leaf).
+    bool kept = indirect && !is_patch && exact_clamp() && keeps_vpl_visibility();
+    vec3 contribution = kept ? vpl_radiance_keeping_visibility(i, p) : light_radiance(leaf_lights[i], p);
+    radiance += contribution;
     if (kIndirectClamp) add_cut_node(s, indirect, clamped_leaf(indirect, is_patch, true), contribution);
 }
 
@@ -90,7 +131,9 @@ void part_leaves(uint parts, out uint begin, out uint end) {
 // Newton's passes: one VPL at the pixel's threshold t.
 void tally_exact_leaf(uint i, vec3 t, inout vec3 below, inout vec3 above, SurfacePoint p) {
     if ((leaf_lights[i].flags & (kGpuLightIndirect | kGpuLightPatch)) != kGpuLightIndirect) return;
-    tally_exact_clamp(below, above, light_radiance(leaf_lights[i], p), t);
+    vec3 contribution = keeps_vpl_visibility() ? vpl_radiance_from_kept_visibility(i, p)
+                                               : light_radiance(leaf_lights[i], p);
+    tally_exact_clamp(below, above, contribution, t);
 }
 
 void tally_exact_leaves(uint begin, uint end, vec3 t, inout vec3 below, inout vec3 above, SurfacePoint p) {
@@ -197,6 +240,7 @@ void main() {
         store_background(pixel);
         return;
     }
+    g_pixel_index = uint(pixel.y) * frame.width + uint(pixel.x);
     if (frame.clamp_pass > 0u) {
         exact_clamp_pass(pixel, p);
         return;

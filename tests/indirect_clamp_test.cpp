@@ -657,6 +657,31 @@ TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) 
     EXPECT_GT(several.stats.clamped_energy, 0.0);
 }
 
+// Newton's passes read the visibility the sums' pass kept (one bit per pixel
+// and leaf) instead of tracing each VPL's shadow ray again: the same frame,
+// bit for bit, with the VPLs' rays traced once; over budget they trace again.
+TEST_F(IndirectClampGpu, TheReferenceTracesEachVplsShadowRayOnce) {
+    const LightTree tree = build(lights_with_indirect(true));
+    std::unique_ptr<client::Renderer> kept = renderer(tree);
+    client::RendererOptions no_budget;
+    no_budget.vpl_visibility_budget_bytes = 0;
+    Result<std::unique_ptr<client::Renderer>> traced = client::Renderer::create(*context_, scene_, &tree, no_budget);
+    ASSERT_TRUE(kept && traced.ok());
+    const Frame a = render(*kept, client::RenderMode::kReference, CutCriterion::kRadius);
+    const Frame b = render(**traced, client::RenderMode::kReference, CutCriterion::kRadius);
+    ASSERT_GT(a.stats.reference_clamp_passes, 0u);
+    ASSERT_GT(a.stats.shadow_rays, 0u) << "the scene casts no shadows: nothing to keep";
+    EXPECT_TRUE(a.stats.reference_visibility_kept);
+    EXPECT_FALSE(b.stats.reference_visibility_kept);
+    EXPECT_EQ(a.hdr, b.hdr);
+    EXPECT_EQ(a.stats.clamped_energy, b.stats.clamped_energy);
+    // Newton's passes traced again every VPL ray the sums' pass traced.
+    std::printf("  shadow rays: %llu kept, %llu traced again\n", (unsigned long long)a.stats.shadow_rays,
+                (unsigned long long)b.stats.shadow_rays);
+    EXPECT_LT(a.stats.shadow_rays, b.stats.shadow_rays);
+    EXPECT_GE(b.stats.shadow_rays - a.stats.shadow_rays, uint64_t(device::kExactClampPasses));
+}
+
 TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
     const LightTree with = build(lights_with_indirect(true));
     const LightTree without = build(direct_lights());

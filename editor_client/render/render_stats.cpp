@@ -53,6 +53,7 @@ nlohmann::json stats_json(const RenderStats& s) {
         j["clamped_energy_fraction"] = s.clamped_fraction();
         if (s.reference_clamp_passes > 0) {
             j["reference_clamp_passes"] = s.reference_clamp_passes;
+            j["reference_visibility_kept"] = s.reference_visibility_kept;
             j["reference_clamp_change"] = s.reference_clamp_change;
         }
     }

@@ -76,6 +76,7 @@ struct RenderStats {
     // and the largest relative change of a pixel's threshold in the last one
     // (0: every pixel had reached its root).
     uint32_t reference_clamp_passes = 0;
+    bool reference_visibility_kept = false;  // Newton's passes read the sums' shadow rays
     double reference_clamp_change = 0.0;
     uint32_t submissions = 1;           // command buffers the frame was submitted in
     // Every pixel_stride-th pixel in x and y was rendered (render --pixel-stride): the

@@ -121,6 +121,7 @@ Status Renderer::create_frame_resources() {
                            vk::MemoryUsage::kHostReadback);
     if (!counters) return make_error(counters.error());
     counters_ = std::move(counters).value();
+    LC_RETURN_IF_ERROR(ensure_vpl_visibility(sizeof(GpuVisibilityBits)));
 
     Result<vk::Buffer> background =
         vk::Buffer::create(context_.device(), sizeof(GpuBackground),
@@ -315,6 +316,7 @@ void Renderer::update_frame_descriptors() {
         .storage_buffer(kBindAlphaMasks, alpha_masks_.handle())
         .storage_buffer(kBindMaskTexels, mask_texels_.handle())
         .storage_buffer(kBindWalkStates, targets_.walk_states.handle())
+        .storage_buffer(kBindVplVisibility, vpl_visibility_.handle())
         .storage_buffer(kBindBackground, background_.handle())
         .storage_buffer(kBindEnvironmentTexels, environment_texels_.handle())
         .update(context_.device().handle());
@@ -347,7 +349,33 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
     constants.light_end = leaf_count_;
     constants.eye = settings.camera.eye;
     constants.clamp_passes = reference_clamp_passes(settings);
+    constants.vpl_visibility_stride = constants.clamp_passes > 0 ? vpl_visibility_stride_ : 0u;
     return frame;
+}
+
+Status Renderer::ensure_vpl_visibility(uint64_t bytes) {
+    if (vpl_visibility_ && vpl_visibility_.size() >= bytes) return Ok{};
+    LC_RETURN_IF_ERROR(context_.device().wait_idle());
+    Result<vk::Buffer> buffer =
+        vk::Buffer::create(context_.device(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUsage::kDeviceLocal);
+    if (!buffer) return make_error("kept visibility: " + buffer.error());
+    vpl_visibility_ = std::move(buffer).value();
+    frame_set_dirty_ = true;
+    return Ok{};
+}
+
+// The exact clamp's kept visibility for a frame with these settings: one bit
+// per pixel and leaf, within the budget (else Newton's passes trace again).
+Status Renderer::prepare_vpl_visibility(const RenderSettings& settings) {
+    vpl_visibility_stride_ = 0;
+    if (reference_clamp_passes(settings) == 0 || !traces_shadows()) return Ok{};
+    const uint64_t stride = (uint64_t(leaf_count_) + 127) / 128;
+    const uint64_t bytes = uint64_t(settings.width) * settings.height * stride * sizeof(GpuVisibilityBits);
+    if (bytes > options_.vpl_visibility_budget_bytes) return Ok{};
+    LC_RETURN_IF_ERROR(ensure_vpl_visibility(bytes));
+    vpl_visibility_stride_ = uint32_t(stride);
+    return Ok{};
 }
 
 Result<std::array<FramePass*, 3>> Renderer::prepare_passes(const Frame& frame) {
@@ -382,6 +410,7 @@ Status Renderer::record_frame(VkCommandBuffer cmd, const RenderSettings& setting
     if (!remade) return make_error(remade.error());
     if (*remade && continues_image)
         return make_error("the image to continue was lost: another size was rendered since");
+    if (!continues_image) LC_RETURN_IF_ERROR(prepare_vpl_visibility(settings));
     Frame frame = make_frame(settings);
     frame.reference_dispatches = reference_dispatches;
     Result<std::array<FramePass*, 3>> passes = prepare_regions(frame, regions, continues_image);
@@ -398,6 +427,8 @@ Status Renderer::record_frame(VkCommandBuffer cmd, const RenderSettings& setting
     // the next tiles of a progressive view) carries its sums in the walk states.
     if (effects_.indirect_clamp && !continues_image)
         vkCmdFillBuffer(cmd, targets_.walk_states.handle(), 0, VK_WHOLE_SIZE, 0);
+    if (frame.constants.vpl_visibility_stride > 0 && !continues_image)
+        vkCmdFillBuffer(cmd, vpl_visibility_.handle(), 0, VK_WHOLE_SIZE, 0);
     vk::memory_barrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                        kComputeStage, kStorageReadWrite);
     uint32_t slot = kTsStart;
@@ -536,6 +567,7 @@ Result<RenderStats> Renderer::render(const RenderSettings& settings,
     }
     if (effects_.indirect_clamp) LC_RETURN_IF_ERROR(read_clamped_energy(stats));
     stats.reference_clamp_passes = reference_clamp_passes(settings);
+    stats.reference_visibility_kept = stats.reference_clamp_passes > 0 && vpl_visibility_stride_ > 0;
     if (settings.mode == RenderMode::kReference) {
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(leaf_count_, 1u) + chunk - 1) / chunk;

@@ -51,6 +51,10 @@ struct RendererOptions {
     TemporalPolicy realtime;
     // How the G-buffer is made (render --primary).
     PrimaryChoice primary = PrimaryChoice::kAuto;
+    // Reference mode's exact clamp keeps each VPL's visibility for its Newton
+    // passes (one bit per pixel and leaf) when it fits this many bytes; a
+    // larger frame traces the rays again in every pass.
+    uint64_t vpl_visibility_budget_bytes = uint64_t(512) << 20;
 };
 
 // The G-buffer as read back, 4 floats per pixel, rows top to bottom.
@@ -171,6 +175,8 @@ private:
 
     Status create_frame_resources();
     Status upload_occluders();
+    Status ensure_vpl_visibility(uint64_t bytes);
+    Status prepare_vpl_visibility(const RenderSettings& settings);
     // Shadow rays are traced: the analysis asked for them and something occludes.
     bool traces_shadows() const { return effects_.shadows && !shadow_bvh_.empty(); }
     LoopWork loop_work() const;
@@ -209,6 +215,8 @@ private:
     vk::Buffer tree_nodes_;
     vk::Buffer classic_lights_;
     vk::Buffer counters_;
+    vk::Buffer vpl_visibility_;          // GpuVisibilityBits: the exact clamp's kept visibility
+    uint32_t vpl_visibility_stride_ = 0;  // of the frame being recorded; 0: none kept
     std::shared_ptr<const Environment> environment_;
     vk::Buffer background_;          // GpuBackground, rewritten by every frame's commands
     vk::Buffer environment_texels_;  // GpuEnvironmentTexel

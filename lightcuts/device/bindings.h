@@ -30,7 +30,8 @@ LC_CONST uint kBindEnvironmentTexels = 15u;  // GpuEnvironmentTexel, row 0 at th
 LC_CONST uint kBindMaskedTriangles = 16u;
 LC_CONST uint kBindAlphaMasks = 17u;
 LC_CONST uint kBindMaskTexels = 18u;
-LC_CONST uint kFrameBindingCount = 19u;
+LC_CONST uint kBindVplVisibility = 19u;  // GpuVisibilityBits, reference mode's exact clamp
+LC_CONST uint kFrameBindingCount = 20u;
 
 // The real-time mode's own set (set 1, shaders/temporal_bindings.glsl): the
 // accumulated history and the positions it was shaded at, the previous frame's

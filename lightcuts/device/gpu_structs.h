@@ -165,6 +165,16 @@ struct LC_ALIGN16 GpuFrameConstants {
     // The real-time mode's frame number (stochastic_cuts.comp): its pivots and
     // light draws are drawn anew from it every frame.
     uint frame_seed LC_DEFAULT(0u);
+    // Reference mode's exact clamp: the sums' pass keeps each VPL's visibility
+    // (kBindVplVisibility, this many GpuVisibilityBits per pixel) and Newton's
+    // passes read it instead of tracing the ray again; 0: they trace.
+    uint vpl_visibility_stride LC_DEFAULT(0u);
+};
+
+// 128 bits of kept visibility: bit (leaf & 127) of the pixel's word leaf / 128
+// is set where the leaf's shadow ray was blocked.
+struct LC_ALIGN16 GpuVisibilityBits {
+    uvec4 words LC_DEFAULT(uvec4(0u));
 };
 
 // The real-time mode's temporal pass (temporal_accumulate.comp): where each
