@@ -2,8 +2,12 @@
 // cancelled (issue 27: every stage within 100 ms). The build runs on its own
 // thread; the main thread cancels it at delays spread over the build, whose
 // levels all pair exactly at the default limit, and times cancel() to return.
-//   tree_cancel_bench [LIGHTS=32768] [CANCELS=8] >> docs/bench/tree_cancel.csv
-// Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms.
+//   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8] >> docs/bench/tree_cancel.csv
+// Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms, the
+// full build timed with a live, never-cancelled stop (what the server runs).
+// On stderr: the first level's LEMON run, its stop polls and the work between
+// two polls, and the full build without a stop (the polls' cost).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +16,10 @@
 #include <thread>
 #include <vector>
 
+#include "lightmass_server/approximate_pairing.h"
+#include "lightmass_server/min_weight_matching.h"
+#include "lightmass_server/point_kd_tree.h"
+#include "lightmass_server/sparse_exact_pairing.h"
 #include "lightmass_server/tree_builder.h"
 
 namespace {
@@ -66,6 +74,35 @@ CancelOutcome cancel_build_after(const std::vector<SceneLight>& lights, double d
     return CancelOutcome{cancelled, ms_between(asked, returned)};
 }
 
+// One LEMON run over the first level's candidate graph (its k-NN and feasible
+// pairs, as exact_pairing builds it), counting the stop polls it makes.
+void report_poll_interval(const std::vector<SceneLight>& lights) {
+    std::vector<glm::dvec3> points;
+    for (const SceneLight& light : lights) points.emplace_back(light.position);
+    lc::bake::ExactPairingOptions options;
+    options.max_solver_runs = 1;
+    const lc::bake::KnnResult knn = lc::bake::k_nearest_neighbors(points, options.candidate_neighbors);
+    std::vector<std::pair<uint32_t, uint32_t>> keys;
+    for (uint32_t u = 0; u < points.size(); ++u) {
+        for (const auto& nb : knn.of(u)) keys.emplace_back(std::min(u, nb.index), std::max(u, nb.index));
+    }
+    for (const auto& pair : lc::bake::approximate_pairing(points).pairs) keys.push_back(pair);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<lc::bake::MatchingEdge> edges;
+    for (const auto& [u, v] : keys) edges.push_back({u, v, glm::distance(points[u], points[v])});
+    uint64_t polls = 0;
+    const Clock::time_point start = Clock::now();
+    auto matched = lc::bake::min_weight_perfect_matching(uint32_t(points.size()), edges, [&] {
+        ++polls;
+        return false;
+    });
+    const double run_ms = ms_between(start, Clock::now());
+    std::fprintf(stderr, "level of %zu nodes: LEMON %.0f ms, %llu stop polls, %.3f ms between polls%s\n",
+                 points.size(), run_ms, (unsigned long long)polls, run_ms / double(std::max<uint64_t>(polls, 1)),
+                 matched ? "" : " (failed)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,11 +110,16 @@ int main(int argc, char** argv) {
     const int cancels = argc > 2 ? std::atoi(argv[2]) : 8;
     const std::vector<SceneLight> lights = uniform_point_lights(light_count);
 
-    const Clock::time_point start = Clock::now();
-    auto full = lc::bake::build_light_tree(lights, lc::bake::BuildOptions{.seed = 7}, nullptr);
+    report_poll_interval(lights);
+    Clock::time_point start = Clock::now();
+    auto unstopped = lc::bake::build_light_tree(lights, lc::bake::BuildOptions{.seed = 7}, nullptr);
+    std::fprintf(stderr, "full build without a stop: %.0f ms\n", ms_between(start, Clock::now()));
+    lc::bake::BakeStop live;
+    start = Clock::now();
+    auto full = lc::bake::build_light_tree(lights, lc::bake::BuildOptions{.seed = 7, .stop = &live}, nullptr);
     const double full_ms = ms_between(start, Clock::now());
-    if (!full) {
-        std::fprintf(stderr, "the uncancelled build failed: %s\n", full.error().c_str());
+    if (!full || !unstopped) {
+        std::fprintf(stderr, "an uncancelled build failed\n");
         return 1;
     }
     // Cancel points spread evenly over the build, ending before its last 5 %.
