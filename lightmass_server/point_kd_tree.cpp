@@ -157,15 +157,18 @@ std::vector<double> subtree_min_offsets(const KdTree& tree, std::span<const doub
 }  // namespace
 
 std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
-    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance) {
+    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance,
+    const BakeStop* stop) {
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
     if (points.size() < 2) return pairs;
-    const KdTree tree = build_kd_tree(points);
+    const KdTree tree = build_kd_tree(points, stop);
+    if (stop_requested(stop)) return pairs;
     const std::vector<double> min_offset = subtree_min_offsets(tree, offset);
     const uint32_t n = uint32_t(points.size());
     std::vector<std::vector<uint32_t>> partners(n);
     tbb::parallel_for(
         tbb::blocked_range<uint32_t>(0, n, 64), [&](const tbb::blocked_range<uint32_t>& range) {
+            if (stop_requested(stop)) return;  // the pairs are dropped
             std::vector<uint32_t> stack;
             for (uint32_t u = range.begin(); u != range.end(); ++u) {
                 const glm::dvec3 p = points[u];

@@ -94,16 +94,17 @@ struct CertificateCheck {
 // With every reduced cost >= -tolerance and the objectives equal, no perfect
 // matching of the complete graph costs less than this one minus
 // n/2 x tolerance (weak duality).
+// A stop leaves the check partial: the caller asks it and drops the check.
 CertificateCheck check_certificate(std::span<const glm::dvec3> points,
                                    const PerfectMatching& matching, const CandidateGraph& graph,
-                                   double tolerance) {
+                                   double tolerance, const BakeStop* stop) {
     const uint32_t n = uint32_t(points.size());
     const std::span<const double> y = std::span<const double>(matching.node_potential).first(n);
     const BlossomChains chains(matching);
     CertificateCheck check;
     // Half the tolerance: the query rounds differently, so let it return a
     // superset of the pairs the exact test below can reject.
-    for (const auto& [u, v] : pairs_below_negative_offsets(points, y, 0.5 * tolerance)) {
+    for (const auto& [u, v] : pairs_below_negative_offsets(points, y, 0.5 * tolerance, stop)) {
         const double cost = glm::distance(points[u], points[v]);
         if (cost + y[u] + y[v] + chains.shared_value(u, v) >= -tolerance) continue;
         if (graph.contains(u, v)) {
@@ -195,7 +196,8 @@ Result<LevelPairing> exact_pairing(std::span<const glm::dvec3> points,
                               " nodes: " + matching.error());
 
         const double tolerance = 1e-9 * largest_cost(edges) + 1e-300;
-        const CertificateCheck check = check_certificate(points, *matching, graph, tolerance);
+        const CertificateCheck check = check_certificate(points, *matching, graph, tolerance, options.stop);
+        if (poll.now()) return stopped_level(n);
 
         pairing = pairing_from_mates(points, matching->mate);
         pairing.solver_runs = run;
@@ -205,7 +207,6 @@ Result<LevelPairing> exact_pairing(std::span<const glm::dvec3> points,
             break;
         }
         if (run >= options.max_solver_runs) break;
-        if (poll.now()) return stopped_level(n);
         for (const MatchingEdge& e : check.violated_outside) graph.add(e.u, e.v);
         graph.normalize();
     }
