@@ -21,7 +21,8 @@
 #       4 clients bake without pause; the server's RSS is sampled every 2 s
 #   scripts/fault-test.sh all  (kill, stall, then a 10-minute soak)
 # Common: [--server-bin build/bin/lightmass_server] [--client-bin build/bin/editor_client]
-# Every loop is bounded in count and in time. Exits non-zero on a broken check.
+# Every loop is bounded in count and in time. Exits non-zero on a broken check
+# or on a sanitizer report in the servers' log (a sanitizer build's server).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -306,6 +307,20 @@ run_soak() {
     [ "$bad" -eq 0 ] && [ "$alive" = yes ]
 }
 
+# Every server of the run logged into $work/server.log; a sanitizer build
+# (cmake --preset asan, --server-bin build-asan/bin/lightmass_server) reports
+# there, LeakSanitizer's at each clean stop. Any report fails the run.
+check_sanitizer_reports() {
+    [ -f "$work/server.log" ] || return 0
+    local reports
+    reports=$(grep -cE "ERROR: (Address|Leak)Sanitizer|runtime error:" "$work/server.log" || true)
+    echo "sanitizer reports in the server's log: $reports"
+    if [ "$reports" -gt 0 ]; then
+        grep -m 5 -E "ERROR: |runtime error:" "$work/server.log"
+        return 1
+    fi
+}
+
 case "$mode" in
     kill) run_kill ;;
     stall) run_stall ;;
@@ -313,5 +328,6 @@ case "$mode" in
     hostile) run_hostile ;;
     tree-cancel) run_tree_cancel ;;
     all) run_kill; run_stall; minutes=10; run_soak ;;
-    *) sed -n '2,24p' "$0"; exit 2 ;;
+    *) sed -n '2,25p' "$0"; exit 2 ;;
 esac
+check_sanitizer_reports
