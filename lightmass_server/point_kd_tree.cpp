@@ -168,9 +168,11 @@ std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
     std::vector<std::vector<uint32_t>> partners(n);
     tbb::parallel_for(
         tbb::blocked_range<uint32_t>(0, n, 64), [&](const tbb::blocked_range<uint32_t>& range) {
-            if (stop_requested(stop)) return;  // the pairs are dropped
+            // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
+            StopPoll poll(stop);
             std::vector<uint32_t> stack;
             for (uint32_t u = range.begin(); u != range.end(); ++u) {
+                if (poll()) return;  // the pairs are dropped
                 const glm::dvec3 p = points[u];
                 const double limit = -tolerance - offset[u];
                 stack.assign(1, 0u);
@@ -212,10 +214,12 @@ KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, co
     if (stop_requested(stop)) return result;
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
                       [&](const tbb::blocked_range<uint32_t>& range) {
-                          if (stop_requested(stop)) return;  // the result is dropped
+                          // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
+                          StopPoll poll(stop);
                           std::vector<Candidate> best;
                           std::vector<std::pair<double, uint32_t>> stack;
                           for (uint32_t i = range.begin(); i != range.end(); ++i) {
+                              if (poll()) return;  // the result is dropped
                               query_neighbors(tree, points, i, result.k_used, best, stack,
                                               &result.neighbors[size_t(i) * result.k_used]);
                           }
