@@ -4,7 +4,8 @@
 // levels all pair exactly at the default limit, and times cancel() to return.
 //   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8] >> docs/bench/tree_cancel.csv
 // Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms, the
-// full build timed with a live, never-cancelled stop (what the server runs).
+// full build timed with a live, never-cancelled stop (what the server runs);
+// a "finished" row's latency is negative: the build returned before the cancel.
 // On stderr: the first level's LEMON run, its stop polls and the work between
 // two polls, and the full build without a stop (the polls' cost).
 #include <algorithm>
@@ -79,8 +80,7 @@ CancelOutcome cancel_build_after(const std::vector<SceneLight>& lights, double d
 void report_poll_interval(const std::vector<SceneLight>& lights) {
     std::vector<glm::dvec3> points;
     for (const SceneLight& light : lights) points.emplace_back(light.position);
-    lc::bake::ExactPairingOptions options;
-    options.max_solver_runs = 1;
+    const lc::bake::ExactPairingOptions options;
     const lc::bake::KnnResult knn = lc::bake::k_nearest_neighbors(points, options.candidate_neighbors);
     std::vector<std::pair<uint32_t, uint32_t>> keys;
     for (uint32_t u = 0; u < points.size(); ++u) {
@@ -99,8 +99,8 @@ void report_poll_interval(const std::vector<SceneLight>& lights) {
     });
     const double run_ms = ms_between(start, Clock::now());
     std::fprintf(stderr, "level of %zu nodes: LEMON %.0f ms, %llu stop polls, %.3f ms between polls%s\n",
-                 points.size(), run_ms, (unsigned long long)polls, run_ms / double(std::max<uint64_t>(polls, 1)),
-                 matched ? "" : " (failed)");
+                 points.size(), run_ms, (unsigned long long)polls,
+                 run_ms / double(std::max<uint64_t>(polls, 1)), matched ? "" : " (failed)");
 }
 
 }  // namespace
