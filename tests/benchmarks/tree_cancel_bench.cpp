@@ -1,8 +1,9 @@
 // How long an optimal-pair tree build takes to return once its BakeStop is
 // cancelled (issue 27: every stage within 100 ms). The build runs on its own
-// thread; the main thread cancels it at delays spread over the build, whose
-// levels all pair exactly at the default limit, and times cancel() to return.
-//   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8] >> docs/bench/tree_cancel.csv
+// thread; the main thread cancels it at delays spread over the build and times
+// cancel() to return. At 32,768 lights (the default limit) every level pairs
+// exactly; above it the first levels pair approximately.
+//   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8]   (scripts/fault-test.sh tree-cancel)
 // Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms, the
 // full build timed with a live, never-cancelled stop (what the server runs);
 // a "finished" row's latency is negative: the build returned before the cancel.
