@@ -4,6 +4,7 @@
 // This header stays C++17 so the LEMON translation unit can include it
 // (LEMON 1.3.1 does not compile under C++20, SPEC §10).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "lightcuts/result.h"
@@ -35,10 +36,19 @@ struct PerfectMatching {
     std::vector<MatchingBlossom> blossoms;  // laminar family of odd sets
 };
 
+// LEMON's run has no hook to stop it, and one run over a large level takes
+// seconds (issue 27). Its one call into our code inside the run is the weight
+// map: every kWeightReadsPerStopPoll reads, `should_stop` is asked, and true
+// ends the run with an ErrorKind::kCancelled error.
+inline constexpr uint32_t kWeightReadsPerStopPoll = 1024;
+using MatchingStopFn = std::function<bool()>;
+
 // Edges are added to the graph in the given order, so equal inputs give equal
-// results. Fails (naming the problem) on an out-of-range or self-loop edge, a
+// results (with or without `should_stop`: asking it never changes a weight or
+// a step). Fails (naming the problem) on an out-of-range or self-loop edge, a
 // non-finite cost, an odd node count, or a graph without a perfect matching.
 Result<PerfectMatching> min_weight_perfect_matching(uint32_t node_count,
-                                                    const std::vector<MatchingEdge>& edges);
+                                                    const std::vector<MatchingEdge>& edges,
+                                                    const MatchingStopFn& should_stop = {});
 
 }  // namespace lc::bake

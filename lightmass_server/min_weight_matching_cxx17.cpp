@@ -14,9 +14,44 @@
 #include <string>
 
 namespace lc::bake {
+namespace {
+
+// Thrown by StopPollingWeights when asked to stop; never leaves this file.
+struct MatchingStopped {};
+
+// LEMON's weights, read through a map that asks `should_stop` every
+// kWeightReadsPerStopPoll reads and unwinds the run when it says stop. Why an
+// exception: the run's loop is LEMON's, with no hook but this map, and LEMON
+// owns its working memory through its destructor, so unwinding frees it all.
+// The weights read are the EdgeMap's own, so a run that is not stopped takes
+// the same steps, and gives the same matching, as one without the poll.
+class StopPollingWeights {
+public:
+    using Key = lemon::ListGraph::Edge;
+    using Value = double;
+
+    StopPollingWeights(const lemon::ListGraph::EdgeMap<double>& weights,
+                       const MatchingStopFn& should_stop)
+        : weights_(weights), should_stop_(should_stop) {}
+
+    Value operator[](const Key& edge) const {
+        if (should_stop_ && ++reads_ % kWeightReadsPerStopPoll == 0 && should_stop_()) {
+            throw MatchingStopped{};
+        }
+        return weights_[edge];
+    }
+
+private:
+    const lemon::ListGraph::EdgeMap<double>& weights_;
+    const MatchingStopFn& should_stop_;
+    mutable uint32_t reads_ = 0;
+};
+
+}  // namespace
 
 Result<PerfectMatching> min_weight_perfect_matching(uint32_t node_count,
-                                                    const std::vector<MatchingEdge>& edges) {
+                                                    const std::vector<MatchingEdge>& edges,
+                                                    const MatchingStopFn& should_stop) {
     if (node_count % 2 != 0) {
         return make_error("perfect matching needs an even node count, got " +
                           std::to_string(node_count));
@@ -46,10 +81,17 @@ Result<PerfectMatching> min_weight_perfect_matching(uint32_t node_count,
         weight[edge] = -e.cost;
     }
 
-    using Matching =
-        lemon::MaxWeightedPerfectMatching<lemon::ListGraph, lemon::ListGraph::EdgeMap<double>>;
-    Matching matching(graph, weight);
-    if (!matching.run()) {
+    using Matching = lemon::MaxWeightedPerfectMatching<lemon::ListGraph, StopPollingWeights>;
+    const StopPollingWeights polled_weight(weight, should_stop);
+    Matching matching(graph, polled_weight);
+    bool matched = false;
+    try {
+        matched = matching.run();
+    } catch (const MatchingStopped&) {
+        return make_error("the matching of " + std::to_string(node_count) + " nodes was stopped",
+                          ErrorKind::kCancelled);
+    }
+    if (!matched) {
         return make_error("the candidate graph (" + std::to_string(node_count) + " nodes, " +
                           std::to_string(edges.size()) + " edges) has no perfect matching");
     }

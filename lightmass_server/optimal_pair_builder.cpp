@@ -28,6 +28,27 @@ bool pair_exactly(const BuildOptions& options, size_t level_size) {
     return level_size <= options.exact_pairing_limit;
 }
 
+// The level's exact pairing; a level that could not be proven optimal is
+// reported, a stopped one ends the build as cancelled.
+Result<LevelPairing> pair_level_exactly(std::span<const glm::dvec3> points, const BuildOptions& options,
+                                        uint32_t level_number, LightType type, BuildReport& report) {
+    Result<LevelPairing> exact = exact_pairing(points, {.stop = options.stop});
+    if (!exact && exact.error_kind() == ErrorKind::kCancelled) {
+        return make_error("cancelled during optimal-pair level " + std::to_string(level_number) +
+                              " (exact pairing)",
+                          ErrorKind::kCancelled);
+    }
+    if (!exact) return make_error(exact.error());
+    if (!exact->exact) {
+        report.warnings.push_back(
+            std::string("optimal-pair: the exact pairing of level ") + std::to_string(level_number) +
+            " (" + std::to_string(points.size()) + " " + light_type_name(type) +
+            " nodes) could not be proven optimal; cost " + format_double(exact->cost) +
+            ", lower bound " + format_double(exact->lower_bound));
+    }
+    return exact;
+}
+
 }  // namespace
 
 Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint32_t> leaves,
@@ -53,17 +74,9 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
 
         LevelPairing pairing;
         if (pair_exactly(options, level.size())) {
-            Result<LevelPairing> exact = exact_pairing(points);
-            if (!exact) return make_error(exact.error());
+            Result<LevelPairing> exact = pair_level_exactly(points, options, level_number, type, report);
+            if (!exact) return exact.failure();
             pairing = std::move(*exact);
-            if (!pairing.exact) {
-                report.warnings.push_back(
-                    std::string("optimal-pair: the exact pairing of level ") +
-                    std::to_string(level_number) + " (" + std::to_string(level.size()) + " " +
-                    light_type_name(type) + " nodes) could not be proven optimal; cost " +
-                    format_double(pairing.cost) + ", lower bound " +
-                    format_double(pairing.lower_bound));
-            }
         } else {
             pairing = approximate_pairing(points, options.stop);  // stopped: no pairs, caught below
             if (options.pairing == PairingMode::kAuto) {

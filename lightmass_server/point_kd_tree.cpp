@@ -157,17 +157,22 @@ std::vector<double> subtree_min_offsets(const KdTree& tree, std::span<const doub
 }  // namespace
 
 std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
-    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance) {
+    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance,
+    const BakeStop* stop) {
     std::vector<std::pair<uint32_t, uint32_t>> pairs;
     if (points.size() < 2) return pairs;
-    const KdTree tree = build_kd_tree(points);
+    const KdTree tree = build_kd_tree(points, stop);
+    if (stop_requested(stop)) return pairs;
     const std::vector<double> min_offset = subtree_min_offsets(tree, offset);
     const uint32_t n = uint32_t(points.size());
     std::vector<std::vector<uint32_t>> partners(n);
     tbb::parallel_for(
         tbb::blocked_range<uint32_t>(0, n, 64), [&](const tbb::blocked_range<uint32_t>& range) {
+            // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
+            StopPoll poll(stop);
             std::vector<uint32_t> stack;
             for (uint32_t u = range.begin(); u != range.end(); ++u) {
+                if (poll()) return;  // the pairs are dropped
                 const glm::dvec3 p = points[u];
                 const double limit = -tolerance - offset[u];
                 stack.assign(1, 0u);
@@ -209,10 +214,12 @@ KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, co
     if (stop_requested(stop)) return result;
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
                       [&](const tbb::blocked_range<uint32_t>& range) {
-                          if (stop_requested(stop)) return;  // the result is dropped
+                          // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
+                          StopPoll poll(stop);
                           std::vector<Candidate> best;
                           std::vector<std::pair<double, uint32_t>> stack;
                           for (uint32_t i = range.begin(); i != range.end(); ++i) {
+                              if (poll()) return;  // the result is dropped
                               query_neighbors(tree, points, i, result.k_used, best, stack,
                                               &result.neighbors[size_t(i) * result.k_used]);
                           }

@@ -36,7 +36,9 @@ KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, co
 // Every pair u < v with |p_u - p_v| + offset[u] + offset[v] < -tolerance,
 // sorted. The kd-tree keeps each subtree's smallest offset, so a subtree whose
 // nearest possible point already fails the test is skipped.
+// A stop (bake_stop.h) leaves the pairs partial: the caller asks it and drops them.
 std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
-    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance);
+    std::span<const glm::dvec3> points, std::span<const double> offset, double tolerance,
+    const BakeStop* stop = nullptr);
 
 }  // namespace lc::bake

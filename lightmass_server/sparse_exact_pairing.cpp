@@ -94,16 +94,17 @@ struct CertificateCheck {
 // With every reduced cost >= -tolerance and the objectives equal, no perfect
 // matching of the complete graph costs less than this one minus
 // n/2 x tolerance (weak duality).
+// A stop leaves the check partial: the caller asks it and drops the check.
 CertificateCheck check_certificate(std::span<const glm::dvec3> points,
                                    const PerfectMatching& matching, const CandidateGraph& graph,
-                                   double tolerance) {
+                                   double tolerance, const BakeStop* stop) {
     const uint32_t n = uint32_t(points.size());
     const std::span<const double> y = std::span<const double>(matching.node_potential).first(n);
     const BlossomChains chains(matching);
     CertificateCheck check;
     // Half the tolerance: the query rounds differently, so let it return a
     // superset of the pairs the exact test below can reject.
-    for (const auto& [u, v] : pairs_below_negative_offsets(points, y, 0.5 * tolerance)) {
+    for (const auto& [u, v] : pairs_below_negative_offsets(points, y, 0.5 * tolerance, stop)) {
         const double cost = glm::distance(points[u], points[v]);
         if (cost + y[u] + y[v] + chains.shared_value(u, v) >= -tolerance) continue;
         if (graph.contains(u, v)) {
@@ -142,40 +143,61 @@ double largest_cost(const std::vector<MatchingEdge>& edges) {
     return largest;
 }
 
+Error stopped_level(uint32_t n) {
+    return make_error("exact pairing of " + std::to_string(n) + " nodes stopped",
+                      ErrorKind::kCancelled);
+}
+
+// First candidate graph: k nearest neighbours, plus a feasible pairing's edges
+// so a perfect matching always exists, plus the dummy's edges (odd levels).
+// Returns false when the stop was asked (the graph is then partial).
+bool add_first_candidates(std::span<const glm::dvec3> points, const ExactPairingOptions& options,
+                          CandidateGraph& graph, LevelPairing& feasible) {
+    const uint32_t n = uint32_t(points.size());
+    const KnnResult knn = k_nearest_neighbors(points, options.candidate_neighbors, options.stop);
+    if (stop_requested(options.stop)) return false;
+    for (uint32_t u = 0; u < n; ++u) {
+        for (const Neighbor& nb : knn.of(u)) graph.add(u, nb.index);
+    }
+    feasible = approximate_pairing(points, options.stop);
+    if (stop_requested(options.stop)) return false;
+    for (const auto& [u, v] : feasible.pairs) graph.add(u, v);
+    if (n % 2 == 1) {
+        for (uint32_t u = 0; u < n; ++u) graph.add(u, n);
+    }
+    graph.normalize();
+    return true;
+}
+
 }  // namespace
 
 Result<LevelPairing> exact_pairing(std::span<const glm::dvec3> points,
                                    const ExactPairingOptions& options) {
     const uint32_t n = uint32_t(points.size());
     if (n < 2) return trivial_pairing(n);
-    const bool odd = n % 2 == 1;
-    const uint32_t node_count = odd ? n + 1 : n;
-    const uint32_t dummy = n;
+    const uint32_t node_count = n % 2 == 1 ? n + 1 : n;
 
-    // First candidate graph: k nearest neighbours, plus a feasible pairing's
-    // edges so a perfect matching always exists, plus the dummy's edges.
     CandidateGraph graph;
-    const KnnResult knn = k_nearest_neighbors(points, options.candidate_neighbors);
-    for (uint32_t u = 0; u < n; ++u) {
-        for (const Neighbor& nb : knn.of(u)) graph.add(u, nb.index);
-    }
-    const LevelPairing feasible = approximate_pairing(points);
-    for (const auto& [u, v] : feasible.pairs) graph.add(u, v);
-    if (odd) {
-        for (uint32_t u = 0; u < n; ++u) graph.add(u, dummy);
-    }
-    graph.normalize();
+    LevelPairing feasible;
+    if (!add_first_candidates(points, options, graph, feasible)) return stopped_level(n);
+    // LEMON asks every kWeightReadsPerStopPoll weight reads: a few ms of its work.
+    StopPoll poll(options.stop);
+    const MatchingStopFn should_stop =
+        options.stop ? MatchingStopFn([&poll] { return poll(); }) : MatchingStopFn();
 
     LevelPairing pairing;
     for (uint32_t run = 1;; ++run) {
         const std::vector<MatchingEdge> edges = graph.edges(points);
-        Result<PerfectMatching> matching = min_weight_perfect_matching(node_count, edges);
+        Result<PerfectMatching> matching =
+            min_weight_perfect_matching(node_count, edges, should_stop);
+        if (!matching && matching.error_kind() == ErrorKind::kCancelled) return stopped_level(n);
         if (!matching)
             return make_error("exact pairing of " + std::to_string(n) +
                               " nodes: " + matching.error());
 
         const double tolerance = 1e-9 * largest_cost(edges) + 1e-300;
-        const CertificateCheck check = check_certificate(points, *matching, graph, tolerance);
+        const CertificateCheck check = check_certificate(points, *matching, graph, tolerance, options.stop);
+        if (poll.now()) return stopped_level(n);
 
         pairing = pairing_from_mates(points, matching->mate);
         pairing.solver_runs = run;

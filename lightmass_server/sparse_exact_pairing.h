@@ -9,6 +9,7 @@
 
 #include <span>
 
+#include "lightmass_server/bake_stop.h"
 #include "lightmass_server/level_pairing.h"
 #include "lightcuts/result.h"
 
@@ -20,6 +21,9 @@ struct ExactPairingOptions {
     // Re-solves allowed before giving up on the proof (the level is then
     // reported as inexact with a lower bound); each adds all violating edges.
     uint32_t max_solver_runs = 32;
+    // Polled in every step of the level, LEMON's runs included (issue 27);
+    // a stopped level returns ErrorKind::kCancelled. Null: never stops.
+    const BakeStop* stop = nullptr;
 };
 
 // Odd levels carry one node up, chosen optimally: a dummy node joins the graph

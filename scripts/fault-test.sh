@@ -13,11 +13,16 @@
 #       area-light samples (each cancelled 1.5 s into its first stage: cancel
 #       latency, peak RSS), a small bake beside a 10^9-path one, SIGTERM during
 #       a radiosity bake, and a peer silent after opening a channel
+#   scripts/fault-test.sh tree-cancel [--tree-lights 32768] [--cancels 24] [--label before|after]
+#       an optimal-pair build of TREE_LIGHTS lights (every level exact) in
+#       process, cancelled CANCELS times spread over it: milliseconds from
+#       cancel() to the build's return, appended to docs/bench/tree_cancel.csv
 #   scripts/fault-test.sh soak [--minutes 60] [--csv docs/bench/soak_rss.csv]
 #       4 clients bake without pause; the server's RSS is sampled every 2 s
 #   scripts/fault-test.sh all  (kill, stall, then a 10-minute soak)
 # Common: [--server-bin build/bin/lightmass_server] [--client-bin build/bin/editor_client]
-# Every loop is bounded in count and in time. Exits non-zero on a broken check.
+# Every loop is bounded in count and in time. Exits non-zero on a broken check
+# or on a sanitizer report in the servers' log (a sanitizer build's server).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -34,6 +39,9 @@ csv=docs/bench/soak_rss.csv
 budget_mb=512
 hostile_csv=docs/bench/hostile_bake.csv
 hostile_bin=build/bin/hostile_bake_bench
+tree_lights=32768
+cancels=24
+label=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 while [ $# -gt 0 ]; do
     case "$1" in
         --iterations) iterations="$2"; shift 2 ;;
@@ -45,6 +53,9 @@ while [ $# -gt 0 ]; do
         --budget-mb) budget_mb="$2"; shift 2 ;;
         --hostile-csv) hostile_csv="$2"; shift 2 ;;
         --hostile-bin) hostile_bin="$2"; shift 2 ;;
+        --tree-lights) tree_lights="$2"; shift 2 ;;
+        --cancels) cancels="$2"; shift 2 ;;
+        --label) label="$2"; shift 2 ;;
         --server-bin) server_bin="$2"; shift 2 ;;
         --client-bin) client_bin="$2"; shift 2 ;;
         *) echo "unknown option $1" >&2; exit 2 ;;
@@ -237,6 +248,14 @@ run_hostile() {
     hostile_sigterm 4096
 }
 
+# Issue 27: the exact (LEMON) levels of a tree build stop within milliseconds of a cancel.
+run_tree_cancel() {
+    local bench=build/bin/tree_cancel_bench out=docs/bench/tree_cancel.csv
+    [ -x "$bench" ] || { echo "build $bench first (cmake --build build --target tree_cancel_bench)" >&2; return 2; }
+    [ -s "$out" ] || echo "code,lights,cancel_after_ms,outcome,latency_ms,full_build_ms" >"$out"
+    timeout 600 "$bench" "$tree_lights" "$cancels" | sed "s/^/$label,/" | tee -a "$out"
+}
+
 run_soak() {
     make_scene 4096 "$work/soak.gltf"
     start_local_server "$server_bin" "$work" --threads 2 --quiet
@@ -288,11 +307,27 @@ run_soak() {
     [ "$bad" -eq 0 ] && [ "$alive" = yes ]
 }
 
+# Every server of the run logged into $work/server.log; a sanitizer build
+# (cmake --preset asan, --server-bin build-asan/bin/lightmass_server) reports
+# there, LeakSanitizer's at each clean stop. Any report fails the run.
+check_sanitizer_reports() {
+    [ -f "$work/server.log" ] || return 0
+    local reports
+    reports=$(grep -cE "ERROR: (Address|Leak)Sanitizer|runtime error:" "$work/server.log" || true)
+    echo "sanitizer reports in the server's log: $reports"
+    if [ "$reports" -gt 0 ]; then
+        grep -m 5 -E "ERROR: |runtime error:" "$work/server.log"
+        return 1
+    fi
+}
+
 case "$mode" in
     kill) run_kill ;;
     stall) run_stall ;;
     soak) run_soak ;;
     hostile) run_hostile ;;
+    tree-cancel) run_tree_cancel ;;
     all) run_kill; run_stall; minutes=10; run_soak ;;
-    *) sed -n '2,22p' "$0"; exit 2 ;;
+    *) sed -n '2,25p' "$0"; exit 2 ;;
 esac
+check_sanitizer_reports

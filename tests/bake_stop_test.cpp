@@ -6,6 +6,7 @@
 #include "lightmass_server/bake_stop.h"
 
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <memory>
 
@@ -16,6 +17,7 @@
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/radiosity_solver.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
+#include "protocol/channel_records.h"
 #include "tree_invariants.h"
 
 namespace lc::bake {
@@ -156,6 +158,37 @@ TEST(TreeBuildLimits, ApproximatePairingStopsInsideALevel) {
     ASSERT_FALSE(built.ok());
     EXPECT_EQ(built.error_kind(), ErrorKind::kCancelled);
     EXPECT_NE(built.error().find("optimal-pair level 0"), std::string::npos) << built.error();
+}
+
+// The exact levels stop too (LEMON's run is polled from inside: the
+// matching's own test counts its polls), and a stop that is never asked leaves
+// the tree byte for byte what it is without one, at any thread count.
+TEST(TreeBuildLimits, ExactPairingStopsInsideALevelAndALiveStopChangesNoTree) {
+    const std::vector<SceneLight> lights = test::random_lights(3000, 6, LightType::kPoint);
+    BuildOptions options;
+    options.pairing = PairingMode::kExact;
+    options.seed = 3;
+    auto cancelled = cancelled_stop();
+    options.stop = cancelled.get();
+    auto stopped = build_light_tree(lights, options, nullptr);
+    ASSERT_FALSE(stopped.ok());
+    EXPECT_EQ(stopped.error_kind(), ErrorKind::kCancelled);
+    EXPECT_NE(stopped.error().find("optimal-pair level 0 (exact pairing)"), std::string::npos)
+        << stopped.error();
+
+    options.stop = nullptr;
+    auto unstopped = build_light_tree(lights, options, nullptr);
+    ASSERT_TRUE(unstopped.ok()) << unstopped.error();
+    EXPECT_TRUE(unstopped->report.exact);
+    BakeStop live;
+    options.stop = &live;
+    for (const size_t threads : {1u, 2u, 4u}) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        auto built = build_light_tree(lights, options, nullptr);
+        ASSERT_TRUE(built.ok()) << built.error();
+        EXPECT_EQ(encode_result_channel(built->tree), encode_result_channel(unstopped->tree))
+            << threads << " threads";
+    }
 }
 
 TEST(BakePipelineLimits, AStoppedBakeEndsWithTheStopsReason) {

@@ -165,6 +165,71 @@ TEST(MinWeightMatching, RejectsBadInputWithAMessage) {
     EXPECT_TRUE(empty->mate.empty());
 }
 
+// A level's first candidate graph as exact_pairing builds it: 10 nearest
+// neighbours and a feasible pairing's edges, sorted and unique.
+std::vector<MatchingEdge> candidate_edges(const std::vector<glm::dvec3>& points) {
+    std::vector<std::pair<uint32_t, uint32_t>> keys;
+    const KnnResult knn = k_nearest_neighbors(points, 10);
+    for (uint32_t u = 0; u < points.size(); ++u) {
+        for (const Neighbor& nb : knn.of(u)) keys.emplace_back(std::min(u, nb.index), std::max(u, nb.index));
+    }
+    for (const auto& pair : approximate_pairing(points).pairs) keys.push_back(pair);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<MatchingEdge> edges;
+    for (const auto& [u, v] : keys) edges.push_back({u, v, glm::distance(points[u], points[v])});
+    return edges;
+}
+
+// Issue 27: LEMON's run over a large level is stopped from inside, at the
+// first poll after the stop is asked (at most kWeightReadsPerStopPoll weight
+// reads later), and a run that is polled but never stopped is unchanged.
+TEST(MinWeightMatching, AStopEndsTheRunAtThePollThatAskedAndPollingChangesNothing) {
+    const std::vector<glm::dvec3> points = random_points(6000, 27);
+    const std::vector<MatchingEdge> edges = candidate_edges(points);
+    Result<PerfectMatching> plain = min_weight_perfect_matching(6000, edges);
+    ASSERT_TRUE(plain) << plain.error();
+
+    uint64_t polls = 0;
+    Result<PerfectMatching> polled = min_weight_perfect_matching(6000, edges, [&] { return ++polls == 0; });
+    ASSERT_TRUE(polled) << polled.error();
+    EXPECT_EQ(polled->mate, plain->mate);
+    EXPECT_EQ(polled->node_potential, plain->node_potential);
+    EXPECT_EQ(polled->blossoms.size(), plain->blossoms.size());
+    EXPECT_EQ(polled->cost, plain->cost);
+    // Polled throughout the run: its work between two polls is a small part of it.
+    ASSERT_GT(polls, 200u);
+
+    for (const uint64_t stop_at : {uint64_t(1), polls / 2, polls - 1}) {
+        uint64_t asked = 0;
+        Result<PerfectMatching> stopped =
+            min_weight_perfect_matching(6000, edges, [&] { return ++asked >= stop_at; });
+        ASSERT_FALSE(stopped) << "stopped at poll " << stop_at;
+        EXPECT_EQ(stopped.error_kind(), ErrorKind::kCancelled);
+        EXPECT_NE(stopped.error().find("stopped"), std::string::npos) << stopped.error();
+        EXPECT_EQ(asked, stop_at);  // no poll after the one that said stop
+    }
+}
+
+TEST(ExactPairing, AStoppedLevelReturnsCancelledAndALiveStopChangesNothing) {
+    const std::vector<glm::dvec3> points = random_points(3001, 28);
+    BakeStop live;
+    Result<LevelPairing> with_stop = exact_pairing(points, {.stop = &live});
+    Result<LevelPairing> without = exact_pairing(points);
+    ASSERT_TRUE(with_stop && without);
+    EXPECT_EQ(with_stop->pairs, without->pairs);
+    EXPECT_EQ(with_stop->carried, without->carried);
+    EXPECT_TRUE(with_stop->exact);
+
+    BakeStop cancelled;
+    cancelled.cancel();
+    Result<LevelPairing> stopped = exact_pairing(points, {.stop = &cancelled});
+    ASSERT_FALSE(stopped);
+    EXPECT_EQ(stopped.error_kind(), ErrorKind::kCancelled);
+    EXPECT_NE(stopped.error().find("exact pairing of 3001 nodes stopped"), std::string::npos)
+        << stopped.error();
+}
+
 TEST(ExactPairing, MatchesBruteForceForEverySizeUpToTen) {
     for (uint32_t n = 1; n <= 10; ++n) {
         for (uint64_t seed = 1; seed <= 6; ++seed) {
