@@ -42,7 +42,8 @@ Frame run_frame(FrameSchedule& schedule, const FrameInputs& inputs, double gpu_m
     frame.plan = schedule.plan(inputs);
     frame.info.frame_ms = 5.0;
     schedule.finish_frame(frame.plan, frame.info, inputs.frame, inputs.now_ms);
-    if (frame.plan.batch) schedule.report_gpu(frame.plan, gpu_ms_per_pixel * double(frame.plan.batch->pixels()));
+    if (frame.plan.batch)
+        schedule.report_gpu(frame.plan, gpu_ms_per_pixel * double(frame.plan.batch->pixels()));
     return frame;
 }
 

@@ -42,8 +42,9 @@ TEST_F(EditorViewControls, DragsAndTheWheelMoveTheCameraKeepingItsUp) {
     EXPECT_TRUE(controls.apply(orbit, session_, 16.0));
     const RenderCamera orbited = session_.view().camera;
     EXPECT_NE(orbited.eye, start_camera().eye);
-    EXPECT_NEAR(glm::distance(orbited.eye, orbited.target), glm::distance(start_camera().eye, start_camera().target),
-                1e-4f) << "an orbit keeps the distance";
+    EXPECT_NEAR(glm::distance(orbited.eye, orbited.target),
+                glm::distance(start_camera().eye, start_camera().target), 1e-4f)
+        << "an orbit keeps the distance";
     EXPECT_EQ(orbited.up, start_camera().up);
 
     WindowInput dolly;

@@ -4,9 +4,12 @@ namespace lc::client {
 
 const char* refinement_event_name(RefinementEvent::Kind kind) {
     switch (kind) {
-        case RefinementEvent::Kind::kStarted: return "started";
-        case RefinementEvent::Kind::kRestarted: return "restarted";
-        case RefinementEvent::Kind::kCompleted: return "completed";
+        case RefinementEvent::Kind::kStarted:
+            return "started";
+        case RefinementEvent::Kind::kRestarted:
+            return "restarted";
+        case RefinementEvent::Kind::kCompleted:
+            return "completed";
     }
     return "started";
 }
@@ -80,7 +83,8 @@ void FrameSchedule::report_gpu(const FramePlan& plan, double tiles_ms) {
     adaptive_.report_frame(plan.divisor, tiles_ms * pass_pixels / double(plan.batch->pixels()));
 }
 
-void FrameSchedule::finish_frame(const FramePlan& plan, FrameInfo& frame, uint32_t frame_index, double now_ms) {
+void FrameSchedule::finish_frame(const FramePlan& plan, FrameInfo& frame, uint32_t frame_index,
+                                 double now_ms) {
     if (!plan.tiled) {
         adaptive_.report_frame(plan.divisor, frame.frame_ms);
         return;

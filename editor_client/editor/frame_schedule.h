@@ -20,10 +20,10 @@ namespace lc::client {
 struct RefinementEvent {
     enum class Kind { kStarted, kRestarted, kCompleted };
     Kind kind = Kind::kStarted;
-    uint32_t frame = 0;         // 0-based frame of the loop
-    double seconds = 0.0;       // since the loop started
-    double percent = 0.0;       // restarted: of the pass that was refining
-    uint32_t pass = 0;          // restarted: the pass that was refining (0-based)
+    uint32_t frame = 0;    // 0-based frame of the loop
+    double seconds = 0.0;  // since the loop started
+    double percent = 0.0;  // restarted: of the pass that was refining
+    uint32_t pass = 0;     // restarted: the pass that was refining (0-based)
     uint32_t passes = 0;
 };
 
@@ -52,12 +52,12 @@ struct FramePlan {
 
 // What happened since the last frame that decides the next one.
 struct FrameInputs {
-    RenderSettings settings;          // the view's, at full size
-    uint64_t renderer_updates = 0;    // RendererSync::updates(): the lights or tree changed
-    bool image_lost = false;          // a screenshot overwrote the unfinished image
-    bool moved = false;               // the camera moved this frame
-    uint32_t frame = 0;               // 0-based frame of the loop
-    double now_ms = 0.0;              // since the loop started
+    RenderSettings settings;        // the view's, at full size
+    uint64_t renderer_updates = 0;  // RendererSync::updates(): the lights or tree changed
+    bool image_lost = false;        // a screenshot overwrote the unfinished image
+    bool moved = false;             // the camera moved this frame
+    uint32_t frame = 0;             // 0-based frame of the loop
+    double now_ms = 0.0;            // since the loop started
 };
 
 class FrameSchedule {

@@ -1,7 +1,5 @@
 #include "editor_client/window/editor_loop.h"
 
-#include "lightcuts/status_macros.h"
-
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -22,6 +20,7 @@
 #include "editor_client/window/renderer_sync.h"
 #include "editor_client/window/view_auto_exposure.h"
 #include "editor_client/window/view_controls.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 namespace {
@@ -61,7 +60,8 @@ FrameScheduleOptions schedule_options(const EditorLoopOptions& options, uint32_t
 // quits or the frame count is reached.
 class EditorLoop {
 public:
-    EditorLoop(Window& window, const vk::Context& context, EditorSession& session, const EditorLoopOptions& options)
+    EditorLoop(Window& window, const vk::Context& context, EditorSession& session,
+               const EditorLoopOptions& options)
         : window_(window),
           context_(context),
           session_(session),
@@ -122,12 +122,14 @@ Status EditorLoop::prepare() {
         return make_error("the frame budget must be a positive number of milliseconds");
     schedule_.emplace(schedule_options(options_, renderer_->workgroup_size()));
     if (options_.progressive) {
-        Result<ProgressiveCanvas> made = ProgressiveCanvas::create(context_.device(), options_.width, options_.height);
+        Result<ProgressiveCanvas> made =
+            ProgressiveCanvas::create(context_.device(), options_.width, options_.height);
         if (!made) return make_error(made.error());
         canvas_.emplace(std::move(made).value());
     }
     host_ = std::make_unique<EditorLoopHost>(*renderer_, *sync_, options_.width, options_.height, *schedule_);
-    Result<std::unique_ptr<FramePresenter>> presenter = FramePresenter::create(context_, window_, options_.panels);
+    Result<std::unique_ptr<FramePresenter>> presenter =
+        FramePresenter::create(context_, window_, options_.panels);
     if (!presenter) return make_error(presenter.error());
     presenter_ = std::move(presenter).value();
     return Ok{};
@@ -219,12 +221,13 @@ Status EditorLoop::render(const FramePlan& plan) {
     DisplayWrite written;
     if (plan.tiled) {
         if (plan.batch)
-            recorded = renderer_->record_regions(*cmd, plan.settings, plan.batch->tiles, !plan.batch->new_image);
+            recorded =
+                renderer_->record_regions(*cmd, plan.settings, plan.batch->tiles, !plan.batch->new_image);
         if (recorded)
-            canvas_->record_tiles(*cmd, renderer_->display_image(),
-                                  plan.batch ? std::span<const PixelRegion>(plan.batch->tiles)
-                                             : std::span<const PixelRegion>(),
-                                  plan.divisor);
+            canvas_->record_tiles(
+                *cmd, renderer_->display_image(),
+                plan.batch ? std::span<const PixelRegion>(plan.batch->tiles) : std::span<const PixelRegion>(),
+                plan.divisor);
         shown = &canvas_->image();
         written = {ProgressiveCanvas::kWriteStage, ProgressiveCanvas::kWriteAccess};
     } else {
@@ -282,7 +285,8 @@ Result<EditorLoopSummary> EditorLoop::finish() {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     const Clock::time_point ended = Clock::now();
     summary_.seconds = std::chrono::duration<double>(ended - started_).count();
-    if (steady_since_) summary_.steady_seconds = std::chrono::duration<double>(ended - *steady_since_).count();
+    if (steady_since_)
+        summary_.steady_seconds = std::chrono::duration<double>(ended - *steady_since_).count();
     if (!options_.screenshot.empty()) LC_RETURN_IF_ERROR(host_->screenshot(options_.screenshot));
     if (!options_.window_screenshot.empty()) LC_RETURN_IF_ERROR(save_window_screenshot());
     summary_.screenshots = host_->count();

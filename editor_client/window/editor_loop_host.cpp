@@ -1,12 +1,11 @@
 #include "editor_client/window/editor_loop_host.h"
 
-#include "lightcuts/status_macros.h"
-
 #include <system_error>
 #include <vector>
 
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/passes/temporal_history.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 
@@ -18,7 +17,8 @@ Status write_rendered_image(const Renderer& renderer, const std::filesystem::pat
         if (!hdr) return make_error(hdr.error());
         FloatImage image{renderer.width(), renderer.height(), {}};
         image.rgb.reserve(hdr->size() / 4 * 3);
-        for (size_t i = 0; i < hdr->size(); i += 4) image.rgb.insert(image.rgb.end(), &(*hdr)[i], &(*hdr)[i + 3]);
+        for (size_t i = 0; i < hdr->size(); i += 4)
+            image.rgb.insert(image.rgb.end(), &(*hdr)[i], &(*hdr)[i + 3]);
         return write_pfm(path, image);
     }
     Result<std::vector<uint8_t>> pixels = renderer.read_display();

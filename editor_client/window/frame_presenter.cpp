@@ -1,12 +1,11 @@
 #include "editor_client/window/frame_presenter.h"
 
-#include "lightcuts/status_macros.h"
-
 #include <chrono>
 #include <thread>
 #include <utility>
 
 #include "editor_client/vk/vk_result.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 
@@ -24,8 +23,8 @@ Result<std::unique_ptr<FramePresenter>> FramePresenter::create(const vk::Context
         context, window, glfw, *cmd, std::move(frame_done).value(), std::move(image_ready).value()));
 }
 
-FramePresenter::FramePresenter(const vk::Context& context, Window& window, GlfwWindow* glfw, VkCommandBuffer cmd,
-                               vk::Fence frame_done, vk::Semaphore image_ready)
+FramePresenter::FramePresenter(const vk::Context& context, Window& window, GlfwWindow* glfw,
+                               VkCommandBuffer cmd, vk::Fence frame_done, vk::Semaphore image_ready)
     : context_(context),
       window_(window),
       glfw_(glfw),
@@ -74,7 +73,8 @@ Status FramePresenter::present(const Status& recorded, const vk::Image& shown, D
     if (recorded && presenting_) {
         const VkImage target = presentation_->swapchain.images()[image_index_];
         if (draw_panels) {
-            record_blit(cmd_, shown, ui_->composite().handle(), presentation_->swapchain.extent(), true, written);
+            record_blit(cmd_, shown, ui_->composite().handle(), presentation_->swapchain.extent(), true,
+                        written);
             ui_->record(cmd_, target);
         } else {
             record_blit(cmd_, shown, target, presentation_->swapchain.extent(), false, written);

@@ -22,7 +22,8 @@ namespace lc::client {
 class FramePresenter {
 public:
     // `panels`: draw the ImGui panels (a GlfwWindow only; ignored otherwise).
-    static Result<std::unique_ptr<FramePresenter>> create(const vk::Context& context, Window& window, bool panels);
+    static Result<std::unique_ptr<FramePresenter>> create(const vk::Context& context, Window& window,
+                                                          bool panels);
 
     // A swapchain image to draw into, made when the swapchain is (re)made with
     // the ImGui layer sized to it. False: skip this frame (the window is

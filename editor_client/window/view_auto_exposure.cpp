@@ -1,11 +1,10 @@
 #include "editor_client/window/view_auto_exposure.h"
 
-#include "lightcuts/status_macros.h"
-
 #include <span>
 #include <vector>
 
 #include "editor_client/render/error_stats.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 

@@ -25,7 +25,8 @@ public:
 
 private:
     Status tone_map_again(FramePlan& plan, FrameSchedule& schedule, Renderer& renderer,
-                          const EditorSession& session, const vk::Context& context, ProgressiveCanvas& canvas);
+                          const EditorSession& session, const vk::Context& context,
+                          ProgressiveCanvas& canvas);
 
     bool pending_;
     float initial_;  // the view's exposure when the loop started
