@@ -535,18 +535,8 @@ void run_render(const RenderOptions& options) {
     print_report(stats, options, request, command_ms);
 }
 
-}  // namespace
-
-void add_render_command(CLI::App& app) {
-    auto options = std::make_shared<RenderOptions>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
-    cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
-        ->required();
-    add_gltf_load_flags(*cmd, options->gltf);
-    auto* tree =
-        cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
-    options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
-    tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
+// --mode and the cut: criterion, error, search, representatives, shadows.
+void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--mode", options->mode,
                     "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
                     "fixed shadow-ray budget) or error (relative error of lightcuts "
@@ -589,6 +579,10 @@ void add_render_command(CLI::App& app) {
                     "JSON says why), on or off")
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
+}
+
+// --sweep-error and --compare-reference: the error against the reference.
+void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--sweep-error", options->sweep_error,
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
@@ -598,6 +592,10 @@ void add_render_command(CLI::App& app) {
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");
+}
+
+// The image: size, camera, exposure and the files written.
+void add_image_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--size", options->size, "Image size WxH")->capture_default_str();
     auto* camera = cmd->add_option("--camera", options->camera,
                                    "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
@@ -609,6 +607,10 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("-o,--output", options->output, "8-bit PNG to write")->required();
     cmd->add_option("--float", options->float_output, "Linear float PFM to write");
     cmd->add_option("--stats", options->stats, "Statistics JSON to write");
+}
+
+// Eye rays per pixel, strides, and the real-time mode's frames.
+void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--spp", options->spp,
                     "Eye rays per pixel, jittered (seeded) and averaged into the pixel")
         ->check(CLI::Range(1u, 1024u))
@@ -647,6 +649,24 @@ void add_render_command(CLI::App& app) {
                     "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
                     "plain mean of the frames, as the convergence benchmark measures it)")
         ->capture_default_str();
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
+    cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
+        ->required();
+    add_gltf_load_flags(*cmd, options->gltf);
+    auto* tree =
+        cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
+    options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
+    tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
+    add_mode_flags(cmd, options.get());
+    add_measurement_flags(cmd, options.get());
+    add_image_flags(cmd, options.get());
+    add_sampling_flags(cmd, options.get());
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_render(*options); });
