@@ -597,10 +597,9 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
 // The image: size, camera, exposure and the files written.
 void add_image_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--size", options->size, "Image size WxH")->capture_default_str();
-    auto* camera = cmd->add_option("--camera", options->camera,
-                                   "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
-    cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")
-        ->excludes(camera);
+    auto* camera =
+        cmd->add_option("--camera", options->camera, "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
+    cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")->excludes(camera);
     cmd->add_option("--exposure", options->exposure,
                     "Linear exposure before the tone curve (default: automatic, the log-average "
                     "luminance of the lit pixels maps to 0.18)");
@@ -621,8 +620,7 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "cuts: CPU lightcuts at sparse samples, interpolated between)")
         ->check(CLI::IsMember({"gpu", "lightcuts", "reconstruction"}))
         ->capture_default_str();
-    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")
-        ->capture_default_str();
+    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")->capture_default_str();
     cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
         ->check(CLI::Range(1u, 256u))
         ->capture_default_str();
@@ -659,8 +657,7 @@ void add_render_command(CLI::App& app) {
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
         ->required();
     add_gltf_load_flags(*cmd, options->gltf);
-    auto* tree =
-        cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
+    auto* tree = cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
     options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     add_mode_flags(cmd, options.get());
