@@ -41,7 +41,8 @@ Status ClientOutputs::apply_one(const ClientAction& action) {
 }
 
 Status ClientOutputs::open_dump(const client_action::OpenDump& open) {
-    if (options_.result_dump.empty()) return make_error("the bake writes a dump but was given no path for it");
+    if (options_.result_dump.empty())
+        return make_error("the bake writes a dump but was given no path for it");
     Result<DumpWriter> dump = DumpWriter::open(options_.result_dump, open.channel_name, open.total_bytes);
     if (!dump) return dump.failure();
     dump_.emplace(std::move(dump.value()));

@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "editor_client/bake/bake_client.h"
+#include "editor_client/bake/bake_outcome.h"
 #include "editor_client/bake/client_action.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
