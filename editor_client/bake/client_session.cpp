@@ -149,74 +149,93 @@ void ClientSession::on_bake_message(const Message& m) {
         finish(make_error(e->code == ErrorCode::kCancelled ? "bake cancelled" : "server: " + e->text,
                           outcome_of(e->code)));
     } else if (auto* open = std::get_if<OpenChannelMsg>(&m)) {
-        auto name = ChannelName::parse(open->name);
-        if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
-            return finish(make_error("server opened an unexpected channel '" + open->name + "' (expected version " +
-                                     kLightcutsVersionGuid.to_hex() + ", extension ." + kLightcutsExtension + ")"));
-        if (result_channel_id_) return finish(make_error("server opened a second result channel"));
-        result_channel_id_ = open->channel_id;
-        outcome_.result_channel_name = open->name;
-        expected_bytes_ = open->total_bytes;
-        download_start_ = Clock::now();
-        if (options_.write_dump) {
-            actions_.push_back(client_action::OpenDump{open->name, open->total_bytes});
-            dump_open_ = true;
-        }
+        on_result_open(*open);
     } else if (auto* write = std::get_if<WriteChannelMsg>(&m)) {
-        if (!result_channel_id_ || write->channel_id != *result_channel_id_)
-            return finish(make_error("server wrote to channel " + std::to_string(write->channel_id) +
-                                     " which is not open"));
-        const std::span<const uint8_t> data = write->bytes();
-        if (write->offset != result_received_ || result_received_ + data.size() > expected_bytes_)
-            return finish(make_error("result channel out of order or longer than announced"));
-        if (Status s = reader_.consume(data); !s) return finish(make_error("result channel: " + s.error()));
-        result_received_ += data.size();
-        if (dump_open_) actions_.push_back(client_action::AppendDump{data});
-        if (options_.keep_result_channel || options_.record_channels)
-            result_bytes_.insert(result_bytes_.end(), data.begin(), data.end());
-        if (reader_.nodes_expected() > 0) {
-            float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
-                        static_cast<float>(reader_.nodes_expected());
-            actions_.push_back(client_action::ReportProgress{ProgressMsg{options_.request.bake_id, "receiving", pct}});
-        }
+        on_result_write(*write);
     } else if (auto* close = std::get_if<CloseChannelMsg>(&m)) {
         if (!result_channel_id_ || close->channel_id != *result_channel_id_)
             return finish(make_error("server closed a channel that is not open"));
         channel_closed_ = true;
     } else if (auto* done = std::get_if<BakeDoneMsg>(&m)) {
-        if (!channel_closed_) return finish(make_error("BakeDone arrived before the result channel was closed"));
-        const size_t node_count = reader_.nodes_received();
-        const Clock::time_point import_start = Clock::now();
-        if (options_.decode_tree) {
-            Result<LightTree> tree = reader_.finish();
-            if (!tree) return finish(make_error("result channel: " + tree.error()));
-            outcome_.tree = std::move(tree.value());
-        } else if (Status valid = reader_.finish_validation(); !valid) {
-            return finish(make_error("result channel: " + valid.error()));
-        }
-        outcome_.import_ms = ms_since(import_start);
-        if (node_count != done->node_count)
-            return finish(make_error("BakeDone announces " + std::to_string(done->node_count) +
-                                     " nodes, channel held " + std::to_string(node_count)));
-        outcome_.done = *done;
-        outcome_.download_ms = ms_since(download_start_);
-        if (options_.record_channels) {
-            // Kept for the outcome too: the recording gets a copy (--record is for tests' data).
-            std::vector<uint8_t> recorded =
-                options_.keep_result_channel ? result_bytes_ : std::move(result_bytes_);
-            actions_.push_back(client_action::RecordChannel{outcome_.result_channel_name, std::move(recorded)});
-        }
-        if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
-        result_bytes_ = std::vector<uint8_t>();
-        if (dump_open_) {
-            actions_.push_back(client_action::CommitDump{});
-            dump_open_ = false;
-            dump_committing_ = true;
-        }
-        finish(std::move(outcome_));
+        on_bake_done(*done);
     } else {
         finish(make_error(std::string("unexpected message from the server: ") + message_name(m)));
     }
+}
+
+// The result channel: its name checked, the dump opened when one is written.
+void ClientSession::on_result_open(const OpenChannelMsg& open) {
+    auto name = ChannelName::parse(open.name);
+    if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
+        return finish(make_error("server opened an unexpected channel '" + open.name +
+                                 "' (expected version " + kLightcutsVersionGuid.to_hex() + ", extension ." +
+                                 kLightcutsExtension + ")"));
+    if (result_channel_id_) return finish(make_error("server opened a second result channel"));
+    result_channel_id_ = open.channel_id;
+    outcome_.result_channel_name = open.name;
+    expected_bytes_ = open.total_bytes;
+    download_start_ = Clock::now();
+    if (options_.write_dump) {
+        actions_.push_back(client_action::OpenDump{open.name, open.total_bytes});
+        dump_open_ = true;
+    }
+}
+
+// A chunk of the result: in order, within the announced size, its records
+// valid; appended to the dump and kept where the outcome or a recording needs it.
+void ClientSession::on_result_write(const WriteChannelMsg& write) {
+    if (!result_channel_id_ || write.channel_id != *result_channel_id_)
+        return finish(
+            make_error("server wrote to channel " + std::to_string(write.channel_id) + " which is not open"));
+    const std::span<const uint8_t> data = write.bytes();
+    if (write.offset != result_received_ || result_received_ + data.size() > expected_bytes_)
+        return finish(make_error("result channel out of order or longer than announced"));
+    if (Status s = reader_.consume(data); !s) return finish(make_error("result channel: " + s.error()));
+    result_received_ += data.size();
+    if (dump_open_) actions_.push_back(client_action::AppendDump{data});
+    if (options_.keep_result_channel || options_.record_channels)
+        result_bytes_.insert(result_bytes_.end(), data.begin(), data.end());
+    if (reader_.nodes_expected() > 0) {
+        float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
+                    static_cast<float>(reader_.nodes_expected());
+        actions_.push_back(
+            client_action::ReportProgress{ProgressMsg{options_.request.bake_id, "receiving", pct}});
+    }
+}
+
+// The tree complete and as large as BakeDone says: the outcome, recorded and
+// its dump committed where asked.
+void ClientSession::on_bake_done(const BakeDoneMsg& done) {
+    if (!channel_closed_) return finish(make_error("BakeDone arrived before the result channel was closed"));
+    const size_t node_count = reader_.nodes_received();
+    const Clock::time_point import_start = Clock::now();
+    if (options_.decode_tree) {
+        Result<LightTree> tree = reader_.finish();
+        if (!tree) return finish(make_error("result channel: " + tree.error()));
+        outcome_.tree = std::move(tree.value());
+    } else if (Status valid = reader_.finish_validation(); !valid) {
+        return finish(make_error("result channel: " + valid.error()));
+    }
+    outcome_.import_ms = ms_since(import_start);
+    if (node_count != done.node_count)
+        return finish(make_error("BakeDone announces " + std::to_string(done.node_count) +
+                                 " nodes, channel held " + std::to_string(node_count)));
+    outcome_.done = done;
+    outcome_.download_ms = ms_since(download_start_);
+    if (options_.record_channels) {
+        // Kept for the outcome too: the recording gets a copy (--record is for tests' data).
+        std::vector<uint8_t> recorded =
+            options_.keep_result_channel ? result_bytes_ : std::move(result_bytes_);
+        actions_.push_back(client_action::RecordChannel{outcome_.result_channel_name, std::move(recorded)});
+    }
+    if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
+    result_bytes_ = std::vector<uint8_t>();
+    if (dump_open_) {
+        actions_.push_back(client_action::CommitDump{});
+        dump_open_ = false;
+        dump_committing_ = true;
+    }
+    finish(std::move(outcome_));
 }
 
 void ClientSession::cancel() {

@@ -94,6 +94,9 @@ private:
     std::optional<Message> next_upload_message();
     void on_hello_reply(const Message& message);
     void on_bake_message(const Message& message);
+    void on_result_open(const OpenChannelMsg& open);
+    void on_result_write(const WriteChannelMsg& write);
+    void on_bake_done(const BakeDoneMsg& done);
     void finish(Result<BakeOutcome> result);
 
     struct UploadChannel {
