@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <string>
+#include <variant>
 
 #include "protocol/asio.h"
 #include "lightmass_server/mpi/mpi_flags.h"
@@ -44,16 +46,15 @@ bool write_port_file(const std::filesystem::path& path, uint16_t port) {
     return !ec;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
+// The command line's values, before they are checked into ServerOptions.
+struct ServerFlags {
     std::string listen = "127.0.0.1:0";
     std::string port_file;
     std::string token_file;
     std::string tls_cert;
     std::string tls_key;
     std::string record_dir;
+    std::string radiosity_out;
     unsigned threads = 1;
     int read_timeout_ms = 30000;
     int idle_timeout_ms = 600000;
@@ -64,89 +65,94 @@ int main(int argc, char** argv) {
     unsigned max_bake_seconds = 600;
     unsigned max_concurrent_bakes = 0;
     bool quiet = false;
-    app.add_option("--listen", listen, "HOST:PORT to listen on (port 0: any free port)")
+    lc::bake::MpiLaunchOptions mpi;
+};
+
+void add_server_flags(CLI::App& app, ServerFlags& flags) {
+    app.add_option("--listen", flags.listen, "HOST:PORT to listen on (port 0: any free port)")
         ->capture_default_str();
-    app.add_option("--port-file", port_file, "Write the port number to this file once listening");
-    app.add_option("--threads", threads, "Bake worker threads, the builders' parallel loops included")
+    app.add_option("--port-file", flags.port_file, "Write the port number to this file once listening");
+    app.add_option("--threads", flags.threads, "Bake worker threads, the builders' parallel loops included")
         ->capture_default_str()
         ->check(CLI::Range(1u, 256u));
-    app.add_option("--record", record_dir, "Write every channel received and sent as a dump file here");
-    std::string radiosity_out;
-    app.add_option("--radiosity-out", radiosity_out,
+    app.add_option("--record", flags.record_dir, "Write every channel received and sent as a dump file here");
+    app.add_option("--radiosity-out", flags.radiosity_out,
                    "Write each radiosity bake's patches, with their radiosity per vertex, to this PLY file");
-    app.add_option("--token-file", token_file,
+    app.add_option("--token-file", flags.token_file,
                    "Clients must present this token (required to listen off loopback)");
     auto* cert_opt =
-        app.add_option("--tls-cert", tls_cert,
+        app.add_option("--tls-cert", flags.tls_cert,
                        "Serve TLS with this PEM certificate chain (required to listen off loopback)");
-    auto* key_opt = app.add_option("--tls-key", tls_key, "PEM private key of --tls-cert");
+    auto* key_opt = app.add_option("--tls-key", flags.tls_key, "PEM private key of --tls-cert");
     cert_opt->needs(key_opt);
     key_opt->needs(cert_opt);
-    app.add_option("--read-timeout-ms", read_timeout_ms, "Drop a peer stalled mid-frame after this long")
+    app.add_option("--read-timeout-ms", flags.read_timeout_ms, "Drop a peer stalled mid-frame after this long")
         ->capture_default_str()->check(CLI::PositiveNumber);
-    app.add_option("--idle-timeout-ms", idle_timeout_ms, "Drop a peer silent this long with nothing running")
+    app.add_option("--idle-timeout-ms", flags.idle_timeout_ms, "Drop a peer silent this long with nothing running")
         ->capture_default_str()->check(CLI::PositiveNumber);
-    app.add_option("--frame-timeout-ms", frame_timeout_ms,
+    app.add_option("--frame-timeout-ms", flags.frame_timeout_ms,
                    "Drop a peer whose frame has not arrived whole this long after its first byte")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    app.add_option("--connect-timeout-ms", connect_timeout_ms,
+    app.add_option("--connect-timeout-ms", flags.connect_timeout_ms,
                    "Drop a peer that has not finished the TLS handshake and Hello this long after connecting")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    app.add_option("--max-connections", max_connections, "Answer connections beyond this many 'server busy'")
+    app.add_option("--max-connections", flags.max_connections, "Answer connections beyond this many 'server busy'")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    app.add_option("--memory-budget-mb", memory_budget_mb,
+    app.add_option("--memory-budget-mb", flags.memory_budget_mb,
                    "MiB of channels, stored scenes and running bakes' estimated peaks over all connections; "
                    "beyond: 'server busy' (or 'too large' for a bake that could never fit)")
         ->capture_default_str()
         ->check(CLI::PositiveNumber);
-    app.add_option("--max-bake-seconds", max_bake_seconds,
+    app.add_option("--max-bake-seconds", flags.max_bake_seconds,
                    "Stop a bake still running this many seconds after its request, with an error saying so")
         ->capture_default_str()
         ->check(CLI::Range(1u, 7u * 24u * 3600u));
-    app.add_option("--max-concurrent-bakes", max_concurrent_bakes,
+    app.add_option("--max-concurrent-bakes", flags.max_concurrent_bakes,
                    "Big bakes run at once (small ones have a lane of their own); 0: one per --threads cores, "
                    "at most one per 256 MiB of --memory-budget-mb")
         ->capture_default_str()
         ->check(CLI::Range(0u, 256u));
-    app.add_flag("--quiet", quiet, "Log warnings and errors only");
-    lc::bake::MpiLaunchOptions mpi;
-    lc::bake::add_mpi_flags(app, mpi);
-    CLI11_PARSE(app, argc, argv);
+    app.add_flag("--quiet", flags.quiet, "Log warnings and errors only");
+    lc::bake::add_mpi_flags(app, flags.mpi);
+}
 
-    spdlog::set_default_logger(spdlog::stderr_color_mt("lightmass"));
-    spdlog::set_level(quiet ? spdlog::level::warn : spdlog::level::info);
-
+// The checked options, or the exit status of a command line that names a problem.
+std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& flags) {
     lc::bake::ServerOptions options;
-    if (!split_host_port(listen, options.host, options.port)) {
-        std::cerr << "error: --listen expects HOST:PORT, got '" << listen << "'\n";
+    if (!split_host_port(flags.listen, options.host, options.port)) {
+        std::cerr << "error: --listen expects HOST:PORT, got '" << flags.listen << "'\n";
         return 2;
     }
-    options.bake_threads = threads;
-    options.record_dir = record_dir;
-    options.radiosity_out = radiosity_out;
-    options.read_timeout = std::chrono::milliseconds(read_timeout_ms);
-    options.idle_timeout = std::chrono::milliseconds(idle_timeout_ms);
-    options.frame_timeout = std::chrono::milliseconds(frame_timeout_ms);
-    options.connect_timeout = std::chrono::milliseconds(connect_timeout_ms);
-    options.max_connections = max_connections;
-    options.memory_budget_bytes = memory_budget_mb << 20;
-    options.max_bake_time = std::chrono::seconds(max_bake_seconds);
-    options.max_concurrent_bakes = max_concurrent_bakes;
-    options.tls_certificate = tls_cert;
-    options.tls_private_key = tls_key;
-    options.mpi = mpi;
-    if (!token_file.empty()) {
-        auto token = lc::bake::read_token_file(token_file);
+    options.bake_threads = flags.threads;
+    options.record_dir = flags.record_dir;
+    options.radiosity_out = flags.radiosity_out;
+    options.read_timeout = std::chrono::milliseconds(flags.read_timeout_ms);
+    options.idle_timeout = std::chrono::milliseconds(flags.idle_timeout_ms);
+    options.frame_timeout = std::chrono::milliseconds(flags.frame_timeout_ms);
+    options.connect_timeout = std::chrono::milliseconds(flags.connect_timeout_ms);
+    options.max_connections = flags.max_connections;
+    options.memory_budget_bytes = flags.memory_budget_mb << 20;
+    options.max_bake_time = std::chrono::seconds(flags.max_bake_seconds);
+    options.max_concurrent_bakes = flags.max_concurrent_bakes;
+    options.tls_certificate = flags.tls_cert;
+    options.tls_private_key = flags.tls_key;
+    options.mpi = flags.mpi;
+    if (!flags.token_file.empty()) {
+        auto token = lc::bake::read_token_file(flags.token_file);
         if (!token) {
             std::cerr << "error: " << token.error() << "\n";
             return 2;
         }
         options.token = token.value();
     }
+    return options;
+}
 
+// Listens, says where ("listening on HOST:PORT" first on stdout), and serves until a signal stops it.
+int serve(const lc::bake::ServerOptions& options, const std::string& port_file) {
     lc::bake::Server server(options);
     // Handle signals before announcing the address: a launcher may stop us at once.
     lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM);
@@ -174,4 +180,19 @@ int main(int argc, char** argv) {
     server.run();
     spdlog::info("stopped");
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
+    ServerFlags flags;
+    add_server_flags(app, flags);
+    CLI11_PARSE(app, argc, argv);
+
+    spdlog::set_default_logger(spdlog::stderr_color_mt("lightmass"));
+    spdlog::set_level(flags.quiet ? spdlog::level::warn : spdlog::level::info);
+    std::variant<lc::bake::ServerOptions, int> options = server_options(flags);
+    if (const int* status = std::get_if<int>(&options)) return *status;
+    return serve(std::get<lc::bake::ServerOptions>(options), flags.port_file);
 }

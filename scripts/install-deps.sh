@@ -21,6 +21,8 @@ PACKAGES=(
   glslang-tools spirv-tools spirv-cross libglfw3-dev libimgui-dev
   # headless window tests, plots, test certificates for TLS
   xvfb xauth python3-matplotlib python3-numpy openssl
+  # scripts/long-functions.sh (function lengths for review)
+  universal-ctags
 )
 
 SUDO=""

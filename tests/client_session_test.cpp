@@ -1,6 +1,8 @@
 // The bake client's protocol state machine with no socket: what it sends is
-// pulled with next_message(), the server's answers are pushed in. Outcomes are
-// checked by their ErrorKind, never their text.
+// pulled with next_message(), the server's answers are pushed in, and what it
+// asks of the I/O layer comes out as ClientActions (client_action.h), checked
+// here as ServerSession's are; the dump tests apply them with ClientOutputs,
+// as bake_client.cpp does. Outcomes are checked by their ErrorKind, never their text.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "editor_client/bake/client_outputs.h"
 #include "editor_client/bake/client_session.h"
 #include "lightmass_server/result_stream.h"
 #include "lightmass_server/tree_builder.h"
@@ -56,6 +59,28 @@ void upload(ClientSession& session) {
     ASSERT_FALSE(upload.empty());
     ASSERT_TRUE(std::holds_alternative<BakeRequestMsg>(upload.back()));
     ASSERT_EQ(session.stage(), ClientSession::Stage::kBaking);
+}
+
+// The I/O layer's part without a socket: the session's actions applied after
+// each call, a failure handed back to the session, as bake_client.cpp does.
+void apply_actions(ClientSession& session, ClientOutputs& outputs) {
+    Status applied = outputs.apply(session.take_actions());
+    if (applied) return;
+    session.fail_outputs(applied.failure());
+    ASSERT_TRUE(outputs.apply(session.take_actions()));
+}
+
+void deliver(ClientSession& session, ClientOutputs& outputs, const Message& message) {
+    session.on_message(message);
+    apply_actions(session, outputs);
+}
+
+template <typename A>
+std::vector<A> actions_of(const ClientActions& actions) {
+    std::vector<A> matching;
+    for (const ClientAction& action : actions)
+        if (const A* a = std::get_if<A>(&action)) matching.push_back(*a);
+    return matching;
 }
 
 // What a server sends for a finished bake of `lights`: the result channel and BakeDone.
@@ -144,19 +169,28 @@ TEST(ClientSession, SendsTheEnvironmentChannelAfterTheSceneAndNamesIt) {
 
 TEST(ClientSession, ReceivesProgressWarningsAndTheTree) {
     const std::vector<SceneLight> lights = scene_lights();
+    ClientSession session(lights, kSceneGuid, session_options());
+    upload(session);
+    EXPECT_TRUE(session.take_actions().empty()) << "nothing to record or show during the upload";
+
     std::vector<std::string> stages;
     std::vector<std::string> warnings;
-    ClientSessionOptions options = session_options();
-    options.on_progress = [&](const ProgressMsg& progress) { stages.push_back(progress.stage); };
-    options.on_warning = [&](const std::string& text) { warnings.push_back(text); };
-    ClientSession session(lights, kSceneGuid, options);
-    upload(session);
-
+    const auto collect = [&] {
+        for (const ClientAction& action : session.take_actions()) {
+            if (auto* p = std::get_if<client_action::ReportProgress>(&action)) stages.push_back(p->progress.stage);
+            else if (auto* w = std::get_if<client_action::ReportWarning>(&action)) warnings.push_back(w->text);
+            else ADD_FAILURE() << "only progress and warnings without --record or a dump, got action "
+                               << action.index();
+        }
+    };
     session.on_message(ProgressMsg{kBake, "queued", 0.0f});
+    collect();
     session.on_message(WarningMsg{kBake, "2 classic lights left out"});
+    collect();
     for (const Message& message : result_messages(lights)) {
         ASSERT_FALSE(session.finished());
         session.on_message(message);
+        collect();
     }
     ASSERT_TRUE(session.finished());
     EXPECT_TRUE(session.succeeded());
@@ -201,14 +235,15 @@ TEST(ClientSession, ValidatesWithoutDecodingTheTreeWhenAsked) {
     ClientSessionOptions options = session_options();
     options.keep_result_channel = false;
     options.decode_tree = false;
-    options.result_dump = dir / "tree.lcut";
+    options.write_dump = true;
+    ClientOutputs outputs({.result_dump = dir / "tree.lcut"});
     ClientSession session(lights, kSceneGuid, options);
     upload(session);
-    for (const Message& message : result) session.on_message(message);
+    for (const Message& message : result) deliver(session, outputs, message);
     Result<BakeOutcome> outcome = session.take_result();
     ASSERT_TRUE(outcome) << outcome.error();
     EXPECT_TRUE(outcome->tree.nodes.empty());
-    Result<ChannelDump> dump = read_dump(options.result_dump);
+    Result<ChannelDump> dump = read_dump(dir / "tree.lcut");
     ASSERT_TRUE(dump) << dump.error();
     Result<LightTree> tree = decode_result_channel(dump->payload);
     ASSERT_TRUE(tree) << tree.error();
@@ -220,17 +255,17 @@ TEST(ClientSession, ValidatesWithoutDecodingTheTreeWhenAsked) {
     });
     ASSERT_NE(first_write, corrupted.end());
     std::get<WriteChannelMsg>(*first_write).data.at(4 + 18) = 1;  // node 0's light_flags: an unknown bit
-    options.result_dump = dir / "refused.lcut";
+    ClientOutputs refused_outputs({.result_dump = dir / "refused.lcut"});
     ClientSession refusing(lights, kSceneGuid, options);
     upload(refusing);
     for (const Message& message : corrupted) {
         if (refusing.finished()) break;
-        refusing.on_message(message);
+        deliver(refusing, refused_outputs, message);
     }
     Result<BakeOutcome> refused = refusing.take_result();
     ASSERT_FALSE(refused);
     EXPECT_NE(refused.error().find("node 0: FLightData.light_flags"), std::string::npos) << refused.error();
-    EXPECT_FALSE(std::filesystem::exists(options.result_dump));
+    EXPECT_FALSE(std::filesystem::exists(dir / "refused.lcut"));
 }
 
 // bake -o: the channel goes into the dump as it arrives, the dump appears
@@ -242,28 +277,31 @@ TEST(ClientSession, StreamsTheResultChannelIntoADump) {
     const std::vector<Message> result = result_messages(lights);
     ClientSessionOptions options = session_options();
     options.keep_result_channel = false;
-    options.result_dump = dir / "tree.lcut";
+    options.write_dump = true;
+    const std::filesystem::path path = dir / "tree.lcut";
+    ClientOutputs outputs({.result_dump = path});
     ClientSession session(lights, kSceneGuid, options);
     upload(session);
     for (const Message& message : result) {
-        EXPECT_FALSE(std::filesystem::exists(options.result_dump));
-        session.on_message(message);
+        EXPECT_FALSE(std::filesystem::exists(path));
+        deliver(session, outputs, message);
     }
     Result<BakeOutcome> outcome = session.take_result();
     ASSERT_TRUE(outcome) << outcome.error();
     EXPECT_TRUE(outcome->result_channel.empty());
-    Result<ChannelDump> dump = read_dump(options.result_dump);
+    Result<ChannelDump> dump = read_dump(path);
     ASSERT_TRUE(dump) << dump.error();
     EXPECT_EQ(dump->channel_name, lightcuts_result_channel_name());
     EXPECT_EQ(dump->payload, encode_result_channel(outcome->tree));
 
     ClientSessionOptions cut_short = session_options();
-    cut_short.result_dump = dir / "cut_short.lcut";
+    cut_short.write_dump = true;
+    ClientOutputs cut_short_outputs({.result_dump = dir / "cut_short.lcut"});
     ClientSession cancelled(lights, kSceneGuid, cut_short);
     upload(cancelled);
-    cancelled.on_message(result[0]);  // OpenChannel
-    cancelled.on_message(result[1]);  // the first WriteChannel
-    cancelled.on_message(ErrorMsg{kBake, ErrorCode::kCancelled, "bake 5 cancelled during transfer"});
+    deliver(cancelled, cut_short_outputs, result[0]);  // OpenChannel
+    deliver(cancelled, cut_short_outputs, result[1]);  // the first WriteChannel
+    deliver(cancelled, cut_short_outputs, ErrorMsg{kBake, ErrorCode::kCancelled, "bake 5 cancelled during transfer"});
     EXPECT_EQ(cancelled.take_result().error_kind(), ErrorKind::kCancelled);
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}), 1);
     std::filesystem::remove_all(dir);
@@ -438,6 +476,115 @@ TEST(ClientSession, SendsTheGeometryChannelOnlyWhenGiven) {
         EXPECT_EQ(request.geometry_channel, geometry_channel_name(kSceneGuid));
         EXPECT_EQ(request.area_lights, 300u);
     }
+}
+
+// bake -o as the session asks for it: the dump is opened with the channel's
+// name and size, every chunk appended as it arrives, and committed with the
+// outcome; the session itself writes nothing.
+TEST(ClientSession, EmitsTheResultDumpAsActionsAndCommitsItWithTheOutcome) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const std::vector<Message> result = result_messages(lights);
+    ClientSessionOptions options = session_options();
+    options.write_dump = true;
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+    ClientActions actions;
+    for (const Message& message : result) {
+        session.on_message(message);
+        for (ClientAction& action : session.take_actions()) actions.push_back(std::move(action));
+    }
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_TRUE(outcome) << outcome.error();
+    const auto opens = actions_of<client_action::OpenDump>(actions);
+    ASSERT_EQ(opens.size(), 1u);
+    EXPECT_EQ(opens[0].channel_name, lightcuts_result_channel_name());
+    std::vector<uint8_t> appended;
+    for (const auto& append : actions_of<client_action::AppendDump>(actions))
+        appended.insert(appended.end(), append.bytes.begin(), append.bytes.end());
+    EXPECT_EQ(opens[0].total_bytes, appended.size());
+    EXPECT_EQ(appended, encode_result_channel(outcome->tree));
+    EXPECT_EQ(appended, outcome->result_channel);
+    ASSERT_FALSE(actions.empty());
+    EXPECT_TRUE(std::holds_alternative<client_action::OpenDump>(
+        *std::find_if(actions.begin(), actions.end(), [](const ClientAction& a) {
+            return !std::holds_alternative<client_action::ReportProgress>(a);
+        })));
+    EXPECT_TRUE(std::holds_alternative<client_action::CommitDump>(actions.back()));
+    EXPECT_TRUE(actions_of<client_action::DiscardDump>(actions).empty());
+    EXPECT_TRUE(actions_of<client_action::RecordChannel>(actions).empty()) << "nothing recorded unless asked";
+}
+
+// A dump that cannot be committed (or a recording that cannot be written)
+// fails the bake, even after BakeDone, and the dump is discarded.
+TEST(ClientSession, AnOutputThatFailsFailsTheFinishedBake) {
+    const std::vector<SceneLight> lights = scene_lights();
+    ClientSessionOptions options = session_options();
+    options.write_dump = true;
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+    for (const Message& message : result_messages(lights)) session.on_message(message);
+    ASSERT_TRUE(session.succeeded());
+    const ClientActions at_done = session.take_actions();
+    ASSERT_FALSE(at_done.empty());
+    ASSERT_TRUE(std::holds_alternative<client_action::CommitDump>(at_done.back()));
+
+    session.fail_outputs(make_error("no space left on the device"));
+    const ClientActions after = session.take_actions();
+    ASSERT_EQ(after.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<client_action::DiscardDump>(after[0]));
+    EXPECT_FALSE(session.succeeded());
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_FALSE(outcome);
+    EXPECT_EQ(outcome.error_kind(), ErrorKind::kFailed);
+}
+
+// A transfer cut short discards the dump it had opened.
+TEST(ClientSession, ABakeCutShortDiscardsItsDump) {
+    const std::vector<SceneLight> lights = scene_lights();
+    const std::vector<Message> result = result_messages(lights);
+    ClientSessionOptions options = session_options();
+    options.write_dump = true;
+    ClientSession session(lights, kSceneGuid, options);
+    upload(session);
+    session.on_message(result[0]);  // OpenChannel
+    session.on_message(result[1]);  // the first WriteChannel
+    EXPECT_EQ(actions_of<client_action::OpenDump>(session.take_actions()).size(), 1u);
+    session.fail(make_error("connection lost"));
+    const ClientActions actions = session.take_actions();
+    ASSERT_EQ(actions.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<client_action::DiscardDump>(actions[0]));
+    session.fail(make_error("a second failure is ignored"));
+    EXPECT_TRUE(session.take_actions().empty());
+}
+
+// --record: the channels sent are recorded when BakeRequest goes (before it
+// is written, so a failed recording sends no request), the result channel at
+// BakeDone; without --record nothing is.
+TEST(ClientSession, RecordsEveryChannelWhenAsked) {
+    const std::vector<SceneLight> lights = scene_lights();
+    ClientSessionOptions options = session_options();
+    options.record_channels = true;
+    ClientSession session(lights, kSceneGuid, options);
+    session.start();
+    drain(session);
+    session.on_message(HelloAckMsg{kProtocolVersion, "server"});
+    EXPECT_TRUE(session.take_actions().empty());
+    std::optional<Message> message;
+    while ((message = session.next_message()) && !std::holds_alternative<BakeRequestMsg>(*message))
+        EXPECT_TRUE(session.take_actions().empty()) << "recorded only with the request";
+    ASSERT_TRUE(message);
+    const auto sent = actions_of<client_action::RecordChannel>(session.take_actions());
+    ASSERT_EQ(sent.size(), 1u);
+    EXPECT_EQ(sent[0].name, scene_channel_name(kSceneGuid));
+    EXPECT_EQ(sent[0].bytes, encode_scene_channel(lights));
+
+    for (const Message& m : result_messages(lights)) session.on_message(m);
+    const auto received = actions_of<client_action::RecordChannel>(session.take_actions());
+    Result<BakeOutcome> outcome = session.take_result();
+    ASSERT_TRUE(outcome) << outcome.error();
+    ASSERT_EQ(received.size(), 1u);
+    EXPECT_EQ(received[0].name, lightcuts_result_channel_name());
+    EXPECT_EQ(received[0].bytes, outcome->result_channel);
 }
 
 }  // namespace

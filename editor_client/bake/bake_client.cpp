@@ -3,6 +3,7 @@
 #include <chrono>
 #include <sstream>
 
+#include "editor_client/bake/client_outputs.h"
 #include "editor_client/bake/client_session.h"
 #include "editor_client/bake/server_process.h"
 #include "protocol/asio.h"
@@ -57,17 +58,19 @@ Result<std::string> read_token(const std::filesystem::path& path) {
 }
 
 // The I/O of one bake: connects, moves frames between the socket and the
-// ClientSession, and closes the connection on a timeout with one deadline
-// timer (Asio's C++20 timeout example; Boost 1.74 has no awaitable operators).
+// ClientSession, applies the session's actions (ClientOutputs), and closes
+// the connection on a timeout with one deadline timer (Asio's C++20 timeout
+// example; Boost 1.74 has no awaitable operators).
 class BakeConnection {
 public:
     // `tls`: null for plain TCP; otherwise the client context, which outlives the connection.
     BakeConnection(asio::io_context& io, const BakeClientOptions& options, asio::ssl::context* tls,
-                   ClientSession& session, Clock::time_point start)
+                   ClientSession& session, ClientOutputs& outputs, Clock::time_point start)
         : io_(io),
           transport_(tls ? Transport::tls(tcp::socket(io), *tls) : Transport::plain(tcp::socket(io))),
           options_(options),
           session_(session),
+          outputs_(outputs),
           deadline_timer_(io),
           bake_deadline_(start + seconds(options.timeout_seconds)),
           connect_deadline_(start + seconds(options.connect_timeout_seconds)) {}
@@ -77,6 +80,9 @@ public:
     awaitable<void> watch_deadline();
     // Looks at the cancel flag (after each message, and when the waker posts).
     void check_cancel();
+    // Applies what the session asked for since the last call; false when that
+    // failed, which ends the bake.
+    bool apply_actions();
 
 private:
     awaitable<Status> connect(const std::string& host, const std::string& port);
@@ -98,6 +104,7 @@ private:
     Transport transport_;
     const BakeClientOptions& options_;
     ClientSession& session_;
+    ClientOutputs& outputs_;
     asio::steady_timer deadline_timer_;
     Clock::time_point bake_deadline_;
     Clock::time_point connect_deadline_;
@@ -112,17 +119,29 @@ private:
 void BakeConnection::fail(const std::string& text) {
     session_.fail(make_error(session_.stage() == ClientSession::Stage::kAwaitingHelloAck ? hello_failure(text)
                                                                                           : text));
+    apply_actions();
 }
 
 void BakeConnection::abort(Error error) {
     session_.fail(std::move(error));
+    apply_actions();
     transport_.close();
+}
+
+bool BakeConnection::apply_actions() {
+    Status applied = outputs_.apply(session_.take_actions());
+    if (applied) return true;
+    session_.fail_outputs(applied.failure());
+    // What failing asks for (an open dump discarded) cannot fail in turn.
+    (void)outputs_.apply(session_.take_actions());
+    return false;
 }
 
 void BakeConnection::check_cancel() {
     if (cancel_seen_ || !options_.cancel || !options_.cancel->load() || session_.finished()) return;
     cancel_seen_ = true;
     session_.cancel();
+    apply_actions();
     // Before BakeRequest the upload owns the socket's writes: closing cancels.
     if (session_.finished()) transport_.close();
     else asio::co_spawn(io_, flush(), asio::detached);
@@ -132,6 +151,8 @@ awaitable<void> BakeConnection::flush() {
     if (writing_) co_return;
     writing_ = true;
     while (std::optional<Message> message = session_.next_message()) {
+        // Before the message goes: a recording that fails ends the bake unsent.
+        if (!apply_actions()) break;
         std::vector<uint8_t> frame = encode_frame(*message);
         boost::system::error_code ec = co_await transport_.write(asio::buffer(frame));
         if (ec) {
@@ -240,6 +261,7 @@ awaitable<void> BakeConnection::read_loop() {
                 break;
             }
             session_.on_message(message.value());
+            apply_actions();  // while the frame the message views is alive
             decoder_.recycle(std::move(frame));
             check_cancel();
             if (session_.finished()) break;
@@ -256,6 +278,7 @@ awaitable<void> BakeConnection::run(std::string host, std::string port) {
     Status connected = co_await connect(host, port);
     if (!connected) {
         session_.fail(connected.failure());
+        apply_actions();
     } else if (!session_.finished()) {
         session_.start();
         co_await flush();
@@ -319,17 +342,19 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
         return make_error("bake settings refused before sending: " + settings.error());
     session_options.environment = options.environment;
     session_options.geometry = options.geometry;
-    session_options.on_progress = options.on_progress;
-    session_options.on_warning = options.on_warning;
-    session_options.recorder = &recorder;
+    session_options.record_channels = recorder.enabled();
     session_options.keep_result_channel = options.keep_result_channel;
     session_options.decode_tree = options.decode_tree;
-    session_options.result_dump = options.result_dump;
+    session_options.write_dump = !options.result_dump.empty();
     ClientSession session(std::move(tree_lights), scene_guid, std::move(session_options));
+    ClientOutputs outputs({.result_dump = options.result_dump,
+                           .recorder = &recorder,
+                           .on_progress = options.on_progress,
+                           .on_warning = options.on_warning});
 
     auto start = Clock::now();
     asio::io_context io;
-    BakeConnection connection(io, options, tls.get(), session, start);
+    BakeConnection connection(io, options, tls.get(), session, outputs, start);
     if (options.waker) options.waker->attach([&] { asio::post(io, [&] { connection.check_cancel(); }); });
     asio::co_spawn(io, connection.run(host, port), [&](std::exception_ptr error) {
         if (error) session.fail(make_error("internal error in the bake client"));
@@ -338,8 +363,12 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     io.run();
     if (options.waker) options.waker->detach();
     if (!session.finished()) return make_error("bake client stopped without a result");
+    (void)outputs.apply(session.take_actions());  // an internal error's discarded dump
     Result<BakeOutcome> outcome = session.take_result();
-    if (outcome) outcome->total_ms = ms_since(start);
+    if (outcome) {
+        outcome->total_ms = ms_since(start);
+        outcome->write_ms = outputs.commit_ms();
+    }
     return outcome;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "editor_client/bake/bake_outcome.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/light_tree.h"
@@ -77,19 +78,6 @@ struct BakeClientOptions {
     std::function<void(const std::string&)> on_warning;
     const std::atomic<bool>* cancel = nullptr;  // set to true to cancel the bake
     BakeWaker* waker = nullptr;                 // wake() after setting `cancel` from another thread
-};
-
-struct BakeOutcome {
-    LightTree tree;
-    BakeDoneMsg done;
-    std::string result_channel_name;
-    std::vector<uint8_t> result_channel;  // the raw channel bytes (for -o dumps)
-    std::vector<std::string> warnings;
-    double total_ms = 0.0;
-    double upload_ms = 0.0;
-    double download_ms = 0.0;
-    double write_ms = 0.0;  // committing the result dump: the fsync of what the stream wrote
-    double import_ms = 0.0;  // the tree's structure check once its last record arrived
 };
 
 // Lights marked classic are not sent: they stay with the client. A failure's

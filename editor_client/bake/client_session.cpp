@@ -93,13 +93,10 @@ std::optional<Message> ClientSession::next_upload_message() {
             return CloseChannelMsg{id};
         }
         case UploadStep::kRequest: {
-            if (options_.recorder && options_.recorder->enabled()) {
-                for (const UploadChannel& channel : uploads_) {
-                    if (Status recorded = options_.recorder->record(channel.name, channel.bytes); !recorded) {
-                        finish(make_error(recorded.error()));
-                        return std::nullopt;
-                    }
-                }
+            // Recorded before BakeRequest is sent: a recording that fails ends the bake first.
+            if (options_.record_channels) {
+                for (UploadChannel& channel : uploads_)
+                    actions_.push_back(client_action::RecordChannel{channel.name, std::move(channel.bytes)});
             }
             uploads_ = std::vector<UploadChannel>();
             upload_step_ = UploadStep::kDone;
@@ -144,83 +141,101 @@ void ClientSession::on_hello_reply(const Message& message) {
 
 void ClientSession::on_bake_message(const Message& m) {
     if (auto* p = std::get_if<ProgressMsg>(&m)) {
-        if (options_.on_progress) options_.on_progress(*p);
+        actions_.push_back(client_action::ReportProgress{*p});
     } else if (auto* w = std::get_if<WarningMsg>(&m)) {
         outcome_.warnings.push_back(w->text);
-        if (options_.on_warning) options_.on_warning(w->text);
+        actions_.push_back(client_action::ReportWarning{w->text});
     } else if (auto* e = std::get_if<ErrorMsg>(&m)) {
         finish(make_error(e->code == ErrorCode::kCancelled ? "bake cancelled" : "server: " + e->text,
                           outcome_of(e->code)));
     } else if (auto* open = std::get_if<OpenChannelMsg>(&m)) {
-        auto name = ChannelName::parse(open->name);
-        if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
-            return finish(make_error("server opened an unexpected channel '" + open->name + "' (expected version " +
-                                     kLightcutsVersionGuid.to_hex() + ", extension ." + kLightcutsExtension + ")"));
-        if (result_channel_id_) return finish(make_error("server opened a second result channel"));
-        result_channel_id_ = open->channel_id;
-        outcome_.result_channel_name = open->name;
-        expected_bytes_ = open->total_bytes;
-        download_start_ = Clock::now();
-        if (!options_.result_dump.empty()) {
-            Result<DumpWriter> dump = DumpWriter::open(options_.result_dump, open->name, open->total_bytes);
-            if (!dump) return finish(dump.failure());
-            result_dump_.emplace(std::move(dump.value()));
-        }
+        on_result_open(*open);
     } else if (auto* write = std::get_if<WriteChannelMsg>(&m)) {
-        if (!result_channel_id_ || write->channel_id != *result_channel_id_)
-            return finish(make_error("server wrote to channel " + std::to_string(write->channel_id) +
-                                     " which is not open"));
-        const std::span<const uint8_t> data = write->bytes();
-        if (write->offset != result_received_ || result_received_ + data.size() > expected_bytes_)
-            return finish(make_error("result channel out of order or longer than announced"));
-        if (Status s = reader_.consume(data); !s) return finish(make_error("result channel: " + s.error()));
-        result_received_ += data.size();
-        if (result_dump_) {
-            if (Status written = result_dump_->append(data); !written) return finish(written.failure());
-        }
-        if (options_.keep_result_channel || (options_.recorder && options_.recorder->enabled()))
-            result_bytes_.insert(result_bytes_.end(), data.begin(), data.end());
-        if (options_.on_progress && reader_.nodes_expected() > 0) {
-            float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
-                        static_cast<float>(reader_.nodes_expected());
-            options_.on_progress(ProgressMsg{options_.request.bake_id, "receiving", pct});
-        }
+        on_result_write(*write);
     } else if (auto* close = std::get_if<CloseChannelMsg>(&m)) {
         if (!result_channel_id_ || close->channel_id != *result_channel_id_)
             return finish(make_error("server closed a channel that is not open"));
         channel_closed_ = true;
     } else if (auto* done = std::get_if<BakeDoneMsg>(&m)) {
-        if (!channel_closed_) return finish(make_error("BakeDone arrived before the result channel was closed"));
-        const size_t node_count = reader_.nodes_received();
-        const Clock::time_point import_start = Clock::now();
-        if (options_.decode_tree) {
-            Result<LightTree> tree = reader_.finish();
-            if (!tree) return finish(make_error("result channel: " + tree.error()));
-            outcome_.tree = std::move(tree.value());
-        } else if (Status valid = reader_.finish_validation(); !valid) {
-            return finish(make_error("result channel: " + valid.error()));
-        }
-        outcome_.import_ms = ms_since(import_start);
-        if (node_count != done->node_count)
-            return finish(make_error("BakeDone announces " + std::to_string(done->node_count) +
-                                     " nodes, channel held " + std::to_string(node_count)));
-        outcome_.done = *done;
-        outcome_.download_ms = ms_since(download_start_);
-        if (options_.recorder && options_.recorder->enabled()) {
-            Status recorded = options_.recorder->record(outcome_.result_channel_name, result_bytes_);
-            if (!recorded) return finish(make_error(recorded.error()));
-        }
-        if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
-        result_bytes_ = std::vector<uint8_t>();
-        if (result_dump_) {
-            const Clock::time_point write_start = Clock::now();
-            if (Status committed = result_dump_->commit(); !committed) return finish(committed.failure());
-            outcome_.write_ms = ms_since(write_start);
-        }
-        finish(std::move(outcome_));
+        on_bake_done(*done);
     } else {
         finish(make_error(std::string("unexpected message from the server: ") + message_name(m)));
     }
+}
+
+// The result channel: its name checked, the dump opened when one is written.
+void ClientSession::on_result_open(const OpenChannelMsg& open) {
+    auto name = ChannelName::parse(open.name);
+    if (!name || name->version != kLightcutsVersionGuid || name->extension != kLightcutsExtension)
+        return finish(make_error("server opened an unexpected channel '" + open.name +
+                                 "' (expected version " + kLightcutsVersionGuid.to_hex() + ", extension ." +
+                                 kLightcutsExtension + ")"));
+    if (result_channel_id_) return finish(make_error("server opened a second result channel"));
+    result_channel_id_ = open.channel_id;
+    outcome_.result_channel_name = open.name;
+    expected_bytes_ = open.total_bytes;
+    download_start_ = Clock::now();
+    if (options_.write_dump) {
+        actions_.push_back(client_action::OpenDump{open.name, open.total_bytes});
+        dump_open_ = true;
+    }
+}
+
+// A chunk of the result: in order, within the announced size, its records
+// valid; appended to the dump and kept where the outcome or a recording needs it.
+void ClientSession::on_result_write(const WriteChannelMsg& write) {
+    if (!result_channel_id_ || write.channel_id != *result_channel_id_)
+        return finish(
+            make_error("server wrote to channel " + std::to_string(write.channel_id) + " which is not open"));
+    const std::span<const uint8_t> data = write.bytes();
+    if (write.offset != result_received_ || result_received_ + data.size() > expected_bytes_)
+        return finish(make_error("result channel out of order or longer than announced"));
+    if (Status s = reader_.consume(data); !s) return finish(make_error("result channel: " + s.error()));
+    result_received_ += data.size();
+    if (dump_open_) actions_.push_back(client_action::AppendDump{data});
+    if (options_.keep_result_channel || options_.record_channels)
+        result_bytes_.insert(result_bytes_.end(), data.begin(), data.end());
+    if (reader_.nodes_expected() > 0) {
+        float pct = 100.0f * static_cast<float>(reader_.nodes_received()) /
+                    static_cast<float>(reader_.nodes_expected());
+        actions_.push_back(
+            client_action::ReportProgress{ProgressMsg{options_.request.bake_id, "receiving", pct}});
+    }
+}
+
+// The tree complete and as large as BakeDone says: the outcome, recorded and
+// its dump committed where asked.
+void ClientSession::on_bake_done(const BakeDoneMsg& done) {
+    if (!channel_closed_) return finish(make_error("BakeDone arrived before the result channel was closed"));
+    const size_t node_count = reader_.nodes_received();
+    const Clock::time_point import_start = Clock::now();
+    if (options_.decode_tree) {
+        Result<LightTree> tree = reader_.finish();
+        if (!tree) return finish(make_error("result channel: " + tree.error()));
+        outcome_.tree = std::move(tree.value());
+    } else if (Status valid = reader_.finish_validation(); !valid) {
+        return finish(make_error("result channel: " + valid.error()));
+    }
+    outcome_.import_ms = ms_since(import_start);
+    if (node_count != done.node_count)
+        return finish(make_error("BakeDone announces " + std::to_string(done.node_count) +
+                                 " nodes, channel held " + std::to_string(node_count)));
+    outcome_.done = done;
+    outcome_.download_ms = ms_since(download_start_);
+    if (options_.record_channels) {
+        // Kept for the outcome too: the recording gets a copy (--record is for tests' data).
+        std::vector<uint8_t> recorded =
+            options_.keep_result_channel ? result_bytes_ : std::move(result_bytes_);
+        actions_.push_back(client_action::RecordChannel{outcome_.result_channel_name, std::move(recorded)});
+    }
+    if (options_.keep_result_channel) outcome_.result_channel = std::move(result_bytes_);
+    result_bytes_ = std::vector<uint8_t>();
+    if (dump_open_) {
+        actions_.push_back(client_action::CommitDump{});
+        dump_open_ = false;
+        dump_committing_ = true;
+    }
+    finish(std::move(outcome_));
 }
 
 void ClientSession::cancel() {
@@ -237,10 +252,18 @@ void ClientSession::fail(Error error) {
     if (!finished()) finish(std::move(error));
 }
 
+void ClientSession::fail_outputs(Error error) {
+    finish(std::move(error));
+}
+
 void ClientSession::finish(Result<BakeOutcome> result) {
     stage_ = Stage::kFinished;
     outbox_.clear();
-    result_dump_.reset();  // uncommitted: its temporary file goes
+    // A failed bake's dump is never committed: its temporary file goes. A
+    // commit the I/O layer had not reached when an earlier action failed counts as open.
+    if (!result && (dump_open_ || dump_committing_)) actions_.push_back(client_action::DiscardDump{});
+    dump_open_ = false;
+    if (!result) dump_committing_ = false;
     result_.emplace(std::move(result));
 }
 

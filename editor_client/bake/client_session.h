@@ -1,29 +1,30 @@
 #pragma once
 // The bake client's side of the channel protocol as a state machine with no
-// socket: Hello, the scene channel, BakeRequest, then progress and warnings,
-// the result channel into a ResultChannelReader, and BakeDone, an error or a
-// cancel. The I/O layer (bake_client.cpp) moves the bytes: it pulls messages
-// to send with next_message() and pushes what arrives into on_message(), so
-// every rule here is tested without a socket (tests/client_session_test.cpp).
+// socket and no files: Hello, the scene channel, BakeRequest, then progress and
+// warnings, the result channel into a ResultChannelReader, and BakeDone, an
+// error or a cancel. The I/O layer (bake_client.cpp) moves the bytes: it pulls
+// messages to send with next_message() and pushes what arrives into
+// on_message(); what else the session decides (progress and warnings to show,
+// channels to record, the result's dump to write) it emits as ClientActions
+// (client_action.h) for the I/O layer to apply, so every rule here is tested
+// without a socket or a file (tests/client_session_test.cpp).
 #include <chrono>
 #include <cstdint>
 #include <deque>
-#include <filesystem>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "editor_client/bake/bake_client.h"
+#include "editor_client/bake/bake_outcome.h"
+#include "editor_client/bake/client_action.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
-#include "protocol/dump.h"
 #include "protocol/messages.h"
 
 namespace lc::client {
@@ -36,9 +37,8 @@ struct ClientSessionOptions {
     // named in the request (request.environment_lights is its light budget).
     std::shared_ptr<const Environment> environment;
     size_t chunk_bytes = kDefaultChunkBytes;
-    std::function<void(const ProgressMsg&)> on_progress;
-    std::function<void(const std::string&)> on_warning;
-    const ChannelRecorder* recorder = nullptr;  // null or disabled: nothing is recorded
+    // --record: every channel sent and received is emitted whole (RecordChannel).
+    bool record_channels = false;
     // False: BakeOutcome::result_channel stays empty; the tree is decoded as
     // the channel streams in, and a million-light channel is 180 MB more.
     bool keep_result_channel = true;
@@ -46,10 +46,10 @@ struct ClientSessionOptions {
     // arrive and nothing of them is kept (BakeOutcome::tree stays empty): for
     // `bake`, which needs the tree only valid, in the dump.
     bool decode_tree = true;
-    // Non-empty: the result channel goes into this dump as it arrives (a
-    // DumpWriter), committed at BakeDone once the tree is valid; a failed bake
-    // leaves no dump and any earlier one at that path untouched.
-    std::filesystem::path result_dump;
+    // bake -o: the result channel goes into a dump as it arrives (OpenDump,
+    // AppendDump), committed at BakeDone once the tree is valid (CommitDump);
+    // a failed bake discards it (DiscardDump).
+    bool write_dump = false;
     // Sent on the geometry channel after the scene channel when an effect
     // needs the surfaces (surface_geometry.h); null: no geometry channel.
     std::shared_ptr<const SceneGeometry> geometry;
@@ -73,6 +73,13 @@ public:
     void cancel();
     // The transport failed or timed out; ignored once finished.
     void fail(Error error);
+    // Applying one of the session's actions failed (a dump or a recording
+    // could not be written): the bake fails, even one that had finished with
+    // its outcome, and an open dump is discarded (take_actions).
+    void fail_outputs(Error error);
+    // What the I/O layer is to do, in order, since the last call: take them
+    // after every call into the session (AppendDump views its message).
+    ClientActions take_actions() { return std::exchange(actions_, {}); }
 
     Stage stage() const { return stage_; }
     bool finished() const { return stage_ == Stage::kFinished; }
@@ -87,6 +94,9 @@ private:
     std::optional<Message> next_upload_message();
     void on_hello_reply(const Message& message);
     void on_bake_message(const Message& message);
+    void on_result_open(const OpenChannelMsg& open);
+    void on_result_write(const WriteChannelMsg& write);
+    void on_bake_done(const BakeDoneMsg& done);
     void finish(Result<BakeOutcome> result);
 
     struct UploadChannel {
@@ -102,6 +112,7 @@ private:
     ClientSessionOptions options_;
     Stage stage_ = Stage::kConnecting;
     std::deque<Message> outbox_;
+    ClientActions actions_;
     bool cancel_sent_ = false;
     std::optional<Result<BakeOutcome>> result_;
 
@@ -118,8 +129,9 @@ private:
     // Result channel.
     BakeOutcome outcome_;
     ResultChannelReader reader_;
-    std::vector<uint8_t> result_bytes_;  // kept for the outcome or the recorder
-    std::optional<DumpWriter> result_dump_;
+    std::vector<uint8_t> result_bytes_;  // kept for the outcome or the recording
+    bool dump_open_ = false;             // OpenDump emitted, neither committed nor discarded
+    bool dump_committing_ = false;       // CommitDump emitted with the outcome
     uint64_t result_received_ = 0;
     std::optional<uint32_t> result_channel_id_;
     uint64_t expected_bytes_ = 0;

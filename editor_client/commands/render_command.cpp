@@ -183,15 +183,11 @@ std::string loop_limit_summary(const RenderStats& stats) {
     return std::to_string(stats.loop_limit_stops) + " pixels cut short by the device's loop limit, ";
 }
 
-void run_render(const RenderOptions& options) {
-    auto command_start = std::chrono::steady_clock::now();
-    std::vector<std::string> warnings;
-    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
-    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
-
+// --tree, --server or --spawn-server: where the tree comes from, with the
+// bake's progress and warnings on stderr.
+TreeSource tree_source(const RenderOptions& options, const Scene& scene, ProgressDisplay& progress) {
     TreeSource source;
     source.dump = options.tree;
-    ProgressDisplay progress(stderr);
     if (options.bake.has_server()) {
         BakeClientOptions bake = options.bake.to_options(scene);
         bake.keep_result_channel = false;  // rendered from the decoded tree only
@@ -202,17 +198,32 @@ void run_render(const RenderOptions& options) {
         };
         source.bake = bake;
     }
+    return source;
+}
+
+// What the command line asks for, checked: the frame's settings and how the
+// written image is made from it.
+struct RenderRequest {
     RenderSettings settings;
-    const bool has_tree_source = !source.empty();
-    std::string mode_text = options.mode.empty() ? (has_tree_source ? "lightcuts" : "reference")
-                                                 : options.mode;
-    // `error` renders lightcuts and shows its error against the reference.
-    const bool error_mode = mode_text == "error";
+    bool error_mode = false;  // `error`: lightcuts shown as its error against the reference
+    bool compare = false;     // also render the reference and measure the error
+    std::vector<float> sweep_ratios;
+    uint32_t width = 0;  // the written image's size (a stride's is smaller than the frame's)
+    uint32_t height = 0;
+    std::vector<PixelRegion> tiles;  // --tile-stride: the tiles rendered
+};
+
+// The renderer's settings from the flags, in the order the flags are checked.
+RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source,
+                              bool& error_mode) {
+    RenderSettings settings;
+    const std::string mode_text =
+        options.mode.empty() ? (has_tree_source ? "lightcuts" : "reference") : options.mode;
+    error_mode = mode_text == "error";
     std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
     std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
     if (!mode)
-        fail("unknown --mode '" + mode_text +
-             "' (reference, lightcuts, cuts, cutsize, realtime, error)");
+        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, realtime, error)");
     if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
     settings.mode = *mode;
     settings.criterion = *criterion;
@@ -230,53 +241,88 @@ void run_render(const RenderOptions& options) {
     settings.realtime_cut = options.realtime_cut;
     if (options.frames != 1 && settings.mode != RenderMode::kRealTime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
-    auto [width, height] = or_fail(parse_size(options.size));
+    const auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
     settings.exposure = options.exposure.value_or(1.0f);
-    settings.camera = or_fail(
-        choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
-    if (Status valid = validate(settings, {.has_tree = has_tree_source}); !valid)
-        fail(valid.error());
-    const bool compare = error_mode || options.compare_reference;
-    std::vector<float> sweep_ratios;
+    settings.camera =
+        or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    if (Status valid = validate(settings, {.has_tree = has_tree_source}); !valid) fail(valid.error());
+    return settings;
+}
+
+// The sweep, the comparison and the strides, each only where it applies.
+void check_request(const RenderOptions& options, RenderRequest& request) {
+    const RenderMode mode = request.settings.mode;
+    request.compare = request.error_mode || options.compare_reference;
     if (!options.sweep_error.empty()) {
-        sweep_ratios = or_fail(parse_error_list(options.sweep_error));
-        if (settings.mode == RenderMode::kReference)
-            fail("--sweep-error needs a lightcuts mode and a tree source");
+        request.sweep_ratios = or_fail(parse_error_list(options.sweep_error));
+        if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
     }
-    if (!options.sweep_csv.empty() && sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
-    if (compare && !mode_needs_tree(settings.mode))
-        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or "
-             "error)");
-    if (!sweep_ratios.empty() && settings.mode == RenderMode::kRealTime)
+    if (!options.sweep_csv.empty() && request.sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
+    if (request.compare && !mode_needs_tree(mode))
+        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or error)");
+    if (!request.sweep_ratios.empty() && mode == RenderMode::kRealTime)
         fail("--sweep-error sweeps the deterministic lightcuts modes, not realtime");
     if (options.pixel_stride > 1 || options.tile_stride > 1) {
-        if (settings.mode != RenderMode::kReference || options.spp > 1 ||
-            options.spp_method != "gpu")
-            fail("--pixel-stride and --tile-stride render the reference alone (--mode reference, "
-                 "no --spp)");
+        if (mode != RenderMode::kReference || options.spp > 1 || options.spp_method != "gpu")
+            fail("--pixel-stride and --tile-stride render the reference alone (--mode reference, no --spp)");
         if (options.pixel_stride > 1 && options.tile_stride > 1)
             fail("--pixel-stride or --tile-stride, not both");
     }
+}
+
+// --pixel-stride renders a smaller frame; --tile-stride renders some tiles of the full one.
+void apply_strides(const RenderOptions& options, RenderRequest& request) {
+    request.width = request.settings.width;
+    request.height = request.settings.height;
     if (options.pixel_stride > 1) {
-        settings = or_fail(strided_settings(settings, options.pixel_stride));
-        width = settings.width;
-        height = settings.height;
+        request.settings = or_fail(strided_settings(request.settings, options.pixel_stride));
+        request.width = request.settings.width;
+        request.height = request.settings.height;
     }
-    std::vector<PixelRegion> tiles;
     if (options.tile_stride > 1) {
-        tiles = or_fail(strided_tiles(width, height, kStrideTile, options.tile_stride));
-        width /= options.tile_stride;
-        height /= options.tile_stride;
+        request.tiles =
+            or_fail(strided_tiles(request.width, request.height, kStrideTile, options.tile_stride));
+        request.width /= options.tile_stride;
+        request.height /= options.tile_stride;
     }
+}
 
-    std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
-    progress.finish();
+RenderRequest make_request(const RenderOptions& options, const Scene& scene, bool has_tree_source) {
+    RenderRequest request;
+    request.settings = parse_settings(options, scene, has_tree_source, request.error_mode);
+    check_request(options, request);
+    apply_strides(options, request);
+    return request;
+}
 
-    vk::ContextOptions context_options;
-    context_options.validation = options.validation;
-    vk::Context context = or_fail(vk::Context::create(context_options));
+// The renderer over the scene and its tree, with the environment shown
+// behind it; every effect decision is logged. Returns the environment's
+// decision (none without one), which the stats list besides the renderer's.
+std::optional<EffectDecision> prepare_renderer(Renderer& renderer, const RenderOptions& options,
+                                               const Scene& scene, const TreeSource& source,
+                                               const LightTree* tree) {
+    std::vector<EffectDecision> decisions = renderer.effects().decisions;
+    std::optional<EffectDecision> sky_decision;
+    // A bake loaded it already; a tree from a dump was baked with it.
+    const std::shared_ptr<const Environment> environment =
+        source.bake ? source.bake->environment : or_fail(options.bake.environment.load(scene.environment));
+    if (Status shown = renderer.set_environment(environment); !shown) fail(shown.error());
+    if (environment) {
+        size_t scene_directional_lights = 0;
+        for (const SceneLight& light : scene.lights)
+            scene_directional_lights += !light.classic && light.type == LightType::kDirectional;
+        sky_decision = environment_decision(*environment, tree, scene_directional_lights);
+        decisions.push_back(*sky_decision);
+    }
+    for (const EffectDecision& d : decisions)
+        spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
+    return sky_decision;
+}
+
+std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const RenderOptions& options,
+                                          const Scene& scene, const LightTree* tree) {
     RendererOptions renderer_options;
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
     renderer_options.indirect = options.bake.renders_indirect();
@@ -284,127 +330,126 @@ void run_render(const RenderOptions& options) {
     if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
     renderer_options.primary = *primary;
     if (!options.realtime_filter) renderer_options.realtime.filter_frames = 0;
-    std::unique_ptr<Renderer> renderer =
-        or_fail(Renderer::create(context, scene, tree.get(), renderer_options));
-    std::vector<EffectDecision> decisions = renderer->effects().decisions;
-    std::optional<EffectDecision> sky_decision;
-    // A bake loaded it already; a tree from a dump was baked with it.
-    const std::shared_ptr<const Environment> environment =
-        source.bake ? source.bake->environment : or_fail(options.bake.environment.load(scene.environment));
-    if (Status shown = renderer->set_environment(environment); !shown) fail(shown.error());
-    if (environment) {
-        size_t scene_directional_lights = 0;
-        for (const SceneLight& light : scene.lights)
-            scene_directional_lights += !light.classic && light.type == LightType::kDirectional;
-        sky_decision = environment_decision(*environment, tree.get(), scene_directional_lights);
-        decisions.push_back(*sky_decision);
-    }
-    for (const EffectDecision& d : decisions)
-        spdlog::info("effect: {}: {}, {}", d.name, d.simulated ? "simulated" : "skipped", d.reason);
+    return or_fail(Renderer::create(context, scene, tree, renderer_options));
+}
 
-    if (!sweep_ratios.empty()) {
-        ErrorSweep sweep = or_fail(run_error_sweep(*renderer, settings, sweep_ratios));
-        std::string how = criterion_name(settings.criterion) + std::string(" criterion");
-        if (settings.criterion == CutCriterion::kBound)
-            how += std::string(", ") + bound_search_name(settings.bound_search) + " search";
-        std::printf("error sweep, %s, max cut %u, %ux%u:\n", how.c_str(), settings.max_cut, width,
-                    height);
-        print_error_sweep(stdout, sweep);
-        if (!options.sweep_csv.empty()) {
-            if (Status written = write_error_sweep_csv(options.sweep_csv, sweep); !written)
-                fail(written.error());
-        }
+// --sweep-error: the price of accuracy, printed (and written as CSV).
+void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
+    const RenderSettings& settings = request.settings;
+    ErrorSweep sweep = or_fail(run_error_sweep(renderer, settings, request.sweep_ratios));
+    std::string how = criterion_name(settings.criterion) + std::string(" criterion");
+    if (settings.criterion == CutCriterion::kBound)
+        how += std::string(", ") + bound_search_name(settings.bound_search) + " search";
+    std::printf("error sweep, %s, max cut %u, %ux%u:\n", how.c_str(), settings.max_cut, request.width,
+                request.height);
+    print_error_sweep(stdout, sweep);
+    if (!options.sweep_csv.empty()) {
+        if (Status written = write_error_sweep_csv(options.sweep_csv, sweep); !written) fail(written.error());
     }
-    const bool supersampled = options.spp > 1 || options.spp_method != "gpu";
+}
+
+// --spp and --spp-method, checked against the mode; null: one eye ray per pixel on the GPU.
+std::optional<SupersampleRequest> supersample_request(const RenderOptions& options,
+                                                      const RenderRequest& request) {
+    if (options.spp <= 1 && options.spp_method == "gpu") return std::nullopt;
     SupersampleRequest spp;
     spp.spp = options.spp;
     spp.seed = options.spp_seed;
     spp.threads = options.threads;
-    if (supersampled) {
-        std::optional<SppMethod> method = parse_spp_method(options.spp_method);
-        if (!method) fail("unknown --spp-method '" + options.spp_method + "'");
-        spp.method = *method;
-        if (!mode_is_shaded(settings.mode) || error_mode || !sweep_ratios.empty())
-            fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
-        if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
-            fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
-        if (spp.method != SppMethod::kGpu && settings.representatives != Representatives::kTree)
-            fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
-    }
-    const std::vector<SceneLight> classic = classic_lights_of(scene);
+    std::optional<SppMethod> method = parse_spp_method(options.spp_method);
+    if (!method) fail("unknown --spp-method '" + options.spp_method + "'");
+    spp.method = *method;
+    const RenderSettings& settings = request.settings;
+    if (!mode_is_shaded(settings.mode) || request.error_mode || !request.sweep_ratios.empty())
+        fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
+    if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
+        fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
+    if (spp.method != SppMethod::kGpu && settings.representatives != Representatives::kTree)
+        fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
+    return spp;
+}
+
+// The command's image: the frame (the mean of the real-time mode's frames,
+// or of --spp eye rays), its size and stride in the stats, tone-mapped at the
+// automatic exposure where the flags leave it to the command.
+RenderedFrame render_image(Renderer& renderer, const RenderOptions& options, const RenderRequest& request,
+                           const SupersampleRequest* spp, const LightTree* tree,
+                           std::span<const SceneLight> classic) {
+    const RenderSettings& settings = request.settings;
     RenderedFrame rendered =
         settings.mode == RenderMode::kRealTime
-            ? render_real_time(*renderer, settings, options.frames)
-            : render_frame(*renderer, settings, supersampled ? &spp : nullptr, tree.get(), classic,
-                           tiles, options.tile_stride);
-    RenderStats stats = std::move(rendered.stats);
+            ? render_real_time(renderer, settings, options.frames)
+            : render_frame(renderer, settings, spp, tree, classic, request.tiles, options.tile_stride);
+    RenderStats& stats = rendered.stats;
     stats.pixel_stride = std::max(options.pixel_stride, options.tile_stride);
     if (options.tile_stride > 1) stats.stride_tile = kStrideTile;
-    stats.width = width;
-    stats.height = height;
-    std::vector<uint8_t> display = std::move(rendered.display);
-    std::vector<float> hdr = std::move(rendered.hdr);
+    stats.width = request.width;
+    stats.height = request.height;
     stats.exposure = settings.exposure;
-    if (sky_decision)
-        (sky_decision->simulated ? stats.effects_simulated : stats.effects_skipped).push_back(*sky_decision);
-    // Shaded modes without --exposure: tone-map the read-back at the automatic exposure.
-    const bool shaded = mode_is_shaded(settings.mode) && !error_mode;
-    if (shaded && !options.exposure) {
-        stats.exposure = auto_exposure(hdr);
-        stats.auto_exposure = true;
-        display = tone_map_image(hdr, float(stats.exposure));
-    }
-    if (compare) {
-        RenderSettings reference_settings = settings;
-        reference_settings.mode = RenderMode::kReference;
-        SupersampleRequest reference_spp = spp;
-        reference_spp.method = SppMethod::kGpu;
-        RenderedFrame reference = render_frame(*renderer, reference_settings,
-                                               supersampled ? &reference_spp : nullptr,
-                                               tree.get(), classic);
-        ErrorStats errors =
-            or_fail(compute_error_stats(hdr, reference.hdr, width, height, settings.error_ratio));
-        stats.has_error_stats = true;
-        stats.rel_err_mean = errors.rel_err_mean;
-        stats.rel_err_p99 = errors.rel_err_p99;
-        stats.frac_over_error = errors.frac_over_error;
-        stats.frac_over_2pct = fraction_over(errors, 0.02);
-        stats.max_err = errors.max_err;
-        stats.error_pixels = errors.measured_pixels;
-        stats.reference_ms = reference.stats.render_ms;
-        stats.reference_shadow_rays = reference.stats.shadow_rays;
-        if (error_mode) {
-            display = error_heatmap(errors, reference.hdr, width, height, settings.error_ratio);
-            stats.mode = "error";
-        }
-    }
-    Status png = write_png(options.output, width, height, display);
-    if (!png) fail(png.error());
-    if (!options.float_output.empty()) {
-        FloatImage image;
-        image.width = width;
-        image.height = height;
-        image.rgb.reserve(size_t(width) * height * 3);
-        for (size_t i = 0; i < hdr.size(); i += 4)
-            image.rgb.insert(image.rgb.end(), {hdr[i], hdr[i + 1], hdr[i + 2]});
-        Status pfm = write_pfm(options.float_output, image);
-        if (!pfm) fail(pfm.error());
-    }
+    return rendered;
+}
 
-    stats.scene = options.scene;
-    stats.validation_messages = context.validation_message_count();
-    double command_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - command_start)
-            .count();
-    if (!options.stats.empty()) {
-        Status written = write_stats_json(options.stats, stats);
-        if (!written) fail(written.error());
+// Shaded modes without --exposure: the read-back tone-mapped at the automatic exposure.
+void apply_auto_exposure(const RenderOptions& options, const RenderRequest& request, RenderedFrame& image) {
+    const bool shaded = mode_is_shaded(request.settings.mode) && !request.error_mode;
+    if (!shaded || options.exposure) return;
+    image.stats.exposure = auto_exposure(image.hdr);
+    image.stats.auto_exposure = true;
+    image.display = tone_map_image(image.hdr, float(image.stats.exposure));
+}
+
+// --compare-reference and --mode error: the reference with the same eye rays,
+// the error statistics, and for `error` the heatmap as the image.
+void compare_with_reference(Renderer& renderer, const RenderRequest& request, const SupersampleRequest* spp,
+                            const LightTree* tree, std::span<const SceneLight> classic,
+                            RenderedFrame& image) {
+    RenderSettings reference_settings = request.settings;
+    reference_settings.mode = RenderMode::kReference;
+    std::optional<SupersampleRequest> reference_spp;
+    if (spp != nullptr) {
+        reference_spp = *spp;
+        reference_spp->method = SppMethod::kGpu;
     }
-    if (stats.loop_limit_stops > 0)
-        std::fprintf(stderr,
-                     "warning: the device's loop limit cut %llu pixels' cut search short; they "
-                     "keep their last complete pass (counted in loop_limit_stops)\n",
-                     (unsigned long long)stats.loop_limit_stops);
+    RenderedFrame reference =
+        render_frame(renderer, reference_settings, reference_spp ? &*reference_spp : nullptr, tree, classic);
+    const float error_ratio = request.settings.error_ratio;
+    ErrorStats errors =
+        or_fail(compute_error_stats(image.hdr, reference.hdr, request.width, request.height, error_ratio));
+    RenderStats& stats = image.stats;
+    stats.has_error_stats = true;
+    stats.rel_err_mean = errors.rel_err_mean;
+    stats.rel_err_p99 = errors.rel_err_p99;
+    stats.frac_over_error = errors.frac_over_error;
+    stats.frac_over_2pct = fraction_over(errors, 0.02);
+    stats.max_err = errors.max_err;
+    stats.error_pixels = errors.measured_pixels;
+    stats.reference_ms = reference.stats.render_ms;
+    stats.reference_shadow_rays = reference.stats.shadow_rays;
+    if (request.error_mode) {
+        image.display = error_heatmap(errors, reference.hdr, request.width, request.height, error_ratio);
+        stats.mode = "error";
+    }
+}
+
+// -o and --float: the 8-bit image and the linear one (RGB of the RGBA read-back).
+void write_images(const RenderOptions& options, const RenderRequest& request, const RenderedFrame& image) {
+    Status png = write_png(options.output, request.width, request.height, image.display);
+    if (!png) fail(png.error());
+    if (options.float_output.empty()) return;
+    FloatImage pfm_image;
+    pfm_image.width = request.width;
+    pfm_image.height = request.height;
+    pfm_image.rgb.reserve(size_t(request.width) * request.height * 3);
+    const std::vector<float>& hdr = image.hdr;
+    for (size_t i = 0; i < hdr.size(); i += 4)
+        pfm_image.rgb.insert(pfm_image.rgb.end(), {hdr[i], hdr[i + 1], hdr[i + 2]});
+    Status pfm = write_pfm(options.float_output, pfm_image);
+    if (!pfm) fail(pfm.error());
+}
+
+// What the tree's indirect light is, or why there is none, in a line.
+void print_indirect_census(const RenderStats& stats, const Scene& scene, const TreeSource& source,
+                           const LightTree* tree) {
     IndirectCensusFacts indirect_facts;
     indirect_facts.has_tree = tree != nullptr;
     indirect_facts.vpls = stats.indirect_lights - stats.indirect_patches;
@@ -419,41 +464,84 @@ void run_render(const RenderOptions& options) {
         indirect_facts.scene_has_geometry = !extract_surface_geometry(scene).triangles.empty();
     if (std::string census = indirect_census(indirect_facts); !census.empty())
         std::printf("indirect: %s\n", census.c_str());
+}
+
+// The loop limit's and the heap's shortfalls, the error against the reference, and the summary line.
+void print_report(const RenderStats& stats, const RenderOptions& options, const RenderRequest& request,
+                  double command_ms) {
     if (stats.heap_capacity > 0 && stats.heap_capacity < stats.max_cut_setting)
-        std::printf("heap search: %u entries on this device (its driver refused private memory for "
-                    "max cut %u); %llu pixels filled the heap\n",
-                    stats.heap_capacity, stats.max_cut_setting, (unsigned long long)stats.max_cut_hits);
+        std::printf(
+            "heap search: %u entries on this device (its driver refused private memory for "
+            "max cut %u); %llu pixels filled the heap\n",
+            stats.heap_capacity, stats.max_cut_setting, (unsigned long long)stats.max_cut_hits);
     if (stats.primary == "rays") std::printf("G-buffer: primary rays in compute (%.2f ms GPU)\n", stats.gbuffer_ms);
     if (stats.has_error_stats)
-        std::printf("error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
-                    "over %.3f, max %.4f, %llu max-cut hits\n",
-                    stats.reference_ms, stats.rel_err_mean, stats.rel_err_p99,
-                    stats.frac_over_error, (unsigned long long)stats.error_pixels,
-                    settings.error_ratio, stats.max_err, (unsigned long long)stats.max_cut_hits);
+        std::printf(
+            "error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
+            "over %.3f, max %.4f, %llu max-cut hits\n",
+            stats.reference_ms, stats.rel_err_mean, stats.rel_err_p99, stats.frac_over_error,
+            (unsigned long long)stats.error_pixels, request.settings.error_ratio, stats.max_err,
+            (unsigned long long)stats.max_cut_hits);
     std::printf(
         "%s: %s %ux%u, %llu lights (%llu in the tree, %llu classic), %llu nodes, render %.2f ms "
         "%s%s, %.2f ms wall (%.0f ms total), avg cut %.2f, max cut %u, %llu non-finite pixels, "
         "%s%u validation messages -> %s\n",
-        stats.device.c_str(), stats.mode.c_str(), width, height, (unsigned long long)stats.lights,
-        (unsigned long long)stats.tree_lights, (unsigned long long)stats.classic_lights,
-        (unsigned long long)stats.nodes, stats.render_ms, stats.render_clock.c_str(),
-        realtime_summary(stats).c_str(), stats.wall_ms, command_ms, stats.avg_cut, stats.max_cut,
-        (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
+        stats.device.c_str(), stats.mode.c_str(), request.width, request.height,
+        (unsigned long long)stats.lights, (unsigned long long)stats.tree_lights,
+        (unsigned long long)stats.classic_lights, (unsigned long long)stats.nodes, stats.render_ms,
+        stats.render_clock.c_str(), realtime_summary(stats).c_str(), stats.wall_ms, command_ms, stats.avg_cut,
+        stats.max_cut, (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
         stats.validation_messages, options.output.c_str());
 }
 
-}  // namespace
+void run_render(const RenderOptions& options) {
+    const auto command_start = std::chrono::steady_clock::now();
+    std::vector<std::string> warnings;
+    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+    ProgressDisplay progress(stderr);
+    const TreeSource source = tree_source(options, scene, progress);
+    const RenderRequest request = make_request(options, scene, !source.empty());
+    std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
+    progress.finish();
 
-void add_render_command(CLI::App& app) {
-    auto options = std::make_shared<RenderOptions>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
-    cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
-        ->required();
-    add_gltf_load_flags(*cmd, options->gltf);
-    auto* tree =
-        cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
-    options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
-    tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
+    vk::ContextOptions context_options;
+    context_options.validation = options.validation;
+    vk::Context context = or_fail(vk::Context::create(context_options));
+    std::unique_ptr<Renderer> renderer = create_renderer(context, options, scene, tree.get());
+    const std::optional<EffectDecision> sky_decision =
+        prepare_renderer(*renderer, options, scene, source, tree.get());
+    if (!request.sweep_ratios.empty()) print_sweep(*renderer, options, request);
+    const std::optional<SupersampleRequest> spp = supersample_request(options, request);
+    const SupersampleRequest* eye_rays = spp ? &*spp : nullptr;
+    const std::vector<SceneLight> classic = classic_lights_of(scene);
+    RenderedFrame image = render_image(*renderer, options, request, eye_rays, tree.get(), classic);
+    if (sky_decision)
+        (sky_decision->simulated ? image.stats.effects_simulated : image.stats.effects_skipped)
+            .push_back(*sky_decision);
+    apply_auto_exposure(options, request, image);
+    if (request.compare) compare_with_reference(*renderer, request, eye_rays, tree.get(), classic, image);
+    write_images(options, request, image);
+
+    RenderStats& stats = image.stats;
+    stats.scene = options.scene;
+    stats.validation_messages = context.validation_message_count();
+    const double command_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - command_start).count();
+    if (!options.stats.empty()) {
+        if (Status written = write_stats_json(options.stats, stats); !written) fail(written.error());
+    }
+    if (stats.loop_limit_stops > 0)
+        std::fprintf(stderr,
+                     "warning: the device's loop limit cut %llu pixels' cut search short; they "
+                     "keep their last complete pass (counted in loop_limit_stops)\n",
+                     (unsigned long long)stats.loop_limit_stops);
+    print_indirect_census(stats, scene, source, tree.get());
+    print_report(stats, options, request, command_ms);
+}
+
+// --mode and the cut: criterion, error, search, representatives, shadows.
+void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--mode", options->mode,
                     "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
                     "fixed shadow-ray budget) or error (relative error of lightcuts "
@@ -496,6 +584,10 @@ void add_render_command(CLI::App& app) {
                     "JSON says why), on or off")
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
+}
+
+// --sweep-error and --compare-reference: the error against the reference.
+void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--sweep-error", options->sweep_error,
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
@@ -505,17 +597,24 @@ void add_render_command(CLI::App& app) {
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");
+}
+
+// The image: size, camera, exposure and the files written.
+void add_image_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--size", options->size, "Image size WxH")->capture_default_str();
-    auto* camera = cmd->add_option("--camera", options->camera,
-                                   "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
-    cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")
-        ->excludes(camera);
+    auto* camera =
+        cmd->add_option("--camera", options->camera, "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
+    cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")->excludes(camera);
     cmd->add_option("--exposure", options->exposure,
                     "Linear exposure before the tone curve (default: automatic, the log-average "
                     "luminance of the lit pixels maps to 0.18)");
     cmd->add_option("-o,--output", options->output, "8-bit PNG to write")->required();
     cmd->add_option("--float", options->float_output, "Linear float PFM to write");
     cmd->add_option("--stats", options->stats, "Statistics JSON to write");
+}
+
+// Eye rays per pixel, strides, and the real-time mode's frames.
+void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--spp", options->spp,
                     "Eye rays per pixel, jittered (seeded) and averaged into the pixel")
         ->check(CLI::Range(1u, 1024u))
@@ -526,8 +625,7 @@ void add_render_command(CLI::App& app) {
                     "cuts: CPU lightcuts at sparse samples, interpolated between)")
         ->check(CLI::IsMember({"gpu", "lightcuts", "reconstruction"}))
         ->capture_default_str();
-    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")
-        ->capture_default_str();
+    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")->capture_default_str();
     cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
         ->check(CLI::Range(1u, 256u))
         ->capture_default_str();
@@ -559,6 +657,23 @@ void add_render_command(CLI::App& app) {
                     "rasterise on few units; untextured scenes), or auto (rays on a GPU for a scene "
                     "without textures, raster otherwise)")
         ->capture_default_str();
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app) {
+    auto options = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
+    cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")
+        ->required();
+    add_gltf_load_flags(*cmd, options->gltf);
+    auto* tree = cmd->add_option("--tree", options->tree, "Light tree: a result channel dump (bake -o)");
+    options->bake.add_to(*cmd, /*server_required=*/false, /*renders=*/true);
+    tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
+    add_mode_flags(cmd, options.get());
+    add_measurement_flags(cmd, options.get());
+    add_image_flags(cmd, options.get());
+    add_sampling_flags(cmd, options.get());
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_render(*options); });

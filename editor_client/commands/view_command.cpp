@@ -86,12 +86,9 @@ void print_refinement(const EditorLoopSummary& summary) {
         std::printf("not reached\n");
 }
 
-void run_view(const ViewCommandOptions& options) {
-    std::vector<std::string> warnings;
-    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
-    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
-
-    auto [width, height] = or_fail(parse_size(options.size));
+// The first view the command line asks for (mode, size, camera, exposure), checked.
+RenderSettings requested_view(const ViewCommandOptions& options, const Scene& scene) {
+    const auto [width, height] = or_fail(parse_size(options.size));
     if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
     const std::string mode_name = options.mode.value_or(options.tree.empty() ? "reference" : "lightcuts");
@@ -107,65 +104,67 @@ void run_view(const ViewCommandOptions& options) {
     requested.camera = camera;
     requested.exposure = options.exposure.value_or(1.0f);
     or_fail(validate(requested, {.has_tree = can_get_tree}));
+    return requested;
+}
 
-    std::optional<ScriptRunner> script;
-    if (!options.script.empty()) script.emplace(or_fail(load_editor_script(options.script)), options.script);
-
+// The session over the scene, showing the requested view, with the tree of --tree.
+std::unique_ptr<EditorSession> open_session(const ViewCommandOptions& options, Scene scene,
+                                            const RenderSettings& requested) {
     EditorSessionOptions session_options;
-    session_options.aspect = float(width) / float(height);
+    session_options.aspect = float(requested.width) / float(requested.height);
     // The environment (the flags', else the glTF's) is the background, and goes with every bake.
     if (options.bake.has_server())
         session_options.bake = options.bake.to_options(scene);
     else
         session_options.bake.environment = or_fail(options.bake.environment.load(scene.environment));
-    EditorSession session(std::move(scene), session_options);
-    or_fail(session.set_camera(camera));
-    or_fail(session.set_exposure(requested.exposure));
-    session.set_mode(*mode);
-    or_fail(session.set_representatives(options.representatives));
-    or_fail(session.set_realtime_cut(options.realtime_cut));
-    if (!options.tree.empty()) or_fail(session.import_tree_dump(options.tree));
+    auto session = std::make_unique<EditorSession>(std::move(scene), session_options);
+    or_fail(session->set_camera(requested.camera));
+    or_fail(session->set_exposure(requested.exposure));
+    session->set_mode(requested.mode);
+    or_fail(session->set_representatives(options.representatives));
+    or_fail(session->set_realtime_cut(options.realtime_cut));
+    if (!options.tree.empty()) or_fail(session->import_tree_dump(options.tree));
+    return session;
+}
 
-    // A cut mode asked for on the command line with only a server: bake now.
-    // A fixed frame count waits for it, so those frames show the asked mode.
-    if (mode_needs_tree(*mode) && options.tree.empty()) {
-        or_fail(session.start_bake());
-        if (options.frames > 0) {
-            ProgressDisplay progress(stderr);
-            while (session.bake_running()) {
-                if (std::optional<BakeProgress> p = session.bake_progress())
-                    progress.update(p->stage, p->percent);
-                if (session.poll_bake()) break;
-                std::this_thread::sleep_for(std::chrono::milliseconds(20));
-            }
-            progress.finish();
-            const std::optional<BakeReport>& report = session.last_bake();
-            if (!report || !report->succeeded)
-                fail("bake failed: " + (report ? report->error : std::string("no report")));
-        }
+// A cut mode asked for on the command line with only a server: bake now.
+// A fixed frame count waits for it, so those frames show the asked mode.
+void bake_for_the_first_frame(const ViewCommandOptions& options, RenderMode mode, EditorSession& session) {
+    if (!mode_needs_tree(mode) || !options.tree.empty()) return;
+    or_fail(session.start_bake());
+    if (options.frames == 0) return;
+    ProgressDisplay progress(stderr);
+    while (session.bake_running()) {
+        if (std::optional<BakeProgress> p = session.bake_progress()) progress.update(p->stage, p->percent);
+        if (session.poll_bake()) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
+    progress.finish();
+    const std::optional<BakeReport>& report = session.last_bake();
+    if (!report || !report->succeeded)
+        fail("bake failed: " + (report ? report->error : std::string("no report")));
+}
 
-    std::unique_ptr<Window> window;
-    vk::ContextOptions context_options;
-    context_options.validation = options.validation;
-    if (options.headless) {
-        window = std::make_unique<HeadlessWindow>(width, height);
-    } else {
-        std::unique_ptr<GlfwWindow> glfw =
-            or_fail(GlfwWindow::create(width, height, "lightcuts editor: " + options.scene));
-        context_options.instance_extensions = glfw->required_instance_extensions();
-        GlfwWindow* raw = glfw.get();
-        context_options.create_surface = [raw](VkInstance instance) { return raw->create_surface(instance); };
-        window = std::move(glfw);
-    }
-    vk::Context context = or_fail(vk::Context::create(context_options));
+// A GLFW window (the context then makes its surface), or a headless one.
+std::unique_ptr<Window> open_window(const ViewCommandOptions& options, uint32_t width, uint32_t height,
+                                    vk::ContextOptions& context_options) {
+    if (options.headless) return std::make_unique<HeadlessWindow>(width, height);
+    std::unique_ptr<GlfwWindow> glfw =
+        or_fail(GlfwWindow::create(width, height, "lightcuts editor: " + options.scene));
+    context_options.instance_extensions = glfw->required_instance_extensions();
+    GlfwWindow* raw = glfw.get();
+    context_options.create_surface = [raw](VkInstance instance) { return raw->create_surface(instance); };
+    return glfw;
+}
 
+EditorLoopOptions loop_options(const ViewCommandOptions& options, const RenderSettings& requested,
+                               ScriptRunner* script) {
     EditorLoopOptions loop;
-    loop.width = width;
-    loop.height = height;
+    loop.width = requested.width;
+    loop.height = requested.height;
     loop.frames = options.frames;
     loop.screenshot = options.screenshot;
-    loop.script = script ? &*script : nullptr;
+    loop.script = script;
     loop.adaptive_resolution = !options.no_adaptive;
     loop.auto_exposure = !options.exposure;
     if (!std::isfinite(options.orbit_drag)) fail("--orbit must be a finite number of pixels");
@@ -177,7 +176,11 @@ void run_view(const ViewCommandOptions& options) {
     if (!(options.frame_budget_ms > 0.0) || !std::isfinite(options.frame_budget_ms))
         fail("--frame-budget-ms must be a positive number of milliseconds");
     loop.refinement.frame_budget_ms = options.frame_budget_ms;
-    EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, session, loop));
+    return loop;
+}
+
+void print_summary(const EditorLoopSummary& summary, const ViewCommandOptions& options,
+                   const vk::Context& context, const EditorSession& session) {
     const double steady_fps =
         summary.steady_seconds > 0.0 ? summary.steady_frames / summary.steady_seconds : 0.0;
     std::printf(
@@ -187,6 +190,25 @@ void run_view(const ViewCommandOptions& options) {
         context.validation_message_count(), options.screenshot.empty() ? "" : " -> ",
         options.screenshot.c_str(), summary.steady_frames, summary.steady_seconds, steady_fps,
         summary.last_frame.width, summary.last_frame.height, session.scene().lights.size());
+}
+
+void run_view(const ViewCommandOptions& options) {
+    std::vector<std::string> warnings;
+    Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
+    for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
+    const RenderSettings requested = requested_view(options, scene);
+    std::optional<ScriptRunner> script;
+    if (!options.script.empty()) script.emplace(or_fail(load_editor_script(options.script)), options.script);
+    std::unique_ptr<EditorSession> session = open_session(options, std::move(scene), requested);
+    bake_for_the_first_frame(options, requested.mode, *session);
+
+    vk::ContextOptions context_options;
+    context_options.validation = options.validation;
+    std::unique_ptr<Window> window = open_window(options, requested.width, requested.height, context_options);
+    vk::Context context = or_fail(vk::Context::create(context_options));
+    const EditorLoopOptions loop = loop_options(options, requested, script ? &*script : nullptr);
+    EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, *session, loop));
+    print_summary(summary, options, context, *session);
     // The real-time mode refines by accumulating whole frames, not in tiles.
     if (loop.progressive && summary.last_mode != RenderMode::kRealTime) print_refinement(summary);
     if (script && script->state() == ScriptState::kFailed) fail(script->error());

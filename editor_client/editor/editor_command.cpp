@@ -166,6 +166,59 @@ Result<std::filesystem::path> parse_path(std::string_view name, std::string_view
     return std::filesystem::path(std::string(rest));
 }
 
+// error-ratio, max-cut, realtime-cut and exposure: one number each.
+Result<std::optional<EditorCommand>> parse_view_setting(std::string_view name, const Args& args) {
+    using R = std::optional<EditorCommand>;
+    if (name == "error-ratio") {
+        if (Status ok = args.expect(1, 1, "RATIO"); !ok) return make_error(ok.error());
+        LC_TRY(ratio, args.number(0, "ratio"));
+        return R(cmd::ErrorRatio{ratio});
+    }
+    if (name == "max-cut") {
+        if (Status ok = args.expect(1, 1, "N"); !ok) return make_error(ok.error());
+        LC_TRY(max_cut, args.integer(0, "N"));
+        if (max_cut > UINT32_MAX) return make_error("max-cut: N is too large");
+        return R(cmd::MaxCut{static_cast<uint32_t>(max_cut)});
+    }
+    if (name == "realtime-cut") {
+        if (Status ok = args.expect(1, 1, "K"); !ok) return make_error(ok.error());
+        LC_TRY(nodes, args.integer(0, "K"));
+        if (nodes > UINT32_MAX) return make_error("realtime-cut: K is too large");
+        return R(cmd::RealTimeCut{static_cast<uint32_t>(nodes)});
+    }
+    // exposure
+    if (Status ok = args.expect(1, 1, "E"); !ok) return make_error(ok.error());
+    LC_TRY(exposure, args.number(0, "exposure"));
+    return R(cmd::Exposure{exposure});
+}
+
+// camera EX EY EZ TX TY TZ FOVY (degrees).
+Result<std::optional<EditorCommand>> parse_camera(const Args& args) {
+    using R = std::optional<EditorCommand>;
+    if (Status ok = args.expect(7, 7, "EX EY EZ TX TY TZ FOVY"); !ok)
+        return make_error(ok.error());
+    cmd::Camera c;
+    LC_TRY(eye, args.vec3(0, "eye"));
+    LC_TRY(target, args.vec3(3, "target"));
+    LC_TRY(fovy, args.number(6, "fovy"));
+    if (fovy <= 0.0f || fovy >= 178.0f)
+        return make_error("camera: fovy " + std::to_string(fovy) +
+                          " degrees is outside (0, 178)");
+    c.camera.eye = eye;
+    c.camera.target = target;
+    c.camera.yfov = fovy * std::numbers::pi_v<float> / 180.0f;
+    return R(c);
+}
+
+// screenshot, save and save-view: a PATH, which may hold spaces.
+Result<std::optional<EditorCommand>> parse_file_command(std::string_view name, std::string_view line) {
+    using R = std::optional<EditorCommand>;
+    LC_TRY(path, parse_path(name, line));
+    if (name == "screenshot") return R(cmd::Screenshot{path});
+    if (name == "save") return R(cmd::Save{path});
+    return R(cmd::SaveView{path});
+}
+
 }  // namespace
 
 Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line) {
@@ -204,55 +257,10 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
         if (name == "representatives") return R(cmd::RepresentativesChoice{std::string(args.word(0))});
         return R(cmd::Criterion{std::string(args.word(0))});
     }
-    if (name == "error-ratio") {
-        if (Status ok = args.expect(1, 1, "RATIO"); !ok) return make_error(ok.error());
-        LC_TRY(ratio, args.number(0, "ratio"));
-        return R(cmd::ErrorRatio{ratio});
-    }
-    if (name == "max-cut") {
-        if (Status ok = args.expect(1, 1, "N"); !ok) return make_error(ok.error());
-        LC_TRY(max_cut, args.integer(0, "N"));
-        if (max_cut > UINT32_MAX) return make_error("max-cut: N is too large");
-        return R(cmd::MaxCut{static_cast<uint32_t>(max_cut)});
-    }
-    if (name == "realtime-cut") {
-        if (Status ok = args.expect(1, 1, "K"); !ok) return make_error(ok.error());
-        LC_TRY(nodes, args.integer(0, "K"));
-        if (nodes > UINT32_MAX) return make_error("realtime-cut: K is too large");
-        return R(cmd::RealTimeCut{static_cast<uint32_t>(nodes)});
-    }
-    if (name == "exposure") {
-        if (Status ok = args.expect(1, 1, "E"); !ok) return make_error(ok.error());
-        LC_TRY(exposure, args.number(0, "exposure"));
-        return R(cmd::Exposure{exposure});
-    }
-    if (name == "camera") {
-        if (Status ok = args.expect(7, 7, "EX EY EZ TX TY TZ FOVY"); !ok)
-            return make_error(ok.error());
-        cmd::Camera c;
-        LC_TRY(eye, args.vec3(0, "eye"));
-        LC_TRY(target, args.vec3(3, "target"));
-        LC_TRY(fovy, args.number(6, "fovy"));
-        if (fovy <= 0.0f || fovy >= 178.0f)
-            return make_error("camera: fovy " + std::to_string(fovy) +
-                              " degrees is outside (0, 178)");
-        c.camera.eye = eye;
-        c.camera.target = target;
-        c.camera.yfov = fovy * std::numbers::pi_v<float> / 180.0f;
-        return R(c);
-    }
-    if (name == "screenshot") {
-        LC_TRY(path, parse_path(name, line));
-        return R(cmd::Screenshot{path});
-    }
-    if (name == "save") {
-        LC_TRY(path, parse_path(name, line));
-        return R(cmd::Save{path});
-    }
-    if (name == "save-view") {
-        LC_TRY(path, parse_path(name, line));
-        return R(cmd::SaveView{path});
-    }
+    if (name == "error-ratio" || name == "max-cut" || name == "realtime-cut" || name == "exposure")
+        return parse_view_setting(name, args);
+    if (name == "camera") return parse_camera(args);
+    if (name == "screenshot" || name == "save" || name == "save-view") return parse_file_command(name, line);
     if (name == "wait-refined") return no_args(args, cmd::WaitRefined{});
     if (name == "wait-frames") {
         if (Status ok = args.expect(1, 1, "N"); !ok) return make_error(ok.error());

@@ -1,9 +1,13 @@
 #pragma once
-// The frame loop of the interactive editor (`editor_client view`): each frame
-// polls input and the bake in flight, steps the `--script`, keeps the renderer
-// in step with the edited lights and the imported tree, renders the session's
-// view (at reduced resolution while the camera moves) and presents it. Works
-// with a GLFW window or a HeadlessWindow (frames rendered, never presented).
+// The frame loop of the interactive editor (`editor_client view`), in steps:
+// input (the window's events, the panels, the camera: view_controls.h),
+// update (the bake in flight, the `--script`, the renderer kept in step with
+// the edited lights and the imported tree: renderer_sync.h), scheduling (a
+// whole image, a reduced one while the camera moves, or a progressive image's
+// tiles: frame_schedule.h), render, present (frame_presenter.h), then
+// auto-exposure (view_auto_exposure.h) and the frame's statistics; screenshots
+// go through the loop's EditorHost (editor_loop_host.h). Works with a GLFW
+// window or a HeadlessWindow (frames rendered, never presented).
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -13,6 +17,7 @@
 
 #include "editor_client/editor/adaptive_resolution.h"
 #include "editor_client/editor/editor_session.h"
+#include "editor_client/editor/frame_schedule.h"
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/progressive_refinement.h"
 #include "editor_client/editor/script_runner.h"
@@ -50,17 +55,6 @@ struct EditorLoopOptions {
     ProgressiveOptions refinement;
 };
 
-// What the progressive view did, frame by frame.
-struct RefinementEvent {
-    enum class Kind { kStarted, kRestarted, kCompleted };
-    Kind kind = Kind::kStarted;
-    uint32_t frame = 0;         // 0-based frame of the loop
-    double seconds = 0.0;       // since the loop started
-    double percent = 0.0;       // restarted: of the pass that was refining
-    uint32_t pass = 0;          // restarted: the pass that was refining (0-based)
-    uint32_t passes = 0;
-};
-
 struct EditorLoopSummary {
     uint32_t frames = 0;
     double seconds = 0.0;
@@ -79,8 +73,6 @@ struct EditorLoopSummary {
     uint32_t refining_frames = 0;
     double refining_seconds = 0.0;
 };
-
-const char* refinement_event_name(RefinementEvent::Kind kind);
 
 Result<EditorLoopSummary> run_editor_loop(Window& window, const vk::Context& context, EditorSession& session,
                                           const EditorLoopOptions& options);
