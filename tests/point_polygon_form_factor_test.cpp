@@ -83,5 +83,25 @@ TEST(PatchMesh, SplitsTrianglesIntoEqualPatchesAndSkipsDegenerateOnes) {
     EXPECT_FALSE(make_patches(g, 0.0f, 1000).ok());
 }
 
+// Two million patches take hundreds of milliseconds: a cancel stops the
+// split, polled per row of a triangle's grid; a live stop changes nothing.
+TEST(PatchMesh, ACancelStopsTheSplitAndALiveStopChangesNothing) {
+    const SceneGeometry g = test::closed_box({}, 1.0f);
+    bake::BakeStop live;
+    auto with_stop = make_patches(g, 0.01f, 1 << 22, &live);
+    auto without = make_patches(g, 0.01f, 1 << 22);
+    ASSERT_TRUE(with_stop.ok() && without.ok());
+    ASSERT_EQ(with_stop->patches.size(), without->patches.size());
+    EXPECT_GT(without->patches.size(), 100000u);
+    for (size_t i = 0; i < without->patches.size(); i += 997) {
+        EXPECT_EQ(with_stop->patches[i].centre, without->patches[i].centre);
+    }
+    bake::BakeStop cancelled;
+    cancelled.cancel();
+    auto stopped = make_patches(g, 0.01f, 1 << 22, &cancelled);
+    ASSERT_FALSE(stopped.ok());
+    EXPECT_EQ(stopped.error_kind(), ErrorKind::kCancelled) << stopped.error();
+}
+
 }  // namespace
 }  // namespace lc::bake

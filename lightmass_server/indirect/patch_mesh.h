@@ -8,6 +8,7 @@
 
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
+#include "lightmass_server/bake_stop.h"
 
 namespace lc::bake {
 
@@ -30,7 +31,10 @@ uint64_t count_patches(const SceneGeometry& geometry, float patch_size);
 // error names the count and the limit ("too large", kRefused).
 Status check_patch_count(const SceneGeometry& geometry, float patch_size, size_t max_patches);
 
-// Fails, naming the count, when the patches would exceed `max_patches`.
-Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches);
+// Fails, naming the count, when the patches would exceed `max_patches`; stops
+// with `stop`'s reason within a few thousand patches once it is requested
+// (two million patches take hundreds of milliseconds).
+Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, size_t max_patches,
+                               const BakeStop* stop = nullptr);
 
 }  // namespace lc::bake
