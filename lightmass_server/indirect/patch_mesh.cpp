@@ -69,7 +69,7 @@ Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, 
     StopPoll stopped(stop);
     for (uint32_t index = 0; index < geometry.triangles.size(); ++index) {
         // A triangle makes at most 2^32 patches but a row at most 2^17: polled per row too.
-        if (stopped()) return stop->reason("radiosity patches");
+        if (stopped()) return stop->reason("radiosity");
         const SurfaceTriangle& t = geometry.triangles[index];
         if (is_degenerate(t)) {
             ++mesh.skipped_degenerate;
@@ -82,7 +82,7 @@ Result<PatchMesh> make_patches(const SceneGeometry& geometry, float patch_size, 
         auto grid = [&](uint64_t i, uint64_t j) { return t.positions[0] + float(i) * du + float(j) * dv; };
         // Row j holds the upright triangles (i, j) and the inverted ones between them.
         for (uint64_t j = 0; j < k; ++j) {
-            if (stopped()) return stop->reason("radiosity patches");
+            if (stopped()) return stop->reason("radiosity");
             for (uint64_t i = 0; i + j < k; ++i) {
                 mesh.patches.push_back(make_patch(grid(i, j), grid(i + 1, j), grid(i, j + 1), n, index));
                 if (i + j + 1 < k) {
