@@ -51,6 +51,7 @@ struct ViewCommandOptions {
     uint32_t realtime_cut = 16;
     std::string representatives = "tree";
     std::string shadows = "auto";
+    std::string primary = "auto";
     std::string size = "800x600";
     std::string camera;
     std::optional<int> camera_index;
@@ -172,6 +173,9 @@ EditorLoopOptions loop_options(const ViewCommandOptions& options, const RenderSe
     loop.panels = !options.no_panels;
     loop.window_screenshot = options.window_screenshot;
     loop.shadows = or_fail(parse_shadow_mode(options.shadows));
+    const std::optional<PrimaryChoice> primary = parse_primary_choice(options.primary);
+    if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
+    loop.primary = *primary;
     loop.progressive = !options.no_progressive;
     if (!(options.frame_budget_ms > 0.0) || !std::isfinite(options.frame_budget_ms))
         fail("--frame-budget-ms must be a positive number of milliseconds");
@@ -276,6 +280,11 @@ void add_view_command(CLI::App& app) {
     cmd->add_option("--shadows", options->shadows,
                     "Shadow rays: auto (when a surface may hide a light), on or off")
         ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
+    cmd->add_option("--primary", options->primary,
+                    "How the G-buffer is made: raster, rays (compute; untextured scenes) or auto "
+                    "(rays on a GPU, raster on a CPU device or a textured scene)")
+        ->check(CLI::IsMember({"auto", "raster", "rays"}))
         ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");

@@ -111,6 +111,7 @@ Status EditorLoop::prepare() {
         return make_error("the Vulkan context was created without the window's surface");
     RendererOptions renderer_options;
     renderer_options.shadows = options_.shadows;
+    renderer_options.primary = options_.primary;
     Result<std::unique_ptr<Renderer>> created =
         Renderer::create(context_, session_.scene(), nullptr, renderer_options);
     if (!created) return make_error(created.error());

@@ -47,6 +47,7 @@ struct EditorLoopOptions {
     bool panels = false;
     AdaptiveResolutionOptions adaptive;
     ShadowMode shadows = ShadowMode::kAuto;  // the renderer's (scene analysis by default)
+    PrimaryChoice primary = PrimaryChoice::kAuto;  // how the renderer makes the G-buffer
     // Refine the view over frames, coarse to fine, in tiles within a GPU budget
     // per frame (progressive_refinement.h), so input and the panels are
     // handled every frame; otherwise each frame renders a whole image. The
