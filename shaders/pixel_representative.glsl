@@ -33,24 +33,19 @@ struct PixelDraw {
 };
 
 // Draws whose probabilities divide the estimate (the leaf's own intensity
-// over its probability): by importance, and the real-time mode's.
-bool draws_by_weight() {
-    return kRepresentatives == kRepresentativesImportance || kRepresentatives == kRepresentativesStochastic;
-}
+// over its probability): by importance. (The real-time mode draws through
+// its own records, stochastic_draw.glsl.)
+bool draws_by_weight() { return kRepresentatives == kRepresentativesImportance; }
 
 // A child's weight in the draw.
 float draw_weight(int i, SurfacePoint p) {
     if (!draws_by_weight()) return representative_scalar(tree_nodes[i].intensity);
     // A junction of several light types has a box of positions and directions
-    // mixed: it weighs by intensity alone, so the draw stays unbiased (only the
-    // real-time mode draws through one: the cut searches always refine it).
+    // mixed: it weighs by intensity alone, so the draw stays unbiased (the cut
+    // searches always refine one, so no draw starts above it).
     uint flags = tree_nodes[i].flags;
     if ((flags & kNodeMixedTypes) != 0u) return representative_scalar(tree_nodes[i].intensity);
     bool directional = (flags >> kNodeTypeShift) == kLightDirectional;
-    if (kRepresentatives == kRepresentativesStochastic)
-        return importance_weight(tree_nodes[i].intensity,
-                                 stochastic_geometry(tree_nodes[i].bbox_min, tree_nodes[i].bbox_max, p.position,
-                                                     p.normal, directional));
     return importance_weight(tree_nodes[i].intensity,
                              importance_geometry(tree_nodes[i].bbox_min, tree_nodes[i].bbox_max,
                                                  p.position, p.normal, directional));

@@ -126,15 +126,10 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
     if (!sampler) return make_error(sampler.error());
     gpu.sampler_ = std::move(sampler).value();
 
-    std::array<VkDescriptorSetLayoutBinding, kMaterialBindingCount> bindings{};
-    for (uint32_t b = 0; b < kMaterialBindingCount; ++b) {
-        bindings[b].binding = b;
-        bindings[b].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        bindings[b].descriptorCount = 1;
-        bindings[b].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
-    }
+    std::array<VkDescriptorType, kMaterialBindingCount> types{};
+    types.fill(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     Result<vk::DescriptorSetLayout> layout =
-        vk::DescriptorSetLayout::create(device.handle(), bindings);
+        vk::DescriptorSetLayout::create(device.handle(), types, VK_SHADER_STAGE_FRAGMENT_BIT);
     if (!layout) return make_error(layout.error());
     gpu.material_layout_ = std::move(layout).value();
 

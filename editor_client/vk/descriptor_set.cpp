@@ -17,6 +17,19 @@ Result<DescriptorSetLayout> DescriptorSetLayout::create(
     return layout;
 }
 
+Result<DescriptorSetLayout> DescriptorSetLayout::create(VkDevice device,
+                                                       std::span<const VkDescriptorType> types,
+                                                       VkShaderStageFlags stages) {
+    std::vector<VkDescriptorSetLayoutBinding> bindings(types.size());
+    for (size_t b = 0; b < types.size(); ++b) {
+        bindings[b].binding = uint32_t(b);
+        bindings[b].descriptorType = types[b];
+        bindings[b].descriptorCount = 1;
+        bindings[b].stageFlags = stages;
+    }
+    return create(device, bindings);
+}
+
 Result<DescriptorPool> DescriptorPool::create(VkDevice device, uint32_t max_sets,
                                               std::span<const VkDescriptorPoolSize> sizes) {
     VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};

@@ -17,6 +17,9 @@ class DescriptorSetLayout {
 public:
     static Result<DescriptorSetLayout> create(
         VkDevice device, std::span<const VkDescriptorSetLayoutBinding> bindings);
+    // Bindings 0..n-1, binding b one descriptor of types[b], seen by `stages`.
+    static Result<DescriptorSetLayout> create(VkDevice device, std::span<const VkDescriptorType> types,
+                                              VkShaderStageFlags stages);
 
     VkDescriptorSetLayout handle() const { return layout_.get(); }
 

@@ -26,9 +26,6 @@ namespace lc::device {
 LC_CONST uint kRepresentativesTree = 0u;
 LC_CONST uint kRepresentativesPixel = 1u;
 LC_CONST uint kRepresentativesImportance = 2u;
-// The real-time mode's draw (stochastic_cuts.comp): intensity x an estimate
-// of cos / d^2, not a bound (stochastic_geometry below).
-LC_CONST uint kRepresentativesStochastic = 3u;
 
 // The pixel's key: every draw of the pixel starts from it. `seed` draws a
 // different set of representatives for the same image. The mixer is the cut
@@ -99,12 +96,6 @@ LC_INLINE float stochastic_sphere_geometry(vec3 c, float r, vec3 n) {
     if (!(z_max > 0.0f)) return 0.0f;
     float d2 = max(max(dot(c, c), r * r), 1e-4f);
     return min(1.0f, z_max / sqrt(d2)) / d2;
-}
-
-// The same for a box of positions: its bounding sphere.
-LC_INLINE float stochastic_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n, bool directional) {
-    if (directional) return 1.0f;
-    return stochastic_sphere_geometry(0.5f * (bbox_min + bbox_max) - x, 0.5f * length(bbox_max - bbox_min), n);
 }
 
 LC_INLINE float importance_weight(vec3 I, float geometry) {

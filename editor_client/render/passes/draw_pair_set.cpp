@@ -10,13 +10,10 @@ namespace lc::client {
 
 Result<DrawPairSet> DrawPairSet::create(const vk::Device& device) {
     DrawPairSet set(device);
-    VkDescriptorSetLayoutBinding binding{};
-    binding.binding = kBindDrawPairs;
-    binding.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    binding.descriptorCount = 1;
-    binding.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    static_assert(kBindDrawPairs == 0u);
+    const VkDescriptorType type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     Result<vk::DescriptorSetLayout> layout =
-        vk::DescriptorSetLayout::create(device.handle(), std::span(&binding, 1));
+        vk::DescriptorSetLayout::create(device.handle(), std::span(&type, 1), VK_SHADER_STAGE_COMPUTE_BIT);
     if (!layout) return make_error(layout.error());
     set.set_layout_ = std::move(layout).value();
     const std::array<VkDescriptorPoolSize, 1> sizes{

@@ -2,7 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include "editor_client/render/primary_geometry.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
@@ -21,8 +20,12 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     if (!primary_rays) return make_error(primary_rays.error());
     FramePasses passes;
     passes.primary_rays_ = std::move(primary_rays).value();
-    passes.primary_choice_ = primary;
-    passes.rays_fit_ = !context.physical().is_software() && primary_rays_unsupported(gpu_scene).empty();
+    // Auto: rays on a GPU for a scene without raster-only materials.
+    const bool rays_fit = !context.physical().is_software() && passes.primary_rays_->unsupported().empty();
+    passes.primary_ = primary == PrimaryChoice::kRays || (primary == PrimaryChoice::kAuto && rays_fit)
+                          ? PrimaryVisibility::kRays
+                          : PrimaryVisibility::kRaster;
+    passes.may_fall_back_ = primary == PrimaryChoice::kAuto;
     passes.gbuffer_ = std::move(gbuffer).value();
     passes.real_time_ = std::move(real_time).value();
     return passes;
@@ -47,11 +50,10 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
 
 Result<std::array<FramePass*, 3>> FramePasses::prepare(PipelineCache& pipelines, const Frame& frame) {
     std::array<FramePass*, 3> passes = for_settings(*frame.settings);
-    if (Status rays = passes[0]->prepare(pipelines, frame); !rays) {
-        if (passes[0] != primary_rays_.get() || primary_choice_ != PrimaryChoice::kAuto)
-            return make_error(rays.error());
-        spdlog::warn("{}: the G-buffer is rasterised instead", rays.error());
-        rays_fit_ = false;
+    if (Status drawn = passes[0]->prepare(pipelines, frame); !drawn) {
+        if (passes[0] != primary_rays_.get() || !may_fall_back_) return make_error(drawn.error());
+        spdlog::warn("{}: the G-buffer is rasterised instead", drawn.error());
+        primary_ = PrimaryVisibility::kRaster;
         passes[0] = gbuffer_.get();
         LC_RETURN_IF_ERROR(passes[0]->prepare(pipelines, frame));
     }
@@ -64,10 +66,5 @@ FramePass& FramePasses::gbuffer() {
     return *gbuffer_;
 }
 
-PrimaryVisibility FramePasses::primary() const {
-    if (primary_choice_ == PrimaryChoice::kRays) return PrimaryVisibility::kRays;
-    if (primary_choice_ == PrimaryChoice::kRaster) return PrimaryVisibility::kRaster;
-    return rays_fit_ ? PrimaryVisibility::kRays : PrimaryVisibility::kRaster;
-}
 
 }  // namespace lc::client

@@ -33,7 +33,7 @@ public:
     // The G-buffer pass alone (Renderer::render_gbuffer): raster or rays.
     FramePass& gbuffer();
     // How the G-buffer is made (PrimaryChoice's rule, the same for every mode).
-    PrimaryVisibility primary() const;
+    PrimaryVisibility primary() const { return primary_; }
     RealTimePass& real_time() { return *real_time_; }
     const RealTimePass& real_time() const { return *real_time_; }
     const BoundHeapPass& bound_heap() const { return bound_heap_; }
@@ -41,8 +41,8 @@ public:
 private:
     std::unique_ptr<GBufferPass> gbuffer_;
     std::unique_ptr<PrimaryRaysPass> primary_rays_;
-    PrimaryChoice primary_choice_ = PrimaryChoice::kAuto;
-    bool rays_fit_ = false;  // a GPU device and a scene without raster-only materials
+    PrimaryVisibility primary_ = PrimaryVisibility::kRaster;
+    bool may_fall_back_ = false;  // auto chose: a driver refusing the rays gets raster
     ReferencePass reference_;
     RadiusWalkPass radius_walk_;
     BoundWalkPass bound_walk_;

@@ -18,17 +18,6 @@
 namespace lc::client {
 namespace {
 
-Result<vk::DescriptorSetLayout> create_set_layout(VkDevice device) {
-    std::array<VkDescriptorSetLayoutBinding, kPrimaryBindingCount> bindings{};
-    for (uint32_t b = 0; b < kPrimaryBindingCount; ++b) {
-        bindings[b].binding = b;
-        bindings[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        bindings[b].descriptorCount = 1;
-        bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-    }
-    return vk::DescriptorSetLayout::create(device, bindings);
-}
-
 template <typename T>
 std::span<const std::byte> bytes_of(const std::vector<T>& v) {
     return std::as_bytes(std::span(v));
@@ -36,13 +25,19 @@ std::span<const std::byte> bytes_of(const std::vector<T>& v) {
 
 }  // namespace
 
+PrimaryRaysPass::PrimaryRaysPass(const vk::Context& context, const GpuScene& gpu_scene, const Scene& scene)
+    : context_(context), gpu_scene_(gpu_scene), scene_(scene), unsupported_(primary_rays_unsupported(gpu_scene)) {}
+
 Result<std::unique_ptr<PrimaryRaysPass>> PrimaryRaysPass::create(const vk::Context& context,
                                                                  VkDescriptorSetLayout frame_layout,
                                                                  const GpuScene& gpu_scene,
                                                                  const Scene& scene) {
     std::unique_ptr<PrimaryRaysPass> pass(new PrimaryRaysPass(context, gpu_scene, scene));
     VkDevice device = context.device().handle();
-    Result<vk::DescriptorSetLayout> set_layout = create_set_layout(device);
+    std::array<VkDescriptorType, kPrimaryBindingCount> types{};
+    types.fill(VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    Result<vk::DescriptorSetLayout> set_layout =
+        vk::DescriptorSetLayout::create(device, types, VK_SHADER_STAGE_COMPUTE_BIT);
     if (!set_layout) return make_error(set_layout.error());
     pass->set_layout_ = std::move(set_layout).value();
     const std::array<VkDescriptorPoolSize, 1> sizes{
@@ -101,8 +96,7 @@ Status PrimaryRaysPass::build_geometry() {
 }
 
 Status PrimaryRaysPass::prepare(PipelineCache& pipelines, const Frame& frame) {
-    if (std::string why = primary_rays_unsupported(gpu_scene_); !why.empty())
-        return make_error("primary rays: " + why + "; use --primary raster");
+    if (!unsupported_.empty()) return make_error("primary rays: " + unsupported_ + "; use --primary raster");
     if (!built_) LC_RETURN_IF_ERROR(build_geometry());
     // A walk visits each node once at most: a BVH the loop limit cannot cover is refused.
     const vk::DeviceQuirks& quirks = context_.physical().quirks;

@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "editor_client/render/gpu_scene.h"
 #include "editor_client/render/passes/frame_pass.h"
@@ -34,10 +35,11 @@ public:
 
     // BVH nodes over the scene's triangles (0 before the first frame by rays).
     uint32_t node_count() const { return node_count_; }
+    // Why this scene's G-buffer cannot be cast as rays (primary_rays_unsupported), empty when it can.
+    const std::string& unsupported() const { return unsupported_; }
 
 private:
-    PrimaryRaysPass(const vk::Context& context, const GpuScene& gpu_scene, const Scene& scene)
-        : context_(context), gpu_scene_(gpu_scene), scene_(scene) {}
+    PrimaryRaysPass(const vk::Context& context, const GpuScene& gpu_scene, const Scene& scene);
     Status build_geometry();
     Status upload(vk::Buffer& out, std::span<const std::byte> bytes);
 
@@ -49,6 +51,7 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     vk::PipelineLayout layout_;
     vk::Buffer nodes_, triangles_, sources_, materials_, params_buffer_;
+    std::string unsupported_;  // the scene's materials decide it once
     bool built_ = false;
     uint32_t node_count_ = 0;
     GpuPrimaryParams params_;

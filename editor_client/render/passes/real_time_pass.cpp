@@ -46,7 +46,9 @@ Status RealTimePass::prepare(PipelineCache& pipelines, const Frame& frame) {
             .set_uint(kSpecWorkgroupY, frame.workgroup_size);
         if (stage == kLighting) {
             specialize_lighting(spec, frame);
-            spec.set_uint(kSpecRepresentatives, device::kRepresentativesStochastic)
+            // Its cut nodes are evaluated through its own draws (stochastic_draw.glsl),
+            // not a representative: one pipeline whatever --representatives says.
+            spec.set_uint(kSpecRepresentatives, device::kRepresentativesTree)
                 .set_uint(kSpecStochasticCut, frame.settings->realtime_cut);
         }
         Result<VkPipeline> pipeline = pipelines.compute(layout_.handle(), modules[stage], spec);

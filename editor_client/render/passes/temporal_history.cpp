@@ -12,15 +12,10 @@ namespace {
 constexpr VkFormat kHistoryFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 Result<vk::DescriptorSetLayout> create_set_layout(VkDevice device) {
-    std::array<VkDescriptorSetLayoutBinding, kTemporalBindingCount> bindings{};
-    for (uint32_t b = 0; b < kTemporalBindingCount; ++b) {
-        bindings[b].binding = b;
-        bindings[b].descriptorType = b == kBindTemporalParams ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER
-                                                              : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-        bindings[b].descriptorCount = 1;
-        bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-    }
-    return vk::DescriptorSetLayout::create(device, bindings);
+    std::array<VkDescriptorType, kTemporalBindingCount> types{};
+    for (uint32_t b = 0; b < kTemporalBindingCount; ++b)
+        types[b] = b == kBindTemporalParams ? VK_DESCRIPTOR_TYPE_STORAGE_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    return vk::DescriptorSetLayout::create(device, types, VK_SHADER_STAGE_COMPUTE_BIT);
 }
 
 }  // namespace
