@@ -70,16 +70,20 @@ void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh, co
     }
 }
 
-uint32_t mask_texel(const AlphaMask& mask, glm::vec2 uv) {
-    if (mask.alpha.empty()) return 255;
+size_t mask_texel_index(uint32_t width, uint32_t height, glm::vec2 uv) {
     const float u = uv.x - std::floor(uv.x);
     const float v = uv.y - std::floor(uv.y);
     // NaN coordinates land on texel 0 (the casts are clamped first).
-    const float fx = std::clamp(u * float(mask.width), 0.0f, float(mask.width - 1));
-    const float fy = std::clamp(v * float(mask.height), 0.0f, float(mask.height - 1));
+    const float fx = std::clamp(u * float(width), 0.0f, float(width - 1));
+    const float fy = std::clamp(v * float(height), 0.0f, float(height - 1));
     const uint32_t x = std::isnan(fx) ? 0u : uint32_t(fx);
     const uint32_t y = std::isnan(fy) ? 0u : uint32_t(fy);
-    return mask.alpha[size_t(y) * size_t(mask.width) + x];
+    return size_t(y) * size_t(width) + x;
+}
+
+uint32_t mask_texel(const AlphaMask& mask, glm::vec2 uv) {
+    if (mask.alpha.empty()) return 255;
+    return mask.alpha[mask_texel_index(uint32_t(mask.width), uint32_t(mask.height), uv)];
 }
 
 }  // namespace lc

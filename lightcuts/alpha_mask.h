@@ -64,7 +64,10 @@ std::vector<int32_t> mesh_alpha_masks(const Scene& scene, std::vector<AlphaMask>
 void add_occluder_mask(OccluderMasks& out, size_t triangle, const Mesh& mesh, const uint32_t* corners,
                        int32_t mask);
 
-// The texel at uv: nearest, repeat wrap (the float math the shaders do).
+// The row-major index of the texel at uv in a width x height texture (both
+// > 0): nearest, repeat wrap (the float math the shaders do).
+size_t mask_texel_index(uint32_t width, uint32_t height, glm::vec2 uv);
+// The texel at uv.
 uint32_t mask_texel(const AlphaMask& mask, glm::vec2 uv);
 inline bool mask_keeps(const AlphaMask& mask, glm::vec2 uv) {
     return mask_texel(mask, uv) >= mask.keep_threshold;

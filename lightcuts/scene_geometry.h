@@ -2,11 +2,14 @@
 // The scene's surfaces as the server sees them: a flat list of world-space
 // triangles with one material each. This is what travels on the geometry
 // channel and what the server's ray caster, area-light sampler and indirect
-// solvers read. Textures are already reduced to per-triangle colours here.
+// solvers read. Textures are already reduced to per-triangle colours here;
+// alpha masks travel as keep bits (surface_mask.h).
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <vector>
+
+#include "lightcuts/surface_mask.h"
 
 namespace lc {
 
@@ -28,6 +31,10 @@ struct SurfaceTriangle {
 struct SceneGeometry {
     std::vector<SurfaceTriangle> triangles;
     std::vector<SurfaceMaterial> materials;
+    // Alpha-masked (glTF MASK) triangles, by increasing triangle index: rays
+    // pass them where the mask cuts the surface out. Empty: all opaque.
+    std::vector<SurfaceMask> masks;
+    std::vector<MaskedTriangle> masked_triangles;
 };
 
 // Twice the area's vector (unnormalised geometric normal, winding order).

@@ -66,6 +66,9 @@ BakeFootprint estimate_bake_footprint(const BakeInputs& inputs, bool recording) 
     if (inputs.geometry) {
         const SceneGeometry& geometry = *inputs.geometry;
         out.bytes += geometry.triangles.size() * kRayCasterBytesPerTriangle;
+        // The caster's copy of the masks and of the masked triangles.
+        for (const SurfaceMask& mask : geometry.masks) out.bytes += mask.keep_bits.size() * sizeof(uint32_t);
+        out.bytes += geometry.masked_triangles.size() * sizeof(MaskedTriangle);
         const uint64_t emissive = emissive_triangles(geometry);
         if (emissive > 0) out.tree_lights += std::max<uint64_t>(inputs.area_lights, emissive);
     }

@@ -135,12 +135,12 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
                                                        " is not supported; this server reads " +
                                                        kSceneFormatVersionGuid.to_hex());
     const uint64_t max_bytes = environment ? max_environment_channel_bytes()
-                               : geometry  ? geometry_channel_bytes(kMaxGeometryMaterials, kMaxGeometryTriangles)
+                               : geometry  ? max_geometry_channel_bytes()
                                            : 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
     const std::string limit = environment ? std::to_string(kMaxEquirectWidth) + " x " +
                                                 std::to_string(kMaxEquirectHeight) + " texels"
                               : geometry ? std::to_string(kMaxGeometryMaterials) + " materials and " +
-                                               std::to_string(kMaxGeometryTriangles) + " triangles"
+                                               std::to_string(kMaxGeometryTriangles) + " triangles and their masks"
                                          : std::to_string(kMaxSceneLights) + " lights";
     if (open.total_bytes > max_bytes)
         return refuse(ErrorCode::kTooLarge, "announces " + std::to_string(open.total_bytes) +

@@ -19,6 +19,8 @@ using namespace records;
 // The wire layouts; a change here is a protocol change (bump the version GUID).
 static_assert(sizeof(fb::SurfaceMaterialRecord) == 32);
 static_assert(sizeof(fb::SurfaceTriangleRecord) == 76);
+static_assert(sizeof(fb::SurfaceMaskRecord) == 8);
+static_assert(sizeof(fb::MaskedTriangleRecord) == 32);
 
 constexpr size_t kCountBytes = sizeof(int32_t);
 constexpr float kUnitLengthTolerance = 1e-3f;
@@ -86,7 +88,45 @@ std::string count_error(int32_t count, uint32_t limit, const char* what) {
            std::to_string(limit);
 }
 
+const char* section_name(int section) {
+    static const char* const names[] = {"material", "triangle", "mask", "mask word", "masked triangle"};
+    return names[section];
+}
+
+uint64_t count_limit(int section) {
+    static const uint64_t limits[] = {kMaxGeometryMaterials, kMaxGeometryTriangles, kMaxGeometryMasks,
+                                      kMaxGeometryMaskWords, kMaxGeometryTriangles};
+    return limits[section];
+}
+
+void put_masks(std::vector<uint8_t>& out, const SceneGeometry& geometry) {
+    put_u32(out, static_cast<uint32_t>(geometry.masks.size()));
+    uint64_t words = 0;
+    for (const SurfaceMask& m : geometry.masks) {
+        append_struct(out, fb::SurfaceMaskRecord(m.width, m.height));
+        words += m.keep_bits.size();
+    }
+    put_u32(out, static_cast<uint32_t>(words));
+    for (const SurfaceMask& m : geometry.masks)
+        for (uint32_t w : m.keep_bits) put_u32(out, w);
+    put_u32(out, static_cast<uint32_t>(geometry.masked_triangles.size()));
+    for (const MaskedTriangle& t : geometry.masked_triangles) {
+        append_struct(out, fb::MaskedTriangleRecord(t.triangle, t.mask, t.uvs[0].x, t.uvs[0].y, t.uvs[1].x,
+                                                    t.uvs[1].y, t.uvs[2].x, t.uvs[2].y));
+    }
+}
+
 }  // namespace
+
+size_t geometry_mask_record_bytes() { return sizeof(fb::SurfaceMaskRecord); }
+size_t geometry_masked_triangle_record_bytes() { return sizeof(fb::MaskedTriangleRecord); }
+
+uint64_t max_geometry_channel_bytes() {
+    return geometry_channel_bytes(kMaxGeometryMaterials, kMaxGeometryTriangles) + 3 * kCountBytes +
+           uint64_t{kMaxGeometryMasks} * sizeof(fb::SurfaceMaskRecord) +
+           uint64_t{kMaxGeometryMaskWords} * sizeof(uint32_t) +
+           uint64_t{kMaxGeometryTriangles} * sizeof(fb::MaskedTriangleRecord);
+}
 
 size_t geometry_material_record_bytes() { return sizeof(fb::SurfaceMaterialRecord); }
 size_t geometry_triangle_record_bytes() { return sizeof(fb::SurfaceTriangleRecord); }
@@ -111,32 +151,118 @@ std::vector<uint8_t> encode_geometry_channel(const SceneGeometry& geometry) {
                                to_fb(t.normals[0]), to_fb(t.normals[1]), to_fb(t.normals[2]),
                                t.material));
     }
+    // A scene without masks sends what it always did.
+    if (!geometry.masks.empty() || !geometry.masked_triangles.empty()) put_masks(out, geometry);
     return out;
 }
 
 void GeometryChannelReader::next_section() {
-    section_ = section_ == Section::kMaterials ? Section::kTriangles : Section::kDone;
+    section_ = Section(int(section_) + 1);
     expected_ = -1;
     received_ = 0;
 }
 
-Status GeometryChannelReader::take_record(const uint8_t* record) {
-    if (section_ == Section::kMaterials) {
-        Result<SurfaceMaterial> m =
-            from_record(read_struct<fb::SurfaceMaterialRecord>(record), received_);
-        if (!m) return make_error(m.error());
-        geometry_.materials.push_back(*m);
-        return Ok{};
+size_t GeometryChannelReader::record_bytes() const {
+    switch (section_) {
+        case Section::kMaterials: return sizeof(fb::SurfaceMaterialRecord);
+        case Section::kTriangles: return sizeof(fb::SurfaceTriangleRecord);
+        case Section::kMasks: return sizeof(fb::SurfaceMaskRecord);
+        case Section::kMaskWords: return sizeof(uint32_t);
+        default: return sizeof(fb::MaskedTriangleRecord);
     }
-    Result<SurfaceTriangle> t = from_record(read_struct<fb::SurfaceTriangleRecord>(record),
-                                            received_, geometry_.materials.size());
+}
+
+Status GeometryChannelReader::start_section(int32_t count) {
+    const int section = int(section_);
+    if (count < 0 || uint64_t(count) > count_limit(section))
+        return make_error(count_error(count, uint32_t(count_limit(section)), section_name(section)));
+    if (section_ == Section::kMaskWords && uint64_t(count) != mask_words_)
+        return make_error("mask word count " + std::to_string(count) + " is not the masks' " +
+                          std::to_string(mask_words_) + " words");
+    if (section_ == Section::kMaskedTriangles && size_t(count) > triangles_sent_)
+        return make_error("masked triangle count " + std::to_string(count) + " exceeds the " +
+                          std::to_string(triangles_sent_) + " triangles");
+    const size_t up_front = std::min<size_t>(size_t(count), kMaxUpFrontRecords);
+    if (section_ == Section::kMaterials) geometry_.materials.reserve(up_front);
+    if (section_ == Section::kTriangles) geometry_.triangles.reserve(up_front);
+    if (section_ == Section::kMaskedTriangles) geometry_.masked_triangles.reserve(up_front);
+    expected_ = count;
+    return Ok{};
+}
+
+Status GeometryChannelReader::take_triangle(const uint8_t* record) {
+    Result<SurfaceTriangle> t = from_record(read_struct<fb::SurfaceTriangleRecord>(record), received_,
+                                            geometry_.materials.size());
     if (!t) return make_error(t.error());
     if (is_degenerate(*t)) {
         ++degenerate_;
+        skipped_.push_back(uint32_t(triangles_sent_));
     } else {
         geometry_.triangles.push_back(*t);
     }
+    ++triangles_sent_;
     return Ok{};
+}
+
+Status GeometryChannelReader::take_mask(const uint8_t* record) {
+    const auto r = read_struct<fb::SurfaceMaskRecord>(record);
+    const uint64_t texels = uint64_t(r.width()) * r.height();
+    const std::string who = "mask " + std::to_string(received_) + ": ";
+    if (texels == 0 || texels > kMaxGeometryMaskTexels)
+        return make_error(who + std::to_string(r.width()) + " x " + std::to_string(r.height()) +
+                          " texels is not within 1 and " + std::to_string(kMaxGeometryMaskTexels));
+    mask_words_ += surface_mask_words(r.width(), r.height());
+    if (mask_words_ > kMaxGeometryMaskWords)
+        return make_error(who + "the masks exceed " + std::to_string(kMaxGeometryMaskWords) + " keep words");
+    geometry_.masks.push_back(SurfaceMask{r.width(), r.height(), {}});
+    return Ok{};
+}
+
+void GeometryChannelReader::take_mask_word(uint32_t word) {
+    // The count matched the masks' words, so a mask with room is always there.
+    while (geometry_.masks[filling_mask_].keep_bits.size() ==
+           surface_mask_words(geometry_.masks[filling_mask_].width, geometry_.masks[filling_mask_].height))
+        ++filling_mask_;
+    geometry_.masks[filling_mask_].keep_bits.push_back(word);
+}
+
+Status GeometryChannelReader::take_masked_triangle(const uint8_t* record) {
+    const auto r = read_struct<fb::MaskedTriangleRecord>(record);
+    const std::string who = "masked triangle " + std::to_string(received_) + ": ";
+    if (int64_t(r.triangle()) <= last_masked_ || r.triangle() >= triangles_sent_)
+        return make_error(who + "triangle " + std::to_string(r.triangle()) + " is out of order or range (" +
+                          std::to_string(triangles_sent_) + " triangles)");
+    if (r.mask() >= geometry_.masks.size())
+        return make_error(who + "mask " + std::to_string(r.mask()) + " is out of range (" +
+                          std::to_string(geometry_.masks.size()) + " masks)");
+    const float uv[6] = {r.u0(), r.v0(), r.u1(), r.v1(), r.u2(), r.v2()};
+    for (float c : uv)
+        if (!std::isfinite(c)) return make_error(who + "texture coordinate " + number(c) + " is not finite");
+    last_masked_ = r.triangle();
+    // Its triangle was degenerate and left out: nothing to mask.
+    const auto skipped = std::lower_bound(skipped_.begin(), skipped_.end(), r.triangle());
+    if (skipped != skipped_.end() && *skipped == r.triangle()) return Ok{};
+    MaskedTriangle t;
+    t.triangle = r.triangle() - uint32_t(skipped - skipped_.begin());
+    t.mask = r.mask();
+    for (int k = 0; k < 3; ++k) t.uvs[k] = glm::vec2(uv[2 * k], uv[2 * k + 1]);
+    geometry_.masked_triangles.push_back(t);
+    return Ok{};
+}
+
+Status GeometryChannelReader::take_record(const uint8_t* record) {
+    switch (section_) {
+        case Section::kMaterials: {
+            Result<SurfaceMaterial> m = from_record(read_struct<fb::SurfaceMaterialRecord>(record), received_);
+            if (!m) return make_error(m.error());
+            geometry_.materials.push_back(*m);
+            return Ok{};
+        }
+        case Section::kTriangles: return take_triangle(record);
+        case Section::kMasks: return take_mask(record);
+        case Section::kMaskWords: take_mask_word(uint32_t(get_i32(record))); return Ok{};
+        default: return take_masked_triangle(record);
+    }
 }
 
 Status GeometryChannelReader::consume(std::span<const uint8_t> bytes) {
@@ -159,35 +285,28 @@ Status GeometryChannelReader::consume(std::span<const uint8_t> bytes) {
     while (pos < bytes.size() || (section_ != Section::kDone && expected_ == int64_t(received_))) {
         if (section_ == Section::kDone) {
             return fail("geometry channel carries " + std::to_string(bytes.size() - pos) +
-                        " bytes after its triangles");
+                        " bytes after its masked triangles");
         }
-        const bool materials = section_ == Section::kMaterials;
         if (expected_ < 0) {
             if (!fill_pending(kCountBytes)) return Ok{};
             const int32_t count = get_i32(pending_.data());
             pending_.clear();
-            const uint32_t limit = materials ? kMaxGeometryMaterials : kMaxGeometryTriangles;
-            if (count < 0 || uint32_t(count) > limit)
-                return fail(count_error(count, limit, materials ? "material" : "triangle"));
-            const size_t up_front = std::min<size_t>(size_t(count), kMaxUpFrontRecords);
-            if (materials) geometry_.materials.reserve(up_front);
-            else geometry_.triangles.reserve(up_front);
-            expected_ = count;
+            Status started = start_section(count);
+            if (!started) return fail("geometry channel: " + started.error());
             continue;
         }
         if (expected_ == int64_t(received_)) {
             next_section();
             continue;
         }
-        const size_t record_bytes =
-            materials ? sizeof(fb::SurfaceMaterialRecord) : sizeof(fb::SurfaceTriangleRecord);
+        const size_t size = record_bytes();
         const uint8_t* record = nullptr;
-        if (!pending_.empty() || bytes.size() - pos < record_bytes) {
-            if (!fill_pending(record_bytes)) return Ok{};
+        if (!pending_.empty() || bytes.size() - pos < size) {
+            if (!fill_pending(size)) return Ok{};
             record = pending_.data();
         } else {
             record = bytes.data() + pos;
-            pos += record_bytes;
+            pos += size;
         }
         Status accepted = take_record(record);
         pending_.clear();
@@ -200,10 +319,11 @@ Status GeometryChannelReader::consume(std::span<const uint8_t> bytes) {
 Result<SceneGeometry> GeometryChannelReader::finish() {
     if (failed_) return make_error("geometry channel was already refused");
     failed_ = true;  // either refused now or spent: the geometry moves out
-    if (section_ != Section::kDone || !pending_.empty()) {
-        const char* what = section_ == Section::kMaterials ? "materials" : "triangles";
-        if (expected_ < 0)
-            return make_error("geometry channel ended before the count of its " + std::string(what));
+    // The mask sections are optional: a channel may end where they would start.
+    const bool without_masks = section_ == Section::kMasks && expected_ < 0;
+    if ((section_ != Section::kDone && !without_masks) || !pending_.empty()) {
+        const std::string what = std::string(section_name(int(std::min(section_, Section::kMaskedTriangles)))) + "s";
+        if (expected_ < 0) return make_error("geometry channel ended before the count of its " + what);
         return make_error("geometry channel ended after " + std::to_string(received_) + " of " +
                           std::to_string(expected_) + " " + what);
     }

@@ -1,6 +1,6 @@
 #version 460
-// G-buffer pass: world position (w = 1 marks geometry), shading normal facing
-// the camera (surfaces are lit on the side we see), base colour x texture
+// G-buffer pass: world position (w = 1 marks geometry), shading normal (a
+// double-sided surface's back face reversed; a single-sided one's culled), base colour x texture
 // (the sRGB texture format decodes on sampling), metallic/roughness, emissive.
 #extension GL_GOOGLE_include_directive : require
 
@@ -46,10 +46,13 @@ vec3 mapped_normal(vec3 base, bool back, vec3 texel) {
 void main() {
     // Derivatives are taken in uniform control flow, before any branch.
     vec3 geometric = cross(dFdx(in_position), dFdy(in_position));
-    vec3 n = dot(in_normal, in_normal) > 1e-24 ? in_normal : geometric;
+    bool has_normal = dot(in_normal, in_normal) > 1e-24;
+    vec3 n = has_normal ? in_normal : geometric;
     float len = length(n);
     n = len > 0.0 ? n / len : vec3(0.0, 1.0, 0.0);
-    bool back = dot(n, draw.eye_roughness.xyz - in_position) < 0.0;
+    // glTF: a back face (clockwise) is shaded with its normal reversed. The
+    // derivatives' normal has no side of its own: it faces the camera.
+    bool back = has_normal ? !gl_FrontFacing : dot(n, draw.eye_roughness.xyz - in_position) < 0.0;
     if (back) n = -n;
     if (kTextures && (draw.flags & kDrawNormalTexture) != 0u)
         n = mapped_normal(back ? -n : n, back, texture(normal_texture, in_uv).rgb);
@@ -73,6 +76,8 @@ void main() {
     // alphaMode MASK: cut out where alpha is under the cutoff (after every
     // texture fetch, so the derivatives above stay in uniform control flow).
     if ((draw.flags & kDrawAlphaMask) != 0u && base.a < draw.alpha_cutoff) discard;
+    // doubleSided false: the back face is culled (per primitive, so per quad).
+    if ((draw.flags & kDrawSingleSided) != 0u && !gl_FrontFacing) discard;
     out_position = vec4(in_position, 1.0);
     out_normal = vec4(n, roughness);
     out_albedo = vec4(base.rgb, metallic);

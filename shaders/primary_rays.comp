@@ -46,12 +46,14 @@ layout(std430, set = kPrimarySet, binding = kBindPrimaryParams) readonly buffer 
 const float kNoHit = 3.402823466e38;
 
 // Moller-Trumbore, both faces, the closest hit so far: t in (0, t_best).
+// `front`: the ray meets the counter-clockwise side (det > 0).
 bool closer_hit(vec3 origin, vec3 direction, float t_best, GpuShadowTriangle tri, out float t,
-                out vec2 bary) {
+                out vec2 bary, out bool front) {
     vec3 p = cross(direction, tri.edge2);
     float det = dot(tri.edge1, p);
     t = kNoHit;
     bary = vec2(0.0);
+    front = det > 0.0;
     if (det == 0.0) return false;
     float inv_det = 1.0 / det;
     vec3 s = origin - tri.v0;
@@ -78,7 +80,13 @@ struct Hit {
     float t;
     int triangle;  // leaf-order index, -1: none
     vec2 bary;
+    bool front;  // the counter-clockwise side
 };
+
+// glTF doubleSided false: the back face is not seen (the ray goes on).
+bool culled(uint triangle, bool front) {
+    return !front && (surface_materials[primary_sources[triangle].draw].flags & kDrawSingleSided) != 0u;
+}
 
 // One node of the subgroup's shared walk (shadow_rays.glsl's, for the
 // closest hit): every lane reads the same node, the subgroup enters it when
@@ -98,8 +106,10 @@ void primary_walk_step(inout int i, inout Hit hit, vec3 origin, vec3 direction, 
         if (k < count && enter) {
             float t;
             vec2 bary;
-            if (closer_hit(origin, direction, hit.t, primary_triangles[first + k], t, bary))
-                hit = Hit(t, int(first + k), bary);
+            bool front;
+            if (closer_hit(origin, direction, hit.t, primary_triangles[first + k], t, bary, front) &&
+                !culled(first + k, front))
+                hit = Hit(t, int(first + k), bary, front);
         }
     }
     i = node.escape;
@@ -109,7 +119,7 @@ void primary_walk_step(inout int i, inout Hit hit, vec3 origin, vec3 direction, 
 // the pass refuses a BVH of more nodes than the device's loop limit.
 Hit closest_hit(vec3 origin, vec3 direction, bool searching) {
     vec3 inv_direction = 1.0 / mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
-    Hit hit = Hit(kNoHit, -1, vec2(0.0));
+    Hit hit = Hit(kNoHit, -1, vec2(0.0), true);
     int i = primary.node_count == 0u ? kEndOfWalk : 0;
     // Every node is visited at most once; the bound only guards a corrupt upload.
     for (uint step = 0u; i != kEndOfWalk && step < primary.node_count; ++step)
@@ -130,11 +140,14 @@ void store_surface(ivec2 pixel, Hit hit, vec3 position) {
     GpuPrimaryTriangle source = primary_sources[hit.triangle];
     vec3 w = vec3(1.0 - hit.bary.x - hit.bary.y, hit.bary.x, hit.bary.y);
     vec3 n = vertex_normal(source.v0) * w.x + vertex_normal(source.v1) * w.y + vertex_normal(source.v2) * w.z;
+    bool has_normal = dot(n, n) > 1e-24;
     // No vertex normal: the triangle's own (the raster pass takes it from derivatives).
-    if (!(dot(n, n) > 1e-24)) n = cross(tri.edge1, tri.edge2);
+    if (!has_normal) n = cross(tri.edge1, tri.edge2);
     float len = length(n);
     n = len > 0.0 ? n / len : vec3(0.0, 1.0, 0.0);
-    if (dot(n, primary.eye - position) < 0.0) n = -n;  // lit on the side the camera sees
+    // As gbuffer.frag: a back face's normal reversed; a face normal faces the camera.
+    bool back = has_normal ? !hit.front : dot(n, primary.eye - position) < 0.0;
+    if (back) n = -n;
     GpuSurfaceMaterial material = surface_materials[source.draw];
     vec4 base = material.base_color_factor;
     if ((material.flags & kDrawVertexColors) != 0u)

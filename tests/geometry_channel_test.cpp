@@ -154,7 +154,7 @@ TEST(GeometryChannel, BadRecordsAreRefusedNamingTheField) {
     refused(bytes, "ended after 2 of 3 triangles");
     bytes = good;
     bytes.push_back(0);
-    refused(bytes, "1 bytes after its triangles");
+    refused(bytes, "ended before the count of its masks");
 }
 
 }  // namespace

@@ -156,6 +156,7 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         out.emissive_factor = material.emissive_factor;
         out.metallic = material.metallic;
         out.roughness = material.roughness;
+        if (!material.double_sided) out.flags |= kDrawSingleSided;
         if (material.alpha_mode == AlphaMode::kMask) {
             out.flags |= kDrawAlphaMask;
             out.alpha_cutoff = material.alpha_cutoff;

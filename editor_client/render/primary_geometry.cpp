@@ -13,7 +13,7 @@ GpuSurfaceMaterial surface_material(const GpuMaterial& material, bool vertex_col
     m.base_color_factor = material.base_color_factor;
     m.emissive_metallic = glm::vec4(material.emissive_factor, material.metallic);
     m.roughness = material.roughness;
-    m.flags = vertex_colors ? kDrawVertexColors : 0u;
+    m.flags = (vertex_colors ? kDrawVertexColors : 0u) | (material.flags & kDrawSingleSided);
     return m;
 }
 

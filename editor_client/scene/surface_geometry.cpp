@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lightcuts/alpha_mask.h"
 #include "lightcuts/tone_mapping.h"
 
 namespace lc::client {
@@ -65,12 +66,38 @@ SurfaceMaterial surface_material_of(const Scene& scene, const Mesh& mesh) {
     return out;
 }
 
+// The next triangle is drawn through mask `mask`: its corners' texture
+// coordinates, as the client's shadow rays read them (alpha_mask.h).
+void add_masked_triangle(SceneGeometry& geometry, const Mesh& mesh, const uint32_t index[3], uint32_t mask) {
+    MaskedTriangle t;
+    t.triangle = uint32_t(geometry.triangles.size());
+    t.mask = mask;
+    for (int k = 0; k < 3; ++k) t.uvs[k] = index[k] < mesh.uvs.size() ? mesh.uvs[index[k]] : glm::vec2(0.0f);
+    geometry.masked_triangles.push_back(t);
+}
+
+// The index of a 1 x 1 mask that keeps nothing, appended the first time.
+int32_t see_through_mask(SceneGeometry& geometry) {
+    const SurfaceMask none{1, 1, {0u}};
+    const auto found = std::find(geometry.masks.begin(), geometry.masks.end(), none);
+    if (found != geometry.masks.end()) return int32_t(found - geometry.masks.begin());
+    geometry.masks.push_back(none);
+    return int32_t(geometry.masks.size() - 1);
+}
+
 }  // namespace
 
 SceneGeometry extract_surface_geometry(const Scene& scene) {
     SceneGeometry geometry;
-    for (const Mesh& mesh : scene.meshes) {
+    std::vector<AlphaMask> alpha_masks;
+    const std::vector<int32_t> mesh_mask = mesh_alpha_masks(scene, alpha_masks);
+    for (const AlphaMask& mask : alpha_masks) geometry.masks.push_back(surface_mask_of(mask));
+    for (size_t mesh_index = 0; mesh_index < scene.meshes.size(); ++mesh_index) {
+        const Mesh& mesh = scene.meshes[mesh_index];
         if (mesh.indices.size() < 3) continue;
+        // Light passes a surface that casts no shadow (BLEND, transmission)
+        // on the server as on the client: a mask that keeps nothing.
+        const int32_t mask = casts_shadows(scene, mesh) ? mesh_mask[mesh_index] : see_through_mask(geometry);
         const SurfaceMaterial base = surface_material_of(scene, mesh);
         const Material* m = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size()
                                 ? &scene.materials[size_t(mesh.material)]
@@ -112,6 +139,7 @@ SceneGeometry extract_surface_geometry(const Scene& scene) {
                 t.material = uint32_t(geometry.materials.size());
                 geometry.materials.push_back(own);
             }
+            if (mask >= 0) add_masked_triangle(geometry, mesh, index, uint32_t(mask));
             geometry.triangles.push_back(t);
         }
     }

@@ -4,6 +4,8 @@
 // Emissive and base-colour textures are reduced per triangle (the texture's
 // mean over the triangle), so one record says what the triangle emits and
 // reflects and the server needs no textures; docs/PROTOCOL.md says why.
+// Alpha masks travel as keep bits, so the server's rays pass cut-outs, and a
+// surface that casts no shadow (BLEND, transmission) as a mask keeping nothing.
 #include <memory>
 
 #include "lightcuts/scene.h"

@@ -255,6 +255,9 @@ LC_CONST uint kDrawMetallicRoughnessTexture = 4u;
 LC_CONST uint kDrawAlphaMask = 8u;       // discard where base colour alpha < alpha_cutoff
 LC_CONST uint kDrawNormalTexture = 16u;  // a tangent-space normal map, x and y times normal_scale
 LC_CONST uint kDrawVertexColors = 32u;   // the mesh's COLOR_0 multiplies the base colour
+// glTF doubleSided false: back faces (clockwise as seen) are culled; a
+// double-sided surface's back face is shaded with its normal reversed.
+LC_CONST uint kDrawSingleSided = 64u;
 
 // Push constants of one G-buffer draw: 128 bytes, Vulkan's guaranteed
 // push-constant space.
@@ -296,7 +299,7 @@ struct LC_ALIGN16 GpuSurfaceMaterial {
     vec4 base_color_factor LC_DEFAULT(vec4(1.0f));
     vec4 emissive_metallic LC_DEFAULT(vec4(0.0f));  // rgb: emissive factor, a: metallic
     float roughness LC_DEFAULT(1.0f);
-    uint flags LC_DEFAULT(0u);  // kDrawVertexColors
+    uint flags LC_DEFAULT(0u);  // kDrawVertexColors, kDrawSingleSided
     uint pad0 LC_DEFAULT(0u);
     uint pad1 LC_DEFAULT(0u);
 };

@@ -2,7 +2,8 @@
 // Rays against the scene's triangles, cast by Embree (one device and one
 // scene per bake). The server's area-light, environment and indirect passes
 // all trace through this one class; it is safe to call from many threads
-// once built.
+// once built. Alpha-masked triangles (SceneGeometry::masked_triangles) let a
+// ray through where their mask cuts the surface out.
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -40,15 +41,22 @@ public:
     // Whether any triangle lies along the segment, t in (t_min, t_max).
     bool occluded(glm::vec3 origin, glm::vec3 direction, float t_min, float t_max) const;
 
-    size_t triangle_count() const { return primitive_to_triangle_.size(); }
+    size_t triangle_count() const { return primitive_to_triangle_.size() + masked_to_triangle_.size(); }
     size_t skipped_degenerate() const { return skipped_degenerate_; }
+
+    size_t masked_triangle_count() const { return masked_to_triangle_.size(); }
 
 private:
     struct Embree;
+    struct MaskedPrimitives;
     RayCaster() = default;
+    Status attach(const SceneGeometry& geometry, const std::vector<uint32_t>& triangles, bool masked);
+    std::optional<uint32_t> triangle_of(unsigned geometry_id, unsigned primitive) const;
 
     std::unique_ptr<Embree> embree_;
+    // Embree geometry 0 holds the opaque triangles, geometry 1 the masked ones.
     std::vector<uint32_t> primitive_to_triangle_;
+    std::vector<uint32_t> masked_to_triangle_;
     size_t skipped_degenerate_ = 0;
 };
 
