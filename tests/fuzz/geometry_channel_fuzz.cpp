@@ -1,7 +1,8 @@
 // Geometry channel reader (untrusted triangles and materials from a client):
 // any payload, pushed whole or in pieces, gives the same verdict, the same
 // surfaces and the same count of skipped degenerate triangles; what decodes
-// is finite and its material indices are in range.
+// is finite and its material indices are in range; its masks hold all their
+// keep words and the masked triangles name kept triangles and masks in order.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -48,6 +49,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         check(t.material < whole->materials.size(), "every triangle's material exists");
         check(!lc::is_degenerate(t), "degenerate triangles are skipped");
         for (int k = 0; k < 3; ++k) check(finite(t.positions[k]) && finite(t.normals[k]), "triangles are finite");
+    }
+    for (const lc::SurfaceMask& m : whole->masks)
+        check(m.keep_bits.size() == lc::surface_mask_words(m.width, m.height), "every mask has all its keep words");
+    int64_t last = -1;
+    for (const lc::MaskedTriangle& t : whole->masked_triangles) {
+        check(int64_t(t.triangle) > last && t.triangle < whole->triangles.size(),
+              "masked triangles are increasing kept triangles");
+        check(t.mask < whole->masks.size(), "every masked triangle's mask exists");
+        for (const glm::vec2& uv : t.uvs) check(std::isfinite(uv.x) && std::isfinite(uv.y), "uvs are finite");
+        last = t.triangle;
     }
     return 0;
 }

@@ -109,6 +109,14 @@ void write_surface_seeds(const std::filesystem::path& out) {
     int index = 0;
     write_behind_piece_bytes(out / "geometry", lc::encode_geometry_channel(sample_geometry()), index);
     write_behind_piece_bytes(out / "geometry", lc::encode_geometry_channel(lc::SceneGeometry{}), index);
+    // With the optional mask sections: a 5 x 3 mask over the floor's second
+    // triangle and a see-through 1 x 1 over the emitter.
+    lc::SceneGeometry masked = sample_geometry();
+    masked.masks.push_back(lc::SurfaceMask{5, 3, {0x5A5Au}});
+    masked.masks.push_back(lc::SurfaceMask{1, 1, {0u}});
+    masked.masked_triangles.push_back(lc::MaskedTriangle{1, 0, {{0, 0}, {0, 1}, {1, 1}}});
+    masked.masked_triangles.push_back(lc::MaskedTriangle{2, 1, {{0, 0}, {1, 0}, {0.5f, 1}}});
+    write_behind_piece_bytes(out / "geometry", lc::encode_geometry_channel(masked), index);
     lc::Environment map;
     map.map.width = 4;
     map.map.height = 2;
