@@ -199,129 +199,173 @@ ReconstructionSample make_reconstruction_sample(const LightTree& tree, const Sur
     return sample;
 }
 
+namespace {
+
+// A node's impostors at the samples, and what the walk's rules compare.
+struct NodeAtSamples {
+    std::array<const Impostor*, kMaxReconstructionSamples> imp{};
+    std::array<glm::dvec3, kMaxReconstructionSamples> gamma{};
+    glm::dvec3 hi{0.0}, lo{0.0};
+    double gamma_max = 0.0, gamma_min = 0.0, smallest_total = 0.0;
+    bool usable = true, any_at_or_below = false, all_below = true;
+};
+
+NodeAtSamples node_at_samples(const WalkEntry& e, std::span<const ReconstructionSample* const> samples,
+                              size_t K) {
+    NodeAtSamples n;
+    for (size_t k = 0; k < K; ++k) {
+        const SampleRef& ref = e.refs[k];
+        n.imp[k] = &samples[k]->nodes[size_t(ref.slot)].impostor;
+        n.gamma[k] = n.imp[k]->gamma * ref.scale;
+        const double g = max_channel(n.gamma[k]);
+        n.hi = k == 0 ? n.gamma[k] : glm::max(n.hi, n.gamma[k]);
+        n.lo = k == 0 ? n.gamma[k] : glm::min(n.lo, n.gamma[k]);
+        n.gamma_max = k == 0 ? g : std::max(n.gamma_max, g);
+        n.gamma_min = k == 0 ? g : std::min(n.gamma_min, g);
+        n.usable = n.usable && n.imp[k]->usable;
+        n.any_at_or_below = n.any_at_or_below || ref.below || n.imp[k]->on_cut;
+        n.all_below = n.all_below && ref.below;
+        // The threshold's scale: the smallest total among samples that saw
+        // light (the paper takes the smallest of all; a sample in full shadow
+        // would make every threshold 0 and send the walk down to every leaf).
+        const double G = n.imp[k]->Gamma;
+        if (G > 0.0 && (n.smallest_total == 0.0 || G < n.smallest_total)) n.smallest_total = G;
+    }
+    return n;
+}
+
+// One point's walk down the tree, guided by the samples' cuts.
+class ReconstructionWalk {
+public:
+    ReconstructionWalk(const LightTree& tree, const SurfacePoint& p,
+                       std::span<const ReconstructionSample* const> samples, std::span<const double> weights,
+                       size_t K, double error_ratio, ShadowRayCount& rays)
+        : tree_(tree), p_(p), open_(without_occluders(p)), glossy_(shading::has_lobe(p.specular, p.exponent)),
+          samples_(samples), weights_(weights), K_(K), error_ratio_(error_ratio), rays_(rays) {
+        for (size_t k = 0; k < K; ++k) total_here_ += weights[k] * max_channel(samples[k]->radiance);
+    }
+
+    glm::dvec3 run() {
+        thread_local std::vector<WalkEntry> stack;
+        stack.assign(1, WalkEntry{});
+        while (!stack.empty()) {
+            const WalkEntry e = stack.back();
+            stack.pop_back();
+            visit(e, stack);
+        }
+        return radiance_;
+    }
+
+private:
+    void visit(const WalkEntry& e, std::vector<WalkEntry>& stack) {
+        const LightTreeNode& node = tree_.nodes[size_t(e.node)];
+        int32_t children[2];
+        const int child_count = valid_children(tree_, e.node, children);
+        const bool leaf = child_count == 0;
+        const NodeAtSamples n = node_at_samples(e, samples_, K_);
+        const double spread = max_channel(n.hi - n.lo);
+        const double tau = error_ratio_ * n.smallest_total;
+        const bool junction = node.mixed_types && !leaf;
+
+        // 1. Discard: dark at every sample.
+        if (!junction && n.usable && n.gamma_max <= 0.0) return;
+        // 2. Interpolate an impostor, unless no sample's cut reached this deep
+        // or its direction lies in a glossy lobe.
+        if (!junction && n.usable && !n.all_below && n.gamma_min > 0.0 && spread < tau && interpolate(n)) return;
+        // 3. Evaluate the cluster as a lightcut would: a leaf, or a node small
+        // against the threshold that some sample's cut reached.
+        if (leaf) {
+            radiance_ += evaluate_cluster(node, p_, open_, rays_);
+            return;
+        }
+        if (!junction && n.any_at_or_below && evaluates(node, n, tau) && evaluate(node, n, tau)) return;
+        // 4. Refine.
+        for (int c = child_count - 1; c >= 0; --c) stack.push_back(child_entry(e, n, node, children[c], c));
+    }
+
+    // Adds the samples' interpolated impostor; false where it falls in the glossy lobe.
+    bool interpolate(const NodeAtSamples& n) {
+        glm::dvec3 d(0.0), g(0.0);
+        for (size_t k = 0; k < K_; ++k) {
+            d += weights_[k] * n.imp[k]->direction;
+            g += weights_[k] * n.gamma[k];
+        }
+        if (!(glm::length(d) > 0.0)) return false;
+        d = glm::normalize(d);
+        const glm::dvec3 f = material_response(p_, d);
+        if (inside_gloss_lobe(p_, f)) return false;
+        radiance_ += f * std::max(glm::dot(p_.normal, d), 0.0) * g;
+        return true;
+    }
+
+    // On a glossy point the samples' magnitudes (seen from other views) do not
+    // bound a node inside this view's lobe: the node must also pass the
+    // lightcut's own test here, its bound against the error ratio times the
+    // samples' interpolated total; that test alone decides for a node the
+    // samples' lobes could not see.
+    bool evaluates(const LightTreeNode& node, const NodeAtSamples& n, double tau) const {
+        const bool small_at_samples = n.usable && n.gamma_max < tau;
+        if (!glossy_) return small_at_samples;
+        return (small_at_samples || !n.usable) &&
+               max_channel(node_contribution_bound(node, p_)) <= error_ratio_ * total_here_;
+    }
+
+    // Adds the cluster's evaluation, unless it is far brighter here than any
+    // sample predicts (its representative close to this point): then it is
+    // refined instead, as the paper does.
+    bool evaluate(const LightTreeNode& node, const NodeAtSamples& n, double tau) {
+        // What the samples predict here, and at least the threshold.
+        double expected = 0.0;
+        for (size_t k = 0; k < K_; ++k) {
+            const glm::dvec3 M = material_term(p_, n.imp[k]->direction);
+            expected = std::max({expected, max_channel(M * n.gamma[k]), max_channel(M) * tau});
+        }
+        const glm::dvec3 evaluated = evaluate_cluster(node, p_, open_, rays_);
+        if (max_channel(evaluated) > kMuchBrighter * expected) return false;
+        radiance_ += evaluated;
+        return true;
+    }
+
+    WalkEntry child_entry(const WalkEntry& e, const NodeAtSamples& n, const LightTreeNode& node, int32_t child_node,
+                          int c) const {
+        WalkEntry child;
+        child.node = child_node;
+        const double ratio = intensity_ratio(tree_.nodes[size_t(child_node)], node);
+        for (size_t k = 0; k < K_; ++k) {
+            const SampleRef& ref = e.refs[k];
+            const int32_t slot =
+                ref.below || n.imp[k]->on_cut ? kBelowCut : samples_[k]->nodes[size_t(ref.slot)].children[c];
+            child.refs[k] = slot != kBelowCut ? SampleRef{slot, 1.0, false}
+                                              : SampleRef{ref.slot, ref.scale * ratio, true};
+        }
+        return child;
+    }
+
+    const LightTree& tree_;
+    const SurfacePoint& p_;
+    const SurfacePoint open_;
+    const bool glossy_;
+    std::span<const ReconstructionSample* const> samples_;
+    std::span<const double> weights_;
+    const size_t K_;
+    const double error_ratio_;
+    ShadowRayCount& rays_;
+    double total_here_ = 0.0;
+    glm::dvec3 radiance_{0.0};
+};
+
+}  // namespace
+
 glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
                               std::span<const ReconstructionSample* const> samples,
                               std::span<const double> weights, double error_ratio,
                               ShadowRayCount& rays) {
     const size_t K = std::min(samples.size(), size_t(kMaxReconstructionSamples));
-    glm::dvec3 radiance(0.0);
-    if (tree.empty() || K == 0) return radiance;
+    if (tree.empty() || K == 0) return glm::dvec3(0.0);
     for (size_t k = 0; k < K; ++k) {
-        if (samples[k]->nodes.empty()) return radiance;
+        if (samples[k]->nodes.empty()) return glm::dvec3(0.0);
     }
-    const SurfacePoint open = without_occluders(p);
-    const bool glossy = shading::has_lobe(p.specular, p.exponent);
-    double total_here = 0.0;
-    for (size_t k = 0; k < K; ++k) total_here += weights[k] * max_channel(samples[k]->radiance);
-
-    thread_local std::vector<WalkEntry> stack;
-    stack.assign(1, WalkEntry{});
-    while (!stack.empty()) {
-        const WalkEntry e = stack.back();
-        stack.pop_back();
-        const LightTreeNode& node = tree.nodes[size_t(e.node)];
-        int32_t children[2];
-        const int child_count = valid_children(tree, e.node, children);
-        const bool leaf = child_count == 0;
-
-        // The samples' impostors of this node, and what the rules compare.
-        std::array<const Impostor*, kMaxReconstructionSamples> imp{};
-        std::array<glm::dvec3, kMaxReconstructionSamples> gamma{};
-        glm::dvec3 hi(0.0), lo(0.0);
-        double gamma_max = 0.0, gamma_min = 0.0, smallest_total = 0.0;
-        bool usable = true, any_at_or_below = false, all_below = true;
-        for (size_t k = 0; k < K; ++k) {
-            const SampleRef& ref = e.refs[k];
-            imp[k] = &samples[k]->nodes[size_t(ref.slot)].impostor;
-            gamma[k] = imp[k]->gamma * ref.scale;
-            const double g = max_channel(gamma[k]);
-            hi = k == 0 ? gamma[k] : glm::max(hi, gamma[k]);
-            lo = k == 0 ? gamma[k] : glm::min(lo, gamma[k]);
-            gamma_max = k == 0 ? g : std::max(gamma_max, g);
-            gamma_min = k == 0 ? g : std::min(gamma_min, g);
-            usable = usable && imp[k]->usable;
-            any_at_or_below = any_at_or_below || ref.below || imp[k]->on_cut;
-            all_below = all_below && ref.below;
-            // The threshold's scale: the smallest total among samples that saw
-            // light (the paper takes the smallest of all; a sample in full
-            // shadow would make every threshold 0 and send the walk down to
-            // every leaf).
-            const double G = imp[k]->Gamma;
-            if (G > 0.0 && (smallest_total == 0.0 || G < smallest_total)) smallest_total = G;
-        }
-        const double spread = max_channel(hi - lo);
-        const double tau = error_ratio * smallest_total;
-        const bool junction = node.mixed_types && !leaf;
-
-        // 1. Discard: dark at every sample.
-        if (!junction && usable && gamma_max <= 0.0) continue;
-        // 2. Interpolate an impostor, unless no sample's cut reached this deep
-        // or its direction lies in a glossy lobe.
-        if (!junction && usable && !all_below && gamma_min > 0.0 && spread < tau) {
-            glm::dvec3 d(0.0), g(0.0);
-            for (size_t k = 0; k < K; ++k) {
-                d += weights[k] * imp[k]->direction;
-                g += weights[k] * gamma[k];
-            }
-            if (glm::length(d) > 0.0) {
-                d = glm::normalize(d);
-                const glm::dvec3 f = material_response(p, d);
-                if (!inside_gloss_lobe(p, f)) {
-                    radiance += f * std::max(glm::dot(p.normal, d), 0.0) * g;
-                    continue;
-                }
-            }
-        }
-        // 3. Evaluate the cluster as a lightcut would: a leaf, or a node small
-        // against the threshold that some sample's cut reached. A cluster
-        // far brighter here than any sample predicts (its representative
-        // close to this point) is refined instead, as the paper does.
-        if (leaf) {
-            radiance += evaluate_cluster(node, p, open, rays);
-            continue;
-        }
-        // On a glossy point the samples' magnitudes (seen from other views)
-        // do not bound a node inside this view's lobe: the node must also
-        // pass the lightcut's own test here, its bound against the error
-        // ratio times the samples' interpolated total; that test alone
-        // decides for a node the samples' lobes could not see.
-        const bool small_at_samples = usable && gamma_max < tau;
-        const bool evaluate =
-            !junction && any_at_or_below &&
-            (glossy ? (small_at_samples || !usable) &&
-                          max_channel(node_contribution_bound(node, p)) <= error_ratio * total_here
-                    : small_at_samples);
-        if (evaluate) {
-            // What the samples predict here, and at least the threshold.
-            double expected = 0.0;
-            for (size_t k = 0; k < K; ++k) {
-                const glm::dvec3 M = material_term(p, imp[k]->direction);
-                expected = std::max({expected, max_channel(M * gamma[k]), max_channel(M) * tau});
-            }
-            const glm::dvec3 evaluated = evaluate_cluster(node, p, open, rays);
-            if (!(max_channel(evaluated) > kMuchBrighter * expected)) {
-                radiance += evaluated;
-                continue;
-            }
-        }
-        // 4. Refine.
-        for (int c = child_count - 1; c >= 0; --c) {
-            WalkEntry child;
-            child.node = children[c];
-            const double ratio = intensity_ratio(tree.nodes[size_t(children[c])], node);
-            for (size_t k = 0; k < K; ++k) {
-                const SampleRef& ref = e.refs[k];
-                const int32_t slot =
-                    ref.below || imp[k]->on_cut
-                        ? kBelowCut
-                        : samples[k]->nodes[size_t(ref.slot)].children[c];
-                child.refs[k] = slot != kBelowCut ? SampleRef{slot, 1.0, false}
-                                                  : SampleRef{ref.slot, ref.scale * ratio, true};
-            }
-            stack.push_back(child);
-        }
-    }
-    return radiance;
+    return ReconstructionWalk(tree, p, samples, weights, K, error_ratio, rays).run();
 }
 
 }  // namespace lc

@@ -283,6 +283,63 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
     return build(triangle_vertices, OccluderMasks{});
 }
 
+namespace {
+
+// Top-down, with an explicit LIFO of ranges: the left range is popped (and so
+// emitted) right after its parent, and all of its subtree before the right
+// range: the nodes come out in pre-order. Returns the depth.
+uint32_t build_nodes(std::vector<BuildTriangle>& tris, std::vector<GpuBvhNode>& nodes) {
+    const uint32_t count = static_cast<uint32_t>(tris.size());
+    nodes.reserve(2 * static_cast<size_t>(count));  // leaves <= count, inner = leaves - 1
+    uint32_t depth = 0;
+    std::vector<BuildTask> work{{0, count, 0}};
+    while (!work.empty()) {
+        const BuildTask task = work.back();
+        work.pop_back();
+        FloatBox bounds;
+        FloatBox centroid_bounds;
+        for (uint32_t i = task.begin; i < task.end; ++i) {
+            bounds.grow(tris[i].lo, tris[i].hi);
+            centroid_bounds.grow(tris[i].centroid, tris[i].centroid);
+        }
+        GpuBvhNode node;
+        store_widened_bounds(bounds, node);
+        depth = std::max(depth, task.depth);
+        const uint32_t n = task.end - task.begin;
+        if (n <= kBvhMaxLeafSize) {
+            node.triangles = (task.begin << kBvhLeafCountBits) | n;
+            nodes.push_back(node);
+            continue;
+        }
+        nodes.push_back(node);  // inner: triangles = 0, first child next
+        std::optional<uint32_t> mid;
+        if (task.depth < kMaxSahDepth) mid = sah_split(tris, task.begin, task.end, centroid_bounds);
+        if (!mid) mid = median_split(tris, task.begin, task.end, centroid_bounds);
+        work.push_back({*mid, task.end, task.depth + 1});
+        work.push_back({task.begin, *mid, task.depth + 1});
+    }
+    return depth;
+}
+
+// Escapes from subtree sizes, children after parents: size(i) = 1 for a leaf,
+// else 1 + size(left) + size(right) with left = i + 1, right = i + 1 + size(left).
+void link_escapes(std::vector<GpuBvhNode>& nodes) {
+    const size_t node_count = nodes.size();
+    std::vector<uint32_t> subtree_size(node_count, 1);
+    for (size_t i = node_count; i-- > 0;) {
+        if (nodes[i].triangles != 0) continue;
+        const size_t left = i + 1;
+        const size_t right = left + subtree_size[left];
+        subtree_size[i] = 1 + subtree_size[left] + subtree_size[right];
+    }
+    for (size_t i = 0; i < node_count; ++i) {
+        const size_t escape = i + subtree_size[i];
+        nodes[i].escape = escape == node_count ? kEndOfWalk : static_cast<int32_t>(escape);
+    }
+}
+
+}  // namespace
+
 ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices, const OccluderMasks& masks) {
     ShadowBvh bvh;
     size_t skipped = triangle_vertices.size() % 3 != 0 ? 1 : 0;  // a trailing partial triangle
@@ -316,52 +373,10 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices, const O
     bvh.stats_.triangles = static_cast<uint32_t>(tris.size());
     if (tris.empty()) return bvh;
 
-    // Top-down, with an explicit LIFO of ranges: the left range is popped (and so
-    // emitted) right after its parent, and all of its subtree before the right
-    // range: the nodes come out in pre-order.
     const uint32_t count = static_cast<uint32_t>(tris.size());
-    bvh.nodes_.reserve(2 * static_cast<size_t>(count));  // leaves <= count, inner = leaves - 1
-    std::vector<BuildTask> work{{0, count, 0}};
-    while (!work.empty()) {
-        const BuildTask task = work.back();
-        work.pop_back();
-        FloatBox bounds;
-        FloatBox centroid_bounds;
-        for (uint32_t i = task.begin; i < task.end; ++i) {
-            bounds.grow(tris[i].lo, tris[i].hi);
-            centroid_bounds.grow(tris[i].centroid, tris[i].centroid);
-        }
-        GpuBvhNode node;
-        store_widened_bounds(bounds, node);
-        bvh.stats_.depth = std::max(bvh.stats_.depth, task.depth);
-        const uint32_t n = task.end - task.begin;
-        if (n <= kBvhMaxLeafSize) {
-            node.triangles = (task.begin << kBvhLeafCountBits) | n;
-            bvh.nodes_.push_back(node);
-            continue;
-        }
-        bvh.nodes_.push_back(node);  // inner: triangles = 0, first child next
-        std::optional<uint32_t> mid;
-        if (task.depth < kMaxSahDepth) mid = sah_split(tris, task.begin, task.end, centroid_bounds);
-        if (!mid) mid = median_split(tris, task.begin, task.end, centroid_bounds);
-        work.push_back({*mid, task.end, task.depth + 1});
-        work.push_back({task.begin, *mid, task.depth + 1});
-    }
-
-    // Escapes from subtree sizes, children after parents: size(i) = 1 for a leaf,
-    // else 1 + size(left) + size(right) with left = i + 1, right = i + 1 + size(left).
+    bvh.stats_.depth = build_nodes(tris, bvh.nodes_);
+    link_escapes(bvh.nodes_);
     const size_t node_count = bvh.nodes_.size();
-    std::vector<uint32_t> subtree_size(node_count, 1);
-    for (size_t i = node_count; i-- > 0;) {
-        if (bvh.nodes_[i].triangles != 0) continue;
-        const size_t left = i + 1;
-        const size_t right = left + subtree_size[left];
-        subtree_size[i] = 1 + subtree_size[left] + subtree_size[right];
-    }
-    for (size_t i = 0; i < node_count; ++i) {
-        const size_t escape = i + subtree_size[i];
-        bvh.nodes_[i].escape = escape == node_count ? kEndOfWalk : static_cast<int32_t>(escape);
-    }
 
     // The triangles in leaf order: floats (vertex and edges) for the shaders,
     // the exact vertices in double for the CPU test.

@@ -12,6 +12,7 @@
 #include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/cluster_bvh.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::bake {
 namespace {
@@ -139,198 +140,262 @@ double total_cluster_metric(const BuildArena& arena, int32_t root, const MetricP
     return total;
 }
 
+namespace {
+
+// One build's rounds (the paper's agglomerative clustering, in rounds of
+// mutual best partners): each round searches the pending clusters' best
+// partners, merges the mutual pairs, queues the clusters that lost their
+// partner, and refreshes the BVH's bounds now and then.
+class AgglomerativeRounds {
+public:
+    AgglomerativeRounds(BuildArena& arena, std::span<const uint32_t> leaves, const BuildOptions& options,
+                        const BuildProgressFn& progress, BuildPhaseTimer& timer)
+        : arena_(arena), options_(options), progress_(progress), timer_(timer),
+          total_merges_(leaves.size() - 1), capacity_(2 * leaves.size()),
+          progress_step_(std::max<size_t>(1, total_merges_ / 100)),
+          state_(initial_state(arena, leaves)), nearest_(capacity_),
+          pointed_by_head_(capacity_, kNoCluster), queued_(capacity_, 0), hint_(capacity_, kNoCluster),
+          merged_into_(capacity_, kNoCluster) {
+        live_ids_.resize(leaves.size());
+        for (uint32_t i = 0; i < leaves.size(); ++i) live_ids_[i] = i;
+        bvh_.build(state_.set, live_ids_, capacity_);
+        pointed_by_pool_.reserve(3 * leaves.size());
+        pending_ = live_ids_;
+        timer_.lap("agglomerative: clusters and their BVH");
+    }
+
+    // The root's arena index.
+    Result<int32_t> run() {
+        while (merges_ < total_merges_) {
+            sort_pending_by_slot();
+            LC_RETURN_IF_ERROR(search_best_partners());
+            record_who_points_at_whom();
+            LC_RETURN_IF_ERROR(find_mutual_pairs());
+            std::vector<uint32_t> next_pending;
+            next_pending.reserve(2 * pairs_.size());
+            LC_RETURN_IF_ERROR(merge_pairs(next_pending));
+            queue_the_orphaned(next_pending);
+            for (const uint32_t x : next_pending) queued_[x] = 0;
+            pending_.swap(next_pending);
+            timer_.lap("agglomerative: round bookkeeping");
+            refresh_bvh_bounds();
+            timer_.lap("agglomerative: BVH refits and rebuilds");
+        }
+        return int32_t(state_.arena_of[last_]);
+    }
+
+private:
+    // In BVH slot order, so that consecutive searches touch the same memory.
+    void sort_pending_by_slot() {
+        slot_keys_.resize(pending_.size());
+        const tbb::blocked_range<size_t> all_pending(0, pending_.size(), 1u << 14);
+        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                slot_keys_[i] = (uint64_t(bvh_.slot_of(pending_[i])) << 32) | pending_[i];
+            }
+        });
+        tbb::parallel_sort(slot_keys_.begin(), slot_keys_.end());  // slots are unique: deterministic
+        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) pending_[i] = uint32_t(slot_keys_[i]);
+        });
+        timer_.lap("agglomerative: round bookkeeping");
+    }
+
+    // In parallel over independent searches, in chunks with progress between them.
+    Status search_best_partners() {
+        for (size_t begin = 0; begin < pending_.size(); begin += kSearchChunk) {
+            const size_t end = std::min(pending_.size(), begin + kSearchChunk);
+            tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 256),
+                              [&](const tbb::blocked_range<size_t>& range) {
+                                  std::vector<std::pair<double, uint32_t>> stack;
+                                  for (size_t i = range.begin(); i != range.end(); ++i) {
+                                      const uint32_t x = pending_[i];
+                                      nearest_[x] = bvh_.nearest(state_.set, x, hint_[x], stack);
+                                  }
+                              });
+            if (progress_ && !progress_(double(merges_) / double(total_merges_))) return cancelled();
+        }
+        timer_.lap("agglomerative: best-partner searches");
+        return Ok{};
+    }
+
+    // nearest_[x]: x's best partner. Who points at whom, as linked lists in one
+    // pool, so a merge finds the clusters that lost their partner.
+    void record_who_points_at_whom() {
+        for (const uint32_t x : pending_) {
+            const uint32_t y = nearest_[x].id;
+            if (y == kNoCluster) continue;
+            pointed_by_pool_.emplace_back(x, pointed_by_head_[y]);
+            pointed_by_head_[y] = uint32_t(pointed_by_pool_.size() - 1);
+        }
+    }
+
+    // Only a cluster whose partner changed can have become part of a new mutual pair.
+    Status find_mutual_pairs() {
+        pairs_.clear();
+        for (const uint32_t x : pending_) {
+            const uint32_t y = nearest_[x].id;
+            if (y != kNoCluster && nearest_[y].id == x) pairs_.emplace_back(std::min(x, y), std::max(x, y));
+        }
+        if (pairs_.empty()) LC_RETURN_IF_ERROR(add_smallest_recorded_pair());
+        tbb::parallel_sort(pairs_.begin(), pairs_.end());  // equal pairs are equal values: deterministic
+        pairs_.erase(std::unique(pairs_.begin(), pairs_.end()), pairs_.end());
+        return Ok{};
+    }
+
+    // Ties can close a cycle of best partners (x -> y -> z -> x, all equal), and
+    // rounding can break the metric's monotonicity with orientation cones: then
+    // the smallest recorded pair merges outright.
+    Status add_smallest_recorded_pair() {
+        uint32_t best = kNoCluster;
+        for (const uint32_t x : pending_) {
+            if (best == kNoCluster || nearest_[x].metric < nearest_[best].metric) best = x;
+        }
+        if (best == kNoCluster || nearest_[best].id == kNoCluster) {
+            return make_error("agglomerative clustering found no pair to merge with " +
+                              std::to_string(total_merges_ - merges_) + " merges left");
+        }
+        pairs_.emplace_back(std::min(best, nearest_[best].id), std::max(best, nearest_[best].id));
+        return Ok{};
+    }
+
+    // The merged cluster takes the first child's BVH slot.
+    Status merge_pairs(std::vector<uint32_t>& next_pending) {
+        timer_.lap("agglomerative: round bookkeeping");
+        const size_t first_new = compute_merged_nodes();
+        timer_.lap("agglomerative: cluster attributes");
+        for (size_t i = 0; i < pairs_.size(); ++i) {
+            const auto [a, b] = pairs_[i];
+            last_ = state_.adopt_merge(arena_, a, b, uint32_t(first_new + i));
+            bvh_.merge(state_.set, a, b, last_);
+            merged_into_[a] = last_;
+            merged_into_[b] = last_;
+            next_pending.push_back(last_);
+            queued_[last_] = 1;
+            ++merges_;
+            ++merges_since_build_;
+            if (progress_ && merges_ >= next_progress_) {
+                next_progress_ = merges_ + progress_step_;
+                if (!progress_(double(merges_) / double(total_merges_))) return cancelled();
+            }
+        }
+        timer_.lap("agglomerative: merges into the BVH");
+        return Ok{};
+    }
+
+    // A round's merges are independent: their cluster attributes are computed in
+    // parallel into pre-sized arena slots (adopted in order afterwards). Returns the first slot.
+    size_t compute_merged_nodes() {
+        const size_t first_new = arena_.nodes.size();
+        arena_.nodes.resize(first_new + pairs_.size());
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs_.size(), 1024),
+                          [&](const tbb::blocked_range<size_t>& range) {
+                              for (size_t i = range.begin(); i != range.end(); ++i) {
+                                  prefetch_ahead_of(i, range.end());
+                                  const auto [a, b] = pairs_[i];
+                                  arena_.nodes[first_new + i] =
+                                      merge_clusters(arena_, state_.arena_of[a], state_.arena_of[b],
+                                                     options_.representative_rule, options_.seed);
+                              }
+                          });
+        return first_new;
+    }
+
+    // The pairs' nodes lie at random in the arena.
+    void prefetch_ahead_of(size_t i, size_t end) const {
+        if (i + kMergePrefetchAhead < end) {
+            const auto [a, b] = pairs_[i + kMergePrefetchAhead];
+            prefetch_merge_input(arena_, state_.arena_of[a]);
+            prefetch_merge_input(arena_, state_.arena_of[b]);
+        }
+        if (i + kMergePrefetchAhead / 2 < end) {
+            const auto [a, b] = pairs_[i + kMergePrefetchAhead / 2];
+            prefetch_representative_lights(arena_, state_.arena_of[a], state_.arena_of[b]);
+        }
+    }
+
+    // Clusters whose partner just merged away search again, starting from the
+    // merged cluster; the merged cluster starts from the best of them.
+    void queue_the_orphaned(std::vector<uint32_t>& next_pending) {
+        for (const auto& [a, b] : pairs_) {
+            const uint32_t merged = merged_into_[a];
+            double merged_hint_metric = std::numeric_limits<double>::infinity();
+            hint_[merged] = kNoCluster;
+            for (const uint32_t gone : {a, b}) {
+                for (uint32_t e = pointed_by_head_[gone]; e != kNoCluster; e = pointed_by_pool_[e].second) {
+                    const uint32_t x = pointed_by_pool_[e].first;
+                    if (!state_.live[x] || nearest_[x].id != gone) continue;
+                    if (!queued_[x]) {
+                        queued_[x] = 1;
+                        next_pending.push_back(x);
+                        hint_[x] = merged;
+                    }
+                    const double m = cluster_metric(state_.set, merged, x);
+                    if (m < merged_hint_metric) {
+                        merged_hint_metric = m;
+                        hint_[merged] = x;
+                    }
+                }
+            }
+        }
+    }
+
+    // Fresh bounds once enough clusters changed.
+    void refresh_bvh_bounds() {
+        if (double(merges_since_build_) < kRefitFraction * double(bvh_.live_count()) ||
+            merges_ >= total_merges_) {
+            return;
+        }
+        if (double(bvh_.live_count()) < kRebuildLiveFraction * double(bvh_.slot_count())) {
+            live_ids_.clear();
+            for (uint32_t x = 0; x < state_.live.size(); ++x) {
+                if (state_.live[x]) live_ids_.push_back(x);
+            }
+            bvh_.build(state_.set, live_ids_, capacity_);
+        } else {
+            bvh_.refit(state_.set);
+        }
+        merges_since_build_ = 0;
+    }
+
+    Error cancelled() const {
+        return make_error(cancelled_message(merges_, total_merges_), ErrorKind::kCancelled);
+    }
+
+    BuildArena& arena_;
+    const BuildOptions& options_;
+    const BuildProgressFn& progress_;
+    BuildPhaseTimer& timer_;
+    const size_t total_merges_;
+    const size_t capacity_;
+    const size_t progress_step_;
+    ClusterState state_;
+    ClusterBvh bvh_;
+    std::vector<uint32_t> live_ids_;
+    size_t merges_since_build_ = 0;
+    std::vector<NearestCluster> nearest_;
+    std::vector<uint32_t> pointed_by_head_;
+    std::vector<std::pair<uint32_t, uint32_t>> pointed_by_pool_;  // (cluster, next)
+    std::vector<uint32_t> pending_;  // clusters needing a partner search
+    std::vector<uint8_t> queued_;
+    std::vector<uint32_t> hint_;  // a guess that starts each search
+    std::vector<uint32_t> merged_into_;
+    std::vector<std::pair<uint32_t, uint32_t>> pairs_;
+    std::vector<uint64_t> slot_keys_;  // (BVH slot, cluster id), to sort the searches by slot
+    size_t merges_ = 0;
+    size_t next_progress_ = 0;
+    uint32_t last_ = 0;
+};
+
+}  // namespace
+
 Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                          const BuildOptions& options, const BuildProgressFn& progress,
                                          BuildReport& report) {
     if (leaves.empty()) return kNoBuildChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
     BuildPhaseTimer timer(report);
-
-    const size_t n = leaves.size();
-    const size_t total_merges = n - 1;
-    const size_t capacity = 2 * n;
-    ClusterState state = initial_state(arena, leaves);
-
-    std::vector<uint32_t> live_ids(n);
-    for (uint32_t i = 0; i < n; ++i) live_ids[i] = i;
-    ClusterBvh bvh;
-    bvh.build(state.set, live_ids, capacity);
-    size_t merges_since_build = 0;
-
-    // nearest[x]: x's best partner. Who points at whom, as linked lists in one
-    // pool, so a merge finds the clusters that lost their partner.
-    std::vector<NearestCluster> nearest(capacity);
-    std::vector<uint32_t> pointed_by_head(capacity, kNoCluster);
-    std::vector<std::pair<uint32_t, uint32_t>> pointed_by_pool;  // (cluster, next)
-    pointed_by_pool.reserve(3 * n);
-
-    std::vector<uint32_t> pending = live_ids;  // clusters needing a partner search
-    std::vector<uint8_t> queued(capacity, 0);
-    std::vector<uint32_t> hint(capacity, kNoCluster);  // a guess that starts each search
-    std::vector<uint32_t> merged_into(capacity, kNoCluster);
-    std::vector<std::pair<uint32_t, uint32_t>> pairs;
-    std::vector<uint64_t> slot_keys;  // (BVH slot, cluster id), to sort the searches by slot
-    timer.lap("agglomerative: clusters and their BVH");
-    size_t merges = 0;
-    size_t next_progress = 0;
-    const size_t progress_step = std::max<size_t>(1, total_merges / 100);
-    uint32_t last = 0;
-
-    while (merges < total_merges) {
-        // 1. Best partners, in parallel over independent searches, in BVH slot
-        // order so that consecutive searches touch the same memory.
-        slot_keys.resize(pending.size());
-        const tbb::blocked_range<size_t> all_pending(0, pending.size(), 1u << 14);
-        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-                slot_keys[i] = (uint64_t(bvh.slot_of(pending[i])) << 32) | pending[i];
-            }
-        });
-        tbb::parallel_sort(slot_keys.begin(), slot_keys.end());  // slots are unique: deterministic
-        tbb::parallel_for(all_pending, [&](const tbb::blocked_range<size_t>& range) {
-            for (size_t i = range.begin(); i != range.end(); ++i) pending[i] = uint32_t(slot_keys[i]);
-        });
-        timer.lap("agglomerative: round bookkeeping");
-        for (size_t begin = 0; begin < pending.size(); begin += kSearchChunk) {
-            const size_t end = std::min(pending.size(), begin + kSearchChunk);
-            tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 256),
-                              [&](const tbb::blocked_range<size_t>& range) {
-                                  std::vector<std::pair<double, uint32_t>> stack;
-                                  for (size_t i = range.begin(); i != range.end(); ++i) {
-                                      const uint32_t x = pending[i];
-                                      nearest[x] = bvh.nearest(state.set, x, hint[x], stack);
-                                  }
-                              });
-            if (progress && !progress(double(merges) / double(total_merges))) {
-                return make_error(cancelled_message(merges, total_merges), ErrorKind::kCancelled);
-            }
-        }
-        timer.lap("agglomerative: best-partner searches");
-        for (const uint32_t x : pending) {
-            const uint32_t y = nearest[x].id;
-            if (y == kNoCluster) continue;
-            pointed_by_pool.emplace_back(x, pointed_by_head[y]);
-            pointed_by_head[y] = uint32_t(pointed_by_pool.size() - 1);
-        }
-
-        // 2. Mutual best partners merge. Only a cluster whose partner changed
-        // can have become part of a new mutual pair.
-        pairs.clear();
-        for (const uint32_t x : pending) {
-            const uint32_t y = nearest[x].id;
-            if (y != kNoCluster && nearest[y].id == x) {
-                pairs.emplace_back(std::min(x, y), std::max(x, y));
-            }
-        }
-        if (pairs.empty()) {
-            // Ties can close a cycle of best partners (x -> y -> z -> x, all
-            // equal), and rounding can break the metric's monotonicity with
-            // orientation cones: then merge the smallest recorded pair outright.
-            uint32_t best = kNoCluster;
-            for (const uint32_t x : pending) {
-                if (best == kNoCluster || nearest[x].metric < nearest[best].metric) best = x;
-            }
-            if (best == kNoCluster || nearest[best].id == kNoCluster) {
-                return make_error("agglomerative clustering found no pair to merge with " +
-                                  std::to_string(total_merges - merges) + " merges left");
-            }
-            pairs.emplace_back(std::min(best, nearest[best].id), std::max(best, nearest[best].id));
-        }
-        tbb::parallel_sort(pairs.begin(), pairs.end());  // equal pairs are equal values: deterministic
-        pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-
-        // 3. Merge; the merged cluster takes the first child's BVH slot.
-        std::vector<uint32_t> next_pending;
-        next_pending.reserve(2 * pairs.size());
-        // The cluster attributes of a round's merges are independent: compute
-        // them in parallel into pre-sized arena slots, then adopt them in order.
-        timer.lap("agglomerative: round bookkeeping");
-        const size_t first_new = arena.nodes.size();
-        arena.nodes.resize(first_new + pairs.size());
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, pairs.size(), 1024),
-                          [&](const tbb::blocked_range<size_t>& range) {
-                              for (size_t i = range.begin(); i != range.end(); ++i) {
-                                  // The pairs' nodes lie at random in the arena.
-                                  if (i + kMergePrefetchAhead < range.end()) {
-                                      const auto [a, b] = pairs[i + kMergePrefetchAhead];
-                                      prefetch_merge_input(arena, state.arena_of[a]);
-                                      prefetch_merge_input(arena, state.arena_of[b]);
-                                  }
-                                  if (i + kMergePrefetchAhead / 2 < range.end()) {
-                                      const auto [a, b] = pairs[i + kMergePrefetchAhead / 2];
-                                      prefetch_representative_lights(arena, state.arena_of[a],
-                                                                     state.arena_of[b]);
-                                  }
-                                  const auto [a, b] = pairs[i];
-                                  arena.nodes[first_new + i] =
-                                      merge_clusters(arena, state.arena_of[a], state.arena_of[b],
-                                                     options.representative_rule, options.seed);
-                              }
-                          });
-        timer.lap("agglomerative: cluster attributes");
-        for (size_t i = 0; i < pairs.size(); ++i) {
-            const auto [a, b] = pairs[i];
-            last = state.adopt_merge(arena, a, b, uint32_t(first_new + i));
-            bvh.merge(state.set, a, b, last);
-            merged_into[a] = last;
-            merged_into[b] = last;
-            next_pending.push_back(last);
-            queued[last] = 1;
-            ++merges;
-            ++merges_since_build;
-            if (progress && merges >= next_progress) {
-                next_progress = merges + progress_step;
-                if (!progress(double(merges) / double(total_merges))) {
-                    return make_error(cancelled_message(merges, total_merges), ErrorKind::kCancelled);
-                }
-            }
-        }
-        timer.lap("agglomerative: merges into the BVH");
-        // 4. Clusters whose partner just merged away search again, starting
-        // from the merged cluster; the merged cluster starts from the best of them.
-        for (const auto& [a, b] : pairs) {
-            const uint32_t merged = merged_into[a];
-            double merged_hint_metric = std::numeric_limits<double>::infinity();
-            hint[merged] = kNoCluster;
-            for (const uint32_t gone : {a, b}) {
-                for (uint32_t e = pointed_by_head[gone]; e != kNoCluster;
-                     e = pointed_by_pool[e].second) {
-                    const uint32_t x = pointed_by_pool[e].first;
-                    if (!state.live[x] || nearest[x].id != gone) continue;
-                    if (!queued[x]) {
-                        queued[x] = 1;
-                        next_pending.push_back(x);
-                        hint[x] = merged;
-                    }
-                    const double m = cluster_metric(state.set, merged, x);
-                    if (m < merged_hint_metric) {
-                        merged_hint_metric = m;
-                        hint[merged] = x;
-                    }
-                }
-            }
-        }
-        for (const uint32_t x : next_pending) queued[x] = 0;
-        pending.swap(next_pending);
-
-        timer.lap("agglomerative: round bookkeeping");
-        // 5. Fresh bounds once enough clusters changed.
-        if (double(merges_since_build) >= kRefitFraction * double(bvh.live_count()) &&
-            merges < total_merges) {
-            if (double(bvh.live_count()) < kRebuildLiveFraction * double(bvh.slot_count())) {
-                live_ids.clear();
-                for (uint32_t x = 0; x < state.live.size(); ++x) {
-                    if (state.live[x]) live_ids.push_back(x);
-                }
-                bvh.build(state.set, live_ids, capacity);
-            } else {
-                bvh.refit(state.set);
-            }
-            merges_since_build = 0;
-        }
-        timer.lap("agglomerative: BVH refits and rebuilds");
-    }
-    return int32_t(state.arena_of[last]);
+    return AgglomerativeRounds(arena, leaves, options, progress, timer).run();
 }
 
 Result<int32_t> build_agglomerative_tree_exact_greedy(BuildArena& arena,

@@ -80,6 +80,82 @@ void ClusterBvh::refit_inner(const ClusterSet& set, uint32_t node_index) {
     }
 }
 
+namespace {
+
+// Each id beside its centre: the splits below compare and move them together,
+// reading memory in order rather than a centre per id at random.
+struct Centred {
+    glm::dvec3 centre;
+    uint32_t id;
+};
+
+std::vector<Centred> centred_ids(const ClusterSet& set, std::span<const uint32_t> ids) {
+    std::vector<Centred> order(ids.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 1u << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i != r.end(); ++i) {
+                              const ClusterShape& shape = set.shapes[ids[i]];
+                              order[i] = Centred{0.5 * (shape.lo + shape.hi), ids[i]};
+                          }
+                      });
+    return order;
+}
+
+// A range of `order`, split at `mid` into the ranges at first_child and
+// first_child + 1 (breadth-first in their list).
+struct SplitRange {
+    uint32_t begin, end;
+    uint32_t mid = 0;          // 0: a leaf range
+    uint32_t first_child = 0;  // index in the list of ranges
+};
+
+// The median along the range's longest axis of centres, ties by id.
+void split_at_median(std::vector<Centred>& order, SplitRange& r) {
+    if (r.end - r.begin <= kLeafSlots) return;
+    glm::dvec3 lo(std::numeric_limits<double>::max());
+    glm::dvec3 hi(std::numeric_limits<double>::lowest());
+    for (uint32_t s = r.begin; s < r.end; ++s) {
+        lo = glm::min(lo, order[s].centre);
+        hi = glm::max(hi, order[s].centre);
+    }
+    const glm::dvec3 extent = hi - lo;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
+    r.mid = r.begin + (r.end - r.begin) / 2;
+    std::nth_element(order.begin() + r.begin, order.begin() + r.mid, order.begin() + r.end,
+                     [&](const Centred& a, const Centred& b) {
+                         const double ca = a.centre[axis];
+                         const double cb = b.centre[axis];
+                         return ca < cb || (ca == cb && a.id < b.id);
+                     });
+}
+
+// The median splits, one depth at a time: the ranges of one depth are
+// disjoint, so they are split in parallel, each exactly as it would be alone.
+std::vector<SplitRange> median_split_ranges(std::vector<Centred>& order) {
+    std::vector<SplitRange> ranges{{0, uint32_t(order.size())}};
+    for (size_t depth_begin = 0; depth_begin < ranges.size();) {
+        const size_t depth_end = ranges.size();
+        tbb::parallel_for(tbb::blocked_range<size_t>(depth_begin, depth_end, 1),
+                          [&](const tbb::blocked_range<size_t>& chunk) {
+                              for (size_t k = chunk.begin(); k != chunk.end(); ++k)
+                                  split_at_median(order, ranges[k]);
+                          });
+        for (size_t k = depth_begin; k < depth_end; ++k) {
+            if (ranges[k].mid == 0) continue;
+            ranges[k].first_child = uint32_t(ranges.size());
+            const SplitRange r = ranges[k];
+            ranges.push_back(SplitRange{r.begin, r.mid});
+            ranges.push_back(SplitRange{r.mid, r.end});
+        }
+        depth_begin = depth_end;
+    }
+    return ranges;
+}
+
+}  // namespace
+
 void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, size_t id_capacity) {
     nodes_.clear();
     parent_.clear();
@@ -90,69 +166,10 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
     leaf_of_slot_.assign(ids.size(), 0);
     if (ids.empty()) return;
 
-    // Each id beside its centre: the splits below compare and move them
-    // together, reading memory in order rather than a centre per id at random.
-    struct Centred {
-        glm::dvec3 centre;
-        uint32_t id;
-    };
-    std::vector<Centred> order(ids.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, ids.size(), 1u << 14),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          for (size_t i = r.begin(); i != r.end(); ++i) {
-                              const ClusterShape& shape = set.shapes[ids[i]];
-                              order[i] = Centred{0.5 * (shape.lo + shape.hi), ids[i]};
-                          }
-                      });
+    std::vector<Centred> order = centred_ids(set, ids);
+    const std::vector<SplitRange> ranges = median_split_ranges(order);
 
-    // 1. The median splits, one depth at a time: the ranges of one depth are
-    // disjoint, so they are split in parallel, each exactly as it would be
-    // alone. Ranges in breadth-first order; a split range's children follow
-    // at first_child and first_child + 1.
-    struct Range {
-        uint32_t begin, end;
-        uint32_t mid = 0;          // 0: a leaf range
-        uint32_t first_child = 0;  // index in `ranges`
-    };
-    // The median along the range's longest axis of centres, ties by id.
-    const auto split = [&](Range& r) {
-        if (r.end - r.begin <= kLeafSlots) return;
-        glm::dvec3 lo(std::numeric_limits<double>::max());
-        glm::dvec3 hi(std::numeric_limits<double>::lowest());
-        for (uint32_t s = r.begin; s < r.end; ++s) {
-            lo = glm::min(lo, order[s].centre);
-            hi = glm::max(hi, order[s].centre);
-        }
-        const glm::dvec3 extent = hi - lo;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
-                         : extent.y >= extent.z                       ? 1
-                                                                      : 2;
-        r.mid = r.begin + (r.end - r.begin) / 2;
-        std::nth_element(order.begin() + r.begin, order.begin() + r.mid, order.begin() + r.end,
-                         [&](const Centred& a, const Centred& b) {
-                             const double ca = a.centre[axis];
-                             const double cb = b.centre[axis];
-                             return ca < cb || (ca == cb && a.id < b.id);
-                         });
-    };
-    std::vector<Range> ranges{{0, uint32_t(order.size())}};
-    for (size_t depth_begin = 0; depth_begin < ranges.size();) {
-        const size_t depth_end = ranges.size();
-        tbb::parallel_for(tbb::blocked_range<size_t>(depth_begin, depth_end, 1),
-                          [&](const tbb::blocked_range<size_t>& chunk) {
-                              for (size_t k = chunk.begin(); k != chunk.end(); ++k) split(ranges[k]);
-                          });
-        for (size_t k = depth_begin; k < depth_end; ++k) {
-            if (ranges[k].mid == 0) continue;
-            ranges[k].first_child = uint32_t(ranges.size());
-            const Range r = ranges[k];
-            ranges.push_back(Range{r.begin, r.mid});
-            ranges.push_back(Range{r.mid, r.end});
-        }
-        depth_begin = depth_end;
-    }
-
-    // 2. The nodes, numbered depth-first (a subtree's nodes close together,
+    // The nodes, numbered depth-first (a subtree's nodes close together,
     // which the searches' caches like): a work list, no recursion.
     nodes_.reserve(2 * (ids.size() / kLeafSlots + 1));
     parent_.reserve(nodes_.capacity());
@@ -165,7 +182,7 @@ void ClusterBvh::build(const ClusterSet& set, std::span<const uint32_t> ids, siz
     while (!pending.empty()) {
         const Pending p = pending.back();
         pending.pop_back();
-        const Range& r = ranges[p.range];
+        const SplitRange& r = ranges[p.range];
         if (r.mid == 0) {
             nodes_[p.node].first = r.begin;
             nodes_[p.node].count = r.end - r.begin;

@@ -171,95 +171,106 @@ ResultRecord to_record(const LightTreeNode& n) {
     return {light, point, node};
 }
 
-// Checks one node's own values; structure across nodes is validate_tree's job.
-Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
-    // The label is built only on failure: every record of a channel passes through here.
-    auto fail = [index](const std::string& what) -> Status {
-        return make_error(node_label(index) + ": " + what);
-    };
+// The checks of one node's own values: each names what is wrong, or nothing
+// (the node's label is added only on failure: every record of a channel
+// passes through here).
+using NodeProblem = std::optional<std::string>;
+
+NodeProblem link_problem(const LightTreeNode& n, size_t index, size_t node_count) {
     if (static_cast<int>(n.type) >= kLightTypeCount) {
-        return fail("light_type " + std::to_string(static_cast<int>(n.type)) + " is unknown");
+        return "light_type " + std::to_string(static_cast<int>(n.type)) + " is unknown";
     }
     const auto count = static_cast<int64_t>(node_count);
-    const bool left_none = n.left == kNoChild;
-    const bool right_none = n.right == kNoChild;
-    if (left_none != right_none) {
-        return fail("has only one child (left " + std::to_string(n.left) + ", right " +
-                    std::to_string(n.right) + ")");
+    if ((n.left == kNoChild) != (n.right == kNoChild)) {
+        return "has only one child (left " + std::to_string(n.left) + ", right " + std::to_string(n.right) + ")";
     }
     for (int32_t child : {n.left, n.right}) {
         if (child == kNoChild) continue;
         if (child <= static_cast<int64_t>(index) || child >= count) {
-            return fail("child index " + std::to_string(child) + " is outside (" +
-                        std::to_string(index) + ", " + std::to_string(node_count) + ")");
+            return "child index " + std::to_string(child) + " is outside (" + std::to_string(index) + ", " +
+                   std::to_string(node_count) + ")";
         }
     }
-    if (n.left != kNoChild && n.left == n.right) {
-        return fail("both children are node " + std::to_string(n.left));
-    }
+    if (n.left != kNoChild && n.left == n.right) return "both children are node " + std::to_string(n.left);
     if (n.representative < 0 || n.representative >= count) {
-        return fail("representative " + std::to_string(n.representative) + " is outside [0, " +
-                    std::to_string(node_count) + ")");
+        return "representative " + std::to_string(n.representative) + " is outside [0, " +
+               std::to_string(node_count) + ")";
     }
-    if (!finite3(n.position)) return fail("position " + vec_text(n.position) + " is not finite");
-    if (!finite3(n.direction)) return fail("direction " + vec_text(n.direction) + " is not finite");
-    if (!finite3(n.intensity)) return fail("intensity " + vec_text(n.intensity) + " is not finite");
-    if (!non_negative3(n.intensity)) {
-        return fail("intensity " + vec_text(n.intensity) + " is negative");
-    }
+    return std::nullopt;
+}
+
+NodeProblem emission_problem(const LightTreeNode& n) {
+    if (!finite3(n.position)) return "position " + vec_text(n.position) + " is not finite";
+    if (!finite3(n.direction)) return "direction " + vec_text(n.direction) + " is not finite";
+    if (!finite3(n.intensity)) return "intensity " + vec_text(n.intensity) + " is not finite";
+    if (!non_negative3(n.intensity)) return "intensity " + vec_text(n.intensity) + " is negative";
     if (!std::isfinite(n.brightness) || n.brightness < 0.0f) {
-        return fail("brightness " + number(n.brightness) + " is not a finite value >= 0");
+        return "brightness " + number(n.brightness) + " is not a finite value >= 0";
     }
     if (!finite3(normalised_color(n))) {
-        return fail("intensity " + vec_text(n.intensity) + " over brightness " +
-                    number(n.brightness) + " overflows the normalised colour");
+        return "intensity " + vec_text(n.intensity) + " over brightness " + number(n.brightness) +
+               " overflows the normalised colour";
     }
-    if (!std::isfinite(n.radius)) return fail("radius " + number(n.radius) + " is not finite");
+    if (!std::isfinite(n.radius)) return "radius " + number(n.radius) + " is not finite";
     if (!std::isfinite(n.falloff_exponent) || n.falloff_exponent < 0.0f) {
-        return fail("falloff_exponent " + number(n.falloff_exponent) +
-                    " is not a finite value >= 0");
+        return "falloff_exponent " + number(n.falloff_exponent) + " is not a finite value >= 0";
     }
     if (!std::isfinite(n.range) || n.range < 0.0f) {
-        return fail("range " + number(n.range) + " is not a finite value >= 0");
+        return "range " + number(n.range) + " is not a finite value >= 0";
     }
-    if (n.patch && !n.indirect) return fail("light_flags mark a patch that is not indirect");
+    return std::nullopt;
+}
+
+// Patches, their source radius, and a VPL's bounce.
+NodeProblem indirect_problem(const LightTreeNode& n) {
+    if (n.patch && !n.indirect) return "light_flags mark a patch that is not indirect";
     if (!std::isfinite(n.source_radius) || n.source_radius < 0.0f) {
-        return fail("light_source_radius " + number(n.source_radius) + " is not a finite value >= 0");
+        return "light_source_radius " + number(n.source_radius) + " is not a finite value >= 0";
     }
     if (n.source_radius != 0.0f && !n.patch) {
-        return fail("light_source_radius " + number(n.source_radius) + " on a light that is not a patch");
+        return "light_source_radius " + number(n.source_radius) + " on a light that is not a patch";
     }
     if (n.bounce != 0 && !(n.indirect && !n.patch && n.is_leaf())) {
-        return fail("light_source_length " + std::to_string(n.bounce) + " (a bounce) on a node that is not a VPL leaf");
+        return "light_source_length " + std::to_string(n.bounce) + " (a bounce) on a node that is not a VPL leaf";
     }
-    if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) {
-        return fail("bounding box is not finite");
-    }
+    return std::nullopt;
+}
+
+// The bounding box, the orientation cone and the spot cone.
+NodeProblem bounds_problem(const LightTreeNode& n) {
+    if (!finite3(n.bbox_min) || !finite3(n.bbox_max)) return "bounding box is not finite";
     if (n.bbox_min.x > n.bbox_max.x || n.bbox_min.y > n.bbox_max.y || n.bbox_min.z > n.bbox_max.z) {
-        return fail("bounding box min " + vec_text(n.bbox_min) + " exceeds max " +
-                    vec_text(n.bbox_max));
+        return "bounding box min " + vec_text(n.bbox_min) + " exceeds max " + vec_text(n.bbox_max);
     }
-    if (!finite3(n.cone_axis)) return fail("cone_axis " + vec_text(n.cone_axis) + " is not finite");
+    if (!finite3(n.cone_axis)) return "cone_axis " + vec_text(n.cone_axis) + " is not finite";
     if (!std::isfinite(n.cone_cos) || n.cone_cos < -1.0f || n.cone_cos > 1.0f) {
-        return fail("cone_cos " + number(n.cone_cos) + " is outside [-1, 1]");
+        return "cone_cos " + number(n.cone_cos) + " is outside [-1, 1]";
     }
-    if (!std::isfinite(n.spot_cos_inner) || !std::isfinite(n.spot_cos_outer)) {
-        return fail("spot cosines are not finite");
-    }
+    if (!std::isfinite(n.spot_cos_inner) || !std::isfinite(n.spot_cos_outer)) return "spot cosines are not finite";
     const bool oriented = n.type == LightType::kSpot || n.type == LightType::kDirectional ||
                           n.type == LightType::kOriented;
     if (oriented && !n.mixed_types && !unit_length(n.direction)) {
-        return fail("direction " + vec_text(n.direction) + " of a " + light_type_name(n.type) +
-                    " light is not unit length");
+        return "direction " + vec_text(n.direction) + " of a " + light_type_name(n.type) +
+               " light is not unit length";
     }
     if (n.type == LightType::kSpot && !n.mixed_types) {
-        const bool ordered = n.spot_cos_outer >= -kCosineTolerance &&
-                             n.spot_cos_outer <= n.spot_cos_inner && n.spot_cos_inner <= 1.0f;
+        const bool ordered = n.spot_cos_outer >= -kCosineTolerance && n.spot_cos_outer <= n.spot_cos_inner &&
+                             n.spot_cos_inner <= 1.0f;
         if (!ordered) {
-            return fail("spot cosines inner " + number(n.spot_cos_inner) + ", outer " +
-                        number(n.spot_cos_outer) + " are not 0 <= outer <= inner <= 1");
+            return "spot cosines inner " + number(n.spot_cos_inner) + ", outer " + number(n.spot_cos_outer) +
+                   " are not 0 <= outer <= inner <= 1";
         }
     }
+    return std::nullopt;
+}
+
+// Checks one node's own values; structure across nodes is validate_tree's job.
+Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
+    NodeProblem problem = link_problem(n, index, node_count);
+    if (!problem) problem = emission_problem(n);
+    if (!problem) problem = indirect_problem(n);
+    if (!problem) problem = bounds_problem(n);
+    if (problem) return make_error(node_label(index) + ": " + *problem);
     return Ok{};
 }
 

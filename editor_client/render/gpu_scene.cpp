@@ -60,13 +60,48 @@ Result<vk::Image> upload_texture(const vk::Context& context, const Texture& text
     return std::move(image).value();
 }
 
+
+// Every mesh's vertices as GpuVertex, appended after `vertices`.
+void append_vertices(const Mesh& mesh, std::vector<GpuVertex>& vertices) {
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        GpuVertex vertex;
+        vertex.position = mesh.positions[v];
+        if (!mesh.normals.empty()) vertex.normal = mesh.normals[v];
+        if (!mesh.uvs.empty()) vertex.uv = mesh.uvs[v];
+        if (!mesh.tangents.empty()) vertex.tangent = mesh.tangents[v];
+        if (!mesh.colors.empty()) vertex.color = mesh.colors[v];
+        vertices.push_back(vertex);
+    }
+}
+
+// A material's factors and flags, its textures not yet bound.
+GpuMaterial material_factors(const Material& material) {
+    GpuMaterial out;
+    out.base_color_factor = material.base_color_factor;
+    out.emissive_factor = material.emissive_factor;
+    out.metallic = material.metallic;
+    out.roughness = material.roughness;
+    if (!material.double_sided) out.flags |= kDrawSingleSided;
+    if (material.alpha_mode == AlphaMode::kMask) {
+        out.flags |= kDrawAlphaMask;
+        out.alpha_cutoff = material.alpha_cutoff;
+    }
+    out.normal_scale = material.normal_scale;
+    return out;
+}
+
 }  // namespace
 
 Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene) {
-    const vk::Device& device = context.device();
     GpuScene gpu;
+    LC_RETURN_IF_ERROR(gpu.upload_geometry(context, scene));
+    LC_RETURN_IF_ERROR(gpu.upload_textures(context, scene));
+    LC_RETURN_IF_ERROR(gpu.create_materials(context, scene));
+    return gpu;
+}
 
-    // Geometry: every mesh appended to one vertex and one index buffer.
+// Geometry: every mesh appended to one vertex and one index buffer.
+Status GpuScene::upload_geometry(const vk::Context& context, const Scene& scene) {
     std::vector<GpuVertex> vertices;
     std::vector<uint32_t> indices;
     const uint32_t default_material = uint32_t(scene.materials.size());
@@ -85,64 +120,65 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         draw.material = mesh.material >= 0 && size_t(mesh.material) < scene.materials.size()
                             ? uint32_t(mesh.material)
                             : default_material;
-        for (size_t v = 0; v < mesh.positions.size(); ++v) {
-            GpuVertex vertex;
-            vertex.position = mesh.positions[v];
-            if (!mesh.normals.empty()) vertex.normal = mesh.normals[v];
-            if (!mesh.uvs.empty()) vertex.uv = mesh.uvs[v];
-            if (!mesh.tangents.empty()) vertex.tangent = mesh.tangents[v];
-            if (!mesh.colors.empty()) vertex.color = mesh.colors[v];
-            vertices.push_back(vertex);
-        }
+        append_vertices(mesh, vertices);
         indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
-        gpu.draws_.push_back(draw);
+        draws_.push_back(draw);
     }
+    const vk::Device& device = context.device();
     Result<vk::Buffer> vertex_buffer = vk::Buffer::create_with_data(
         device, context.command_pool(), std::as_bytes(std::span(vertices)),
         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);  // primary rays read it too
     if (!vertex_buffer) return make_error(vertex_buffer.error());
-    gpu.vertices_ = std::move(vertex_buffer).value();
+    vertices_ = std::move(vertex_buffer).value();
     Result<vk::Buffer> index_buffer = vk::Buffer::create_with_data(
         device, context.command_pool(), std::as_bytes(std::span(indices)),
         VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
     if (!index_buffer) return make_error(index_buffer.error());
-    gpu.indices_ = std::move(index_buffer).value();
+    indices_ = std::move(index_buffer).value();
+    return Ok{};
+}
 
-    // Textures, then one white texel for materials without one.
+// Textures, then one white texel for materials without one, and their sampler.
+Status GpuScene::upload_textures(const vk::Context& context, const Scene& scene) {
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         Result<vk::Image> image = upload_texture(context, scene.textures[t], t);
         if (!image) return make_error(image.error());
-        gpu.textures_.push_back(std::move(image).value());
+        textures_.push_back(std::move(image).value());
     }
     Texture white;
     white.width = white.height = 1;
     white.rgba8 = {255, 255, 255, 255};
     Result<vk::Image> white_image = upload_texture(context, white, scene.textures.size());
     if (!white_image) return make_error(white_image.error());
-    gpu.textures_.push_back(std::move(white_image).value());
-    const size_t white_index = gpu.textures_.size() - 1;
+    textures_.push_back(std::move(white_image).value());
 
-    Result<vk::Sampler> sampler = vk::Sampler::create_linear_repeat(device.handle());
+    Result<vk::Sampler> sampler = vk::Sampler::create_linear_repeat(context.device().handle());
     if (!sampler) return make_error(sampler.error());
-    gpu.sampler_ = std::move(sampler).value();
+    sampler_ = std::move(sampler).value();
+    return Ok{};
+}
 
+// Scene materials, then glTF's default material (white, metallic 1, roughness
+// 1), each with a descriptor set of its four textures.
+Status GpuScene::create_materials(const vk::Context& context, const Scene& scene) {
+    VkDevice device = context.device().handle();
     std::array<VkDescriptorType, kMaterialBindingCount> types{};
     types.fill(VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER);
     Result<vk::DescriptorSetLayout> layout =
-        vk::DescriptorSetLayout::create(device.handle(), types, VK_SHADER_STAGE_FRAGMENT_BIT);
+        vk::DescriptorSetLayout::create(device, types, VK_SHADER_STAGE_FRAGMENT_BIT);
     if (!layout) return make_error(layout.error());
-    gpu.material_layout_ = std::move(layout).value();
+    material_layout_ = std::move(layout).value();
 
-    // Scene materials, then glTF's default material (white, metallic 1, roughness 1).
     std::vector<Material> materials = scene.materials;
     materials.push_back(Material{});
     const uint32_t set_count = uint32_t(materials.size());
     std::array<VkDescriptorPoolSize, 1> sizes{
         VkDescriptorPoolSize{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaterialBindingCount * set_count}};
-    Result<vk::DescriptorPool> pool = vk::DescriptorPool::create(device.handle(), set_count, sizes);
+    Result<vk::DescriptorPool> pool = vk::DescriptorPool::create(device, set_count, sizes);
     if (!pool) return make_error(pool.error());
-    gpu.material_pool_ = std::move(pool).value();
+    material_pool_ = std::move(pool).value();
 
+    const size_t white_index = textures_.size() - 1;
     auto texture_index = [&](int index, uint32_t flag, uint32_t& flags) {
         if (index >= 0 && size_t(index) < scene.textures.size()) {
             flags |= flag;
@@ -151,35 +187,25 @@ Result<GpuScene> GpuScene::upload(const vk::Context& context, const Scene& scene
         return white_index;
     };
     for (const Material& material : materials) {
-        GpuMaterial out;
-        out.base_color_factor = material.base_color_factor;
-        out.emissive_factor = material.emissive_factor;
-        out.metallic = material.metallic;
-        out.roughness = material.roughness;
-        if (!material.double_sided) out.flags |= kDrawSingleSided;
-        if (material.alpha_mode == AlphaMode::kMask) {
-            out.flags |= kDrawAlphaMask;
-            out.alpha_cutoff = material.alpha_cutoff;
-        }
+        GpuMaterial out = material_factors(material);
         size_t base = texture_index(material.base_color_texture, kDrawBaseColorTexture, out.flags);
         size_t emissive = texture_index(material.emissive_texture, kDrawEmissiveTexture, out.flags);
         size_t metallic_roughness = texture_index(material.metallic_roughness_texture,
                                                   kDrawMetallicRoughnessTexture, out.flags);
         size_t normal = texture_index(material.normal_texture, kDrawNormalTexture, out.flags);
-        out.normal_scale = material.normal_scale;
-        Result<VkDescriptorSet> set = gpu.material_pool_.allocate(gpu.material_layout_);
+        Result<VkDescriptorSet> set = material_pool_.allocate(material_layout_);
         if (!set) return make_error(set.error());
         out.set = *set;
         vk::DescriptorWriter(out.set)
-            .sampled_image(kBindBaseColorTexture, gpu.textures_[base].view(), gpu.sampler_.handle())
-            .sampled_image(kBindEmissiveTexture, gpu.textures_[emissive].view(), gpu.sampler_.handle())
-            .sampled_image(kBindMetallicRoughnessTexture, gpu.textures_[metallic_roughness].view(),
-                           gpu.sampler_.handle())
-            .sampled_image(kBindNormalTexture, gpu.textures_[normal].view(), gpu.sampler_.handle())
-            .update(device.handle());
-        gpu.materials_.push_back(out);
+            .sampled_image(kBindBaseColorTexture, textures_[base].view(), sampler_.handle())
+            .sampled_image(kBindEmissiveTexture, textures_[emissive].view(), sampler_.handle())
+            .sampled_image(kBindMetallicRoughnessTexture, textures_[metallic_roughness].view(),
+                           sampler_.handle())
+            .sampled_image(kBindNormalTexture, textures_[normal].view(), sampler_.handle())
+            .update(device);
+        materials_.push_back(out);
     }
-    return gpu;
+    return Ok{};
 }
 
 }  // namespace lc::client

@@ -67,6 +67,10 @@ public:
     const vk::DescriptorSetLayout& material_layout() const { return material_layout_; }
 
 private:
+    Status upload_geometry(const vk::Context& context, const Scene& scene);
+    Status upload_textures(const vk::Context& context, const Scene& scene);
+    Status create_materials(const vk::Context& context, const Scene& scene);
+
     vk::Buffer vertices_;
     vk::Buffer indices_;
     std::vector<GpuDraw> draws_;

@@ -6,8 +6,10 @@
 
 namespace lc::client {
 
-nlohmann::json stats_json(const RenderStats& s) {
-    nlohmann::json j;
+namespace {
+
+// The frame: its scene, lights, mode and size, the pass times.
+void add_frame(const RenderStats& s, nlohmann::json& j) {
     j["scene"] = s.scene;
     j["device"] = s.device;
     j["lights"] = s.lights;
@@ -26,6 +28,21 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["lighting_ms"] = s.lighting_ms;
     j["output_ms"] = s.output_ms;
     j["wall_ms"] = s.wall_ms;
+    j["submissions"] = s.submissions;
+    if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
+    if (s.stride_tile > 1) j["stride_tile"] = s.stride_tile;
+    j["exposure"] = s.exposure;
+    j["auto_exposure"] = s.auto_exposure;
+    j["validation_messages"] = s.validation_messages;
+    j["validation_enabled"] = s.validation_enabled;
+}
+
+double shadow_rays_per_pixel(const RenderStats& s) {
+    return s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
+}
+
+// What the GPU counted: cuts, pixels, evaluations, shadow rays.
+void add_counts(const RenderStats& s, nlohmann::json& j) {
     j["avg_cut"] = s.avg_cut;
     j["max_cut"] = s.max_cut;
     j["cut_p99"] = s.cut_p99;
@@ -38,28 +55,30 @@ nlohmann::json stats_json(const RenderStats& s) {
     j["loop_limit_stops"] = s.loop_limit_stops;
     j["shadows"] = s.shadows;
     j["shadow_rays"] = s.shadow_rays;
-    j["shadow_rays_per_pixel"] =
-        s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
+    j["shadow_rays_per_pixel"] = shadow_rays_per_pixel(s);
     j["shadow_triangles"] = s.shadow_triangles;
     j["shadow_bvh_nodes"] = s.shadow_bvh_nodes;
     if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
-    if (!s.indirect.empty()) {
-        j["indirect"] = s.indirect;
-        j["indirect_lights"] = s.indirect_lights;
-        j["indirect_vpls"] = s.indirect_lights - s.indirect_patches;
-        j["indirect_patches"] = s.indirect_patches;
-        j["indirect_energy"] = s.indirect_energy;
-        j["clamped_energy"] = s.clamped_energy;
-        j["clamped_energy_fraction"] = s.clamped_fraction();
-        if (s.reference_clamp_passes > 0) {
-            j["reference_clamp_passes"] = s.reference_clamp_passes;
-            j["reference_visibility_kept"] = s.reference_visibility_kept;
-            j["reference_clamp_change"] = s.reference_clamp_change;
-        }
+}
+
+void add_indirect(const RenderStats& s, nlohmann::json& j) {
+    if (s.indirect.empty()) return;
+    j["indirect"] = s.indirect;
+    j["indirect_lights"] = s.indirect_lights;
+    j["indirect_vpls"] = s.indirect_lights - s.indirect_patches;
+    j["indirect_patches"] = s.indirect_patches;
+    j["indirect_energy"] = s.indirect_energy;
+    j["clamped_energy"] = s.clamped_energy;
+    j["clamped_energy_fraction"] = s.clamped_fraction();
+    if (s.reference_clamp_passes > 0) {
+        j["reference_clamp_passes"] = s.reference_clamp_passes;
+        j["reference_visibility_kept"] = s.reference_visibility_kept;
+        j["reference_clamp_change"] = s.reference_clamp_change;
     }
-    j["submissions"] = s.submissions;
-    if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
-    if (s.stride_tile > 1) j["stride_tile"] = s.stride_tile;
+}
+
+// The cut search's and the real-time mode's settings, where they apply.
+void add_cut_settings(const RenderStats& s, nlohmann::json& j) {
     if (s.max_cut_setting > 0) {
         j["error_ratio"] = s.error_ratio;
         j["max_cut_setting"] = s.max_cut_setting;
@@ -71,9 +90,11 @@ nlohmann::json stats_json(const RenderStats& s) {
     if (s.realtime_cut > 0) {
         j["realtime_cut"] = s.realtime_cut;
         j["realtime_frames"] = s.realtime_frames;
-        j["shadow_rays_per_pixel"] =
-            s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
     }
+}
+
+// Against the reference, and the supersampled frame's shading.
+void add_error_and_supersampling(const RenderStats& s, nlohmann::json& j) {
     if (s.has_error_stats) {
         j["rel_err_mean"] = s.rel_err_mean;
         j["rel_err_p99"] = s.rel_err_p99;
@@ -91,10 +112,17 @@ nlohmann::json stats_json(const RenderStats& s) {
         if (s.spp_method != "gpu") j["shading_cpu_ms"] = s.shading_cpu_ms;
         if (s.has_error_stats) j["reference_shadow_rays"] = s.reference_shadow_rays;
     }
-    j["exposure"] = s.exposure;
-    j["auto_exposure"] = s.auto_exposure;
-    j["validation_messages"] = s.validation_messages;
-    j["validation_enabled"] = s.validation_enabled;
+}
+
+}  // namespace
+
+nlohmann::json stats_json(const RenderStats& s) {
+    nlohmann::json j;
+    add_frame(s, j);
+    add_counts(s, j);
+    add_indirect(s, j);
+    add_cut_settings(s, j);
+    add_error_and_supersampling(s, j);
     return j;
 }
 

@@ -2,6 +2,8 @@
 // The images one frame renders into, for one size: the G-buffer (float
 // attachments + depth), linear HDR radiance, the cut per pixel, the 8-bit
 // display image, and the walk search's state per pixel between its passes.
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 
 #include "editor_client/vk/buffer.h"
@@ -34,6 +36,7 @@ struct RenderTargets {
     vk::Image cut;      // x cut size, y cut hash
     vk::Image display;  // tone-mapped (or visualised), sRGB-encoded
     vk::Buffer walk_states;  // GpuWalkState per pixel (gpu_layout.h), GPU only
+    glm::vec3 gbuffer_eye{0.0f};  // the camera the G-buffer was last drawn from (its read-back's view)
 };
 
 }  // namespace lc::client

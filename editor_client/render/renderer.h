@@ -1,9 +1,12 @@
 #pragma once
-// The Vulkan renderer: the frame's plumbing (targets, uploads, the compute
-// passes' descriptor set, timestamps, read-backs) around three passes
-// (render/passes/): G-buffer raster, lighting (reference or a lightcuts
-// algorithm), then tone mapping or a cut view. Headless (render() + read_*)
-// or recorded into a window's frame (record()).
+// The Vulkan renderer: one frame's preparation and recording around three
+// passes (render/passes/): the G-buffer, lighting (reference, a lightcuts
+// algorithm or the real-time mode), then tone mapping or a cut view. What the
+// frame reads it owns in parts: the scene's geometry (GpuScene), its lights
+// (GpuLights), the occluders (GpuOccluders), the background, the targets,
+// the exact clamp's visibility, the measurements (timestamps, counters) and
+// the compute passes' set 0 over them (FrameDescriptors). Headless (render()
+// + read_*) or recorded into a window's frame (record()).
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -15,6 +18,11 @@
 #include <vector>
 
 #include "lightcuts/gpu_layout.h"
+#include "editor_client/render/background_buffers.h"
+#include "editor_client/render/frame_descriptors.h"
+#include "editor_client/render/frame_measurements.h"
+#include "editor_client/render/gpu_lights.h"
+#include "editor_client/render/gpu_occluders.h"
 #include "editor_client/render/gpu_scene.h"
 #include "editor_client/render/loop_budget.h"
 #include "editor_client/render/passes/frame_passes.h"
@@ -24,15 +32,12 @@
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
+#include "editor_client/render/vpl_visibility.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
 #include "lightcuts/scene.h"
-#include "editor_client/vk/buffer.h"
 #include "editor_client/vk/context.h"
-#include "editor_client/vk/descriptor_set.h"
-#include "editor_client/vk/pipeline_layout.h"
-#include "editor_client/vk/timestamp_query_pool.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 
@@ -68,14 +73,6 @@ struct GBufferReadback {
     std::vector<float> emissive;
 };
 
-// GPU time of each pass of the last frame, in milliseconds.
-struct PassTimings {
-    double gbuffer_ms = 0.0;
-    double lighting_ms = 0.0;
-    double output_ms = 0.0;
-    double total_ms = 0.0;
-};
-
 class Renderer {
 public:
     // The scene is uploaded once and must outlive the renderer (set_tree reads
@@ -94,11 +91,11 @@ public:
 
     // Replaces the tree (null: none) and re-analyses the effects. Waits for the GPU.
     Status set_tree(const LightTree* tree);
-    bool has_tree() const { return has_tree_; }
+    bool has_tree() const { return lights_.has_tree(); }
     // The environment pixels without geometry show (null: black, the
     // default); the tree's lights stand for its light. Waits for the GPU.
     Status set_environment(std::shared_ptr<const Environment> environment);
-    const Environment* environment() const { return environment_.get(); }
+    const Environment* environment() const { return background_.environment(); }
     // What a frame with these settings shows where no geometry is hit
     // (background.h): the environment's parameters and the frame's eye rays.
     GpuBackground background(const RenderSettings& settings) const;
@@ -155,13 +152,13 @@ public:
     uint32_t width() const { return targets_.width; }
     uint32_t height() const { return targets_.height; }
     // Counts for stats: leaves evaluated by reference mode, classic lights, tree nodes.
-    uint32_t leaf_count() const { return leaf_count_; }
-    uint32_t classic_count() const { return classic_count_; }
-    uint32_t node_count() const { return node_count_; }
-    uint32_t tree_depth() const { return tree_depth_; }
+    uint32_t leaf_count() const { return lights_.leaf_count(); }
+    uint32_t classic_count() const { return lights_.classic_count(); }
+    uint32_t node_count() const { return lights_.node_count(); }
+    uint32_t tree_depth() const { return lights_.tree_depth(); }
     // The occluders shadow rays test (SceneEffects::occluders, rebuilt with the tree).
-    const ShadowBvh& shadow_bvh() const { return shadow_bvh_; }
-    float shadow_bias() const { return shadow_bias_; }
+    const ShadowBvh& shadow_bvh() const { return occluders_.bvh(); }
+    float shadow_bias() const { return occluders_.bias(); }
     // The real-time mode: frames in its history after the last frame (its mean is the image).
     uint32_t real_time_frames() const { return passes_->real_time().frames_accumulated(); }
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
@@ -174,68 +171,52 @@ private:
     Renderer(const vk::Context& context, const Scene& scene, const RendererOptions& options);
 
     Status create_frame_resources();
-    Status upload_occluders();
-    Status ensure_vpl_visibility(uint64_t bytes);
     Status prepare_vpl_visibility(const RenderSettings& settings);
     // Shadow rays are traced: the analysis asked for them and something occludes.
-    bool traces_shadows() const { return effects_.shadows && !shadow_bvh_.empty(); }
+    bool traces_shadows() const { return effects_.shadows && !occluders_.bvh().empty(); }
     LoopWork loop_work() const;
-    // A device-local storage buffer holding `bytes` (the frame set is rewritten).
-    Status upload_storage(vk::Buffer& out, std::span<const std::byte> bytes);
-    Status upload_lights(const LightTree* tree);
     // Remade (contents lost) when the size differs: the result says whether.
     Result<bool> ensure_targets(uint32_t width, uint32_t height);
     Status check_regions(std::span<const PixelRegion> regions, uint32_t width, uint32_t height) const;
     void update_frame_descriptors();
     Frame make_frame(const RenderSettings& settings) const;
-    // The passes of a frame with these settings, in order, their pipelines found.
-    Result<std::array<FramePass*, 3>> prepare_passes(const Frame& frame);
-    // The same for a frame over `regions`, with the descriptors brought up to date.
-    Result<std::array<FramePass*, 3>> prepare_regions(Frame& frame, std::span<const PixelRegion> regions,
-                                                      bool continues_image);
+    // The one place a frame is prepared: settings and regions checked, targets
+    // of its size, the exact clamp's visibility (a new image only), the set
+    // written and the passes' pipelines found. Returns the frame and its passes in order.
+    struct PreparedFrame {
+        Frame frame;
+        std::array<FramePass*, 3> passes{};
+    };
+    Result<PreparedFrame> prepare_frame(const RenderSettings& settings, std::span<const PixelRegion> regions,
+                                        bool continues_image);
+    // Records a prepared frame's passes between its measurements.
+    void record_prepared(VkCommandBuffer cmd, const PreparedFrame& prepared);
     Result<std::vector<std::byte>> read_image(const vk::Image& image) const;
-    // record_regions with the run of the reference's dispatches to record.
-    Status record_frame(VkCommandBuffer cmd, const RenderSettings& settings,
-                        std::span<const PixelRegion> regions, bool continues_image,
-                        DispatchRange reference_dispatches);
+    // A headless frame's submissions, their GPU times and counters summed.
+    struct SubmittedFrame {
+        PassTimings timings;
+        GpuFrameCounters counters;
+        double wall_ms = 0.0;
+        uint32_t submissions = 0;
+    };
+    Result<SubmittedFrame> submit_frame(PreparedFrame prepared);
+    RenderStats frame_stats(const RenderSettings& settings, const SubmittedFrame& frame) const;
+    void add_settings_stats(const RenderSettings& settings, RenderStats& stats) const;
+    Status add_cut_stats(const RenderSettings& settings, std::span<const PixelRegion> regions,
+                         RenderStats& stats) const;
 
     const vk::Context& context_;
     const Scene& scene_;
     RendererOptions options_;
     SceneEffects effects_;
-    bool has_tree_ = false;
-    uint32_t leaf_count_ = 0;
-    uint32_t classic_count_ = 0;
-    uint32_t node_count_ = 0;
-    uint32_t tree_depth_ = 0;
-
     GpuScene gpu_scene_;
+    GpuLights lights_;
+    GpuOccluders occluders_;
+    BackgroundBuffers background_;
     RenderTargets targets_;
-    vk::Buffer leaf_lights_;
-    vk::Buffer tree_nodes_;
-    vk::Buffer classic_lights_;
-    vk::Buffer counters_;
-    vk::Buffer vpl_visibility_;          // GpuVisibilityBits: the exact clamp's kept visibility
-    uint32_t vpl_visibility_stride_ = 0;  // of the frame being recorded; 0: none kept
-    std::shared_ptr<const Environment> environment_;
-    vk::Buffer background_;          // GpuBackground, rewritten by every frame's commands
-    vk::Buffer environment_texels_;  // GpuEnvironmentTexel
-    ShadowBvh shadow_bvh_;
-    float shadow_bias_ = 0.0f;
-    glm::vec3 last_eye_{0.0f};  // camera of the last frame (read_gbuffer)
-    vk::Buffer bvh_nodes_;         // GpuBvhNode, pre-order
-    vk::Buffer shadow_triangles_;  // GpuShadowTriangle, in leaf order
-    vk::Buffer masked_triangles_;  // GpuMaskedTriangle (alpha-masked occluders)
-    vk::Buffer alpha_masks_;       // GpuAlphaMask
-    vk::Buffer mask_texels_;       // GpuMaskTexels
-    vk::TimestampQueryPool timestamps_;
-
-    vk::DescriptorSetLayout frame_layout_;
-    vk::DescriptorPool frame_pool_;
-    VkDescriptorSet frame_set_ = VK_NULL_HANDLE;
-    bool frame_set_dirty_ = true;
-    vk::PipelineLayout compute_layout_;
-
+    VplVisibility vpl_visibility_;
+    FrameMeasurements measurements_;
+    FrameDescriptors descriptors_;
     PipelineCache pipelines_;
     std::optional<FramePasses> passes_;  // created once the scene is on the GPU
 };

@@ -350,7 +350,18 @@ private:
     Result<glm::dmat4> local_transform(int node_index) const;
     Status add_mesh(int node_index, int mesh_index, const glm::dmat4& world);
     Status add_primitive(int mesh_index, int primitive_index, const glm::dmat4& world);
+    Result<std::vector<uint32_t>> read_triangles(const tg::Primitive& prim, int mode, const std::string& what,
+                                                 size_t vertex_count) const;
+    Status place_positions(const std::vector<glm::vec3>& positions, const glm::dmat4& world,
+                           const std::string& what, Mesh& mesh) const;
+    Status read_normals(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                        Mesh& mesh) const;
     Status add_light(int node_index, const glm::dmat4& world, uint64_t path_hash);
+    Result<int> light_index_of(const GltfNode& node, const std::string& node_what) const;
+    Status read_light_emission(const GltfPunctualLight& in, const std::string& what, SceneLight& light) const;
+    Status read_spot_cone(const GltfPunctualLight& in, const std::string& what, SceneLight& light) const;
+    Status place_light(const glm::dmat4& world, const std::string& node_what, const std::string& what,
+                       SceneLight& light) const;
     void add_camera(int node_index, int camera_index, const glm::dmat4& world);
     Status check_unique_light_guids() const;
     Status read_environment();
@@ -984,6 +995,21 @@ std::vector<glm::vec3> generate_normals(const std::vector<glm::vec3>& positions,
     return normals;
 }
 
+// Strips and fans become triangle lists with the winding glTF prescribes.
+std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& indices, int mode) {
+    std::vector<uint32_t> list;
+    for (size_t i = 2; i < indices.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+            list.insert(list.end(), {indices[0], indices[i - 1], indices[i]});
+        } else if (i % 2 == 0) {
+            list.insert(list.end(), {indices[i - 2], indices[i - 1], indices[i]});
+        } else {
+            list.insert(list.end(), {indices[i - 1], indices[i - 2], indices[i]});
+        }
+    }
+    return list;
+}
+
 Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dmat4& world) {
     const tg::Primitive& prim =
         model_.meshes[size_t(mesh_index)].primitives[size_t(primitive_index)];
@@ -1007,12 +1033,34 @@ Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dma
     }
     Result<std::vector<glm::vec3>> positions = read_vec3(position_it->second, what + " POSITION");
     if (!positions) return Error{positions.error()};
-    const size_t vertex_count = positions->size();
+    Result<std::vector<uint32_t>> indices = read_triangles(prim, mode, what, positions->size());
+    if (!indices) return Error{indices.error()};
 
+    Mesh mesh;
+    mesh.material = prim.material;
+    LC_RETURN_IF_ERROR(place_positions(*positions, world, what, mesh));
+    // A mirroring transform flips the winding; swap two corners to keep
+    // front faces front-facing.
+    const glm::dmat3 linear(world);
+    const double det = glm::determinant(linear);
+    if (det < 0.0) {
+        for (size_t t = 0; t + 2 < indices->size(); t += 3) std::swap((*indices)[t + 1], (*indices)[t + 2]);
+    }
+    mesh.indices = std::move(*indices);
+    LC_RETURN_IF_ERROR(read_normals(prim, what, linear, mesh));
+    LC_RETURN_IF_ERROR(read_uvs(prim, what, mesh));
+    LC_RETURN_IF_ERROR(read_colors(prim, what, mesh));
+    LC_RETURN_IF_ERROR(read_tangents(prim, what, linear, mesh));
+    if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
+    return Ok{};
+}
+
+// The primitive's triangles as a list: its indices, or its vertices in order.
+Result<std::vector<uint32_t>> Loader::read_triangles(const tg::Primitive& prim, int mode, const std::string& what,
+                                                     size_t vertex_count) const {
     std::vector<uint32_t> indices;
     if (prim.indices >= 0) {
-        Result<std::vector<uint32_t>> read =
-            read_indices(prim.indices, what + " indices", vertex_count);
+        Result<std::vector<uint32_t>> read = read_indices(prim.indices, what + " indices", vertex_count);
         if (!read) return Error{read.error()};
         indices = std::move(*read);
     } else {
@@ -1022,76 +1070,62 @@ Status Loader::add_primitive(int mesh_index, int primitive_index, const glm::dma
         indices.resize(vertex_count);
         for (size_t i = 0; i < vertex_count; ++i) indices[i] = uint32_t(i);
     }
-    // Strips and fans become triangle lists with the winding glTF prescribes.
     if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-        std::vector<uint32_t> list;
-        for (size_t i = 2; i < indices.size(); ++i) {
-            if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-                list.insert(list.end(), {indices[0], indices[i - 1], indices[i]});
-            } else if (i % 2 == 0) {
-                list.insert(list.end(), {indices[i - 2], indices[i - 1], indices[i]});
-            } else {
-                list.insert(list.end(), {indices[i - 1], indices[i - 2], indices[i]});
-            }
-        }
-        indices = std::move(list);
-    } else if (indices.size() % 3 != 0) {
+        return triangle_list(indices, mode);
+    }
+    if (indices.size() % 3 != 0) {
         return fail(what + " has " + std::to_string(indices.size()) +
                     " indices, which is not a multiple of 3");
     }
+    return indices;
+}
 
-    Mesh mesh;
-    mesh.material = prim.material;
-    mesh.positions.resize(vertex_count);
-    for (size_t i = 0; i < vertex_count; ++i) {
-        const glm::dvec4 p = world * glm::dvec4(glm::dvec3((*positions)[i]), 1.0);
+// The positions in world space, each finite.
+Status Loader::place_positions(const std::vector<glm::vec3>& positions, const glm::dmat4& world,
+                               const std::string& what, Mesh& mesh) const {
+    mesh.positions.resize(positions.size());
+    for (size_t i = 0; i < positions.size(); ++i) {
+        const glm::dvec4 p = world * glm::dvec4(glm::dvec3(positions[i]), 1.0);
         const glm::vec3 pf(p);
         if (!std::isfinite(pf.x) || !std::isfinite(pf.y) || !std::isfinite(pf.z)) {
-            return fail(what + ": vertex " + std::to_string(i) +
-                        " is not finite after the node transform");
+            return fail(what + ": vertex " + std::to_string(i) + " is not finite after the node transform");
         }
         mesh.positions[i] = pf;
     }
-    // A mirroring transform flips the winding; swap two corners to keep
-    // front faces front-facing.
-    const glm::dmat3 linear(world);
-    const double det = glm::determinant(linear);
-    if (det < 0.0) {
-        for (size_t t = 0; t + 2 < indices.size(); t += 3)
-            std::swap(indices[t + 1], indices[t + 2]);
-    }
-    mesh.indices = std::move(indices);
+    return Ok{};
+}
 
+// NORMAL through the inverse transpose, or generated from the triangles where
+// the file has none, a normal is degenerate or the transform is singular.
+Status Loader::read_normals(const tg::Primitive& prim, const std::string& what, const glm::dmat3& linear,
+                            Mesh& mesh) const {
+    const size_t vertex_count = mesh.positions.size();
     auto normal_it = prim.attributes.find("NORMAL");
+    const double det = glm::determinant(linear);
     const bool invertible = std::abs(det) > 1e-300 && std::isfinite(det);
-    if (normal_it != prim.attributes.end() && invertible) {
-        Result<std::vector<glm::vec3>> normals = read_vec3(normal_it->second, what + " NORMAL");
-        if (!normals) return Error{normals.error()};
-        if (normals->size() != vertex_count) {
-            return fail(what + ": NORMAL has " + std::to_string(normals->size()) +
-                        " elements but POSITION has " + std::to_string(vertex_count));
-        }
-        const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
-        std::vector<glm::vec3> generated;  // only computed if some normal is degenerate
-        mesh.normals.resize(vertex_count);
-        for (size_t i = 0; i < vertex_count; ++i) {
-            const glm::dvec3 n = normal_matrix * glm::dvec3((*normals)[i]);
-            const double len = glm::length(n);
-            if (len > 1e-20 && std::isfinite(len)) {
-                mesh.normals[i] = glm::vec3(n / len);
-            } else {
-                if (generated.empty()) generated = generate_normals(mesh.positions, mesh.indices);
-                mesh.normals[i] = generated[i];
-            }
-        }
-    } else {
+    if (normal_it == prim.attributes.end() || !invertible) {
         mesh.normals = generate_normals(mesh.positions, mesh.indices);
+        return Ok{};
     }
-
-    LC_RETURN_IF_ERROR(read_uvs(prim, what, mesh));
-    LC_RETURN_IF_ERROR(read_colors(prim, what, mesh));
-    LC_RETURN_IF_ERROR(read_tangents(prim, what, linear, mesh));
-    if (!mesh.indices.empty()) scene_.meshes.push_back(std::move(mesh));
+    Result<std::vector<glm::vec3>> normals = read_vec3(normal_it->second, what + " NORMAL");
+    if (!normals) return Error{normals.error()};
+    if (normals->size() != vertex_count) {
+        return fail(what + ": NORMAL has " + std::to_string(normals->size()) +
+                    " elements but POSITION has " + std::to_string(vertex_count));
+    }
+    const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(linear));
+    std::vector<glm::vec3> generated;  // only computed if some normal is degenerate
+    mesh.normals.resize(vertex_count);
+    for (size_t i = 0; i < vertex_count; ++i) {
+        const glm::dvec3 n = normal_matrix * glm::dvec3((*normals)[i]);
+        const double len = glm::length(n);
+        if (len > 1e-20 && std::isfinite(len)) {
+            mesh.normals[i] = glm::vec3(n / len);
+        } else {
+            if (generated.empty()) generated = generate_normals(mesh.positions, mesh.indices);
+            mesh.normals[i] = generated[i];
+        }
+    }
     return Ok{};
 }
 
@@ -1239,6 +1273,39 @@ bool extras_flag(ExtrasFlag flag, const char* key, const std::string& what,
 Status Loader::add_light(int node_index, const glm::dmat4& world, uint64_t path_hash) {
     const std::string node_what = "node " + std::to_string(node_index);
     const GltfNode& node = nodes_.nodes[size_t(node_index)];
+    Result<int> light_index = light_index_of(node, node_what);
+    if (!light_index) return Error{light_index.error()};
+    const GltfPunctualLight& in = nodes_.lights[size_t(*light_index)];
+    const std::string_view name = nodes_.string(in.name);
+    const std::string what = "light " + std::to_string(*light_index) +
+                             (name.empty() ? "" : " '" + std::string(name) + "'");
+
+    SceneLight light;
+    LC_RETURN_IF_ERROR(read_light_emission(in, what, light));
+    LC_RETURN_IF_ERROR(place_light(world, node_what, what, light));
+    light.classic =
+        extras_flag(in.classic, kClassicExtrasKey, what, warnings_, path_.string()) ||
+        extras_flag(node.classic, kClassicExtrasKey, node_what, warnings_, path_.string());
+    if (node.guid_extras == GltfNode::GuidExtras::kInvalid) {
+        return fail(node_what + ": extras." + kGuidExtrasKey + " is not a GUID");
+    }
+    if (node.guid_extras != GltfNode::GuidExtras::kAbsent) {
+        light.guid = node.guid;
+    } else {
+        // Stable for a given file: the light's index and name and where it hangs.
+        std::vector<uint8_t> bytes;
+        const std::string tag =
+            "KHR_lights_punctual/" + std::to_string(*light_index) + "/" + std::string(name);
+        bytes.assign(tag.begin(), tag.end());
+        for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(path_hash >> (8 * i)));
+        light.guid = Guid::from_bytes(bytes);
+    }
+    scene_.lights.push_back(light);
+    return Ok{};
+}
+
+// The index of the punctual light a node names, checked against the file's lights.
+Result<int> Loader::light_index_of(const GltfNode& node, const std::string& node_what) const {
     if (node.light != LightReference::kNumber) {
         return fail(node_what + ": KHR_lights_punctual extension has no 'light' index");
     }
@@ -1252,14 +1319,13 @@ Status Loader::add_light(int node_index, const glm::dmat4& world, uint64_t path_
                     ", which does not exist (the file has " + std::to_string(nodes_.lights.size()) +
                     " lights)");
     }
-    const int light_index = static_cast<int>(light_number);
-    const GltfPunctualLight& in = nodes_.lights[size_t(light_index)];
-    const std::string_view name = nodes_.string(in.name);
-    const std::string_view type = nodes_.string(in.type);
-    const std::string what = "light " + std::to_string(light_index) +
-                             (name.empty() ? "" : " '" + std::string(name) + "'");
+    return static_cast<int>(light_number);
+}
 
-    SceneLight light;
+// Type, colour, intensity, range and spot cone, each checked.
+Status Loader::read_light_emission(const GltfPunctualLight& in, const std::string& what,
+                                   SceneLight& light) const {
+    const std::string_view type = nodes_.string(in.type);
     if (type == "point") {
         light.type = LightType::kPoint;
     } else if (type == "spot") {
@@ -1291,22 +1357,30 @@ Status Loader::add_light(int node_index, const glm::dmat4& world, uint64_t path_
         return fail(what + ": range must be finite and > 0 (absent means unbounded)");
     }
     light.range = float(in.range);
-    if (light.type == LightType::kSpot) {
-        const double inner = in.inner_cone_angle;
-        const double outer = in.outer_cone_angle;
-        if (!finite(inner) || !finite(outer) || inner < 0.0 || outer > std::numbers::pi / 2.0 ||
-            !(inner < outer)) {
-            return fail(what + ": invalid spot angles (inner " + num(inner) + ", outer " +
-                        num(outer) + "); need 0 <= inner < outer <= pi/2");
-        }
-        light.inner_cone_angle = float(inner);
-        light.outer_cone_angle = float(outer);
-        // Float rounding must not break inner < outer.
-        if (!(light.inner_cone_angle < light.outer_cone_angle)) {
-            return fail(what + ": spot angles too close to tell apart in float precision");
-        }
-    }
+    if (light.type == LightType::kSpot) return read_spot_cone(in, what, light);
+    return Ok{};
+}
 
+Status Loader::read_spot_cone(const GltfPunctualLight& in, const std::string& what, SceneLight& light) const {
+    const double inner = in.inner_cone_angle;
+    const double outer = in.outer_cone_angle;
+    if (!finite(inner) || !finite(outer) || inner < 0.0 || outer > std::numbers::pi / 2.0 ||
+        !(inner < outer)) {
+        return fail(what + ": invalid spot angles (inner " + num(inner) + ", outer " + num(outer) +
+                    "); need 0 <= inner < outer <= pi/2");
+    }
+    light.inner_cone_angle = float(inner);
+    light.outer_cone_angle = float(outer);
+    // Float rounding must not break inner < outer.
+    if (!(light.inner_cone_angle < light.outer_cone_angle)) {
+        return fail(what + ": spot angles too close to tell apart in float precision");
+    }
+    return Ok{};
+}
+
+// The node's transform gives the light its position and its direction (-z).
+Status Loader::place_light(const glm::dmat4& world, const std::string& node_what, const std::string& what,
+                           SceneLight& light) const {
     const glm::dvec4 position = world * glm::dvec4(0.0, 0.0, 0.0, 1.0);
     light.position = glm::vec3(position);
     if (!std::isfinite(light.position.x) || !std::isfinite(light.position.y) ||
@@ -1318,29 +1392,8 @@ Status Loader::add_light(int node_index, const glm::dmat4& world, uint64_t path_
     if (length > 1e-12 && std::isfinite(length)) {
         light.direction = glm::vec3(direction / length);
     } else if (light.type != LightType::kPoint) {
-        return fail(node_what + ": the transform of " + what +
-                    " collapses its direction (zero scale)");
+        return fail(node_what + ": the transform of " + what + " collapses its direction (zero scale)");
     }
-
-    light.classic =
-        extras_flag(in.classic, kClassicExtrasKey, what, warnings_, path_.string()) ||
-        extras_flag(node.classic, kClassicExtrasKey, node_what, warnings_, path_.string());
-
-    if (node.guid_extras != GltfNode::GuidExtras::kAbsent) {
-        if (node.guid_extras == GltfNode::GuidExtras::kInvalid) {
-            return fail(node_what + ": extras." + kGuidExtrasKey + " is not a GUID");
-        }
-        light.guid = node.guid;
-    } else {
-        // Stable for a given file: the light's index and name and where it hangs.
-        std::vector<uint8_t> bytes;
-        const std::string tag =
-            "KHR_lights_punctual/" + std::to_string(light_index) + "/" + std::string(name);
-        bytes.assign(tag.begin(), tag.end());
-        for (int i = 0; i < 8; ++i) bytes.push_back(uint8_t(path_hash >> (8 * i)));
-        light.guid = Guid::from_bytes(bytes);
-    }
-    scene_.lights.push_back(light);
     return Ok{};
 }
 

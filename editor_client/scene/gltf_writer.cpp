@@ -24,6 +24,7 @@
 
 #include "editor_client/scene/gltf_environment.h"
 #include "editor_client/scene/gltf_loader.h"
+#include "lightcuts/status_macros.h"
 #include "protocol/channel_records.h"
 
 namespace lc::client {
@@ -380,86 +381,66 @@ Result<glm::dquat> camera_rotation(const Camera& camera) {
     return glm::normalize(glm::quat_cast(basis));
 }
 
-}  // namespace
-
-Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
-    Status valid = validate_lights(scene.lights);
-    if (!valid) return valid;
-    json doc;
-    doc["asset"] = {{"version", "2.0"}, {"generator", "lightcuts editor_client"}};
-    put_gltf_environment(scene, std::filesystem::absolute(out).parent_path(), doc["asset"]);
-    doc["scene"] = 0;
-    doc["scenes"] = json::array({json::object({{"nodes", json::array()}})});
-    doc["nodes"] = json::array();
-    doc["meshes"] = json::array();
-    doc["accessors"] = json::array();
-    doc["bufferViews"] = json::array();
-    json& scene_nodes = doc["scenes"][0]["nodes"];
-
-    bool uses_emissive_strength = false;
-    if (!scene.materials.empty()) {
-        doc["materials"] = json::array();
-        for (const Material& m : scene.materials) {
-            doc["materials"].push_back(material_json(m, uses_emissive_strength));
+// Why `scene`'s mesh `m` cannot be written, if it cannot.
+Status check_writable_mesh(const Scene& scene, size_t m) {
+    const Mesh& mesh = scene.meshes[m];
+    const std::string what = "mesh " + std::to_string(m);
+    if (mesh.normals.size() != mesh.positions.size()) {
+        return make_error("cannot write " + what + ": " + std::to_string(mesh.normals.size()) +
+                          " normals for " + std::to_string(mesh.positions.size()) + " positions");
+    }
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
+        return make_error("cannot write " + what + ": uv count differs from position count");
+    }
+    if (mesh.material >= static_cast<int>(scene.materials.size()) || mesh.material < -1) {
+        return make_error("cannot write " + what + ": material " + std::to_string(mesh.material) +
+                          " does not exist");
+    }
+    for (const glm::vec3& p : mesh.positions) {
+        if (!finite3(p)) return make_error("cannot write " + what + ": non-finite position");
+    }
+    for (const glm::vec3& n : mesh.normals) {
+        if (!finite3(n)) return make_error("cannot write " + what + ": non-finite normal");
+    }
+    for (uint32_t index : mesh.indices) {
+        if (index >= mesh.positions.size()) {
+            return make_error("cannot write " + what + ": index " + std::to_string(index) +
+                              " out of range of " + std::to_string(mesh.positions.size()) + " vertices");
         }
     }
+    return Ok{};
+}
 
-    BinaryBuilder bin;
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        const Mesh& mesh = scene.meshes[m];
-        if (mesh.indices.empty() || mesh.positions.empty()) continue;
-        const std::string what = "mesh " + std::to_string(m);
-        if (mesh.normals.size() != mesh.positions.size()) {
-            return make_error("cannot write " + what + ": " + std::to_string(mesh.normals.size()) +
-                              " normals for " + std::to_string(mesh.positions.size()) +
-                              " positions");
-        }
-        if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
-            return make_error("cannot write " + what + ": uv count differs from position count");
-        }
-        if (mesh.material >= static_cast<int>(scene.materials.size()) || mesh.material < -1) {
-            return make_error("cannot write " + what + ": material " +
-                              std::to_string(mesh.material) + " does not exist");
-        }
-        glm::vec3 lo(std::numeric_limits<float>::max());
-        glm::vec3 hi(std::numeric_limits<float>::lowest());
-        for (const glm::vec3& p : mesh.positions) {
-            if (!finite3(p)) return make_error("cannot write " + what + ": non-finite position");
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
-        }
-        for (const glm::vec3& n : mesh.normals) {
-            if (!finite3(n)) return make_error("cannot write " + what + ": non-finite normal");
-        }
-        for (uint32_t index : mesh.indices) {
-            if (index >= mesh.positions.size()) {
-                return make_error("cannot write " + what + ": index " + std::to_string(index) +
-                                  " out of range of " + std::to_string(mesh.positions.size()) +
-                                  " vertices");
-            }
-        }
-        json attributes;
-        const int pos = add_accessor(doc, bin.add_view(doc, mesh.positions, kArrayBuffer), kFloat,
-                                     mesh.positions.size(), "VEC3");
-        doc["accessors"][size_t(pos)]["min"] = vec_json(lo);
-        doc["accessors"][size_t(pos)]["max"] = vec_json(hi);
-        attributes["POSITION"] = pos;
-        attributes["NORMAL"] = add_accessor(doc, bin.add_view(doc, mesh.normals, kArrayBuffer),
-                                            kFloat, mesh.normals.size(), "VEC3");
-        if (!mesh.uvs.empty()) {
-            attributes["TEXCOORD_0"] = add_accessor(doc, bin.add_view(doc, mesh.uvs, kArrayBuffer),
-                                                    kFloat, mesh.uvs.size(), "VEC2");
-        }
-        const int indices = add_accessor(doc, bin.add_view(doc, mesh.indices, kElementArrayBuffer),
-                                         kUnsignedInt, mesh.indices.size(), "SCALAR");
-        json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
-        if (mesh.material >= 0) primitive["material"] = mesh.material;
-        doc["meshes"].push_back({{"primitives", json::array({primitive})}});
-        doc["nodes"].push_back(
-            {{"name", "mesh_" + std::to_string(m)}, {"mesh", doc["meshes"].size() - 1}});
-        scene_nodes.push_back(doc["nodes"].size() - 1);
+// A checked mesh as a mesh, its accessors and a node of the scene.
+void add_mesh(json& doc, BinaryBuilder& bin, const Mesh& mesh, size_t m) {
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : mesh.positions) {
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
     }
+    json attributes;
+    const int pos = add_accessor(doc, bin.add_view(doc, mesh.positions, kArrayBuffer), kFloat,
+                                 mesh.positions.size(), "VEC3");
+    doc["accessors"][size_t(pos)]["min"] = vec_json(lo);
+    doc["accessors"][size_t(pos)]["max"] = vec_json(hi);
+    attributes["POSITION"] = pos;
+    attributes["NORMAL"] = add_accessor(doc, bin.add_view(doc, mesh.normals, kArrayBuffer), kFloat,
+                                        mesh.normals.size(), "VEC3");
+    if (!mesh.uvs.empty()) {
+        attributes["TEXCOORD_0"] = add_accessor(doc, bin.add_view(doc, mesh.uvs, kArrayBuffer), kFloat,
+                                                mesh.uvs.size(), "VEC2");
+    }
+    const int indices = add_accessor(doc, bin.add_view(doc, mesh.indices, kElementArrayBuffer),
+                                     kUnsignedInt, mesh.indices.size(), "SCALAR");
+    json primitive = {{"attributes", attributes}, {"indices", indices}, {"mode", 4}};
+    if (mesh.material >= 0) primitive["material"] = mesh.material;
+    doc["meshes"].push_back({{"primitives", json::array({primitive})}});
+    doc["nodes"].push_back({{"name", "mesh_" + std::to_string(m)}, {"mesh", doc["meshes"].size() - 1}});
+    doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
+}
 
+Status add_cameras(json& doc, const Scene& scene) {
     // Near plane: a small fraction of the scene's size (the loader ignores it).
     const float diagonal = glm::length(scene.bounds_max - scene.bounds_min);
     const double znear = std::max(1e-3, 1e-4 * double(diagonal));
@@ -483,24 +464,60 @@ Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
              {"camera", doc["cameras"].size() - 1},
              {"translation", vec_json(camera.eye)},
              {"rotation", quat_json(*rotation)}});
-        scene_nodes.push_back(doc["nodes"].size() - 1);
+        doc["scenes"][0]["nodes"].push_back(doc["nodes"].size() - 1);
     }
+    return Ok{};
+}
 
-    std::vector<StreamedArray> streamed;
-    if (!scene.lights.empty()) {
-        // The light nodes follow the others; both arrays are written as they are dumped.
-        const StreamedArray light_nodes{json::json_pointer("/nodes"), "lightcuts-writer:light-nodes",
-                                        scene.lights.size(),
-                                        [&](size_t i) { return light_node_json(scene.lights[i], i); }};
-        const StreamedArray lights{json::json_pointer(std::string("/extensions/") + kLightsExtension + "/lights"),
-                                   "lightcuts-writer:lights", scene.lights.size(),
-                                   [&](size_t i) { return light_json(scene.lights[i], i); }};
-        for (size_t i = 0; i < scene.lights.size(); ++i) scene_nodes.push_back(doc["nodes"].size() + i);
-        doc["nodes"].push_back(light_nodes.marker);
-        doc["extensions"][kLightsExtension] = {{"lights", json::array({lights.marker})}};
-        add_extension_used(doc, kLightsExtension);
-        streamed = {light_nodes, lights};
+// The light nodes follow the others; both arrays are written as they are
+// dumped: here only their markers, the streamed arrays returned.
+std::vector<StreamedArray> add_streamed_lights(json& doc, const Scene& scene) {
+    if (scene.lights.empty()) return {};
+    const StreamedArray light_nodes{json::json_pointer("/nodes"), "lightcuts-writer:light-nodes",
+                                    scene.lights.size(),
+                                    [&list = scene.lights](size_t i) { return light_node_json(list[i], i); }};
+    const StreamedArray lights{json::json_pointer(std::string("/extensions/") + kLightsExtension + "/lights"),
+                               "lightcuts-writer:lights", scene.lights.size(),
+                               [&list = scene.lights](size_t i) { return light_json(list[i], i); }};
+    json& scene_nodes = doc["scenes"][0]["nodes"];
+    for (size_t i = 0; i < scene.lights.size(); ++i) scene_nodes.push_back(doc["nodes"].size() + i);
+    doc["nodes"].push_back(light_nodes.marker);
+    doc["extensions"][kLightsExtension] = {{"lights", json::array({lights.marker})}};
+    add_extension_used(doc, kLightsExtension);
+    return {light_nodes, lights};
+}
+
+}  // namespace
+
+Status write_scene_gltf(const Scene& scene, const std::filesystem::path& out) {
+    Status valid = validate_lights(scene.lights);
+    if (!valid) return valid;
+    json doc;
+    doc["asset"] = {{"version", "2.0"}, {"generator", "lightcuts editor_client"}};
+    put_gltf_environment(scene, std::filesystem::absolute(out).parent_path(), doc["asset"]);
+    doc["scene"] = 0;
+    doc["scenes"] = json::array({json::object({{"nodes", json::array()}})});
+    doc["nodes"] = json::array();
+    doc["meshes"] = json::array();
+    doc["accessors"] = json::array();
+    doc["bufferViews"] = json::array();
+
+    bool uses_emissive_strength = false;
+    if (!scene.materials.empty()) {
+        doc["materials"] = json::array();
+        for (const Material& m : scene.materials) {
+            doc["materials"].push_back(material_json(m, uses_emissive_strength));
+        }
     }
+    BinaryBuilder bin;
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const Mesh& mesh = scene.meshes[m];
+        if (mesh.indices.empty() || mesh.positions.empty()) continue;
+        LC_RETURN_IF_ERROR(check_writable_mesh(scene, m));
+        add_mesh(doc, bin, mesh, m);
+    }
+    LC_RETURN_IF_ERROR(add_cameras(doc, scene));
+    const std::vector<StreamedArray> streamed = add_streamed_lights(doc, scene);
     if (uses_emissive_strength) add_extension_used(doc, kEmissiveStrengthExtension);
 
     // Empty arrays are invalid glTF.
@@ -651,6 +668,160 @@ int target_scene(const json& doc) {
     return 0;
 }
 
+// Nodes we must not reuse: children, skin joints, animation targets.
+std::set<int64_t> referenced_nodes(const json& doc) {
+    std::set<int64_t> referenced;
+    for (const json& node : doc["nodes"]) {
+        if (node.is_object() && node.contains("children") && node["children"].is_array()) {
+            for (const json& c : node["children"])
+                if (c.is_number_integer()) referenced.insert(c.get<int64_t>());
+        }
+    }
+    if (doc.contains("skins") && doc["skins"].is_array()) {
+        for (const json& skin : doc["skins"]) {
+            if (!skin.is_object()) continue;
+            if (skin.contains("skeleton") && skin["skeleton"].is_number_integer())
+                referenced.insert(skin["skeleton"].get<int64_t>());
+            if (skin.contains("joints") && skin["joints"].is_array())
+                for (const json& j : skin["joints"])
+                    if (j.is_number_integer()) referenced.insert(j.get<int64_t>());
+        }
+    }
+    if (doc.contains("animations") && doc["animations"].is_array()) {
+        for (const json& anim : doc["animations"]) {
+            if (!anim.is_object() || !anim.contains("channels") || !anim["channels"].is_array()) continue;
+            for (const json& ch : anim["channels"]) {
+                if (ch.is_object() && ch.contains("target") && ch["target"].is_object() &&
+                    ch["target"].contains("node") && ch["target"]["node"].is_number_integer())
+                    referenced.insert(ch["target"]["node"].get<int64_t>());
+            }
+        }
+    }
+    return referenced;
+}
+
+std::set<int64_t> scene_roots(const json& doc, int scene_index) {
+    std::set<int64_t> in_scene;
+    if (scene_index < 0) return in_scene;
+    const json& scene = doc["scenes"][size_t(scene_index)];
+    if (scene.is_object() && scene.contains("nodes") && scene["nodes"].is_array())
+        for (const json& n : scene["nodes"])
+            if (n.is_number_integer()) in_scene.insert(n.get<int64_t>());
+    return in_scene;
+}
+
+// Strips every light reference from the nodes; returns the nodes that held
+// nothing else, may be reused, in order.
+std::vector<size_t> strip_light_references(json& doc, int scene_index) {
+    const std::set<int64_t> referenced = referenced_nodes(doc);
+    const std::set<int64_t> in_scene = scene_roots(doc, scene_index);
+    json& nodes = doc["nodes"];
+    std::vector<size_t> reusable;
+    for (size_t i = 0; i < nodes.size(); ++i) {
+        json& node = nodes[i];
+        if (!node.is_object() || !node.contains("extensions") || !node["extensions"].is_object() ||
+            !node["extensions"].contains(kLightsExtension)) {
+            continue;
+        }
+        node["extensions"].erase(kLightsExtension);
+        if (node["extensions"].empty()) node.erase("extensions");
+        if (node.contains("extras") && node["extras"].is_object()) {
+            node["extras"].erase(kGuidExtrasKey);
+            node["extras"].erase(kClassicExtrasKey);
+            if (node["extras"].empty()) node.erase("extras");
+        }
+        const bool bare = !node.contains("mesh") && !node.contains("camera") && !node.contains("children") &&
+                          !node.contains("skin") && !node.contains("weights") && !node.contains("extensions");
+        const bool root_of_scene = scene_index < 0 || in_scene.count(int64_t(i)) > 0;
+        if (bare && root_of_scene && referenced.count(int64_t(i)) == 0) reusable.push_back(i);
+    }
+    return reusable;
+}
+
+// Each light's node in a reusable node, else appended to the nodes and the scene.
+void place_light_nodes(json& doc, std::span<const SceneLight> lights, const std::vector<size_t>& reusable,
+                       int scene_index) {
+    json& nodes = doc["nodes"];
+    for (size_t k = 0; k < lights.size(); ++k) {
+        json node = light_node_json(lights[k], k);
+        if (k < reusable.size()) {
+            nodes[reusable[k]] = std::move(node);
+            continue;
+        }
+        nodes.push_back(std::move(node));
+        if (scene_index >= 0) {
+            json& scene = doc["scenes"][size_t(scene_index)];
+            if (!scene.contains("nodes") || !scene["nodes"].is_array()) scene["nodes"] = json::array();
+            scene["nodes"].push_back(nodes.size() - 1);
+        }
+    }
+}
+
+// Leftover light-only nodes at the end of the array are dropped (nothing but
+// scene lists can name them); others keep their place, emptied, so that no
+// index in the file changes.
+void drop_leftover_nodes(json& doc, const std::vector<size_t>& reusable, size_t used) {
+    json& nodes = doc["nodes"];
+    for (size_t k = reusable.size(); k-- > used;) {
+        const size_t index = reusable[k];
+        if (index + 1 != nodes.size()) {
+            nodes[index] = json::object({{"name", "unused"}});
+            continue;
+        }
+        nodes.erase(nodes.end() - 1);
+        if (!doc.contains("scenes") || !doc["scenes"].is_array()) continue;
+        for (json& scene : doc["scenes"]) {
+            if (!scene.is_object() || !scene.contains("nodes") || !scene["nodes"].is_array()) continue;
+            json& list = scene["nodes"];
+            list.erase(std::remove(list.begin(), list.end(), json(index)), list.end());
+        }
+    }
+}
+
+void set_lights_extension(json& doc, std::span<const SceneLight> lights) {
+    if (lights.empty()) {
+        if (doc.contains("extensions") && doc["extensions"].is_object()) {
+            doc["extensions"].erase(kLightsExtension);
+            if (doc["extensions"].empty()) doc.erase("extensions");
+        }
+        remove_extension_name(doc, "extensionsUsed", kLightsExtension);
+        remove_extension_name(doc, "extensionsRequired", kLightsExtension);
+        return;
+    }
+    json light_list = json::array();
+    for (size_t k = 0; k < lights.size(); ++k) light_list.push_back(light_json(lights[k], k));
+    if (!doc.contains("extensions") || !doc["extensions"].is_object()) doc["extensions"] = json::object();
+    doc["extensions"][kLightsExtension] = {{"lights", light_list}};
+    add_extension_used(doc, kLightsExtension);
+}
+
+// A .glb's binary chunk belongs to the first buffer, the one without a uri:
+// its index (-1: none, the chunk dropped), the chunk cut to its byteLength.
+Result<int> keep_binary_chunk(const json& doc, SourceDocument& src, const std::filesystem::path& source) {
+    int bin_buffer = -1;
+    if (src.binary && doc.contains("buffers") && doc["buffers"].is_array()) {
+        for (size_t b = 0; b < doc["buffers"].size(); ++b) {
+            if (doc["buffers"][b].is_object() && !doc["buffers"][b].contains("uri")) {
+                bin_buffer = int(b);
+                break;
+            }
+        }
+    }
+    if (bin_buffer < 0) {
+        src.bin.clear();
+        return bin_buffer;
+    }
+    if (src.bin.empty()) {
+        return make_error(source.string() + ": buffer " + std::to_string(bin_buffer) +
+                          " has no uri but the file has no binary chunk");
+    }
+    // The chunk may carry padding beyond byteLength; keep exactly the buffer.
+    const json& length = doc["buffers"][size_t(bin_buffer)]["byteLength"];
+    if (length.is_number_unsigned() && length.get<uint64_t>() <= src.bin.size())
+        src.bin.resize(size_t(length.get<uint64_t>()));
+    return bin_buffer;
+}
+
 }  // namespace
 
 Status write_lights_into_gltf(const std::filesystem::path& source,
@@ -664,146 +835,17 @@ Status write_lights_into_gltf(const std::filesystem::path& source,
     json& doc = src.doc;
     try {
         if (!doc.contains("nodes")) doc["nodes"] = json::array();
-        json& nodes = doc["nodes"];
-        if (!nodes.is_array()) return make_error(source.string() + ": 'nodes' is not an array");
-        const size_t node_count = nodes.size();
+        if (!doc["nodes"].is_array()) return make_error(source.string() + ": 'nodes' is not an array");
         const int scene_index = target_scene(doc);
-
-        // Nodes we must not reuse: children, skin joints, animation targets.
-        std::set<int64_t> referenced;
-        for (const json& node : nodes) {
-            if (node.is_object() && node.contains("children") && node["children"].is_array()) {
-                for (const json& c : node["children"])
-                    if (c.is_number_integer()) referenced.insert(c.get<int64_t>());
-            }
-        }
-        if (doc.contains("skins") && doc["skins"].is_array()) {
-            for (const json& skin : doc["skins"]) {
-                if (!skin.is_object()) continue;
-                if (skin.contains("skeleton") && skin["skeleton"].is_number_integer())
-                    referenced.insert(skin["skeleton"].get<int64_t>());
-                if (skin.contains("joints") && skin["joints"].is_array())
-                    for (const json& j : skin["joints"])
-                        if (j.is_number_integer()) referenced.insert(j.get<int64_t>());
-            }
-        }
-        if (doc.contains("animations") && doc["animations"].is_array()) {
-            for (const json& anim : doc["animations"]) {
-                if (!anim.is_object() || !anim.contains("channels") || !anim["channels"].is_array())
-                    continue;
-                for (const json& ch : anim["channels"]) {
-                    if (ch.is_object() && ch.contains("target") && ch["target"].is_object() &&
-                        ch["target"].contains("node") && ch["target"]["node"].is_number_integer())
-                        referenced.insert(ch["target"]["node"].get<int64_t>());
-                }
-            }
-        }
-        std::set<int64_t> in_scene;
-        if (scene_index >= 0) {
-            const json& scene = doc["scenes"][size_t(scene_index)];
-            if (scene.is_object() && scene.contains("nodes") && scene["nodes"].is_array())
-                for (const json& n : scene["nodes"])
-                    if (n.is_number_integer()) in_scene.insert(n.get<int64_t>());
-        }
-
-        // Strip every light reference; remember the nodes that held nothing else.
-        std::vector<size_t> reusable;
-        for (size_t i = 0; i < node_count; ++i) {
-            json& node = nodes[i];
-            if (!node.is_object() || !node.contains("extensions") ||
-                !node["extensions"].is_object() || !node["extensions"].contains(kLightsExtension)) {
-                continue;
-            }
-            node["extensions"].erase(kLightsExtension);
-            if (node["extensions"].empty()) node.erase("extensions");
-            if (node.contains("extras") && node["extras"].is_object()) {
-                node["extras"].erase(kGuidExtrasKey);
-                node["extras"].erase(kClassicExtrasKey);
-                if (node["extras"].empty()) node.erase("extras");
-            }
-            const bool bare = !node.contains("mesh") && !node.contains("camera") &&
-                              !node.contains("children") && !node.contains("skin") &&
-                              !node.contains("weights") && !node.contains("extensions");
-            const bool root_of_scene = scene_index < 0 || in_scene.count(int64_t(i)) > 0;
-            if (bare && root_of_scene && referenced.count(int64_t(i)) == 0) reusable.push_back(i);
-        }
-
-        json light_list = json::array();
-        for (size_t k = 0; k < lights.size(); ++k) {
-            light_list.push_back(light_json(lights[k], k));
-            json node = light_node_json(lights[k], k);
-            if (k < reusable.size()) {
-                nodes[reusable[k]] = std::move(node);
-            } else {
-                nodes.push_back(std::move(node));
-                if (scene_index >= 0) {
-                    json& scene = doc["scenes"][size_t(scene_index)];
-                    if (!scene.contains("nodes") || !scene["nodes"].is_array())
-                        scene["nodes"] = json::array();
-                    scene["nodes"].push_back(nodes.size() - 1);
-                }
-            }
-        }
-        // Leftover light-only nodes at the end of the array are dropped (nothing
-        // but scene lists can name them); others keep their place, emptied, so
-        // that no index in the file changes.
-        for (size_t k = reusable.size(); k-- > lights.size();) {
-            const size_t index = reusable[k];
-            if (index + 1 == nodes.size()) {
-                nodes.erase(nodes.end() - 1);
-                if (doc.contains("scenes") && doc["scenes"].is_array()) {
-                    for (json& scene : doc["scenes"]) {
-                        if (!scene.is_object() || !scene.contains("nodes") ||
-                            !scene["nodes"].is_array())
-                            continue;
-                        json& list = scene["nodes"];
-                        list.erase(std::remove(list.begin(), list.end(), json(index)), list.end());
-                    }
-                }
-            } else {
-                nodes[index] = json::object({{"name", "unused"}});
-            }
-        }
-        if (nodes.empty()) doc.erase("nodes");
-
-        if (lights.empty()) {
-            if (doc.contains("extensions") && doc["extensions"].is_object()) {
-                doc["extensions"].erase(kLightsExtension);
-                if (doc["extensions"].empty()) doc.erase("extensions");
-            }
-            remove_extension_name(doc, "extensionsUsed", kLightsExtension);
-            remove_extension_name(doc, "extensionsRequired", kLightsExtension);
-        } else {
-            if (!doc.contains("extensions") || !doc["extensions"].is_object())
-                doc["extensions"] = json::object();
-            doc["extensions"][kLightsExtension] = {{"lights", light_list}};
-            add_extension_used(doc, kLightsExtension);
-        }
-
+        const std::vector<size_t> reusable = strip_light_references(doc, scene_index);
+        place_light_nodes(doc, lights, reusable, scene_index);
+        drop_leftover_nodes(doc, reusable, lights.size());
+        if (doc["nodes"].empty()) doc.erase("nodes");
+        set_lights_extension(doc, lights);
         rewrite_uris(doc, source, out);
-
-        // A .glb's binary chunk belongs to the first buffer, the one without a uri.
-        int bin_buffer = -1;
-        if (src.binary && doc.contains("buffers") && doc["buffers"].is_array()) {
-            for (size_t b = 0; b < doc["buffers"].size(); ++b) {
-                if (doc["buffers"][b].is_object() && !doc["buffers"][b].contains("uri")) {
-                    bin_buffer = int(b);
-                    break;
-                }
-            }
-        }
-        if (bin_buffer < 0) src.bin.clear();
-        if (bin_buffer >= 0 && src.bin.empty()) {
-            return make_error(source.string() + ": buffer " + std::to_string(bin_buffer) +
-                              " has no uri but the file has no binary chunk");
-        }
-        if (bin_buffer >= 0) {
-            // The chunk may carry padding beyond byteLength; keep exactly the buffer.
-            const json& length = doc["buffers"][size_t(bin_buffer)]["byteLength"];
-            if (length.is_number_unsigned() && length.get<uint64_t>() <= src.bin.size())
-                src.bin.resize(size_t(length.get<uint64_t>()));
-        }
-        return write_document(std::move(doc), src.bin, bin_buffer, out);
+        Result<int> bin_buffer = keep_binary_chunk(doc, src, source);
+        if (!bin_buffer) return make_error(bin_buffer.error());
+        return write_document(std::move(doc), src.bin, *bin_buffer, out);
     } catch (const json::exception& e) {
         return make_error(source.string() + ": unexpected JSON structure: " + e.what());
     }

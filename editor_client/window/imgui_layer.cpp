@@ -29,7 +29,15 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     if (g_layer_exists.exchange(true)) return make_error("an ImGui layer already exists");
     std::unique_ptr<ImGuiLayer> layer(new ImGuiLayer(context));
     const VkDevice device = context.device().handle();
+    LC_RETURN_IF_ERROR(layer->create_render_pass(device));
+    LC_RETURN_IF_ERROR(layer->create_descriptor_pool(device));
+    LC_RETURN_IF_ERROR(layer->init_backends(window));
+    return layer;
+}
 
+// One pass that draws the panels over the blitted view, then hands the
+// composite to the copy into the swapchain.
+Status ImGuiLayer::create_render_pass(VkDevice device) {
     VkAttachmentDescription colour{};
     colour.format = kCompositeFormat;
     colour.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -69,9 +77,12 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     pass_info.pDependencies = dependencies;
     VkRenderPass render_pass = VK_NULL_HANDLE;
     LC_VK_CHECK(vkCreateRenderPass(device, &pass_info, nullptr, &render_pass));
-    layer->render_pass_ = vk::DeviceHandle<VkRenderPass>(device, render_pass, vkDestroyRenderPass);
+    render_pass_ = vk::DeviceHandle<VkRenderPass>(device, render_pass, vkDestroyRenderPass);
+    return Ok{};
+}
 
-    // The font atlas is the backend's only descriptor set.
+// The font atlas is the backend's only descriptor set.
+Status ImGuiLayer::create_descriptor_pool(VkDevice device) {
     VkDescriptorPoolSize sizes{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
@@ -80,9 +91,12 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     pool_info.pPoolSizes = &sizes;
     VkDescriptorPool descriptor_pool = VK_NULL_HANDLE;
     LC_VK_CHECK(vkCreateDescriptorPool(device, &pool_info, nullptr, &descriptor_pool));
-    layer->descriptor_pool_ =
-        vk::DeviceHandle<VkDescriptorPool>(device, descriptor_pool, vkDestroyDescriptorPool);
+    descriptor_pool_ = vk::DeviceHandle<VkDescriptorPool>(device, descriptor_pool, vkDestroyDescriptorPool);
+    return Ok{};
+}
 
+// ImGui's context, its GLFW and Vulkan backends, and the font atlas uploaded.
+Status ImGuiLayer::init_backends(GLFWwindow* window) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGuiIO& io = ImGui::GetIO();
@@ -91,26 +105,26 @@ Result<std::unique_ptr<ImGuiLayer>> ImGuiLayer::create(GLFWwindow* window, const
     // Installed after GlfwWindow's callbacks, so ImGui chains to them.
     if (!ImGui_ImplGlfw_InitForVulkan(window, true))
         return make_error("ImGui could not attach to the GLFW window");
-    layer->glfw_ready_ = true;
+    glfw_ready_ = true;
 
     ImGui_ImplVulkan_InitInfo init{};
-    init.Instance = context.instance().handle();
-    init.PhysicalDevice = context.physical().handle;
-    init.Device = device;
-    init.QueueFamily = context.device().queue_family();
-    init.Queue = context.device().queue();
-    init.DescriptorPool = layer->descriptor_pool_.get();
+    init.Instance = context_.instance().handle();
+    init.PhysicalDevice = context_.physical().handle;
+    init.Device = context_.device().handle();
+    init.QueueFamily = context_.device().queue_family();
+    init.Queue = context_.device().queue();
+    init.DescriptorPool = descriptor_pool_.get();
     init.MinImageCount = 2;
     init.ImageCount = 3;
     init.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
     init.CheckVkResultFn = &check_imgui_vk;
-    if (!ImGui_ImplVulkan_Init(&init, layer->render_pass_.get()))
+    if (!ImGui_ImplVulkan_Init(&init, render_pass_.get()))
         return make_error("ImGui's Vulkan backend failed to initialise");
-    layer->vulkan_ready_ = true;
-    LC_RETURN_IF_ERROR(context.command_pool().run_one_time(
-        context.device(), [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }));
+    vulkan_ready_ = true;
+    LC_RETURN_IF_ERROR(context_.command_pool().run_one_time(
+        context_.device(), [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); }));
     ImGui_ImplVulkan_DestroyFontUploadObjects();
-    return layer;
+    return Ok{};
 }
 
 ImGuiLayer::~ImGuiLayer() {

@@ -48,6 +48,9 @@ public:
 
 private:
     explicit ImGuiLayer(const vk::Context& context) : context_(context) {}
+    Status create_render_pass(VkDevice device);
+    Status create_descriptor_pool(VkDevice device);
+    Status init_backends(GLFWwindow* window);
 
     const vk::Context& context_;
     // Destroyed after the destructor has shut ImGui's Vulkan backend down,
