@@ -7,6 +7,8 @@
 // parallel projection, so exactly half of the shadow's footprint is lit.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -120,6 +122,7 @@ TEST(AlphaMask, CpuShadowThroughCheckerboardMatchesTheAnalyticFraction) {
         }
     }
     const double fraction = double(lit) / double(kSamples * kSamples);
+    std::printf("  CPU: lit fraction %.4f behind the checkerboard (analytic 0.5)\n", fraction);
     EXPECT_NEAR(fraction, 0.5, 0.01 * 0.5);
     // The same quad opaque hides the whole footprint.
     const ShadowBvh solid = ShadowBvh::build(masked_quad_scene(AlphaMode::kOpaque));
@@ -208,6 +211,8 @@ TEST(AlphaMask, GpuShadowThroughCheckerboardMatchesTheAnalyticFraction) {
         agree += gpu_lit == (cpu_visibility((*renderer)->shadow_bvh(), bias, p) > 0.5);
     }
     EXPECT_GT(inside, 6000u);  // about 80 x 80 pixels
+    std::printf("  GPU: lit fraction %.4f of %zu pixels behind the checkerboard (analytic 0.5), %zu agree with the CPU\n",
+                double(lit) / double(inside), size_t(inside), size_t(agree));
     EXPECT_NEAR(double(lit) / double(inside), 0.5, 0.01 * 0.5) << lit << " of " << inside;
     EXPECT_GE(double(agree), 0.995 * double(inside));
     EXPECT_EQ(context->validation_message_count(), 0u);

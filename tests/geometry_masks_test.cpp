@@ -6,6 +6,7 @@
 // see-through mask for surfaces that cast no shadow.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -164,6 +165,8 @@ TEST(GeometryMasks, RaysPassWhereTheMaskCutsTheSurfaceOut) {
                                             : hit->triangle >= 2 && std::abs(hit->distance - 2.0f) < 1e-5f);
         agree += occluded == kept && right_hit ? 1 : 0;
     }
+    std::printf("  server: %d of %d rays blocked by the checkerboard (analytic 0.5), %d agree texel by texel\n",
+                blocked, rays, agree);
     // Half the checkerboard is kept: the shadowed fraction within 1% of it.
     EXPECT_NEAR(double(blocked) / rays, 0.5, 0.01);
     EXPECT_EQ(agree, rays);
