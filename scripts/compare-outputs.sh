@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Whether a restructuring changed what the programs make: runs the same
 # `render`, `view` and `bake` commands with two builds' binaries on a small
-# generated scene (200 lights, a tree baked by the first build) and compares
+# generated scene (200 lights, a tree baked by each build) and compares
 # the images byte for byte, the stats JSON without its timings, the printed
 # lines without their times, the exit codes, and the baked dump and recorded
 # channels. Window screenshots (xvfb, panels shown) may differ only in the
@@ -18,11 +18,17 @@ echo "compare-outputs: work in $work"
 "$before/editor_client" make-scene room -o "$work/room.gltf" >/dev/null || exit 1
 "$before/editor_client" add-lights "$work/room.gltf" --count 200 --layout random --seed 3 --type mixed \
   -o "$work/lit.gltf" >/dev/null || exit 1
-LC_SERVER_BIN="$before/lightmass_server" "$before/editor_client" bake "$work/lit.gltf" --spawn-server \
-  -o "$work/lit.lcut" >/dev/null || exit 1
+# Each build renders from the tree it bakes itself: a protocol change alters
+# the dump's schema hash, which the other build then refuses; the trees'
+# records are compared with the bakes below.
+for side in before after; do
+  bin=$before; [[ $side == after ]] && bin=$after
+  LC_SERVER_BIN="$bin/lightmass_server" "$bin/editor_client" bake "$work/lit.gltf" --spawn-server \
+    -o "$work/$side.lcut" >/dev/null || exit 1
+done
 
-renders() {  # BIN OUT
-  local bin=$1 out=$2 size="--size 96x72" tree="--tree $work/lit.lcut"
+renders() {  # BIN OUT SIDE (whose tree)
+  local bin=$1 out=$2 size="--size 96x72" tree="--tree $work/$3.lcut"
   mkdir -p "$out"
   run() {
     local name=$1; shift
@@ -58,9 +64,9 @@ renders() {  # BIN OUT
   run bad_spp $size $tree --spp 2 --mode cuts
 }
 
-views() {  # BIN OUT
+views() {  # BIN OUT SIDE
   local bin=$1 out=$2
-  local view=("$bin/editor_client" view "$work/lit.gltf" --tree "$work/lit.lcut" --size 320x240)
+  local view=("$bin/editor_client" view "$work/lit.gltf" --tree "$work/$3.lcut" --size 320x240)
   mkdir -p "$out"
   printf '%s\n' wait-refined "save-view $out/B1.png" "camera 1 1.5 3 0 1 0 50" wait-refined \
     "screenshot $out/B2.pfm" "mode cuts" wait-refined "save-view $out/B3.png" "error-ratio 0.05" \
@@ -87,8 +93,8 @@ bakes() {  # BIN OUT
 
 for side in before after; do
   bin=$before; [[ $side == after ]] && bin=$after
-  renders "$bin" "$work/$side/render"
-  command -v xvfb-run >/dev/null && views "$bin" "$work/$side/view"
+  renders "$bin" "$work/$side/render" "$side"
+  command -v xvfb-run >/dev/null && views "$bin" "$work/$side/view" "$side"
   bakes "$bin" "$work/$side/bake"
 done
 
