@@ -1,7 +1,8 @@
 #pragma once
-// The two collectives a bake over ranks needs, over MPI_BYTE: rank 0's job
-// bytes to every rank, and every rank's share of a sampler's output back to
-// rank 0 in rank order (so the concatenation is the single process's output).
+// The collectives a bake over ranks needs, over MPI_BYTE: rank 0's job bytes
+// to every rank, every rank's share of a sampler's output back to rank 0 in
+// rank order (so the concatenation is the single process's output), and the
+// radiosity's small per-shot summaries to every rank.
 #include <mpi.h>
 
 #include <cstdint>
@@ -66,6 +67,25 @@ Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes
     std::vector<T> out(bytes.size() / sizeof(T));
     std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;
+}
+
+// Every rank receives every rank's `mine` (small: int counts), concatenated
+// in rank order, with one MPI_Allgatherv; adds what this rank sent to `bytes_sent`.
+template <typename T>
+std::vector<T> all_gather_small(const std::vector<T>& mine, uint64_t& bytes_sent) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    const int my_bytes = int(mine.size() * sizeof(T));
+    std::vector<int> counts(static_cast<size_t>(ranks)), offsets(static_cast<size_t>(ranks));
+    MPI_Allgather(&my_bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    int total = 0;
+    for (int r = 0; r < ranks; ++r) offsets[size_t(r)] = total, total += counts[size_t(r)];
+    std::vector<T> all(size_t(total) / sizeof(T));
+    MPI_Allgatherv(mine.data(), my_bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
+                   MPI_COMM_WORLD);
+    bytes_sent += uint64_t(my_bytes) * uint64_t(ranks - 1);
+    return all;
 }
 
 // Point to point: a size, then the bytes in pieces.
