@@ -20,6 +20,7 @@ namespace {
 class ThreadAllGather {
 public:
     explicit ThreadAllGather(uint32_t parts) : barrier_(parts), slots_(parts) {}
+    size_t parts() const { return slots_.size(); }
 
     std::vector<double> operator()(uint32_t part, const std::vector<double>& mine) {
         slots_[part] = mine;
@@ -72,9 +73,13 @@ PartsSolve solve_in_parts(const SceneGeometry& geometry, const RayCaster& caster
     std::vector<std::thread> threads;
     for (uint32_t part = 0; part < parts; ++part) {
         threads.emplace_back([&, part] {
-            const RadiosityParts share{part, parts, [&gather, part](const std::vector<double>& mine) {
-                                           return Result<std::vector<double>>(gather(part, mine));
-                                       }};
+            const RadiosityParts share{
+                part, parts, [&gather, part](const std::vector<double>& mine, const std::vector<int>& sizes) {
+                    EXPECT_EQ(sizes.size(), gather.parts());
+                    EXPECT_EQ(size_t(sizes[part]), mine.size())
+                        << "part " << part << "'s size is not its summary's";
+                    return Result<std::vector<double>>(gather(part, mine));
+                }};
             RadiosityOptions options = cornell_options();
             options.parts = &share;
             results[part] = solve_radiosity(geometry, caster, two_lights(), options, {});
@@ -114,7 +119,8 @@ TEST(RadiosityParts, ThePartsLightsAreTheOneProcessLightsAtOneToFourParts) {
     const test::CornellBox box = test::cornell_box();
     Result<RayCaster> caster = RayCaster::build(box.geometry, 1);
     ASSERT_TRUE(caster.ok()) << caster.error();
-    Result<RadiosityResult> whole = solve_radiosity(box.geometry, *caster, two_lights(), cornell_options(), {});
+    Result<RadiosityResult> whole =
+        solve_radiosity(box.geometry, *caster, two_lights(), cornell_options(), {});
     ASSERT_TRUE(whole.ok()) << whole.error();
     const size_t patches = whole->mesh.patches.size();
     ASSERT_GT(radiosity_block_count(patches), 8u) << "too few blocks to give every part some";

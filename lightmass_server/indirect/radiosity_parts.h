@@ -40,7 +40,10 @@ struct RadiosityParts {
     uint32_t part = 0, parts = 1;
     // Every part's `mine`, concatenated in part order; called once per shot
     // by every part (a collective: all parts call it the same number of times).
-    std::function<Result<std::vector<double>>(const std::vector<double>& mine)> all_gather;
+    // `sizes` holds every part's count, known to all beforehand (5 + its
+    // blocks), so one collective moves the summaries without their sizes first.
+    std::function<Result<std::vector<double>>(const std::vector<double>& mine, const std::vector<int>& sizes)>
+        all_gather;
 };
 
 }  // namespace lc::bake

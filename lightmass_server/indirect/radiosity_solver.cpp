@@ -65,6 +65,7 @@ int visibility_targets(const Patch& p, uint32_t samples, float epsilon, glm::vec
 // What one part knows before a shot: its blocks' unshot power (in block
 // order) and its first brightest unshot patch (best_power -1: it has none).
 struct PartSummary {
+    static constexpr size_t kHeadValues = 5;  // best_power, best, best_unshot; then the blocks
     double best_power = -1.0;
     size_t best = 0;
     glm::dvec3 best_unshot{0.0};
@@ -77,12 +78,13 @@ struct PartSummary {
     }
     // Reads a part of `blocks` blocks at `at` and moves `at` past it; false if short.
     bool unpack(const std::vector<double>& in, size_t& at, size_t blocks) {
-        if (in.size() - std::min(in.size(), at) < 5 + blocks) return false;
+        if (in.size() - std::min(in.size(), at) < kHeadValues + blocks) return false;
         best_power = in[at];
         best = size_t(in[at + 1]);
         best_unshot = {in[at + 2], in[at + 3], in[at + 4]};
-        block_power.assign(in.begin() + ptrdiff_t(at + 5), in.begin() + ptrdiff_t(at + 5 + blocks));
-        at += 5 + blocks;
+        block_power.assign(in.begin() + ptrdiff_t(at + kHeadValues),
+                           in.begin() + ptrdiff_t(at + kHeadValues + blocks));
+        at += kHeadValues + blocks;
         return true;
     }
 };
@@ -132,6 +134,10 @@ public:
         }
         if (options.parts) part_ = options.parts->part, parts_ = std::max(1u, options.parts->parts);
         receivers_ = radiosity_receivers_of(n, part_, parts_);
+        for (uint32_t part = 0; part < parts_; ++part) {
+            const IndexRange blocks = radiosity_blocks_of(n, part, parts_);
+            summary_sizes_.push_back(int(PartSummary::kHeadValues + (blocks.end - blocks.begin)));
+        }
     }
 
     // f(j) for every receiver this part owns, in parallel chunks that stop early once the bake
@@ -173,7 +179,7 @@ public:
     Result<ShotChoice> choose_shooter() const {
         const PartSummary mine = summarize_own_blocks();
         if (parts_ == 1 || !options_.parts->all_gather) return choice_from({mine});
-        Result<std::vector<double>> gathered = options_.parts->all_gather(mine.packed());
+        Result<std::vector<double>> gathered = options_.parts->all_gather(mine.packed(), summary_sizes_);
         if (!gathered)
             return make_error("radiosity over " + std::to_string(parts_) + " parts: " + gathered.error());
         std::vector<PartSummary> all(parts_);
@@ -264,6 +270,7 @@ private:
     float epsilon_ = 0.0f;
     uint32_t part_ = 0, parts_ = 1;
     IndexRange receivers_;  // the patches this part updates
+    std::vector<int> summary_sizes_;  // each part's packed PartSummary, in doubles
     std::vector<glm::dvec3> radiosity_, unshot_, albedo_, emission_;
 };
 

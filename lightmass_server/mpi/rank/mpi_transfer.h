@@ -69,22 +69,29 @@ Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes
     return out;
 }
 
-// Every rank receives every rank's `mine` (small: int counts), concatenated
-// in rank order, with one MPI_Allgatherv; adds what this rank sent to `bytes_sent`.
+// Every rank receives every rank's `mine`, concatenated in rank order, with
+// one MPI_Allgatherv: `sizes` (elements per rank, small) is known to every
+// rank beforehand. Adds what this rank sent to the others to `bytes_sent`.
 template <typename T>
-std::vector<T> all_gather_small(const std::vector<T>& mine, uint64_t& bytes_sent) {
+Result<std::vector<T>> all_gather_known_sizes(const std::vector<T>& mine, const std::vector<int>& sizes,
+                                              uint64_t& bytes_sent) {
     static_assert(std::is_trivially_copyable_v<T>);
-    int ranks = 1;
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-    const int my_bytes = int(mine.size() * sizeof(T));
-    std::vector<int> counts(static_cast<size_t>(ranks)), offsets(static_cast<size_t>(ranks));
-    MPI_Allgather(&my_bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    if (sizes.size() != size_t(ranks) || size_t(sizes[size_t(rank)]) != mine.size())
+        return make_error("an all-gather's sizes do not match the ranks or this rank's share");
+    std::vector<int> counts(sizes.size()), offsets(sizes.size());
     int total = 0;
-    for (int r = 0; r < ranks; ++r) offsets[size_t(r)] = total, total += counts[size_t(r)];
+    for (size_t r = 0; r < sizes.size(); ++r) {
+        counts[r] = sizes[r] * int(sizeof(T));
+        offsets[r] = total;
+        total += counts[r];
+    }
     std::vector<T> all(size_t(total) / sizeof(T));
-    MPI_Allgatherv(mine.data(), my_bytes, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
-                   MPI_COMM_WORLD);
-    bytes_sent += uint64_t(my_bytes) * uint64_t(ranks - 1);
+    MPI_Allgatherv(mine.data(), counts[size_t(rank)], MPI_BYTE, all.data(), counts.data(), offsets.data(),
+                   MPI_BYTE, MPI_COMM_WORLD);
+    bytes_sent += uint64_t(counts[size_t(rank)]) * uint64_t(ranks - 1);
     return all;
 }
 

@@ -77,8 +77,9 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
                                                    BakeNotes& notes) {
     IndirectOptions options = indirect_options(job.request.indirect, job.request.seed);
     const RadiosityParts parts{uint32_t(share.rank), uint32_t(share.ranks),
-                               [&stats](const std::vector<double>& mine) -> Result<std::vector<double>> {
-                                   return all_gather_small(mine, stats.bytes_sent);
+                               [&stats](const std::vector<double>& mine,
+                                        const std::vector<int>& sizes) -> Result<std::vector<double>> {
+                                   return all_gather_known_sizes(mine, sizes, stats.bytes_sent);
                                }};
     if (options.method == IndirectMethod::kVpl)
         options.vpl.particles =
