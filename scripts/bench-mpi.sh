@@ -39,7 +39,7 @@ for ranks in 0 $ranks_list; do
   # figure would be the largest of it and the ranks it reaped through mpirun).
   "$bin/lightmass_server" --port-file "$tmp/port" --quiet \
     --mpi-arg=--oversubscribe --mpi-arg=--mca --mpi-arg=btl --mpi-arg="${BTL:-self,tcp}" \
-    --mpi-arg=--mca --mpi-arg=mpi_yield_when_idle --mpi-arg=1 >/dev/null &
+    --mpi-arg=--mca --mpi-arg=mpi_yield_when_idle --mpi-arg=1 --mpi-arg=--bind-to --mpi-arg=none >/dev/null &
   server=$!
   for _ in $(seq 100); do [[ -s "$tmp/port" ]] && break; sleep 0.1; done
   start=$(date +%s%N)
