@@ -45,6 +45,8 @@ std::unique_ptr<client::ServerProcess> start_mpi_server() {
                                            "--mpi-arg=--mca",
                                            "--mpi-arg=btl",
                                            "--mpi-arg=self,tcp",
+                                           "--mpi-arg=--bind-to",
+                                           "--mpi-arg=none",
                                            "--mpi-rank-program",
                                            (test::bin_dir() / "lightmass_rank").string()};
     auto server = client::ServerProcess::spawn_with((test::bin_dir() / "lightmass_server").string(), args);
