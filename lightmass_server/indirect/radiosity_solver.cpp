@@ -140,8 +140,8 @@ public:
         }
     }
 
-    // f(j) for every receiver this part owns, in parallel chunks that stop early once the bake
-    // must stop. The simple partitioner keeps chunks at kPatchesPerChunk (the
+    // f(j) for every receiver this part owns, in parallel chunks that stop
+    // early once the bake must stop. The simple partitioner keeps chunks at kPatchesPerChunk (the
     // automatic one hands a thread a large share of two million patches, and
     // a cancel waited 220 ms for it).
     template <class Receiver>
@@ -165,10 +165,9 @@ public:
             double g = shading::light_geometry(e, glm::dvec3(p.centre), glm::dvec3(p.normal), l);
             if (!(g > 0.0)) return;
             glm::vec3 origin = p.centre + p.normal * epsilon_;
-            bool blocked =
-                light.type == LightType::kDirectional
-                    ? caster_.occluded(origin, glm::vec3(l), 0.0f, std::numeric_limits<float>::infinity())
-                    : caster_.occluded(origin, light.position - origin, 0.0f, kSegmentEnd);
+            bool blocked = light.type == LightType::kDirectional
+                               ? caster_.occluded(origin, glm::vec3(l), 0.0f, std::numeric_limits<float>::infinity())
+                               : caster_.occluded(origin, light.position - origin, 0.0f, kSegmentEnd);
             if (blocked) return;
             receive(j, albedo_[j] * radiant * g);
         });
@@ -319,12 +318,11 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
         if (unshot <= options.tolerance * total) break;
         if (result.steps >= options.max_steps) {
             result.converged = false;
-            result.message =
-                "radiosity stopped after its budget of " + std::to_string(options.max_steps) +
-                " steps with " + percent_text(unshot / total) + " of the power unshot (tolerance " +
-                percent_text(options.tolerance) +
-                "); the indirect light is too dark by about that much: raise the step budget or the "
-                "tolerance, or lower the reflectances";
+            result.message = "radiosity stopped after its budget of " + std::to_string(options.max_steps) +
+                             " steps with " + percent_text(unshot / total) + " of the power unshot (tolerance " +
+                             percent_text(options.tolerance) +
+                             "); the indirect light is too dark by about that much: raise the step budget or the "
+                             "tolerance, or lower the reflectances";
             break;
         }
         solver.shoot(*choice);
