@@ -36,6 +36,9 @@ inline IndexRange radiosity_receivers_of(uint64_t patches, uint32_t part, uint32
             std::min(patches, blocks.end * kRadiosityBlockPatches)};
 }
 
+// A part whose solve fails or stops (its BakeStop) returns while the others
+// wait in the next all-gather: the caller ends them (lightmass_rank aborts
+// the whole job on any rank's error; the coordinator stops the job on cancel).
 struct RadiosityParts {
     uint32_t part = 0, parts = 1;
     // Every part's `mine`, concatenated in part order; called once per shot
