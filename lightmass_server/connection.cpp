@@ -108,8 +108,12 @@ void Connection::apply(ServerActions actions) {
                            if (bake_stop_) bake_stop_->cancel();
                        },
                        [&](StreamResult& result) {
-                           stream_.emplace(std::move(result.tree), result.channel_id, std::move(result.done),
-                                           kDefaultChunkBytes);
+                           if (result.file)
+                               stream_.emplace(std::move(result.file), result.channel_id,
+                                               std::move(result.done), kDefaultChunkBytes);
+                           else
+                               stream_.emplace(std::move(result.tree), result.channel_id,
+                                               std::move(result.done), kDefaultChunkBytes);
                            wake_writer();
                        },
                        [&](StopStream&) { stream_.reset(); },

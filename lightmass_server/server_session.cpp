@@ -8,6 +8,7 @@
 #include "lightmass_server/bake_footprint.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/patch_mesh.h"
+#include "lightmass_server/result_channel_file.h"
 #include "protocol/bake_limits.h"
 #include "protocol/channel_name.h"
 
@@ -440,12 +441,14 @@ ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResu
     }
     BuildResult built = std::move(result.value());
     for (const std::string& warning : built.report.warnings) send(WarningMsg{bake_id, warning});
-    auto tree = std::make_shared<const LightTree>(std::move(built.tree));
+    // A bake over MPI ranks leaves its tree on disk: streamed from there, never decoded here.
+    std::shared_ptr<const LightTree> tree;
+    if (!built.channel_file) tree = std::make_shared<const LightTree>(std::move(built.tree));
     BakeDoneMsg done;
     done.bake_id = bake_id;
     done.result_channel = lightcuts_result_channel_name();
-    done.node_count = static_cast<uint32_t>(tree->nodes.size());
-    done.leaf_count = tree->leaf_count;
+    done.node_count = tree ? static_cast<uint32_t>(tree->nodes.size()) : built.channel_file->node_count();
+    done.leaf_count = tree ? tree->leaf_count : built.channel_file->leaf_count();
     done.build_ms = built.report.build_ms;
     done.pairing_cost = built.report.pairing_cost;
     done.pairing_lower_bound = built.report.pairing_lower_bound;
@@ -453,12 +456,26 @@ ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResu
     done.effects = built.report.effects;
     spdlog::info("connection {}: bake {} built {} nodes in {:.1f} ms", options_.connection_id, bake_id,
                  done.node_count, done.build_ms);
-    if (options_.record_channels)
-        actions_.push_back(RecordChannel{done.result_channel, encode_result_channel(*tree)});
+    if (options_.record_channels) record_result(done.result_channel, tree, built.channel_file);
     send(ProgressMsg{bake_id, "streaming", 100.0f});
     bake_->streaming = true;
-    actions_.push_back(StreamResult{std::move(tree), next_channel_id_++, std::move(done)});
+    actions_.push_back(
+        StreamResult{std::move(tree), std::move(built.channel_file), next_channel_id_++, std::move(done)});
     return take_actions();
+}
+
+void ServerSession::record_result(const std::string& name, const std::shared_ptr<const LightTree>& tree,
+                                  const std::shared_ptr<const ResultChannelFile>& file) {
+    if (tree) {
+        actions_.push_back(RecordChannel{name, encode_result_channel(*tree)});
+        return;
+    }
+    std::vector<uint8_t> bytes(file->size_bytes());  // --record is for debugging: the whole channel
+    if (Status read = file->read(0, bytes); !read) {
+        spdlog::warn("connection {}: the result was not recorded: {}", options_.connection_id, read.error());
+        return;
+    }
+    actions_.push_back(RecordChannel{name, std::move(bytes)});
 }
 
 void ServerSession::on_result_delivered() {

@@ -59,6 +59,7 @@ struct CancelBake {
 // Stream this tree as the result channel, then BakeDone; call on_result_delivered when sent.
 struct StreamResult {
     std::shared_ptr<const LightTree> tree;
+    std::shared_ptr<const ResultChannelFile> file;  // instead of `tree`: a bake over MPI ranks
     uint32_t channel_id = 0;
     BakeDoneMsg done;
 };
@@ -157,6 +158,9 @@ private:
 
     void send(Message message);
     void send_error(uint32_t bake_id, ErrorCode code, const std::string& text);
+    // --record: the result channel's bytes, from the tree or the file that holds them.
+    void record_result(const std::string& name, const std::shared_ptr<const LightTree>& tree,
+                       const std::shared_ptr<const ResultChannelFile>& file);
     ServerActions take_actions();
     // After the error explaining why: cancel a running build, then close once it is sent.
     void close_after_flush(std::string reason);

@@ -2,6 +2,7 @@
 // The one entry point every light-tree builder shares.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -60,9 +61,14 @@ struct BuildReport {
     std::vector<std::string> effects;
 };
 
+class ResultChannelFile;  // result_channel_file.h
+
 struct BuildResult {
     LightTree tree;
     BuildReport report;
+    // Set, and `tree` left empty, when the tree was built in other processes
+    // and stays on disk as the result channel's bytes (a bake over MPI ranks).
+    std::shared_ptr<const ResultChannelFile> channel_file;
 };
 
 // Lights must already be validated (protocol/channel_records.h); every light

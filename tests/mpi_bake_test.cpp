@@ -1,5 +1,6 @@
 // Bakes over MPI ranks (lightmass_server/mpi/): the light set and the tree the
-// same at 1, 2, 3 and 4 ranks as in one process, the LBVH's subtrees merged on
+// same at 1, 2, 3 and 4 ranks as in one process (VPLs, area and sky samples,
+// radiosity split over the ranks' receiver patches), the LBVH's subtrees merged on
 // the ranks, a rank that dies, a cancelled bake, the bake's own stop (a
 // deadline, a cancel) and a bake asking for more ranks than the server allows. The tests that start mpirun skip, saying why,
 // where mpirun or lightmass_rank is missing (the shares' determinism is checked
@@ -14,6 +15,7 @@
 #include <memory>
 
 #include "lightmass_server/bake_pipeline.h"
+#include "lightmass_server/result_channel_file.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"
 
@@ -43,9 +45,19 @@ bool on_path(const std::string& program) {
             GTEST_SKIP() << kRankProgram << " was not built (CMake found no MPI: libopenmpi-dev)";     \
     } while (0)
 
+size_t processes_naming(const std::string& needle);
+
+// The result channel's bytes: encoded from the tree, or read from the file a
+// bake over ranks leaves it in (streamed from there to the client as is).
 std::vector<uint8_t> tree_bytes(const Result<BuildResult>& built) {
     EXPECT_TRUE(built.ok()) << (built ? "" : built.error());
-    return built ? encode_result_channel(built->tree) : std::vector<uint8_t>{};
+    if (!built) return {};
+    if (!built->channel_file) return encode_result_channel(built->tree);
+    EXPECT_TRUE(built->tree.nodes.empty()) << "a bake over ranks decoded its tree in the coordinator";
+    std::vector<uint8_t> bytes(built->channel_file->size_bytes());
+    Status read = built->channel_file->read(0, bytes);
+    EXPECT_TRUE(read.ok()) << (read ? "" : read.error());
+    return bytes;
 }
 
 TEST(MpiBake, TheLbvhTreeIsTheSameWhenTheRanksMergeItsSubtrees) {
@@ -81,6 +93,66 @@ TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
         for (const std::string& effect : built->report.effects) rank_lines += effect.rfind("rank ", 0) == 0;
         EXPECT_EQ(rank_lines, ranks);
     }
+}
+
+// The Cornell box's radiosity: about 3,600 patches (15 blocks of 256, several
+// for every rank at 4 ranks), a tolerance a float holds exactly (the job
+// carries it as one): at 0.5, 1,368 shots.
+BakeInputs radiosity_inputs(double tolerance) {
+    BakeInputs inputs = cornell_inputs();
+    inputs.indirect.method = IndirectMethod::kRadiosity;
+    inputs.indirect.radiosity.patch_size = 0.08f;
+    inputs.indirect.radiosity.tolerance = tolerance;
+    return inputs;
+}
+
+std::string effect_starting(const Result<BuildResult>& built, const std::string& start) {
+    for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{})
+        if (effect.rfind(start, 0) == 0) return effect;
+    return "";
+}
+
+TEST(MpiBake, RadiositySplitOverRanksGivesTheInProcessTree) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = radiosity_inputs(0.5);
+    const Result<BuildResult> whole = run_bake(inputs, {});
+    const std::vector<uint8_t> in_process = tree_bytes(whole);
+    ASSERT_FALSE(in_process.empty());
+    // "indirect: simulated (P patches, all bounces, S steps, U% unshot)"
+    const std::string census = effect_starting(whole, "indirect: simulated (");
+    ASSERT_NE(census.find(" patches, all bounces, "), std::string::npos) << census;
+    for (uint32_t ranks : {1u, 2u, 3u, 4u}) {
+        inputs.ranks = ranks;
+        Result<BuildResult> built = run_bake(inputs, {});
+        EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        // The same shots over every rank count: the census differs only by the rank count.
+        EXPECT_EQ(effect_starting(built, "indirect: "),
+                  census.substr(0, census.size() - 1) + ", " + std::to_string(ranks) + " ranks)");
+        // Every rank shot into some receivers and sent its summaries and lights.
+        for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{}) {
+            if (ranks > 1 && effect.rfind("rank ", 0) == 0) {
+                EXPECT_EQ(effect.find("bytes_sent 0 "), std::string::npos) << effect;
+            }
+        }
+    }
+}
+
+TEST(MpiBake, CancelDuringRadiosityStopsEveryRank) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = radiosity_inputs(0.001);  // far more shots than the test waits for
+    inputs.ranks = 3;
+    inputs.mpi.work_dir = fs::temp_directory_path() / ("mpi-radiosity-cancel-" + std::to_string(getpid()));
+    fs::create_directories(inputs.mpi.work_dir);
+    bool in_radiosity = false;
+    Result<BuildResult> cancelled = run_bake(inputs, [&](std::string_view stage, double) {
+        in_radiosity = in_radiosity || stage.find("radiosity") != std::string_view::npos;
+        return !in_radiosity;
+    });
+    ASSERT_FALSE(cancelled.ok());
+    EXPECT_TRUE(in_radiosity);
+    EXPECT_EQ(cancelled.error_kind(), ErrorKind::kCancelled) << cancelled.error();
+    EXPECT_EQ(processes_naming(inputs.mpi.work_dir.string()), 0u) << "a rank outlived its cancelled bake";
+    fs::remove_all(inputs.mpi.work_dir);
 }
 
 TEST(MpiBake, ARankThatDiesFailsTheBakeAndTheNextBakeWorks) {

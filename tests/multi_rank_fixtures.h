@@ -39,7 +39,8 @@ inline BakeInputs cornell_inputs() {
     inputs.indirect.vpl.particle_count = 3001;
     inputs.indirect.vpl.bounces = 3;
     inputs.indirect.vpl.seed = 7;
-    inputs.mpi.launcher_args = {"--oversubscribe", "--allow-run-as-root", "--mca", "btl", "self,tcp"};
+    inputs.mpi.launcher_args = {"--oversubscribe", "--allow-run-as-root", "--mca", "btl", "self,tcp",
+                                "--bind-to", "none"};
     inputs.mpi.rank_program = std::filesystem::path(LC_BIN_DIR) / "lightmass_rank";
     return inputs;
 }

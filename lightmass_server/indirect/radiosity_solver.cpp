@@ -14,6 +14,7 @@
 #include "lightcuts/shading_model.h"
 #include "lightmass_server/indirect/photon_emitters.h"
 #include "lightmass_server/indirect/point_polygon_form_factor.h"
+#include "lightmass_server/indirect/radiosity_parts.h"
 #include "lightmass_server/indirect/surface_sampling.h"
 #include "protocol/bake_limits.h"
 
@@ -61,6 +62,56 @@ int visibility_targets(const Patch& p, uint32_t samples, float epsilon, glm::vec
     return 4;
 }
 
+// What one part knows before a shot: its blocks' unshot power (in block
+// order) and its first brightest unshot patch (best_power -1: it has none).
+struct PartSummary {
+    static constexpr size_t kHeadValues = 5;  // best_power, best, best_unshot; then the blocks
+    double best_power = -1.0;
+    size_t best = 0;
+    glm::dvec3 best_unshot{0.0};
+    std::vector<double> block_power;
+
+    std::vector<double> packed() const {
+        std::vector<double> out{best_power, double(best), best_unshot.x, best_unshot.y, best_unshot.z};
+        out.insert(out.end(), block_power.begin(), block_power.end());
+        return out;
+    }
+    // Reads a part of `blocks` blocks at `at` and moves `at` past it; false if short.
+    bool unpack(const std::vector<double>& in, size_t& at, size_t blocks) {
+        if (in.size() - std::min(in.size(), at) < kHeadValues + blocks) return false;
+        best_power = in[at];
+        best = size_t(in[at + 1]);
+        best_unshot = {in[at + 2], in[at + 3], in[at + 4]};
+        block_power.assign(in.begin() + ptrdiff_t(at + kHeadValues),
+                           in.begin() + ptrdiff_t(at + kHeadValues + blocks));
+        at += kHeadValues + blocks;
+        return true;
+    }
+};
+
+// The whole solve's next shot: the summed unshot power and the shooter.
+struct ShotChoice {
+    double unshot_power = 0.0;
+    size_t shooter = 0;
+    glm::dvec3 shooter_unshot{0.0};
+};
+
+// The block sums added in block order and the first of the parts' brightest
+// patches, as one pass over every patch in order finds them.
+ShotChoice choice_from(const std::vector<PartSummary>& parts) {
+    ShotChoice choice;
+    double best_power = -1.0;
+    for (const PartSummary& part : parts) {
+        for (double block : part.block_power) choice.unshot_power += block;
+        if (part.best_power > best_power) {
+            best_power = part.best_power;
+            choice.shooter = part.best;
+            choice.shooter_unshot = part.best_unshot;
+        }
+    }
+    return choice;
+}
+
 class Solver {
 public:
     Solver(const SceneGeometry& geometry, const RayCaster& caster, const RadiosityOptions& options,
@@ -81,16 +132,22 @@ public:
             emission_[j] = kPi * glm::dvec3(m.emission);
             radiosity_[j] = unshot_[j] = emission_[j];
         }
+        if (options.parts) part_ = options.parts->part, parts_ = std::max(1u, options.parts->parts);
+        receivers_ = radiosity_receivers_of(n, part_, parts_);
+        for (uint32_t part = 0; part < parts_; ++part) {
+            const IndexRange blocks = radiosity_blocks_of(n, part, parts_);
+            summary_sizes_.push_back(int(PartSummary::kHeadValues + (blocks.end - blocks.begin)));
+        }
     }
 
-    // f(j) for every patch, in parallel chunks that stop early once the bake
-    // must stop. The simple partitioner keeps chunks at kPatchesPerChunk (the
+    // f(j) for every receiver this part owns, in parallel chunks that stop
+    // early once the bake must stop. The simple partitioner keeps chunks at kPatchesPerChunk (the
     // automatic one hands a thread a large share of two million patches, and
     // a cancel waited 220 ms for it).
     template <class Receiver>
     void for_each_receiver(const Receiver& f) const {
         tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, patches_.size(), kPatchesPerChunk),
+            tbb::blocked_range<size_t>(receivers_.begin, receivers_.end, kPatchesPerChunk),
             [&](const tbb::blocked_range<size_t>& chunk) {
                 if (stop_requested(options_.stop)) return;
                 for (size_t j = chunk.begin(); j != chunk.end(); ++j) f(j);
@@ -116,27 +173,34 @@ public:
         });
     }
 
-    double unshot_power() const {
-        double sum = 0.0;
-        for (size_t j = 0; j < patches_.size(); ++j) sum += mean(unshot_[j]) * double(patches_[j].area);
-        return sum;
-    }
-
-    size_t brightest_unshot() const {
-        size_t best = 0;
-        double best_power = -1.0;
-        for (size_t j = 0; j < patches_.size(); ++j) {
-            double power = mean(unshot_[j]) * double(patches_[j].area);
-            if (power > best_power) best_power = power, best = j;
+    // The unshot power of every patch and the brightest unshot patch, over
+    // all the parts (radiosity_parts.h): the same bytes at any part count.
+    Result<ShotChoice> choose_shooter() const {
+        const PartSummary mine = summarize_own_blocks();
+        if (parts_ == 1 || !options_.parts->all_gather) return choice_from({mine});
+        Result<std::vector<double>> gathered = options_.parts->all_gather(mine.packed(), summary_sizes_);
+        if (!gathered)
+            return make_error("radiosity over " + std::to_string(parts_) + " parts: " + gathered.error());
+        std::vector<PartSummary> all(parts_);
+        size_t at = 0;
+        for (uint32_t part = 0; part < parts_; ++part) {
+            const IndexRange blocks = radiosity_blocks_of(patches_.size(), part, parts_);
+            if (!all[part].unpack(*gathered, at, size_t(blocks.end - blocks.begin)))
+                return make_error("radiosity over " + std::to_string(parts_) + " parts: part " +
+                                  std::to_string(part) + "'s summary is short");
         }
-        return best;
+        if (at != gathered->size()) return make_error("radiosity: the parts' summaries are too long");
+        return choice_from(all);
     }
 
     // Patch i gives its unshot radiosity dB to every patch j that sees it:
     // B_j += rho_j dB F_ji, with F_ji = F(dA_j -> A_i) x visible fraction.
-    void shoot(size_t i) {
-        glm::dvec3 delta = unshot_[i];
-        unshot_[i] = glm::dvec3(0.0);
+    // The part that owns patch i zeroes its unshot radiosity; every part has
+    // dB from the choice.
+    void shoot(const ShotChoice& choice) {
+        const size_t i = choice.shooter;
+        const glm::dvec3 delta = choice.shooter_unshot;
+        if (receivers_.contains(i)) unshot_[i] = glm::dvec3(0.0);
         const Patch& shooter = patches_[i];
         glm::dvec3 corners[3] = {glm::dvec3(shooter.vertices[0]), glm::dvec3(shooter.vertices[1]),
                                  glm::dvec3(shooter.vertices[2])};
@@ -159,9 +223,10 @@ public:
     }
 
     void finish() {
-        result_.radiosity.resize(patches_.size());
-        result_.emission.resize(patches_.size());
-        for (size_t j = 0; j < patches_.size(); ++j) {
+        // Zero outside this part's receivers.
+        result_.radiosity.assign(patches_.size(), glm::vec3(0.0f));
+        result_.emission.assign(patches_.size(), glm::vec3(0.0f));
+        for (size_t j = receivers_.begin; j < receivers_.end; ++j) {
             const Patch& p = patches_[j];
             result_.radiosity[j] = glm::vec3(radiosity_[j]);
             result_.emission[j] = glm::vec3(emission_[j]);
@@ -174,6 +239,24 @@ public:
     }
 
 private:
+    // One part's blocks' unshot power, block by block, and its first brightest patch.
+    PartSummary summarize_own_blocks() const {
+        PartSummary summary;
+        const IndexRange blocks = radiosity_blocks_of(patches_.size(), part_, parts_);
+        for (uint64_t b = blocks.begin; b < blocks.end; ++b) {
+            double sum = 0.0;
+            const size_t end = std::min<size_t>(patches_.size(), (b + 1) * kRadiosityBlockPatches);
+            for (size_t j = b * kRadiosityBlockPatches; j < end; ++j) {
+                const double power = mean(unshot_[j]) * double(patches_[j].area);
+                sum += power;
+                if (power > summary.best_power) summary.best_power = power, summary.best = j;
+            }
+            summary.block_power.push_back(sum);
+        }
+        if (summary.best_power >= 0.0) summary.best_unshot = unshot_[summary.best];
+        return summary;
+    }
+
     void receive(size_t j, glm::dvec3 reflected) {
         radiosity_[j] += reflected;
         unshot_[j] += reflected;
@@ -184,6 +267,9 @@ private:
     RadiosityResult& result_;
     const std::vector<Patch>& patches_;
     float epsilon_ = 0.0f;
+    uint32_t part_ = 0, parts_ = 1;
+    IndexRange receivers_;  // the patches this part updates
+    std::vector<int> summary_sizes_;  // each part's packed PartSummary, in doubles
     std::vector<glm::dvec3> radiosity_, unshot_, albedo_, emission_;
 };
 
@@ -215,7 +301,9 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
         if (stop_requested(options.stop)) return options.stop->reason("radiosity");
     }
 
-    double total = solver.unshot_power();
+    Result<ShotChoice> choice = solver.choose_shooter();
+    if (!choice) return choice.failure();
+    const double total = choice->unshot_power;
     double unshot = total;
     double reported = -1.0;
     while (total > 0.0) {
@@ -237,10 +325,12 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
                              "tolerance, or lower the reflectances";
             break;
         }
-        solver.shoot(solver.brightest_unshot());
+        solver.shoot(*choice);
         if (stop_requested(options.stop)) return options.stop->reason("radiosity");
         ++result.steps;
-        unshot = solver.unshot_power();
+        choice = solver.choose_shooter();
+        if (!choice) return choice.failure();
+        unshot = choice->unshot_power;
     }
     result.unshot_fraction = total > 0.0 ? unshot / total : 0.0;
     result.convergence.push_back({result.steps, seconds(), 1.0 - result.unshot_fraction});

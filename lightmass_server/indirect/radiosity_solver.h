@@ -4,7 +4,8 @@
 // until the unshot power falls below a tolerance of the total. Form factors
 // are point-to-polygon (exact when unoccluded) times the fraction of
 // visibility rays Embree lets through; each receiver is evaluated at its
-// centre, so a step is one pass over the patches, in parallel, deterministic.
+// centre, so a step is one pass over the patches, in parallel, deterministic;
+// the receivers may be split over processes (radiosity_parts.h).
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "lightmass_server/bake_stop.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/indirect/patch_mesh.h"
+#include "lightmass_server/indirect/radiosity_parts.h"
 #include "lightmass_server/raycast/ray_caster.h"
 #include "lightmass_server/tree_builder.h"
 
@@ -31,6 +33,11 @@ struct RadiosityOptions {
     // Visibility rays per shooter-receiver pair: 1 (the shooter's centre) or 4.
     uint32_t visibility_samples = 4;
     const BakeStop* stop = nullptr;  // polled every chunk of patches; null: runs to the end
+    // Null: one process solves every patch. Else this process is one part
+    // (radiosity_parts.h): it shoots into its receivers only, and its result's
+    // lights, radiosity and emission are its receivers' alone (the lights of
+    // the parts, concatenated in part order, are the one-process lights).
+    const RadiosityParts* parts = nullptr;
 };
 
 struct ConvergencePoint {

@@ -139,7 +139,15 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
                           " " + exit_text(status) + code +
                           " (a rank died or could not start); its log: " + tail_of(dir / "mpirun.log", 1500));
     }
-    return read_rank_result(dir);
+    // The tree leaves the job folder (removed when the bake ends) and is streamed from its own file.
+    const fs::path tree_file = dir.string() + ".lcut";
+    std::error_code ec;
+    if (inputs.mpi.keep_job_dirs)
+        fs::copy_file(dir / "result.lcut", tree_file, fs::copy_options::overwrite_existing, ec);
+    else
+        fs::rename(dir / "result.lcut", tree_file, ec);
+    if (ec) return make_error("cannot move rank 0's tree out of " + dir.string() + ": " + ec.message());
+    return read_rank_result(dir, tree_file);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "lightcuts/status_macros.h"
+#include "lightmass_server/result_channel_file.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
 #include "protocol/environment_records.h"
@@ -54,20 +55,6 @@ Status write_result_channel(const fs::path& path, const LightTree& tree) {
     fs::rename(partial, path, ec);
     if (ec) return make_error("cannot rename " + partial.string() + ": " + ec.message());
     return Ok{};
-}
-
-// Rank 0's tree file through the channel's reader, a chunk at a time, validated as it reads.
-Result<LightTree> read_result_channel(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return make_error("cannot open " + path.string());
-    ResultChannelReader reader;
-    std::vector<uint8_t> chunk(kDefaultChunkBytes);
-    while (in) {
-        in.read(reinterpret_cast<char*>(chunk.data()), std::streamsize(chunk.size()));
-        Status consumed = reader.consume(std::span(chunk.data(), size_t(in.gcount())));
-        if (!consumed) return consumed.failure();
-    }
-    return reader.finish();
 }
 
 Status write_text(const fs::path& path, const std::string& text) {
@@ -177,11 +164,11 @@ Status write_rank_result(const fs::path& dir, const BuildResult& result,
     return write_text(dir / "report.txt", text.str());
 }
 
-Result<BuildResult> read_rank_result(const fs::path& dir) {
+Result<BuildResult> read_rank_result(const fs::path& dir, const fs::path& tree_file) {
     BuildResult result;
-    Result<LightTree> tree = read_result_channel(dir / "result.lcut");
-    if (!tree) return make_error("rank 0's tree: " + tree.error());
-    result.tree = std::move(tree.value());
+    Result<std::shared_ptr<const ResultChannelFile>> file = ResultChannelFile::adopt(tree_file);
+    if (!file) return make_error("rank 0's tree: " + file.error());
+    result.channel_file = std::move(file.value());
     std::ifstream in(dir / "report.txt");
     if (!in) return make_error("rank 0 wrote no report.txt");
     BuildReport& r = result.report;

@@ -1,7 +1,8 @@
 #pragma once
-// The two collectives a bake over ranks needs, over MPI_BYTE: rank 0's job
-// bytes to every rank, and every rank's share of a sampler's output back to
-// rank 0 in rank order (so the concatenation is the single process's output).
+// The collectives a bake over ranks needs, over MPI_BYTE: rank 0's job bytes
+// to every rank, every rank's share of a sampler's output back to rank 0 in
+// rank order (so the concatenation is the single process's output), and the
+// radiosity's small per-shot summaries to every rank.
 #include <mpi.h>
 
 #include <cstdint>
@@ -66,6 +67,32 @@ Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes
     std::vector<T> out(bytes.size() / sizeof(T));
     std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;
+}
+
+// Every rank receives every rank's `mine`, concatenated in rank order, with
+// one MPI_Allgatherv: `sizes` (elements per rank, small) is known to every
+// rank beforehand. Adds what this rank sent to the others to `bytes_sent`.
+template <typename T>
+Result<std::vector<T>> all_gather_known_sizes(const std::vector<T>& mine, const std::vector<int>& sizes,
+                                              uint64_t& bytes_sent) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    if (sizes.size() != size_t(ranks) || size_t(sizes[size_t(rank)]) != mine.size())
+        return make_error("an all-gather's sizes do not match the ranks or this rank's share");
+    std::vector<int> counts(sizes.size()), offsets(sizes.size());
+    int total = 0;
+    for (size_t r = 0; r < sizes.size(); ++r) {
+        counts[r] = sizes[r] * int(sizeof(T));
+        offsets[r] = total;
+        total += counts[r];
+    }
+    std::vector<T> all(size_t(total) / sizeof(T));
+    MPI_Allgatherv(mine.data(), counts[size_t(rank)], MPI_BYTE, all.data(), counts.data(), offsets.data(),
+                   MPI_BYTE, MPI_COMM_WORLD);
+    bytes_sent += uint64_t(counts[size_t(rank)]) * uint64_t(ranks - 1);
+    return all;
 }
 
 // Point to point: a size, then the bytes in pieces.

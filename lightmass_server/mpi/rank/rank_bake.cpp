@@ -7,6 +7,7 @@
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/index_range.h"
+#include "lightmass_server/indirect/radiosity_parts.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "lightmass_server/mpi/rank/remote_subtrees.h"
 #include "lightmass_server/raycast/ray_caster.h"
@@ -20,9 +21,14 @@ struct Share {
     bool root() const { return rank == 0; }
 };
 
+// The census lines and warnings rank 0 reports, as run_bake reports them.
+struct BakeNotes {
+    std::vector<std::string> effects, warnings;
+};
+
 // This rank's area-light samples, gathered on rank 0 (the whole set there).
 Result<std::vector<SceneLight>> area_lights(const RankJob& job, const Share& share, RankStats& stats,
-                                            std::vector<std::string>& effects) {
+                                            BakeNotes& notes) {
     const uint32_t budget = job.request.area_lights != 0 ? job.request.area_lights : kDefaultAreaLights;
     const uint64_t seed = job.request.seed;
     // The samples' count: the budget, raised to one per emissive triangle.
@@ -35,39 +41,60 @@ Result<std::vector<SceneLight>> area_lights(const RankJob& job, const Share& sha
     if (!sampled) return make_error("area lights: " + sampled.error());
     stats.lights_made += sampled->lights.size();
     Result<std::vector<SceneLight>> all = gather_in_rank_order(sampled->lights, stats.bytes_sent);
+    if (all && share.root() && counted->budget_raised) {
+        notes.warnings.push_back("--area-lights " + std::to_string(budget) + " is below the " +
+                                 std::to_string(counted->emissive_triangles) +
+                                 " emissive triangles: one sample each");
+    }
     if (all && share.root() && !all->empty()) {
-        effects.push_back("area lights: simulated (" + std::to_string(counted->emissive_triangles) +
-                          " emissive triangles, " + std::to_string(all->size()) + " samples, " +
-                          std::to_string(share.ranks) + " ranks)");
+        notes.effects.push_back("area lights: simulated (" + std::to_string(counted->emissive_triangles) +
+                                " emissive triangles, " + std::to_string(all->size()) + " samples, " +
+                                std::to_string(share.ranks) + " ranks)");
     }
     return all;
 }
 
-// The bounced light: VPL paths split over the ranks; radiosity on rank 0 alone.
+// "indirect: ..." for the whole bake, on rank 0: the counts over every rank.
+std::string indirect_census(const IndirectOptions& options, const IndirectStageResult& stage, size_t lights,
+                            int ranks) {
+    if (stage.census.rfind("skipped", 0) == 0) return "indirect: " + stage.census;
+    const std::string over = std::to_string(ranks) + " ranks)";
+    if (options.method == IndirectMethod::kRadiosity)  // patches, steps and unshot power are global
+        return "indirect: " + stage.census.substr(0, stage.census.rfind(')')) + ", " + over;
+    char text[160];
+    std::snprintf(text, sizeof text, "indirect: simulated (%zu VPLs from %llu particles, %u bounces, ",
+                  lights, static_cast<unsigned long long>(options.vpl.particle_count), options.vpl.bounces);
+    return text + over;
+}
+
+// The bounced light, split over the ranks: the VPL paths by index range, the
+// radiosity's receivers by patch blocks (radiosity_parts.h, one all-gather a
+// shot). Rank 0 gathers the lights in rank order: the one-process lights.
 Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Share& share,
                                                    const RayCaster* caster,
                                                    std::span<const SceneLight> sources,
                                                    const ProgressFn& progress, RankStats& stats,
-                                                   std::vector<std::string>& effects) {
+                                                   BakeNotes& notes) {
     IndirectOptions options = indirect_options(job.request.indirect, job.request.seed);
-    const bool split = options.method == IndirectMethod::kVpl;
-    if (split)
+    const RadiosityParts parts{uint32_t(share.rank), uint32_t(share.ranks),
+                               [&stats](const std::vector<double>& mine,
+                                        const std::vector<int>& sizes) -> Result<std::vector<double>> {
+                                   return all_gather_known_sizes(mine, sizes, stats.bytes_sent);
+                               }};
+    if (options.method == IndirectMethod::kVpl)
         options.vpl.particles =
             share_of(options.vpl.particle_count, uint32_t(share.rank), uint32_t(share.ranks));
-    if (!split && !share.root()) return std::vector<IndirectLight>{};
+    options.radiosity.parts = &parts;
     const SceneGeometry no_geometry;
     Result<IndirectStageResult> stage =
         run_indirect_stage(job.geometry ? *job.geometry : no_geometry, caster, sources, options,
                            share.root() ? progress : ProgressFn{});
     if (!stage) return stage.failure();
-    if (!split) {
-        effects.push_back("indirect: " + stage->census);
-        return std::move(stage->lights);
-    }
     stats.lights_made += stage->lights.size();
     Result<std::vector<IndirectLight>> all = gather_in_rank_order(stage->lights, stats.bytes_sent);
+    if (!all || !share.root()) return all;
     // The same cap as a bake in one process (bake_footprint.h), over all the ranks' paths together.
-    if (all && share.root() && all->size() > kMaxIndirectLights) {
+    if (options.method == IndirectMethod::kVpl && all->size() > kMaxIndirectLights) {
         return make_error("too large: the " + std::to_string(options.vpl.particle_count) +
                               " light paths of " + std::to_string(options.vpl.bounces) + " bounces leave " +
                               std::to_string(all->size()) + " VPLs over " + std::to_string(share.ranks) +
@@ -75,14 +102,8 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
                               "; ask for fewer paths or bounces",
                           ErrorKind::kRefused);
     }
-    if (all && share.root()) {
-        char text[160];
-        std::snprintf(text, sizeof text,
-                      "indirect: simulated (%zu VPLs from %llu particles, %u bounces, %d ranks)", all->size(),
-                      static_cast<unsigned long long>(options.vpl.particle_count), options.vpl.bounces,
-                      share.ranks);
-        effects.push_back(text);
-    }
+    notes.effects.push_back(indirect_census(options, *stage, all->size(), share.ranks));
+    notes.warnings.insert(notes.warnings.end(), stage->warnings.begin(), stage->warnings.end());
     return all;
 }
 
@@ -91,18 +112,18 @@ Result<std::vector<IndirectLight>> indirect_lights(const RankJob& job, const Sha
 Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks,
                                               const ProgressFn& progress, RankStats& stats) {
     const Share share{rank, ranks};
-    std::vector<std::string> effects;
+    BakeNotes notes;
     std::vector<SceneLight> lights = job.lights;  // the tree's input order: scene, area, sky, bounces
     std::optional<RayCaster> caster;
     if (job.geometry) {
         Result<RayCaster> built = RayCaster::build(*job.geometry, 1);
         if (!built) return make_error("ray caster: " + built.error());
         caster.emplace(std::move(built.value()));
-        Result<std::vector<SceneLight>> area = area_lights(job, share, stats, effects);
+        Result<std::vector<SceneLight>> area = area_lights(job, share, stats, notes);
         if (!area) return area.failure();
         lights.insert(lights.end(), area->begin(), area->end());
     }
-    if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
+    if (notes.effects.empty()) notes.effects.push_back("area lights: skipped: no drawn triangle emits power");
     // The sky's strata split over the ranks; every rank gets them all back:
     // the photons leave the sky too.
     std::vector<SceneLight> sky;
@@ -115,16 +136,16 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
         Result<std::vector<SceneLight>> all = gather_to_all(sampled->lights, stats.bytes_sent);
         if (!all) return all.failure();
         sky = std::move(all.value());
-        effects.push_back(ranks == 1 ? sampled->census
-                                     : sampled->census.substr(0, sampled->census.find(':')) +
-                                           ": simulated (" + std::to_string(sky.size()) + " lights over " +
-                                           std::to_string(ranks) + " ranks)");
+        notes.effects.push_back(ranks == 1 ? sampled->census
+                                           : sampled->census.substr(0, sampled->census.find(':')) +
+                                                 ": simulated (" + std::to_string(sky.size()) +
+                                                 " lights over " + std::to_string(ranks) + " ranks)");
     }
     std::vector<SceneLight> sources = job.lights;
     if (job.request.indirect.method != IndirectMethod::kOff)
         sources.insert(sources.end(), sky.begin(), sky.end());
     Result<std::vector<IndirectLight>> bounced =
-        indirect_lights(job, share, caster ? &*caster : nullptr, sources, progress, stats, effects);
+        indirect_lights(job, share, caster ? &*caster : nullptr, sources, progress, stats, notes);
     if (!bounced) return bounced.failure();
     if (!share.root()) {
         LC_RETURN_IF_ERROR(serve_subtrees(job_build_options(job.request), stats));
@@ -146,7 +167,9 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     Result<BuildResult> built = build_light_tree(lights, options, progress);
     end_subtree_service(ranks);
     if (!built) return built.failure();
-    built->report.effects = std::move(effects);
+    built->report.effects = std::move(notes.effects);
+    built->report.warnings.insert(built->report.warnings.begin(), notes.warnings.begin(),
+                                  notes.warnings.end());
     return std::optional<BuildResult>(std::move(built.value()));
 }
 

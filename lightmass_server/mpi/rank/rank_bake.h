@@ -1,9 +1,10 @@
 #pragma once
 // One bake's share on one MPI rank (run by lightmass_rank). Every rank makes
-// its index ranges of the area-light samples and of the VPL paths (counter-
-// based draws: the same lights at any rank count); rank 0 gathers them in
-// rank order, adds the scene's lights, the environment's and radiosity's (made
-// on rank 0 alone), and builds the tree, as run_bake does in one process.
+// its index ranges of the area-light samples, the environment's strata and the
+// VPL paths (counter-based draws: the same lights at any rank count), or
+// shoots radiosity into its blocks of receiver patches (radiosity_parts.h);
+// rank 0 gathers the lights in rank order, adds the scene's lights, and builds
+// the tree, as run_bake does in one process.
 #include <cstdint>
 #include <optional>
 
@@ -14,7 +15,7 @@ namespace lc::bake {
 
 struct RankStats {
     uint64_t lights_made = 0;  // by this rank, before the gather
-    uint64_t bytes_sent = 0;   // to rank 0 in the gathers
+    uint64_t bytes_sent = 0;   // to the other ranks in the gathers and the merges
 };
 
 // Rank 0 returns the tree; the other ranks return nullopt once their share is sent.
