@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Everything issue #29 measures on a lent GPU, as one prepared run (device time
-# is short): build and pack here, then on the device machine
+# is short): build and pack here (../shared/tools/gpu-bundle.sh, then
+# scripts/gpu-pack-validation.sh for the validation layer), then on the device machine
 #   bash .gpu/enter.sh bash scripts/gpu-bench.sh "$OUT"      (carry [".gpu"])
 # 1. scripts/gpu-check.sh: every mode, criterion, bound search and
 #    representative choice starts, GPU against CPU on small frames, per-pass
@@ -103,6 +104,16 @@ big() {
 }
 
 { nvidia-smi -L 2>&1; nproc; } > "$out/machine.txt"
+# The validation layer, when scripts/gpu-pack-validation.sh packed it: the
+# check's --validation runs then validate on this driver (the timed stages
+# after it run without --validation, so the layer costs them nothing).
+if [[ -f .gpu/validation.tar.xz ]]; then
+    layers="$(mktemp -d)"
+    tar -xJf .gpu/validation.tar.xz -C "$layers" && export VK_LAYER_PATH="$layers"
+    echo "validation layer: $VK_LAYER_PATH" >> "$out/machine.txt"
+else
+    echo "validation layer: not packed (scripts/gpu-pack-validation.sh)" >> "$out/machine.txt"
+fi
 stage check 150 bash scripts/gpu-check.sh "$bin" "$out/check" 4096 64x64
 rm -f "$out"/check/*.pfm
 stage scene 60 small_scene

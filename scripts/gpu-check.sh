@@ -46,7 +46,7 @@ runs=(
   "spp1_cpu_reconstruction|--mode lightcuts --spp 1 --spp-method reconstruction"
 )
 csv="$out/gpu_check.csv"
-echo "name,status,device,render_ms,render_clock,gbuffer_ms,lighting_ms,output_ms,wall_ms,avg_cut,shadow_rays,loop_limit_stops,nonfinite_pixels,validation_messages,error" > "$csv"
+echo "name,status,device,render_ms,render_clock,gbuffer_ms,lighting_ms,output_ms,wall_ms,avg_cut,shadow_rays,loop_limit_stops,nonfinite_pixels,validation_enabled,validation_messages,error" > "$csv"
 failures=0
 for run in "${runs[@]}"; do
   name="${run%%|*}"
@@ -58,13 +58,13 @@ for run in "${runs[@]}"; do
 import json, sys
 s = json.load(open(sys.argv[1]))
 keys = ["device", "render_ms", "render_clock", "gbuffer_ms", "lighting_ms", "output_ms", "wall_ms", "avg_cut",
-        "shadow_rays", "loop_limit_stops", "nonfinite_pixels", "validation_messages"]
+        "shadow_rays", "loop_limit_stops", "nonfinite_pixels", "validation_enabled", "validation_messages"]
 print(",".join([sys.argv[2], "ok"] + [str(s.get(k, "")).replace(",", " ") for k in keys] + [""]))
 PY
   else
     failures=$((failures + 1))
     error="$(grep -m1 -i "error\|fail" "$work/$name.log" | tr ',' ' ' | cut -c1-200)"
-    echo "$name,failed,,,,,,,,,,,,,$error" >> "$csv"
+    echo "$name,failed,,,,,,,,,,,,,,$error" >> "$csv"
   fi
 done
 
