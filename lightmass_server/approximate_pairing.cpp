@@ -25,6 +25,19 @@ struct CandidateEdge {
     }
 };
 
+// |p_a - p_b| as the k-NN measured it: the same bits whichever end comes first
+// (the difference's components only change sign).
+double length(std::span<const glm::dvec3> points, uint32_t a, uint32_t b) {
+    return std::sqrt(squared_distance(points[b], points[a]));
+}
+
+// An edge once sorted: its length is recomputed when needed, so the level keeps
+// 8 bytes an edge through the matching instead of 16 (less for a stop to free).
+struct EdgeEnds {
+    uint32_t u;
+    uint32_t v;
+};
+
 // Point i's list gives the edge {i, j} unless j < i lists i too (then j's
 // list gave it): every undirected edge once, so no de-duplicating pass over
 // 40 M edges, and a third fewer of them to sort, keep and free.
@@ -45,8 +58,7 @@ std::vector<CandidateEdge> candidate_edges(std::span<const glm::dvec3> points, c
         if (poll()) return {};
         for (const uint32_t j : knn.of(i)) {
             if (listed_by_smaller(knn, i, j)) continue;
-            const double distance = std::sqrt(squared_distance(points[j], points[i]));
-            edges.push_back(CandidateEdge{distance, std::min(ids[i], ids[j]), std::max(ids[i], ids[j])});
+            edges.push_back(CandidateEdge{length(points, i, j), std::min(ids[i], ids[j]), std::max(ids[i], ids[j])});
         }
     }
     // Distinct edges under a total order: the sort's result does not depend on how it sorts.
@@ -54,8 +66,9 @@ std::vector<CandidateEdge> candidate_edges(std::span<const glm::dvec3> points, c
     return edges;
 }
 
-void greedy_match(std::span<const CandidateEdge> edges, std::vector<uint32_t>& mate, StopPoll& poll) {
-    for (const CandidateEdge& e : edges) {
+template <class Edge>
+void greedy_match(std::span<const Edge> edges, std::vector<uint32_t>& mate, StopPoll& poll) {
+    for (const Edge& e : edges) {
         if (poll()) return;
         if (mate[e.u] == kUnmatched && mate[e.v] == kUnmatched) {
             mate[e.u] = e.v;
@@ -66,7 +79,7 @@ void greedy_match(std::span<const CandidateEdge> edges, std::vector<uint32_t>& m
 
 // Exchanges (u, mu), (v, mv) for (u, v), (mu, mv) while that is cheaper. The
 // dummy node n (mate of the carried node) costs nothing to pair with.
-void two_opt(std::span<const glm::dvec3> points, std::span<const CandidateEdge> edges,
+void two_opt(std::span<const glm::dvec3> points, std::span<const EdgeEnds> edges,
              std::vector<uint32_t>& mate, StopPoll& poll) {
     const uint32_t dummy = uint32_t(points.size());
     const auto cost = [&](uint32_t a, uint32_t b) {
@@ -74,7 +87,7 @@ void two_opt(std::span<const glm::dvec3> points, std::span<const CandidateEdge> 
     };
     for (int pass = 0; pass < kMaxTwoOptPasses; ++pass) {
         bool improved = false;
-        for (const CandidateEdge& e : edges) {
+        for (const EdgeEnds& e : edges) {
             if (poll()) return;
             const uint32_t u = e.u;
             const uint32_t v = e.v;
@@ -82,7 +95,7 @@ void two_opt(std::span<const glm::dvec3> points, std::span<const CandidateEdge> 
             const uint32_t mv = mate[v];
             if (mu == v) continue;
             const double current = cost(u, mu) + cost(v, mv);
-            const double exchanged = e.distance + cost(mu, mv);
+            const double exchanged = length(points, u, v) + cost(mu, mv);
             // The relative margin keeps rounding from cycling between equal pairings.
             if (exchanged < current * (1.0 - 1e-12)) {
                 mate[u] = v;
@@ -111,7 +124,7 @@ double lower_bound_from(std::span<const glm::dvec3> points, const KnnIndices& kn
 }
 
 struct CandidateGraph {
-    std::vector<CandidateEdge> edges;
+    std::vector<EdgeEnds> edges;  // sorted by (length, u, v)
     double lower_bound = 0.0;
 };
 
@@ -123,9 +136,13 @@ CandidateGraph candidate_graph(std::span<const glm::dvec3> points, const BakeSto
     if (poll.now()) return {};
     std::vector<uint32_t> all_ids(points.size());
     for (uint32_t i = 0; i < points.size(); ++i) all_ids[i] = i;
+    const std::vector<CandidateEdge> sorted = candidate_edges(points, knn, all_ids, poll);
     CandidateGraph graph;
-    graph.edges = candidate_edges(points, knn, all_ids, poll);
-    if (poll()) return {};
+    graph.edges.reserve(sorted.size());
+    for (const CandidateEdge& e : sorted) {
+        if (poll()) return {};
+        graph.edges.push_back(EdgeEnds{e.u, e.v});
+    }
     graph.lower_bound = lower_bound_from(points, knn);
     return graph;
 }
@@ -150,7 +167,7 @@ LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeS
     StopPoll poll(stop);
     const CandidateGraph graph = candidate_graph(points, stop, poll);
     if (poll()) return {};
-    const std::vector<CandidateEdge>& edges = graph.edges;
+    const std::span<const EdgeEnds> edges = graph.edges;
 
     // mate has one extra slot: the dummy node n, partner of the carried node.
     std::vector<uint32_t> mate(size_t(n) + 1, kUnmatched);
@@ -171,7 +188,8 @@ LevelPairing approximate_pairing(std::span<const glm::dvec3> points, const BakeS
         }
         if (free_ids.size() < 2) break;
         const KnnIndices free_knn = k_nearest_indices(free_points, kRetryNeighbors, stop);
-        greedy_match(candidate_edges(free_points, free_knn, free_ids, poll), mate, poll);
+        greedy_match(std::span<const CandidateEdge>(candidate_edges(free_points, free_knn, free_ids, poll)),
+                     mate, poll);
     }
     if (free_ids.size() == 1) {
         mate[free_ids[0]] = n;
