@@ -45,7 +45,8 @@ TEST(StoppableSort, GivesStdSortsOrderAtSizesAroundItsRunsAndMerges) {
 // Cancelled inside the last (widest) merge, the sort compares at most one
 // merge stride more: the merge asks the stop, not only the runs between merges.
 TEST(StoppableSort, AStopInTheWidestMergeEndsItWithinAStride) {
-    const std::vector<Keyed> input = random_items(size_t(1) << 20, 1u << 30, 5);
+    // 3 x 2^18: the widest merge has the shorter right side, merged back to front.
+    const std::vector<Keyed> input = random_items(size_t(3) << 18, 1u << 30, 5);
     uint64_t total = 0;
     std::vector<Keyed> items = input;
     StopPoll unstopped(nullptr);
@@ -57,7 +58,7 @@ TEST(StoppableSort, AStopInTheWidestMergeEndsItWithinAStride) {
     BakeStop stop;
     StopPoll poll(&stop);
     items = input;
-    const uint64_t cancel_at = total - 300000;  // the widest merge compares about 10^6 times
+    const uint64_t cancel_at = total - 300000;  // the widest merge compares about 786,000 times
     uint64_t compared = 0;
     const bool sorted = stoppable_sort(std::span<Keyed>(items), [&](const Keyed& a, const Keyed& b) {
         if (++compared == cancel_at) stop.cancel();
