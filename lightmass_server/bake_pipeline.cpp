@@ -117,7 +117,7 @@ Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progres
     const std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
     added.insert(added.end(), bounced.begin(), bounced.end());
 
-    // One copy of the added lights, not two: 4 M area-light samples are 370 MB
+    // One copy of the added lights, not two: 4 M area-light samples are 320 MiB
     // that a cancelled build would otherwise free twice over before it replies.
     std::vector<SceneLight> all_lights;
     if (!added.empty() && inputs.lights->empty()) {
