@@ -9,6 +9,7 @@
 #include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/cluster_attributes.h"
 #include "lightmass_server/sparse_exact_pairing.h"
+#include "lightmass_server/stoppable_sort.h"
 
 namespace lc::bake {
 namespace {
@@ -94,9 +95,9 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
         report.exact = report.exact && pairing.exact;
 
         next.clear();
-        StopPoll merging(options.stop);
+        StopPoll poll(options.stop);
         for (const auto& [a, b] : pairing.pairs) {
-            if (merging()) break;
+            if (poll()) break;
             const BuildNode cluster = merge_clusters(arena, level[a], level[b],
                                                      options.representative_rule, options.seed);
             next.push_back(uint32_t(arena.nodes.size()));
@@ -106,9 +107,14 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
             return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
                               ErrorKind::kCancelled);
         if (pairing.carried != kNoCarriedNode) next.push_back(level[pairing.carried]);
-        std::sort(next.begin(), next.end(), [&](uint32_t a, uint32_t b) {
+        // Clusters are disjoint, so their smallest light indices are distinct: a
+        // total order, and 2 M lookups into the arena that a stop may cut short.
+        const bool ordered = stoppable_sort(std::span<uint32_t>(next), [&](uint32_t a, uint32_t b) {
             return arena.min_light_index_of(a) < arena.min_light_index_of(b);
-        });
+        }, poll);
+        if (!ordered)
+            return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
+                              ErrorKind::kCancelled);
 
         done_work += double(level.size());
         ++level_number;

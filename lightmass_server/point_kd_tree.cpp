@@ -91,10 +91,11 @@ struct Candidate {
     }
 };
 
-// The k nearest other points of point `query` under the (distance, index) order.
+// The k nearest other points of point `query` under the (distance, index)
+// order, nearest first, left in `best`.
 void query_neighbors(const KdTree& tree, std::span<const glm::dvec3> points, uint32_t query,
                      uint32_t k, std::vector<Candidate>& best,
-                     std::vector<std::pair<double, uint32_t>>& stack, Neighbor* out) {
+                     std::vector<std::pair<double, uint32_t>>& stack) {
     const glm::dvec3 q = points[query];
     best.clear();  // a max-heap on Candidate order
     stack.clear();
@@ -108,8 +109,7 @@ void query_neighbors(const KdTree& tree, std::span<const glm::dvec3> points, uin
             for (uint32_t i = node.begin; i < node.end; ++i) {
                 const uint32_t p = tree.order[i];
                 if (p == query) continue;
-                const glm::dvec3 d = points[p] - q;
-                const Candidate c{d.x * d.x + d.y * d.y + d.z * d.z, p};
+                const Candidate c{squared_distance(points[p], q), p};
                 if (best.size() < k) {
                     best.push_back(c);
                     std::push_heap(best.begin(), best.end());
@@ -133,9 +133,26 @@ void query_neighbors(const KdTree& tree, std::span<const glm::dvec3> points, uin
         }
     }
     std::sort_heap(best.begin(), best.end());
-    for (uint32_t j = 0; j < best.size(); ++j) {
-        out[j] = Neighbor{best[j].index, std::sqrt(best[j].distance2)};
-    }
+}
+
+// Queries every point's k nearest, handing each list to write(point, best).
+template <class Write>
+void for_each_neighbor_list(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop,
+                            const Write& write) {
+    const KdTree tree = build_kd_tree(points, stop);
+    if (stop_requested(stop)) return;
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
+                      [&](const tbb::blocked_range<uint32_t>& range) {
+                          // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
+                          StopPoll poll(stop);
+                          std::vector<Candidate> best;
+                          std::vector<std::pair<double, uint32_t>> stack;
+                          for (uint32_t i = range.begin(); i != range.end(); ++i) {
+                              if (poll()) return;  // the result is dropped
+                              query_neighbors(tree, points, i, k, best, stack);
+                              write(i, best);
+                          }
+                      });
 }
 
 // Smallest offset in each node's subtree; children come after their parent.
@@ -208,22 +225,24 @@ std::vector<std::pair<uint32_t, uint32_t>> pairs_below_negative_offsets(
 KnnResult k_nearest_neighbors(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop) {
     KnnResult result;
     if (points.size() < 2) return result;
-    result.k_used = std::min<uint32_t>(k, uint32_t(points.size() - 1));
-    result.neighbors.resize(points.size() * result.k_used);
-    const KdTree tree = build_kd_tree(points, stop);
-    if (stop_requested(stop)) return result;
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(points.size()), 256),
-                      [&](const tbb::blocked_range<uint32_t>& range) {
-                          // Per point, not per chunk: TBB's chunks can hold n / (a few x threads) points.
-                          StopPoll poll(stop);
-                          std::vector<Candidate> best;
-                          std::vector<std::pair<double, uint32_t>> stack;
-                          for (uint32_t i = range.begin(); i != range.end(); ++i) {
-                              if (poll()) return;  // the result is dropped
-                              query_neighbors(tree, points, i, result.k_used, best, stack,
-                                              &result.neighbors[size_t(i) * result.k_used]);
-                          }
-                      });
+    const uint32_t k_used = result.k_used = std::min<uint32_t>(k, uint32_t(points.size() - 1));
+    result.neighbors.resize(points.size() * k_used);
+    for_each_neighbor_list(points, k_used, stop, [&](uint32_t i, const std::vector<Candidate>& best) {
+        Neighbor* out = &result.neighbors[size_t(i) * k_used];
+        for (uint32_t j = 0; j < best.size(); ++j) out[j] = Neighbor{best[j].index, std::sqrt(best[j].distance2)};
+    });
+    return result;
+}
+
+KnnIndices k_nearest_indices(std::span<const glm::dvec3> points, uint32_t k, const BakeStop* stop) {
+    KnnIndices result;
+    if (points.size() < 2) return result;
+    const uint32_t k_used = result.k_used = std::min<uint32_t>(k, uint32_t(points.size() - 1));
+    result.indices.resize(points.size() * k_used);
+    for_each_neighbor_list(points, k_used, stop, [&](uint32_t i, const std::vector<Candidate>& best) {
+        uint32_t* out = &result.indices[size_t(i) * k_used];
+        for (uint32_t j = 0; j < best.size(); ++j) out[j] = best[j].index;
+    });
     return result;
 }
 

@@ -3,7 +3,10 @@
 // thread; the main thread cancels it at delays spread over the build and times
 // cancel() to return. At 32,768 lights (the default limit) every level pairs
 // exactly; above it the first levels pair approximately.
-//   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8]   (scripts/fault-test.sh tree-cancel)
+//   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8] [DELAYS_MS=a,b,...]
+//   (scripts/fault-test.sh tree-cancel); with DELAYS_MS, cancelled at those
+//   delays only, the full builds skipped (their column reads 0).
+//   tree_cancel_bench LIGHTS hash: the built tree's bytes hashed (no cancel).
 // Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms, the
 // full build timed with a live, never-cancelled stop (what the server runs);
 // a "finished" row's latency is negative: the build returned before the cancel.
@@ -15,6 +18,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -23,6 +27,7 @@
 #include "lightmass_server/point_kd_tree.h"
 #include "lightmass_server/sparse_exact_pairing.h"
 #include "lightmass_server/tree_builder.h"
+#include "protocol/channel_records.h"
 
 namespace {
 
@@ -106,10 +111,53 @@ void report_poll_interval(const std::vector<SceneLight>& lights) {
 
 }  // namespace
 
+// FNV-1a of the tree's result-channel bytes, built without a stop and with a
+// live one: equal before and after a change to the builder means the same trees.
+int print_tree_hashes(const std::vector<SceneLight>& lights) {
+    lc::bake::BakeStop live;
+    const lc::bake::BakeStop* const stops[] = {nullptr, &live};
+    for (const lc::bake::BakeStop* stop : stops) {
+        const Clock::time_point start = Clock::now();
+        auto built = lc::bake::build_light_tree(lights, lc::bake::BuildOptions{.seed = 7, .stop = stop}, nullptr);
+        if (!built) {
+            std::fprintf(stderr, "build failed: %s\n", built.error().c_str());
+            return 1;
+        }
+        const std::vector<uint8_t> bytes = lc::encode_result_channel(built->tree);
+        uint64_t hash = 1469598103934665603ull;
+        for (const uint8_t byte : bytes) hash = (hash ^ byte) * 1099511628211ull;
+        std::printf("%zu lights, %s stop: %zu bytes, fnv1a %016llx, %.0f ms\n", lights.size(),
+                    stop ? "a live" : "no", bytes.size(), (unsigned long long)hash, ms_between(start, Clock::now()));
+    }
+    return 0;
+}
+
+// "1500,4000,8000" -> {1500, 4000, 8000}.
+std::vector<double> parse_delays(const char* text) {
+    std::vector<double> delays;
+    for (char* end = nullptr; *text; text = *end ? end + 1 : end) {
+        delays.push_back(std::strtod(text, &end));
+        if (end == text) break;
+    }
+    return delays;
+}
+
 int main(int argc, char** argv) {
     const uint32_t light_count = argc > 1 ? uint32_t(std::strtoul(argv[1], nullptr, 10)) : 32768u;
     const int cancels = argc > 2 ? std::atoi(argv[2]) : 8;
     const std::vector<SceneLight> lights = uniform_point_lights(light_count);
+    if (argc > 2 && std::string_view(argv[2]) == "hash") return print_tree_hashes(lights);
+    // Cancel delays given: the full builds (minutes at 4 M lights) are skipped
+    // and the full_build_ms column reads 0.
+    if (argc > 3) {
+        for (const double delay_ms : parse_delays(argv[3])) {
+            const CancelOutcome outcome = cancel_build_after(lights, delay_ms);
+            std::printf("%u,%.0f,%s,%.1f,0\n", light_count, delay_ms,
+                        outcome.cancelled ? "cancelled" : "finished", outcome.latency_ms);
+            std::fflush(stdout);
+        }
+        return 0;
+    }
 
     // One LEMON run over a level larger than the builder ever pairs exactly
     // would take minutes and gigabytes: measured up to the default limit only.
