@@ -116,6 +116,11 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
     if (emitters.empty()) return out;
     out.budget_raised = budget < emitters.size();
     share_budget(emitters, std::max<uint64_t>(budget, emitters.size()));
+    // Reserved up front: growing a vector of millions of lights copies it at
+    // every doubling, between two stop polls.
+    uint64_t total = 0;
+    for (const Emitter& e : emitters) total += e.samples;
+    out.lights.reserve(std::min(total, samples.end) - std::min(total, samples.begin));
 
     uint64_t first_sample = 0;  // the index of e's first sample in the whole output
     StopPoll poll(stop);
