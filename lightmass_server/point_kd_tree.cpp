@@ -1,5 +1,7 @@
 #include "lightmass_server/point_kd_tree.h"
 
+#include "lightmass_server/stoppable_select.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <glm/common.hpp>
@@ -39,7 +41,8 @@ KdTree build_kd_tree(std::span<const glm::dvec3> points, const BakeStop* stop = 
     // Explicit work list instead of recursion: depth is log n anyway, but the
     // builder never relies on it.
     std::vector<uint32_t> pending{0};
-    while (!pending.empty() && !stop_requested(stop)) {
+    StopPoll poll(stop);
+    while (!pending.empty() && !poll.now()) {
         const uint32_t node_index = pending.back();
         pending.pop_back();
         const uint32_t begin = tree.nodes[node_index].begin;
@@ -48,6 +51,7 @@ KdTree build_kd_tree(std::span<const glm::dvec3> points, const BakeStop* stop = 
         glm::dvec3 lo(std::numeric_limits<double>::max());
         glm::dvec3 hi(std::numeric_limits<double>::lowest());
         for (uint32_t i = begin; i < end; ++i) {
+            if ((i & 0xFFFFu) == 0 && poll.now()) return tree;  // the root's box reads 4 M points
             lo = glm::min(lo, points[tree.order[i]]);
             hi = glm::max(hi, points[tree.order[i]]);
         }
@@ -60,13 +64,14 @@ KdTree build_kd_tree(std::span<const glm::dvec3> points, const BakeStop* stop = 
                          : extent.y >= extent.z                       ? 1
                                                                       : 2;
         const uint32_t mid = begin + (end - begin) / 2;
-        // A strict total order (coordinate, then index) makes the split unique.
-        std::nth_element(tree.order.begin() + begin, tree.order.begin() + mid,
-                         tree.order.begin() + end, [&](uint32_t a, uint32_t b) {
-                             const double ca = points[a][axis];
-                             const double cb = points[b][axis];
-                             return ca < cb || (ca == cb && a < b);
-                         });
+        // A strict total order (coordinate, then index) makes the split unique,
+        // so the nodes hold the same points however the selection arranges them.
+        const auto below = [&](uint32_t a, uint32_t b) {
+            const double ca = points[a][axis];
+            const double cb = points[b][axis];
+            return ca < cb || (ca == cb && a < b);
+        };
+        if (!stoppable_nth_element(tree.order.data(), begin, mid, end, below, poll)) return tree;
         const int32_t left = int32_t(tree.nodes.size());
         tree.nodes.push_back(KdNode{{}, {}, begin, mid});
         tree.nodes.push_back(KdNode{{}, {}, mid, end});
