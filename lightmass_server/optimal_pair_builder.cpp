@@ -50,6 +50,19 @@ Result<LevelPairing> pair_level_exactly(std::span<const glm::dvec3> points, cons
     return exact;
 }
 
+// The level's points (its representatives' positions), asking the stop every
+// 65,536 (a first level gathers millions); false when it came.
+bool gather_points(const BuildArena& arena, const std::vector<uint32_t>& level, const BakeStop* stop,
+                   std::vector<glm::dvec3, UnwrittenOnResize<glm::dvec3>>& points) {
+    points.resize(level.size());
+    StopPoll poll(stop);
+    for (size_t i = 0; i < level.size(); ++i) {
+        if ((i & 0xFFFFu) == 0xFFFFu && poll.now()) return false;
+        points[i] = light_point(arena.lights[arena.representative_of(level[i])]);
+    }
+    return true;
+}
+
 }  // namespace
 
 Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint32_t> leaves,
@@ -69,14 +82,9 @@ Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint3
     uint32_t level_number = 0;
 
     while (level.size() > 1) {
-        points.resize(level.size());
-        StopPoll gather_poll(options.stop);
-        for (size_t i = 0; i < level.size(); ++i) {
-            if ((i & 0xFFFFu) == 0xFFFFu && gather_poll.now())
-                return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
-                                  ErrorKind::kCancelled);
-            points[i] = light_point(arena.lights[arena.representative_of(level[i])]);
-        }
+        if (!gather_points(arena, level, options.stop, points))
+            return make_error("cancelled during optimal-pair level " + std::to_string(level_number),
+                              ErrorKind::kCancelled);
 
         LevelPairing pairing;
         if (pair_exactly(options, level.size())) {

@@ -122,6 +122,30 @@ std::string light_group_name(size_t group) {
     return kinds[group / kLightTypeCount] + type;
 }
 
+// The lights' indices by light group. Millions of lights take tens of
+// milliseconds here: a cancel is asked every 65,536 of them (a small build
+// reaches its first level's polls); false when it came.
+bool group_leaves(std::span<const SceneLight> lights, const BakeStop* stop,
+                  std::array<std::vector<uint32_t>, kLightGroupCount>& leaves_by_group) {
+    StopPoll poll(stop);
+    for (uint32_t i = 0; i < lights.size(); ++i) {
+        if ((i & 0xFFFFu) == 0xFFFFu && poll.now()) return false;
+        leaves_by_group[light_group(lights[i])].push_back(i);
+    }
+    return true;
+}
+
+// The per-group roots joined left to right under junction nodes: the whole tree's root.
+int32_t join_under_junctions(BuildArena& arena, const std::vector<uint32_t>& roots) {
+    int32_t root = roots.empty() ? kNoBuildChild : int32_t(roots[0]);
+    for (size_t i = 1; i < roots.size(); ++i) {
+        const BuildNode junction = make_junction(arena, uint32_t(root), roots[i]);
+        root = int32_t(arena.nodes.size());
+        arena.nodes.push_back(junction);
+    }
+    return root;
+}
+
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
@@ -151,14 +175,8 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
     // read (BuildArena::node), which saves 160 bytes a light of fresh pages.
     arena.nodes.resize(lights.size());
     std::array<std::vector<uint32_t>, kLightGroupCount> leaves_by_group;
-    // Millions of lights take tens of milliseconds here: a cancel is asked
-    // every 65,536 of them (a small build reaches its first level's polls).
-    StopPoll poll(options.stop);
-    for (uint32_t i = 0; i < lights.size(); ++i) {
-        if ((i & 0xFFFFu) == 0xFFFFu && poll.now())
-            return make_error("cancelled before the build", ErrorKind::kCancelled);
-        leaves_by_group[light_group(lights[i])].push_back(i);
-    }
+    if (!group_leaves(lights, options.stop, leaves_by_group))
+        return make_error("cancelled before the build", ErrorKind::kCancelled);
 
     timer.lap("leaves");
     std::vector<uint32_t> roots;
@@ -194,12 +212,7 @@ Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
 
     // One tree per light group, joined under junction nodes (the paper's
     // "conceptually a single larger tree").
-    int32_t root = roots.empty() ? kNoBuildChild : int32_t(roots[0]);
-    for (size_t i = 1; i < roots.size(); ++i) {
-        const BuildNode junction = make_junction(arena, uint32_t(root), roots[i]);
-        root = int32_t(arena.nodes.size());
-        arena.nodes.push_back(junction);
-    }
+    const int32_t root = join_under_junctions(arena, roots);
 
     // Converting 10^6 nodes is memory-bound: two threads overlap their misses.
     const ParallelRanges tbb_ranges = [](size_t count, const std::function<void(size_t, size_t)>& body) {
