@@ -15,8 +15,6 @@ namespace lc {
 namespace {
 
 using client::PrimaryChoice;
-using client::Renderer;
-using client::RendererOptions;
 using DoubleSided = test::VulkanTest;
 
 constexpr uint32_t kSize = 16;
@@ -41,24 +39,14 @@ Material grey(float value, bool double_sided) {
 }
 
 // The scene's G-buffer from a camera on the z axis at `eye_z`, looking at the origin.
-client::GBufferReadback gbuffer_of(vk::Context& context, Scene scene, PrimaryChoice primary,
-                                   float eye_z) {
+client::GBufferReadback gbuffer_of(vk::Context& context, Scene scene, PrimaryChoice primary, float eye_z) {
     client::update_scene_bounds(scene);  // the raster pass's depth range
     client::RenderSettings settings;
     settings.width = settings.height = kSize;
     settings.camera.eye = {0.0f, 0.0f, eye_z};
     settings.camera.target = {0.0f, 0.0f, 0.0f};
     settings.camera.yfov = 0.6f;
-    RendererOptions options;
-    options.primary = primary;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, nullptr, options);
-    EXPECT_TRUE(renderer.ok()) << renderer.error();
-    if (!renderer.ok()) return {};
-    Status drawn = (*renderer)->render_gbuffer(settings);
-    EXPECT_TRUE(drawn.ok()) << drawn.error();
-    Result<client::GBufferReadback> g = (*renderer)->read_gbuffer();
-    EXPECT_TRUE(g.ok());
-    return g.ok() ? std::move(g).value() : client::GBufferReadback{};
+    return test::gbuffer_of(context, scene, primary, settings);
 }
 
 // The centre pixel: did it see geometry, its normal's z and its albedo.

@@ -24,20 +24,6 @@ using client::Renderer;
 using client::RendererOptions;
 using PrimaryRays = test::VulkanTest;
 
-client::GBufferReadback gbuffer_of(vk::Context& context, const Scene& scene, PrimaryChoice primary,
-                                   const client::RenderSettings& settings) {
-    RendererOptions options;
-    options.primary = primary;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, nullptr, options);
-    EXPECT_TRUE(renderer.ok()) << renderer.error();
-    if (!renderer.ok()) return {};
-    Status drawn = (*renderer)->render_gbuffer(settings);
-    EXPECT_TRUE(drawn.ok()) << drawn.error();
-    Result<client::GBufferReadback> g = (*renderer)->read_gbuffer();
-    EXPECT_TRUE(g.ok());
-    return g.ok() ? std::move(g).value() : client::GBufferReadback{};
-}
-
 float distance4(const std::vector<float>& a, const std::vector<float>& b, size_t pixel, int channels) {
     float d = 0.0f;
     for (int c = 0; c < channels; ++c) d = std::max(d, std::abs(a[4 * pixel + c] - b[4 * pixel + c]));
@@ -50,8 +36,8 @@ TEST_F(PrimaryRays, TheGBufferByRaysIsTheRasterisedOne) {
     settings.width = 96;
     settings.height = 72;
     settings.camera = test::furnished_room_camera();
-    const client::GBufferReadback raster = gbuffer_of(*context_, scene, PrimaryChoice::kRaster, settings);
-    const client::GBufferReadback rays = gbuffer_of(*context_, scene, PrimaryChoice::kRays, settings);
+    const client::GBufferReadback raster = test::gbuffer_of(*context_, scene, PrimaryChoice::kRaster, settings);
+    const client::GBufferReadback rays = test::gbuffer_of(*context_, scene, PrimaryChoice::kRays, settings);
     ASSERT_EQ(raster.position.size(), rays.position.size());
     const size_t pixels = size_t(settings.width) * settings.height;
     size_t geometry = 0, same_coverage = 0, same_surface = 0;

@@ -33,6 +33,22 @@
 
 namespace lc::test {
 
+// The scene's G-buffer as `settings` frames it, rasterised or cast as rays
+// (`primary`); empty (with a test failure) when the renderer refuses.
+inline client::GBufferReadback gbuffer_of(vk::Context& context, const Scene& scene,
+                                          client::PrimaryChoice primary, const client::RenderSettings& settings) {
+    client::RendererOptions options;
+    options.primary = primary;
+    Result<std::unique_ptr<client::Renderer>> renderer = client::Renderer::create(context, scene, nullptr, options);
+    EXPECT_TRUE(renderer.ok()) << renderer.error();
+    if (!renderer.ok()) return {};
+    Status drawn = (*renderer)->render_gbuffer(settings);
+    EXPECT_TRUE(drawn.ok()) << drawn.error();
+    Result<client::GBufferReadback> g = (*renderer)->read_gbuffer();
+    EXPECT_TRUE(g.ok());
+    return g.ok() ? std::move(g).value() : client::GBufferReadback{};
+}
+
 // The surface point the lighting pass saw at pixel i of a G-buffer read-back.
 inline lc::SurfacePoint gbuffer_point(const client::GBufferReadback& g, size_t i) {
     return client::gbuffer_surface_point(g, i);
