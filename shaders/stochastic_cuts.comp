@@ -7,12 +7,14 @@
 // importance at the pixel (stochastic_draw.glsl, one GpuDrawPair a level),
 // and shades it with its intensity over its probability and one shadow ray:
 // an unbiased estimate of the tree's light with at most kStochasticCut shadow
-// rays per pixel, whatever the number of lights. The temporal pass averages
-// the frames.
+// rays per pixel, whatever the number of lights; or, under a smaller budget,
+// kStochasticRays rays picked among the drawn lights (shadow_ray_budget.glsl).
+// The temporal pass averages the frames.
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_criterion.glsl"
 #include "stochastic_draw.glsl"
+#include "shadow_ray_budget.glsl"
 
 layout(constant_id = kSpecStochasticCut) const uint kStochasticCut = 16u;
 
@@ -103,10 +105,29 @@ void add_to_cut(inout Cut cut, int i, GpuTreeNode node, vec3 contribution) {
     cut.hash += cut_hash_term(uint(i));
 }
 
+// The cut's k-th node (tree node i), its light drawn: shaded with its own
+// shadow ray, or, under the budget, unshadowed and offered to the picks. The
+// budget's branch is the workgroup's, so uniform.
+void shade_cut_node(inout Cut cut, inout ShadowBudget budget, bool budgeted, uint k, int i, GpuTreeNode node,
+                    Descent d, SurfacePoint p, bool surface) {
+    GpuLight light = finish_descent(d, node);
+    if (!budgeted) {
+        add_to_cut(cut, i, node, drawn_light_radiance(light, p, surface));
+        return;
+    }
+    vec3 l;
+    vec3 e = surface ? light_irradiance(light, p.position, p.normal, l) : vec3(0.0);
+    vec3 unshadowed = surface ? brdf_toward(p, l) * e : vec3(0.0);
+    offer_to_budget(budget, k, drawn_light_index(d, node), unshadowed, node.flags, node.first_child == kEndOfWalk);
+    cut.hash += cut_hash_term(uint(i));
+}
+
 // Every cut node's drawn light at p, two descents at a time. The number of
 // nodes is the workgroup's, so the branch on a second one is uniform.
 Cut shade_block_cut(SurfacePoint p, bool surface) {
     Cut cut = empty_cut();
+    bool budgeted = shadow_budget_applies(s_cut_size);
+    ShadowBudget budget = empty_shadow_budget();
     for (uint k = 0u; k < s_cut_size; k += 2u) {
         bool second = k + 1u < s_cut_size;
         int i0 = s_cut_node[k];
@@ -116,9 +137,10 @@ Cut shade_block_cut(SurfacePoint p, bool surface) {
         Descent d0 = start_descent(i0, node0);
         Descent d1 = second ? start_descent(i1, node1) : Descent(-1, 1.0);
         descend_both(d0, d1, p);
-        add_to_cut(cut, i0, node0, drawn_light_radiance(finish_descent(d0, node0), p, surface));
-        if (second) add_to_cut(cut, i1, node1, drawn_light_radiance(finish_descent(d1, node1), p, surface));
+        shade_cut_node(cut, budget, budgeted, k, i0, node0, d0, p, surface);
+        if (second) shade_cut_node(cut, budget, budgeted, k + 1u, i1, node1, d1, p, surface);
     }
+    if (budgeted) resolve_shadow_budget(budget, p, cut);
     cut.size = s_cut_size;
     return cut;
 }

@@ -59,6 +59,12 @@ GpuLight finish_descent(Descent d, GpuTreeNode node) {
     return light;
 }
 
+// The leaf light finish_descent evaluates the node through (its position is
+// where a shadow ray aims).
+uint drawn_light_index(Descent d, GpuTreeNode node) {
+    return node.first_child == kEndOfWalk || d.next >= 0 ? node.representative : uint(~d.next);
+}
+
 // Two descents side by side: they are independent, so each level's loads of
 // one overlap the other's (alone, a GPU lane waits on every level's load).
 // Two levels of each per iteration: each back edge spends llvmpipe's loop budget.

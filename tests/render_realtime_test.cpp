@@ -63,6 +63,7 @@ protected:
         reference_ = render(*renderer_, settings_);
         settings_.mode = RenderMode::kRealTime;
         settings_.realtime_cut = 8;
+        settings_.realtime_rays = 0;
     }
     // filter_frames 0: the image is the plain running mean from the first frame.
     std::unique_ptr<Renderer> make_renderer(uint32_t filter_frames) {
@@ -110,6 +111,59 @@ TEST_F(RealTime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
         if (cut > 1) {
             EXPECT_GT(s.avg_cut, 0.9 * cut);
         }
+    }
+}
+
+TEST_F(RealTime, ShadowRayBudgetTracesAtMostItsRaysPerPixel) {
+    settings_.realtime_cut = 16;
+    for (uint32_t rays : {1u, 4u}) {
+        SCOPED_TRACE(testing::Message() << "rays " << rays);
+        settings_.realtime_rays = rays;
+        ASSERT_FALSE(render(*renderer_, settings_).empty());
+        const RenderStats& s = last_stats_;
+        std::printf("  cut 16, budget %u: %.2f shadow rays a lit pixel\n", rays,
+                    double(s.shadow_rays) / double(s.geometry_pixels));
+        EXPECT_EQ(s.realtime_rays, rays);
+        EXPECT_GT(s.shadow_rays, uint64_t(rays) * s.geometry_pixels / 2);
+        EXPECT_LE(s.shadow_rays, uint64_t(rays) * s.geometry_pixels);
+    }
+}
+
+// A budget of at least the cut traces one ray per cut node, as no budget does.
+TEST_F(RealTime, BudgetAsLargeAsTheCutChangesNothing) {
+    std::unique_ptr<Renderer> unbudgeted = make_renderer(16);
+    std::unique_ptr<Renderer> budgeted = make_renderer(16);
+    ASSERT_TRUE(unbudgeted && budgeted);
+    RenderSettings wide = settings_;
+    wide.realtime_rays = settings_.realtime_cut;
+    settings_.realtime_rays = 0;
+    std::vector<float> a, b;
+    for (int f = 0; f < 2; ++f) {
+        a = render(*unbudgeted, settings_);
+        b = render(*budgeted, wide);
+    }
+    ASSERT_FALSE(a.empty());
+    EXPECT_EQ(a, b);
+}
+
+// The picks are unbiased: their accumulated image converges to the reference
+// as 1 / frames, like the full cut's.
+TEST_F(RealTime, BudgetedImageConvergesToTheReference) {
+    std::unique_ptr<Renderer> plain = make_renderer(0);
+    ASSERT_TRUE(plain);
+    settings_.realtime_rays = 1;
+    std::vector<double> mse;
+    uint32_t frames = 0;
+    for (uint32_t target : {4u, 16u, 64u}) {
+        std::vector<float> image;
+        for (; frames < target; ++frames) image = render(*plain, settings_);
+        ASSERT_FALSE(image.empty());
+        mse.push_back(relative_mse(image, reference_));
+        std::printf("  one ray, %2u frames: relative MSE %.3g\n", target, mse.back());
+    }
+    for (size_t i = 1; i < mse.size(); ++i) {
+        EXPECT_LT(mse[i], mse[i - 1] / 2.5) << i;
+        EXPECT_GT(mse[i], mse[i - 1] / 8.0) << i;
     }
 }
 

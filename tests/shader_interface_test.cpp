@@ -267,6 +267,7 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kRepresentatives", kSpecRepresentatives},
         {"kRepresentativeSeed", kSpecRepresentativeSeed},
         {"kStochasticCut", kSpecStochasticCut},
+        {"kStochasticRays", kSpecStochasticRays},
     };
     return ids;
 }

@@ -45,6 +45,7 @@
 #include "editor_client/render/real_time_frames.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
+#include "lightcuts/device/limits.h"
 #include "editor_client/render/render_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/supersampled_render.h"
@@ -93,6 +94,7 @@ struct RenderOptions {
     uint32_t pixel_stride = 1;
     uint32_t tile_stride = 1;
     uint32_t realtime_cut = 16;
+    uint32_t realtime_rays = kDefaultRealtimeRays;
     uint32_t frames = 1;
     bool realtime_filter = true;
 };
@@ -239,6 +241,7 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representatives = *representatives;
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.realtime_cut;
+    settings.realtime_rays = options.realtime_rays;
     if (options.frames != 1 && settings.mode != RenderMode::kRealTime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
     const auto [width, height] = or_fail(parse_size(options.size));
@@ -644,6 +647,11 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--realtime-cut", options->realtime_cut,
                     "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (at most this many "
                     "shadow rays per pixel and frame)")
+        ->capture_default_str();
+    cmd->add_option("--realtime-rays", options->realtime_rays,
+                    "Real-time mode: shadow rays per pixel and frame, picked among the cut's "
+                    "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
+        ->check(CLI::Range(0u, kMaxStochasticRays))
         ->capture_default_str();
     cmd->add_option("--frames", options->frames,
                     "Real-time mode: frames of the still view whose mean is the image")

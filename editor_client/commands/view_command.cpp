@@ -49,6 +49,7 @@ struct ViewCommandOptions {
     std::string script;
     std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
     uint32_t realtime_cut = 16;
+    uint32_t realtime_rays = kDefaultRealtimeRays;
     std::string representatives = "tree";
     std::string shadows = "auto";
     std::string primary = "auto";
@@ -124,6 +125,7 @@ std::unique_ptr<EditorSession> open_session(const ViewCommandOptions& options, S
     session->set_mode(requested.mode);
     or_fail(session->set_representatives(options.representatives));
     or_fail(session->set_realtime_cut(options.realtime_cut));
+    or_fail(session->set_realtime_rays(options.realtime_rays));
     if (!options.tree.empty()) or_fail(session->import_tree_dump(options.tree));
     return session;
 }
@@ -239,6 +241,10 @@ void add_view_command(CLI::App& app) {
         ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime"}));
     cmd->add_option("--realtime-cut", options->realtime_cut,
                     "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (shadow rays per pixel and frame)")
+        ->capture_default_str();
+    cmd->add_option("--realtime-rays", options->realtime_rays,
+                    "Real-time mode: shadow rays per pixel and frame, picked among the cut's drawn "
+                    "lights (0: one per cut node)")
         ->capture_default_str();
     cmd->add_option("--representatives", options->representatives,
                     "Bound criterion: evaluate clusters through the tree's representatives, ones drawn "

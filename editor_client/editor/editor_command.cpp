@@ -166,7 +166,7 @@ Result<std::filesystem::path> parse_path(std::string_view name, std::string_view
     return std::filesystem::path(std::string(rest));
 }
 
-// error-ratio, max-cut, realtime-cut and exposure: one number each.
+// error-ratio, max-cut, realtime-cut, realtime-rays and exposure: one number each.
 Result<std::optional<EditorCommand>> parse_view_setting(std::string_view name, const Args& args) {
     using R = std::optional<EditorCommand>;
     if (name == "error-ratio") {
@@ -185,6 +185,12 @@ Result<std::optional<EditorCommand>> parse_view_setting(std::string_view name, c
         LC_TRY(nodes, args.integer(0, "K"));
         if (nodes > UINT32_MAX) return make_error("realtime-cut: K is too large");
         return R(cmd::RealTimeCut{static_cast<uint32_t>(nodes)});
+    }
+    if (name == "realtime-rays") {
+        if (Status ok = args.expect(1, 1, "S"); !ok) return make_error(ok.error());
+        LC_TRY(rays, args.integer(0, "S"));
+        if (rays > UINT32_MAX) return make_error("realtime-rays: S is too large");
+        return R(cmd::RealTimeRays{static_cast<uint32_t>(rays)});
     }
     // exposure
     if (Status ok = args.expect(1, 1, "E"); !ok) return make_error(ok.error());
@@ -257,7 +263,8 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
         if (name == "representatives") return R(cmd::RepresentativesChoice{std::string(args.word(0))});
         return R(cmd::Criterion{std::string(args.word(0))});
     }
-    if (name == "error-ratio" || name == "max-cut" || name == "realtime-cut" || name == "exposure")
+    if (name == "error-ratio" || name == "max-cut" || name == "realtime-cut" || name == "realtime-rays" ||
+        name == "exposure")
         return parse_view_setting(name, args);
     if (name == "camera") return parse_camera(args);
     if (name == "screenshot" || name == "save" || name == "save-view") return parse_file_command(name, line);
@@ -270,7 +277,7 @@ Result<std::optional<EditorCommand>> parse_editor_command(std::string_view line)
     }
     return make_error("unknown command '" + std::string(name) +
                       "' (add-light, add-lights, remove-light, move-light, select, undo, redo, "
-                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, realtime-cut, representatives, exposure, "
+                      "bake, cancel-bake, mode, criterion, error-ratio, max-cut, realtime-cut, realtime-rays, representatives, exposure, "
                       "camera, screenshot, save, save-view, wait-frames, wait-refined, quit)");
 }
 

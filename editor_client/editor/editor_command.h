@@ -67,6 +67,9 @@ struct MaxCut {
 struct RealTimeCut {
     uint32_t nodes = 16;
 };
+struct RealTimeRays {
+    uint32_t rays = 0;
+};
 struct RepresentativesChoice {
     std::string name;
 };
@@ -95,7 +98,7 @@ struct SaveView {
 using EditorCommand =
     std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select, cmd::Undo,
                  cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion, cmd::ErrorRatio,
-                 cmd::MaxCut, cmd::RealTimeCut, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
+                 cmd::MaxCut, cmd::RealTimeCut, cmd::RealTimeRays, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
                  cmd::Save, cmd::Quit, cmd::WaitFrames, cmd::WaitRefined, cmd::SaveView>;
 
 // One line without its comment; the error names the command and argument.

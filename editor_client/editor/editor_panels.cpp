@@ -56,6 +56,10 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
         int nodes = int(view.realtime_cut);
         if (ImGui::SliderInt("real-time cut", &nodes, 1, int(kMaxStochasticCut)))
             report(state, session.set_realtime_cut(uint32_t(std::max(nodes, 1))), "real-time cut set");
+        // 0 traces one ray per cut node; fewer rays are picked among the cut's lights.
+        int rays = int(view.realtime_rays);
+        if (ImGui::SliderInt("shadow rays", &rays, 0, int(kMaxStochasticRays)))
+            report(state, session.set_realtime_rays(uint32_t(std::max(rays, 0))), "shadow rays set");
     }
     if (view.criterion == CutCriterion::kBound) {
         // How a cluster is evaluated: importance keeps E = 0.005 within 2% at 99% of pixels

@@ -239,6 +239,10 @@ Status EditorSession::set_realtime_cut(uint32_t nodes) {
     return edit_view(view_, [&](ViewState& v) { v.realtime_cut = nodes; });
 }
 
+Status EditorSession::set_realtime_rays(uint32_t rays) {
+    return edit_view(view_, [&](ViewState& v) { v.realtime_rays = rays; });
+}
+
 Status EditorSession::set_representatives(std::string_view name) {
     std::optional<Representatives> representatives = parse_representatives(name);
     if (!representatives)

@@ -86,6 +86,8 @@ public:
     Status set_max_cut(uint32_t max_cut);
     // The real-time mode's cut per block, 1 to 32 nodes (render --realtime-cut).
     Status set_realtime_cut(uint32_t nodes);
+    // Its shadow rays per pixel and frame, 0 to 8; 0: one per cut node (render --realtime-rays).
+    Status set_realtime_rays(uint32_t rays);
     // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
     Status set_representatives(std::string_view name);
     Status set_camera(const RenderCamera& camera);

@@ -74,6 +74,8 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
                 return session.set_max_cut(c.max_cut);
             } else if constexpr (std::is_same_v<T, cmd::RealTimeCut>) {
                 return session.set_realtime_cut(c.nodes);
+            } else if constexpr (std::is_same_v<T, cmd::RealTimeRays>) {
+                return session.set_realtime_rays(c.rays);
             } else if constexpr (std::is_same_v<T, cmd::RepresentativesChoice>) {
                 return session.set_representatives(c.name);
             } else if constexpr (std::is_same_v<T, cmd::Exposure>) {

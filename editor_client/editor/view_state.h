@@ -20,6 +20,8 @@ struct ViewState {
     Representatives representatives = Representatives::kTree;
     // Real-time mode: nodes of each block's cut (shadow rays per pixel and frame).
     uint32_t realtime_cut = 16;
+    // Real-time mode: shadow rays per pixel and frame (0: one per cut node).
+    uint32_t realtime_rays = kDefaultRealtimeRays;
     RenderCamera camera;
     float exposure = 1.0f;
 
@@ -38,6 +40,7 @@ inline RenderSettings render_settings_for(const ViewState& view, uint32_t width,
     s.max_cut = view.max_cut;
     s.representatives = view.representatives;
     s.realtime_cut = view.realtime_cut;
+    s.realtime_rays = view.realtime_rays;
     s.width = width;
     s.height = height;
     s.camera = view.camera;

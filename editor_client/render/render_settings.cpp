@@ -221,6 +221,10 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
     if (settings.realtime_cut < 1 || settings.realtime_cut > kMaxStochasticCut)
         return make_error("real-time cut " + std::to_string(settings.realtime_cut) +
                           " is outside 1 .. " + std::to_string(kMaxStochasticCut));
+    if (settings.realtime_rays > kMaxStochasticRays)
+        return make_error("real-time shadow rays " + std::to_string(settings.realtime_rays) +
+                          " is outside 0 .. " + std::to_string(kMaxStochasticRays) +
+                          " (0: one per cut node)");
     const RenderCamera& c = settings.camera;
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return make_error("the camera has a non-finite coordinate");

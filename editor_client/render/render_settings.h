@@ -73,6 +73,16 @@ struct RenderCamera {
 // Rows at the bottom of a cutsize image given to the colour scale bar.
 inline constexpr uint32_t kScaleBarRows = 16;
 
+// The real-time mode's shadow rays per pixel unless asked otherwise (render
+// --realtime-rays; 0: one per cut node).
+inline constexpr uint32_t kDefaultRealtimeRays = 0;
+
+// The real-time mode's shadow rays per pixel and frame at most: the budget,
+// or one per cut node where it is 0 or the cut is smaller.
+inline uint32_t realtime_ray_budget(uint32_t cut, uint32_t rays) {
+    return rays == 0 || rays > cut ? cut : rays;
+}
+
 struct RenderSettings {
     RenderMode mode = RenderMode::kReference;
     CutCriterion criterion = CutCriterion::kRadius;
@@ -103,6 +113,10 @@ struct RenderSettings {
     // The real-time mode (RenderMode::kRealTime): nodes in each 8x8 block's
     // cut, so at most this many shadow rays per pixel and frame.
     uint32_t realtime_cut = 16;
+    // Its shadow rays per pixel and frame, picked among the cut's drawn lights
+    // by their unshadowed radiance (shaders/shadow_ray_budget.glsl); 0 traces
+    // one per cut node.
+    uint32_t realtime_rays = kDefaultRealtimeRays;
 
     bool operator==(const RenderSettings&) const = default;
 };

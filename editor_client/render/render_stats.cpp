@@ -89,6 +89,7 @@ void add_cut_settings(const RenderStats& s, nlohmann::json& j) {
     }
     if (s.realtime_cut > 0) {
         j["realtime_cut"] = s.realtime_cut;
+        j["realtime_rays"] = s.realtime_rays;
         j["realtime_frames"] = s.realtime_frames;
     }
 }

@@ -55,6 +55,7 @@ struct RenderStats {
     // The real-time mode: nodes per block's cut, and the frames its history
     // holds after this one (the image is their mean).
     uint32_t realtime_cut = 0;
+    uint32_t realtime_rays = 0;  // the shadow-ray budget asked for (0: one per cut node)
     uint32_t realtime_frames = 0;
     uint64_t loop_limit_stops = 0;  // pixels whose walk or shadow ray the device's loop limit cut short
     // Shadows: simulated or not (effects), rays traced, the occluders' size.

@@ -413,6 +413,7 @@ void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& s
     }
     if (settings.mode == RenderMode::kRealTime) {
         stats.realtime_cut = settings.realtime_cut;
+        stats.realtime_rays = settings.realtime_rays;
         stats.realtime_frames = passes_->real_time().frames_accumulated();
     }
     if (mode_searches_cuts(settings.mode) && settings.criterion == CutCriterion::kBound) {

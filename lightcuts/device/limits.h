@@ -24,6 +24,9 @@ LC_CONST uint kShadowUnroll = 1u;
 // The real-time mode's cut per 8x8 block: at most this many nodes (Lin and
 // Yuksel 2020 use 32), each one drawn light and one shadow ray per pixel.
 LC_CONST uint kMaxStochasticCut = 32u;
+// The real-time mode's shadow-ray budget (RenderSettings::realtime_rays): at
+// most this many rays per pixel, picked among the cut's drawn lights.
+LC_CONST uint kMaxStochasticRays = 8u;
 // Invocations in a compute workgroup at most (RendererOptions::workgroup_size
 // squared): the real-time mode's block keeps one flag per pixel in shared memory.
 LC_CONST uint kMaxWorkgroupInvocations = 256u;

@@ -55,6 +55,9 @@ LC_CONST uint kSpecRepresentativeSeed = 26u;
 // The real-time mode (stochastic_cuts.comp): nodes in a block's cut, at most
 // kMaxStochasticCut (limits.h).
 LC_CONST uint kSpecStochasticCut = 28u;
+// Its shadow rays per pixel, picked among the cut's drawn lights (0: one per
+// cut node; shaders/shadow_ray_budget.glsl).
+LC_CONST uint kSpecStochasticRays = 30u;
 
 LC_DEVICE_END
 

@@ -49,7 +49,8 @@ Status RealTimePass::prepare(PipelineCache& pipelines, const Frame& frame) {
             // Its cut nodes are evaluated through its own draws (stochastic_draw.glsl),
             // not a representative: one pipeline whatever --representatives says.
             spec.set_uint(kSpecRepresentatives, device::kRepresentativesTree)
-                .set_uint(kSpecStochasticCut, frame.settings->realtime_cut);
+                .set_uint(kSpecStochasticCut, frame.settings->realtime_cut)
+                .set_uint(kSpecStochasticRays, frame.settings->realtime_rays);
         }
         Result<VkPipeline> pipeline = pipelines.compute(layout_.handle(), modules[stage], spec);
         if (!pipeline) return make_error("real-time pipeline: " + pipeline.error());
