@@ -64,9 +64,10 @@ for path, how in ((sys.argv[1], "shared cuts"), (sys.argv[2], "shared cuts, impo
 PY
 
 # The real-time mode on the same room and view: stochastic lightcuts, one cut per 8x8 block of at
-# most 16 nodes, one light drawn in each node per pixel, so at most 16 shadow rays per pixel whatever
-# the number of lights; unbiased, so it trades lightcuts' bias for noise that the frames of a still
-# view average away. One frame, and the mean of 64, each against the exact reference.
+# most 16 nodes, one light drawn in each node per pixel, shaded without visibility, then 4 of them
+# picked by their light for a shadow ray (--realtime-rays, the default): 4 shadow rays per pixel
+# whatever the number of lights; unbiased, so it trades lightcuts' bias for noise that the frames of
+# a still view average away. One frame, and the mean of 64, each against the exact reference.
 for frames in 1 64; do
   "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --size 128x128 \
       --mode realtime --realtime-cut 16 --frames "$frames" --compare-reference \

@@ -13,7 +13,7 @@ import numpy as np  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from bench_images import error_columns, read_pfm, write_rows  # noqa: E402
 
-COLUMNS = ["lights", "size", "method", "realtime_cut", "frames", "gpu_ms_per_frame", "gpu_ms_total",
+COLUMNS = ["lights", "size", "method", "realtime_cut", "realtime_rays", "frames", "gpu_ms_per_frame", "gpu_ms_total",
            "shadow_rays_per_pixel", "rel_mse", "rel_err_mean", "rel_err_p99", "within_2pct", "max_err"]
 
 
@@ -26,7 +26,8 @@ def row(work, tag, reference, geometry_pixels, lights, size):
     pfm = os.path.join(work, tag + ".pfm")
     frames = int(stats.get("realtime_frames", 1)) if "realtime_cut" in stats else 1
     r = {"lights": lights, "size": size, "method": tag.split("_")[0],
-         "realtime_cut": stats.get("realtime_cut", ""), "frames": frames,
+         "realtime_cut": stats.get("realtime_cut", ""), "realtime_rays": stats.get("realtime_rays", ""),
+         "frames": frames,
          "gpu_ms_per_frame": round(stats["render_ms"], 2),
          "gpu_ms_total": round(stats["render_ms"] * frames, 2),
          "shadow_rays_per_pixel": round(stats["shadow_rays"] / max(stats["geometry_pixels"], 1), 2),
@@ -39,13 +40,20 @@ def row(work, tag, reference, geometry_pixels, lights, size):
 def plot(rows, out, device):
     fig, (by_frames, by_time) = plt.subplots(1, 2, figsize=(11, 4.2))
     deterministic = next(r for r in rows if r["method"] == "lightcuts")
+    styles = {0: "o-", 4: "s--", 1: "^:"}
     for k in sorted({r["realtime_cut"] for r in rows if r["method"] == "realtime"}):
-        series = [r for r in rows if r["method"] == "realtime" and r["realtime_cut"] == k]
-        frames = np.array([r["frames"] for r in series])
-        mse = np.array([r["rel_mse"] for r in series])
-        by_frames.loglog(frames, mse, "o-", label=f"real time, K = {k}")
-        by_time.loglog([r["gpu_ms_total"] for r in series], [r["rel_err_mean"] for r in series], "o-",
-                       label=f"real time, K = {k}")
+        colour = f"C{[8, 16, 32].index(k) if k in (8, 16, 32) else 3}"
+        for s in sorted({r["realtime_rays"] for r in rows if r["method"] == "realtime"}):
+            series = [r for r in rows if r["method"] == "realtime" and r["realtime_cut"] == k
+                      and r["realtime_rays"] == s]
+            if not series:
+                continue
+            label = f"K = {k}, " + ("a ray per node" if s == 0 else f"{s} rays")
+            frames = np.array([r["frames"] for r in series])
+            mse = np.array([r["rel_mse"] for r in series])
+            by_frames.loglog(frames, mse, styles.get(s, "x-"), color=colour, label=label)
+            by_time.loglog([r["gpu_ms_total"] for r in series], [r["rel_err_mean"] for r in series],
+                           styles.get(s, "x-"), color=colour, label=label)
     first = [r for r in rows if r["method"] == "realtime" and r["frames"] == 1][0]
     f = np.array([1, 64])
     by_frames.loglog(f, first["rel_mse"] / f, "k:", label="1 / frames")
@@ -68,7 +76,8 @@ def main():
     work, base, lights, size, csv_out, png_out = sys.argv[1:7]
     reference = read_pfm(os.path.join(base, "reference.pfm"))
     geometry_pixels = json.load(open(os.path.join(base, "reference.json")))["geometry_pixels"]
-    tags = ["lightcuts_0.02"] + [f"realtime_{k}_{f}" for k in (8, 16, 32) for f in (1, 4, 16, 64)]
+    tags = ["lightcuts_0.02"] + [f"realtime_{k}_{s}_{f}" for k in (8, 16, 32) for s in (0, 4, 1)
+                                 for f in (1, 4, 16, 64)]
     tags += [f"filtered_{k}" for k in (8, 16, 32)]
     rows = [row(work, t, reference, geometry_pixels, lights, size) for t in tags]
     ref_stats = json.load(open(os.path.join(base, "reference.json")))

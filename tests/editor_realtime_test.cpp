@@ -16,6 +16,7 @@
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/headless_window.h"
+#include "lightcuts/device/limits.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 
@@ -48,6 +49,26 @@ TEST(EditorRealTime, CutIsAValidatedViewControl) {
     ASSERT_TRUE(parsed->has_value());
     EXPECT_EQ(std::get<cmd::RealTimeCut>(**parsed).nodes, 12u);
     EXPECT_FALSE(parse_editor_command("realtime-cut").ok());
+}
+
+TEST(EditorRealTime, ShadowRayBudgetIsAValidatedViewControl) {
+    EditorSession session(test::lit_room(3));
+    EXPECT_EQ(session.view().realtime_rays, kDefaultRealtimeRays);
+    EXPECT_TRUE(session.set_realtime_rays(0).ok()) << "0: one ray per cut node";
+    EXPECT_TRUE(session.set_realtime_rays(2).ok());
+    const Status refused = session.set_realtime_rays(kMaxStochasticRays + 1);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().find("shadow rays"), std::string::npos) << refused.error();
+    EXPECT_EQ(session.view().realtime_rays, 2u) << "a refused value leaves the view as it was";
+    EXPECT_EQ(render_settings_for(session.view(), 4, 4, true).realtime_rays, 2u);
+    Result<std::optional<EditorCommand>> parsed = parse_editor_command("realtime-rays 1");
+    ASSERT_TRUE(parsed.ok()) << parsed.error();
+    ASSERT_TRUE(parsed->has_value());
+    EXPECT_EQ(std::get<cmd::RealTimeRays>(**parsed).rays, 1u);
+    EXPECT_FALSE(parse_editor_command("realtime-rays").ok());
+    EXPECT_EQ(realtime_ray_budget(16, 0), 16u);
+    EXPECT_EQ(realtime_ray_budget(16, 4), 4u);
+    EXPECT_EQ(realtime_ray_budget(2, 4), 2u) << "a cut smaller than the budget traces a ray per node";
 }
 
 TEST(EditorRealTime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {

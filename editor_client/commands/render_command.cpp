@@ -172,10 +172,11 @@ RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
 // The real-time mode's part of the summary line: per frame, over how many.
 std::string realtime_summary(const RenderStats& stats) {
     if (stats.realtime_cut == 0) return "";
-    char text[160];
-    std::snprintf(text, sizeof text, " a frame (mean of %u), %.2f shadow rays a pixel",
+    char text[200];
+    std::snprintf(text, sizeof text, " a frame (mean of %u), %.2f shadow rays a pixel (cut of %u, at most %u)",
                   stats.realtime_frames,
-                  double(stats.shadow_rays) / double(std::max<uint64_t>(stats.geometry_pixels, 1)));
+                  double(stats.shadow_rays) / double(std::max<uint64_t>(stats.geometry_pixels, 1)),
+                  stats.realtime_cut, realtime_ray_budget(stats.realtime_cut, stats.realtime_rays));
     return text;
 }
 

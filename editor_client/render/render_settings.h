@@ -75,7 +75,7 @@ inline constexpr uint32_t kScaleBarRows = 16;
 
 // The real-time mode's shadow rays per pixel unless asked otherwise (render
 // --realtime-rays; 0: one per cut node).
-inline constexpr uint32_t kDefaultRealtimeRays = 0;
+inline constexpr uint32_t kDefaultRealtimeRays = 4;
 
 // The real-time mode's shadow rays per pixel and frame at most: the budget,
 // or one per cut node where it is 0 or the cut is smaller.
