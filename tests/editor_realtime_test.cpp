@@ -119,7 +119,8 @@ TEST(EditorRealTime, XvfbViewSwitchesBetweenRealTimeAndLightcuts) {
     {
         std::ofstream out(script_path);
         out << "wait-refined\nscreenshot " << (dir / "realtime.png").string() << "\n"
-            << "mode lightcuts\nwait-refined\nmode realtime\nrealtime-cut 4\nwait-frames 3\nquit\n";
+            << "mode lightcuts\nwait-refined\nmode realtime\nrealtime-cut 4\nwait-frames 2\nrealtime-rays 1\n"
+            << "wait-frames 2\nquit\n";
     }
     const std::filesystem::path log = dir / "view.log";
     const std::string command = "xvfb-run -a " + (test::bin_dir() / "editor_client").string() + " view " +
