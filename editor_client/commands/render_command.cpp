@@ -5,7 +5,8 @@
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
-//   [--sweep-error E1,E2,... [--sweep-csv OUT.csv]]
+//   [--sweep-error E1,E2,... | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
+//   [--sweep-csv OUT.csv]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 //   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
 // Renders one frame headless on Vulkan and writes the 8-bit image, optionally
@@ -39,6 +40,7 @@
 #include "editor_client/render/environment_census.h"
 #include "editor_client/render/error_stats.h"
 #include "editor_client/render/error_sweep.h"
+#include "editor_client/render/realtime_sweep.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/indirect_census.h"
 #include "editor_client/render/pixel_stride.h"
@@ -78,6 +80,8 @@ struct RenderOptions {
     std::string primary = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
+    std::string sweep_realtime;             // "8,16,32": the real-time mode's table per cut size
+    std::string sweep_frames = "1,4,16,64";  // measured after these many frames
     bool compare_reference = false;
     std::string size = "512x512";
     std::string camera;
@@ -211,6 +215,8 @@ struct RenderRequest {
     bool error_mode = false;  // `error`: lightcuts shown as its error against the reference
     bool compare = false;     // also render the reference and measure the error
     std::vector<float> sweep_ratios;
+    std::vector<uint32_t> sweep_cuts;  // --sweep-realtime
+    std::vector<uint32_t> sweep_frames;
     uint32_t width = 0;  // the written image's size (a stride's is smaller than the frame's)
     uint32_t height = 0;
     std::vector<PixelRegion> tiles;  // --tile-stride: the tiles rendered
@@ -263,7 +269,13 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
         request.sweep_ratios = or_fail(parse_error_list(options.sweep_error));
         if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
     }
-    if (!options.sweep_csv.empty() && request.sweep_ratios.empty()) fail("--sweep-csv needs --sweep-error");
+    if (!options.sweep_realtime.empty()) {
+        if (mode != RenderMode::kRealTime) fail("--sweep-realtime needs --mode realtime and a tree source");
+        request.sweep_cuts = or_fail(parse_count_list(options.sweep_realtime, "--sweep-realtime", 1, kMaxStochasticCut));
+        request.sweep_frames = or_fail(parse_count_list(options.sweep_frames, "--sweep-frames", 1, 4096));
+    }
+    if (!options.sweep_csv.empty() && request.sweep_ratios.empty() && request.sweep_cuts.empty())
+        fail("--sweep-csv needs --sweep-error or --sweep-realtime");
     if (request.compare && !mode_needs_tree(mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or error)");
     if (!request.sweep_ratios.empty() && mode == RenderMode::kRealTime)
@@ -333,7 +345,8 @@ std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const Rend
     const std::optional<PrimaryChoice> primary = parse_primary_choice(options.primary);
     if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
     renderer_options.primary = *primary;
-    if (!options.realtime_filter) renderer_options.realtime.filter_frames = 0;
+    // A sweep measures the estimator: the plain mean of the frames.
+    if (!options.realtime_filter || !options.sweep_realtime.empty()) renderer_options.realtime.filter_frames = 0;
     return or_fail(Renderer::create(context, scene, tree, renderer_options));
 }
 
@@ -349,6 +362,18 @@ void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderR
     print_error_sweep(stdout, sweep);
     if (!options.sweep_csv.empty()) {
         if (Status written = write_error_sweep_csv(options.sweep_csv, sweep); !written) fail(written.error());
+    }
+}
+
+// --sweep-realtime: the real-time mode's price of accuracy, printed (and written as CSV).
+void print_realtime_sweep_of(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
+    RealTimeSweep sweep =
+        or_fail(run_realtime_sweep(renderer, request.settings, request.sweep_cuts, request.sweep_frames));
+    std::printf("real-time sweep, %u shadow rays a pixel at most (0: one per cut node), %ux%u:\n",
+                request.settings.realtime_rays, request.width, request.height);
+    print_realtime_sweep(stdout, sweep);
+    if (!options.sweep_csv.empty()) {
+        if (Status written = write_realtime_sweep_csv(options.sweep_csv, sweep); !written) fail(written.error());
     }
 }
 
@@ -516,6 +541,7 @@ void run_render(const RenderOptions& options) {
     const std::optional<EffectDecision> sky_decision =
         prepare_renderer(*renderer, options, scene, source, tree.get());
     if (!request.sweep_ratios.empty()) print_sweep(*renderer, options, request);
+    if (!request.sweep_cuts.empty()) print_realtime_sweep_of(*renderer, options, request);
     const std::optional<SupersampleRequest> spp = supersample_request(options, request);
     const SupersampleRequest* eye_rays = spp ? &*spp : nullptr;
     const std::vector<SceneLight> classic = classic_lights_of(scene);
@@ -596,8 +622,17 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
                     "GPU time, speedup, cut sizes and measured error");
+    cmd->add_option("--sweep-realtime", options->sweep_realtime,
+                    "With --mode realtime: print the real-time mode's price of accuracy on this "
+                    "scene and camera: for each cut size of the list (e.g. 8,16,32) the still "
+                    "view's frames accumulated, against one reference, after each count of "
+                    "--sweep-frames: GPU time, shadow rays and measured error");
+    cmd->add_option("--sweep-frames", options->sweep_frames,
+                    "With --sweep-realtime: the frame counts measured, ascending")
+        ->capture_default_str();
     cmd->add_option("--sweep-csv", options->sweep_csv,
-                    "With --sweep-error: also write the table as CSV (one row per ratio)");
+                    "With --sweep-error or --sweep-realtime: also write the table as CSV (one row per "
+                    "ratio, or per cut size and frame count)");
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");

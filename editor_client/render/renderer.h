@@ -161,6 +161,8 @@ public:
     float shadow_bias() const { return occluders_.bias(); }
     // The real-time mode: frames in its history after the last frame (its mean is the image).
     uint32_t real_time_frames() const { return passes_->real_time().frames_accumulated(); }
+    // The next real-time frame starts a history of its own, whatever the last one was.
+    void restart_real_time() { passes_->real_time().drop_history(); }
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
     // the device's loop budget (all of them in one on devices without one).
     uint32_t reference_chunk() const;
