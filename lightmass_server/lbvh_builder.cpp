@@ -47,24 +47,8 @@ struct SplitNode {
     int32_t left = -1, right = -1;
 };
 
-// Where [begin, end) splits: after the last code sharing the range's highest
-// differing bit with the first; the middle when every code is equal.
 uint32_t split_position(const std::vector<Keyed>& keys, uint32_t begin, uint32_t end) {
-    const uint64_t first = keys[begin].code;
-    const uint64_t last = keys[end - 1].code;
-    if (first == last) return begin + (end - begin) / 2;
-    const int common_prefix = std::countl_zero(first ^ last);
-    // Binary search for the first code that differs from `first` in that bit.
-    uint32_t lo = begin, hi = end - 1;  // keys[lo] has the bit clear, keys[hi] set
-    while (hi - lo > 1) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (std::countl_zero(first ^ keys[mid].code) > common_prefix) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    return hi;
+    return lbvh_split_position(keys, begin, end);
 }
 
 // Leaves sit in input order, far from their Morton neighbours, so the lowest
@@ -295,17 +279,13 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
         [](const Bounds& a, const Bounds& b) {
             return Bounds{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
         });
-    // One scale for all axes keeps the curve's cells cubic.
-    const glm::dvec3 size = bounds.hi - bounds.lo;
-    const double extent = std::max({size.x, size.y, size.z});
-    const double cells = double((1u << kBitsPerAxis) - 1);
-    const glm::dvec3 scale(extent > 0.0 ? cells / extent : 0.0);
+    const LbvhCurve curve = lbvh_curve(bounds.lo, bounds.hi);
 
     std::vector<Keyed> keys(leaves.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              keys[i] = Keyed{morton_code(point_of(leaves[i]), bounds.lo, scale), leaves[i]};
+                              keys[i] = Keyed{lbvh_code(arena.lights[leaves[i]], curve), leaves[i]};
                           }
                       });
     timer.lap("lbvh: bounds and Morton codes");
@@ -323,6 +303,35 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
 }  // namespace lc::bake
 
 namespace lc::bake {
+
+LbvhCurve lbvh_curve(const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dvec3 size = hi - lo;
+    const double extent = std::max({size.x, size.y, size.z});
+    const double cells = double((1u << kBitsPerAxis) - 1);
+    return LbvhCurve{lo, glm::dvec3(extent > 0.0 ? cells / extent : 0.0)};
+}
+
+uint64_t lbvh_code(const SceneLight& light, const LbvhCurve& curve) {
+    return morton_code(light_point(light), curve.lo, curve.scale);
+}
+
+uint32_t lbvh_split_position(std::span<const LbvhKey> keys, uint32_t begin, uint32_t end) {
+    const uint64_t first = keys[begin].code;
+    const uint64_t last = keys[end - 1].code;
+    if (first == last) return begin + (end - begin) / 2;
+    const int common_prefix = std::countl_zero(first ^ last);
+    // Binary search for the first code that differs from `first` in that bit.
+    uint32_t lo = begin, hi = end - 1;  // keys[lo] has the bit clear, keys[hi] set
+    while (hi - lo > 1) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (std::countl_zero(first ^ keys[mid].code) > common_prefix) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return hi;
+}
 
 Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys, std::span<const SceneLight> lights,
                                                   const BuildOptions& options) {

@@ -71,6 +71,15 @@ struct BuildResult {
     std::shared_ptr<const ResultChannelFile> channel_file;
 };
 
+// The per-type trees: one per light type, then one per type of the indirect
+// lights (VPLs), then one per type of the radiosity patches. Indirect lights
+// never share a cluster with direct ones (so the renderer can clamp or skip
+// them by subtree), nor patches with VPLs (patches are not clamped). Direct
+// groups come first, so a tree without indirect lights is built as before.
+// The groups' trees are joined left to right under junction nodes.
+inline constexpr size_t kLightGroupCount = 3 * kLightTypeCount;
+size_t light_group(const SceneLight& light);
+
 // Lights must already be validated (protocol/channel_records.h); every light
 // given becomes a leaf. Deterministic for equal lights, options and seed.
 // A cancelled build returns an error of kind ErrorKind::kCancelled.
