@@ -60,24 +60,6 @@ std::vector<std::pair<uint32_t, KeyRange>> unit_ranges(const SortedShare& share,
     return units;
 }
 
-// The unit's nodes level by level from its root, as exported (left child
-// first): >= 0 a leaf's global light index, <= -2 an inner ordinal.
-std::vector<std::vector<int32_t>> unit_levels(const SortedShare& share, const LbvhUnit& unit) {
-    std::vector<std::vector<int32_t>> levels;
-    levels.push_back({unit.inner.empty() ? int32_t(share.keys[unit.begin].leaf) : encode_inner_child(0)});
-    for (;;) {
-        std::vector<int32_t> next;
-        for (int32_t ref : levels.back()) {
-            if (ref >= 0) continue;
-            const BuildNode& node = unit.inner[size_t(-2 - ref)];
-            for (int32_t child : {node.left, node.right})
-                if (child != kNoBuildChild) next.push_back(child);
-        }
-        if (next.empty()) return levels;
-        levels.push_back(std::move(next));
-    }
-}
-
 // A unit's leaves by global light index: (index, key offset in the unit).
 class UnitLeaves {
 public:
@@ -95,31 +77,27 @@ private:
     std::vector<std::pair<uint32_t, uint32_t>> by_index_;
 };
 
-// Every node's exported index: bases[l] + its place in level l.
-struct UnitPositions {
-    std::vector<int32_t> leaf, inner;  // by key offset, by inner ordinal
-    int32_t of(const UnitLeaves& leaves, int32_t ref) const {
-        if (ref >= 0) {
-            const int64_t k = leaves.offset_of(uint32_t(ref));
-            return k < 0 ? -1 : leaf[size_t(k)];
+// The unit's nodes level by level from its root, as exported (left child
+// first): >= 0 a leaf (its key offset in the unit with `leaves`, else its
+// global light index), <= -2 an inner ordinal.
+Result<std::vector<std::vector<int32_t>>> unit_levels(const SortedShare& share, const LbvhUnit& unit,
+                                                      const UnitLeaves* leaves) {
+    std::vector<std::vector<int32_t>> levels;
+    levels.push_back({unit.inner.empty() ? (leaves ? 0 : int32_t(share.keys[unit.begin].leaf)) : encode_inner_child(0)});
+    for (;;) {
+        std::vector<int32_t> next;
+        for (int32_t ref : levels.back()) {
+            if (ref >= 0) continue;
+            const BuildNode& node = unit.inner[size_t(-2 - ref)];
+            for (int32_t child : {node.left, node.right}) {
+                const int64_t leaf = child >= 0 && leaves ? leaves->offset_of(uint32_t(child)) : child;
+                if (leaf < 0 && child >= 0) return make_error("a unit's node names a light outside it");
+                if (child != kNoBuildChild) next.push_back(int32_t(leaf));
+            }
         }
-        return inner[size_t(-2 - ref)];
+        if (next.empty()) return levels;
+        levels.push_back(std::move(next));
     }
-};
-
-Result<UnitPositions> unit_positions(const LbvhUnit& unit, const UnitLeaves& leaves,
-                                     const std::vector<std::vector<int32_t>>& levels, std::span<const uint32_t> bases) {
-    if (bases.size() != levels.size()) return make_error("rank 0 sent a unit the wrong number of depths");
-    UnitPositions positions{std::vector<int32_t>(unit.end - unit.begin, -1), std::vector<int32_t>(unit.inner.size(), -1)};
-    for (size_t l = 0; l < levels.size(); ++l) {
-        for (size_t j = 0; j < levels[l].size(); ++j) {
-            const int32_t ref = levels[l][j];
-            const int64_t k = ref >= 0 ? leaves.offset_of(uint32_t(ref)) : 0;
-            if (k < 0) return make_error("a unit's node names a light outside it");
-            (ref >= 0 ? positions.leaf[size_t(k)] : positions.inner[size_t(-2 - ref)]) = int32_t(bases[l] + j);
-        }
-    }
-    return positions;
 }
 
 }  // namespace
@@ -136,7 +114,9 @@ Result<std::vector<LbvhUnit>> merge_units(const SortedShare& share, const ShareN
             if (!merged) return merged.failure();
             unit.inner = std::move(merged.value());
         }
-        for (const std::vector<int32_t>& level : unit_levels(share, unit)) unit.level_counts.push_back(uint32_t(level.size()));
+        Result<std::vector<std::vector<int32_t>>> levels = unit_levels(share, unit, nullptr);
+        if (!levels) return levels.failure();
+        for (const std::vector<int32_t>& level : *levels) unit.level_counts.push_back(uint32_t(level.size()));
         units.push_back(std::move(unit));
     }
     return units;
@@ -158,27 +138,34 @@ UnitSummary summarize_unit(const SortedShare& share, const LbvhUnit& unit) {
 
 Result<int32_t> write_unit_records(int fd, const SortedShare& share, const LbvhUnit& unit,
                                    std::span<const uint32_t> bases) {
-    const std::vector<std::vector<int32_t>> levels = unit_levels(share, unit);
     const UnitLeaves leaves(share, unit);
-    Result<UnitPositions> positions = unit_positions(unit, leaves, levels, bases);
-    if (!positions) return positions.failure();
+    Result<std::vector<std::vector<int32_t>>> levels = unit_levels(share, unit, &leaves);
+    if (!levels) return levels.failure();
+    if (bases.size() != levels->size()) return make_error("rank 0 sent a unit the wrong number of depths");
+    std::vector<int32_t> leaf_index(unit.end - unit.begin, -1);  // exported, by key offset
+    for (size_t l = 0; l < levels->size(); ++l)
+        for (size_t j = 0; j < (*levels)[l].size(); ++j)
+            if ((*levels)[l][j] >= 0) leaf_index[size_t((*levels)[l][j])] = int32_t(bases[l] + j);
+    const auto representative_of = [&](const BuildNode& node) { return leaves.offset_of(node.representative); };
     LightTree chunk;
-    for (size_t l = 0; l < levels.size(); ++l) {
-        for (size_t j = 0; j < levels[l].size(); ++j) {
-            const int32_t ref = levels[l][j];
+    for (size_t l = 0; l < levels->size(); ++l) {
+        // Children sit side by side in the next depth, in this depth's order.
+        uint32_t next_child = l + 1 < levels->size() ? bases[l + 1] : 0;
+        for (size_t j = 0; j < (*levels)[l].size(); ++j) {
+            const int32_t ref = (*levels)[l][j];
             if (ref >= 0) {
-                const SceneLight& light = share.lights[unit.begin + size_t(leaves.offset_of(uint32_t(ref)))];
-                chunk.nodes.push_back(export_node(make_leaf(light, uint32_t(ref)), light, kNoChild, int32_t(bases[l] + j)));
+                const SceneLight& light = share.lights[unit.begin + size_t(ref)];
+                const BuildNode leaf = make_leaf(light, share.keys[unit.begin + size_t(ref)].leaf);
+                chunk.nodes.push_back(export_node(leaf, light, kNoChild, int32_t(bases[l] + j)));
             } else {
                 const BuildNode& node = unit.inner[size_t(-2 - ref)];
-                const int32_t left = positions->of(leaves, node.left);
-                const int64_t representative = leaves.offset_of(node.representative);
-                if (left < 0 || positions->of(leaves, node.right) != left + 1 || representative < 0)
-                    return make_error("a unit's children or representative are not where the export puts them");
-                chunk.nodes.push_back(export_node(node, share.lights[unit.begin + size_t(representative)], left,
-                                                  positions->leaf[size_t(representative)]));
+                const int64_t representative = representative_of(node);
+                if (representative < 0) return make_error("a unit's representative is outside it");
+                chunk.nodes.push_back(export_node(node, share.lights[unit.begin + size_t(representative)],
+                                                  int32_t(next_child), leaf_index[size_t(representative)]));
+                next_child += uint32_t(node.left != kNoBuildChild) + uint32_t(node.right != kNoBuildChild);
             }
-            if (chunk.nodes.size() == kRecordsPerWrite || j + 1 == levels[l].size()) {
+            if (chunk.nodes.size() == kRecordsPerWrite || j + 1 == (*levels)[l].size()) {
                 const uint64_t first = bases[l] + j + 1 - chunk.nodes.size();
                 if (Status written = write_records_at(fd, first, chunk); !written) return written.failure();
                 chunk.nodes.clear();
@@ -186,8 +173,8 @@ Result<int32_t> write_unit_records(int fd, const SortedShare& share, const LbvhU
         }
     }
     if (unit.inner.empty()) return int32_t(bases[0]);
-    const int64_t root_representative = leaves.offset_of(unit.inner[0].representative);
-    return root_representative < 0 ? -1 : positions->leaf[size_t(root_representative)];
+    const int64_t root_representative = representative_of(unit.inner[0]);
+    return root_representative < 0 ? -1 : leaf_index[size_t(root_representative)];
 }
 
 Status write_records_at(int fd, uint64_t first, const LightTree& chunk) {

@@ -126,6 +126,14 @@ Result<MadeLights<IndirectLight>> indirect_lights(const RankJob& job, const Shar
     return MadeLights<IndirectLight>{std::move(all.value()), ShareIndex{0, index.total}};
 }
 
+// "lbvh over N ranks (rank 0's clock): spread and merge X ms, ..."
+std::string phase_census(const BuildReport& report, int ranks) {
+    std::string text = "lbvh over " + std::to_string(ranks) + " ranks (rank 0's clock):";
+    for (const BuildPhase& phase : report.phases)
+        text += (text.back() == ':' ? " " : ", ") + phase.name + " " + std::to_string(int64_t(phase.ms)) + " ms";
+    return text;
+}
+
 // This rank's lights with their indices in the tree's input order (scene,
 // area, sky, bounces): rank 0 adds the scene's and the sky's, which every
 // rank holds.
@@ -222,6 +230,7 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     if (!built) return built.failure();
     if (!share.root()) return std::optional<BuildResult>{};
     built->report.effects = std::move(notes.effects);
+    if (!gather) built->report.effects.push_back(phase_census(built->report, ranks));
     built->report.warnings.insert(built->report.warnings.begin(), notes.warnings.begin(), notes.warnings.end());
     return std::optional<BuildResult>(std::move(built.value()));
 }

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <mpi.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "lightcuts/status_macros.h"
+#include "lightmass_server/build_phase_timer.h"
 #include "lightmass_server/mpi/rank/lbvh_top.h"
 #include "lightmass_server/mpi/rank/lbvh_units.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
@@ -81,26 +83,29 @@ std::vector<uint32_t> scatter_bases(const std::vector<uint32_t>& all, const std:
     return bases;
 }
 
-// This rank's units' records, into the file rank 0 made; each unit's root's representative's index.
+// This rank's units' records, into the file rank 0 made, units on several
+// threads (each writes its own records); each unit's root's representative's index.
 Result<std::vector<int32_t>> write_units(const fs::path& path, const SortedShare& share,
                                          const std::vector<LbvhUnit>& units, const std::vector<uint32_t>& bases) {
+    std::vector<size_t> base_at{0};
+    for (const LbvhUnit& unit : units) base_at.push_back(base_at.back() + unit.level_counts.size());
+    if (base_at.back() != bases.size())
+        return make_error("rank 0 sent " + std::to_string(bases.size()) + " bases for " + std::to_string(base_at.back()));
     const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) return make_error("cannot open " + path.string() + ": " + std::strerror(errno));
+    std::vector<Result<int32_t>> written(units.size(), int32_t{-1});
+    tbb::parallel_for(size_t{0}, units.size(), [&](size_t u) {
+        written[u] = write_unit_records(fd, share, units[u], std::span(bases).subspan(base_at[u], base_at[u + 1] - base_at[u]));
+    });
     std::vector<int32_t> representatives;
-    size_t at = 0;
-    for (const LbvhUnit& unit : units) {
-        if (at + unit.level_counts.size() > bases.size()) break;
-        Result<int32_t> written = write_unit_records(fd, share, unit, std::span(bases).subspan(at, unit.level_counts.size()));
-        if (!written || *written < 0) {
+    for (Result<int32_t>& unit : written) {
+        if (!unit || *unit < 0) {
             ::close(fd);
-            return written ? make_error("a unit's representative has no index") : written.failure();
+            return unit ? make_error("a unit's representative has no index") : unit.failure();
         }
-        representatives.push_back(*written);
-        at += unit.level_counts.size();
+        representatives.push_back(*unit);
     }
     if (::close(fd) != 0) return make_error("cannot close " + path.string() + ": " + std::strerror(errno));
-    if (at != bases.size() || representatives.size() != units.size())
-        return make_error("rank 0 sent " + std::to_string(bases.size()) + " bases for " + std::to_string(at));
     return representatives;
 }
 
@@ -147,6 +152,8 @@ Status finish_channel_file(int fd, const LbvhTop& top, const std::vector<int32_t
 Result<BuildReport> build_split_lbvh(OwnedLights mine, const BuildOptions& options, const fs::path& tree_file,
                                      const ProgressFn& progress, RankStats& stats) {
     const auto start = std::chrono::steady_clock::now();
+    BuildReport report;
+    BuildPhaseTimer timer(report);
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
@@ -156,6 +163,7 @@ Result<BuildReport> build_split_lbvh(OwnedLights mine, const BuildOptions& optio
     };
     Result<MergedShare> merged = merge_share(std::move(mine), options, rank, ranks, say, stats);
     if (!merged) return merged.failure();
+    timer.lap("spread and merge");
     std::vector<UnitSummary> summaries;
     std::vector<uint32_t> depths;
     for (const LbvhUnit& unit : merged->units) {
@@ -182,14 +190,16 @@ Result<BuildReport> build_split_lbvh(OwnedLights mine, const BuildOptions& optio
         fd = *created;
         say("writing the records on every rank", 80.0);
     }
+    timer.lap("gather and top");
     const std::vector<uint32_t> bases = scatter_bases(top.bases, depths_per_rank);
     Result<std::vector<int32_t>> representatives = write_units(partial, merged->share, merged->units, bases);
     if (!representatives) return representatives.failure();
     Result<std::vector<int32_t>> all_representatives = gather_in_rank_order(*representatives, stats.bytes_sent);
     if (!all_representatives) return all_representatives.failure();
+    timer.lap("records");
     if (rank != 0) return BuildReport{};
     LC_RETURN_IF_ERROR(finish_channel_file(fd, top, *all_representatives, partial, tree_file));
-    BuildReport report;
+    timer.lap("top records");
     report.depth = top.depth;
     report.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.tree_written = true;
