@@ -63,6 +63,7 @@ for ranks in $([[ "$in_process" == 1 ]] && echo 0) $ranks_list; do
   # Hashes, not the files: a 2^24-light tree is 6 GB.
   sha256sum < "$tmp/tree$ranks.lcut" > "$tmp/tree$ranks.sha"
   rm -f "$tmp/tree$ranks.lcut"
+  echo "tree at $ranks ranks: sha256 $(cut -c1-16 "$tmp/tree$ranks.sha")" >&2
   if [[ "$ranks" == 0 ]]; then
     echo "0,$amount,$(( (leaves + 1) / 2 )),$wall_ms,$coordinator_mb,,,," >> "$out"
     continue
