@@ -21,16 +21,12 @@ namespace lc::bake {
 // took 6.6 s exact here, 1.1 s approximate; docs/BENCHMARKS.md).
 inline constexpr uint32_t kDefaultExactPairingLimit = 32768;
 
-struct LbvhRemoteMerges;  // lbvh_builder.h
-
 struct BuildOptions {
     BuilderKind builder = BuilderKind::kOptimalPair;
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = kDefaultExactPairingLimit;
     uint64_t seed = 0;
-    // LBVH only: whole subtrees merged by MPI ranks; null: all here.
-    const LbvhRemoteMerges* lbvh_remote = nullptr;
     // Polled inside the optimal-pair builder's levels (approximate pairing, merges), besides the
     // progress callback between levels; null: never stops.
     const BakeStop* stop = nullptr;

@@ -13,8 +13,8 @@
 
 #include "lightcuts/status_macros.h"
 #include "lightmass_server/build_phase_timer.h"
-#include "lightmass_server/mpi/rank/lbvh_top.h"
-#include "lightmass_server/mpi/rank/lbvh_units.h"
+#include "lightmass_server/mpi/lbvh_top.h"
+#include "lightmass_server/mpi/lbvh_units.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "protocol/channel_records.h"
 

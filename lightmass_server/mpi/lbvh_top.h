@@ -1,5 +1,5 @@
 #pragma once
-// Rank 0's part of a split LBVH (split_lbvh.h): the top of the tree over the
+// Rank 0's part of a split LBVH (mpi/rank/split_lbvh.h): the top of the tree over the
 // ranks' units (lbvh_units.h), and where every node goes. The top's splits
 // are the one-process splits, found on the units' first and last codes (a
 // split never cuts a unit: a unit is a node); the groups' roots are joined
@@ -14,7 +14,7 @@
 
 #include "lightcuts/build_tree.h"
 #include "lightcuts/result.h"
-#include "lightmass_server/mpi/rank/lbvh_units.h"
+#include "lightmass_server/mpi/lbvh_units.h"
 #include "lightmass_server/tree_builder.h"
 
 namespace lc::bake {

@@ -1,4 +1,4 @@
-#include "lightmass_server/mpi/rank/lbvh_top.h"
+#include "lightmass_server/mpi/lbvh_top.h"
 
 #include <algorithm>
 #include <bit>

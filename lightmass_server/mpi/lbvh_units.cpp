@@ -1,4 +1,4 @@
-#include "lightmass_server/mpi/rank/lbvh_units.h"
+#include "lightmass_server/mpi/lbvh_units.h"
 
 #include <unistd.h>
 

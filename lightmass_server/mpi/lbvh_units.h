@@ -1,5 +1,5 @@
 #pragma once
-// A rank's part of a split LBVH (split_lbvh.h): the largest subtrees of the
+// A rank's part of a split LBVH (mpi/rank/split_lbvh.h): the largest subtrees of the
 // one-process tree that lie wholly within the rank's sorted share (its
 // "units"), merged here, and their records written at the exported indices
 // rank 0 hands out. A node of the rank's own split hierarchy is a node of the
@@ -7,6 +7,7 @@
 // share's first and last keys' neighbours can), so a rank needs its
 // neighbours' boundary keys and nothing else; below such a node every split
 // is the global one (a range's splits depend on its keys alone).
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -14,9 +15,20 @@
 #include "lightcuts/build_tree.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
-#include "lightmass_server/mpi/rank/morton_partition.h"
+#include "lightmass_server/lbvh_builder.h"
+#include "lightmass_server/tree_builder.h"
 
 namespace lc::bake {
+
+// A rank's share of the lights, sorted by (group, code, leaf): a contiguous
+// range of the one-process build's sort (mpi/rank/morton_partition.h).
+struct SortedShare {
+    std::vector<LbvhKey> keys;       // leaf: the global input index
+    std::vector<SceneLight> lights;  // lights[k] is keys[k]'s
+    // Group g's keys are [group_begin[g], group_begin[g + 1]).
+    std::array<uint32_t, kLightGroupCount + 1> group_begin{};
+    uint64_t total_lights = 0;  // over every rank
+};
 
 // The nearest other ranks' keys next to this share (absent: no such rank has a key).
 struct ShareNeighbours {
