@@ -41,8 +41,9 @@ Sorted sorted_keys(const std::vector<SceneLight>& lights) {
         const size_t g = light_group(lights[i]);
         all.push_back({uint32_t(g), LbvhKey{lbvh_code(lights[i], lbvh_curve(lo[g], hi[g])), i}});
     }
-    std::sort(all.begin(), all.end(),
-              [](const auto& a, const auto& b) { return a.first != b.first ? a.first < b.first : a.second < b.second; });
+    std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first < b.first : a.second < b.second;
+    });
     Sorted sorted;
     for (const auto& [group, key] : all) {
         sorted.groups.push_back(group);
@@ -86,7 +87,8 @@ std::vector<uint8_t> written_in_parts(const std::vector<SceneLight>& lights, uin
     for (uint32_t p = 0; p < parts; ++p) {
         const size_t begin = lights.size() * p / parts, end = lights.size() * (p + 1) / parts;
         shares.push_back(part_of(sorted, lights, begin, end));
-        Result<std::vector<LbvhUnit>> merged = merge_units(shares.back(), neighbours_of(sorted, begin, end), 64, options);
+        Result<std::vector<LbvhUnit>> merged =
+            merge_units(shares.back(), neighbours_of(sorted, begin, end), 64, options);
         EXPECT_TRUE(merged.ok()) << (merged ? "" : merged.error());
         units.push_back(merged ? std::move(merged.value()) : std::vector<LbvhUnit>{});
         for (const LbvhUnit& unit : units.back()) {
@@ -107,7 +109,8 @@ std::vector<uint8_t> written_in_parts(const std::vector<SceneLight>& lights, uin
     size_t at = 0;
     for (uint32_t p = 0; p < parts; ++p) {
         for (const LbvhUnit& unit : units[p]) {
-            const std::span<const uint32_t> bases(top->bases.data() + top->base_at[at], unit.level_counts.size());
+            const std::span<const uint32_t> bases(top->bases.data() + top->base_at[at],
+                                                  unit.level_counts.size());
             Result<int32_t> representative = write_unit_records(fileno(records), shares[p], unit, bases);
             EXPECT_TRUE(representative.ok()) << (representative ? "" : representative.error());
             representatives.push_back(representative ? *representative : -1);

@@ -1,10 +1,12 @@
 // Bakes over MPI ranks (lightmass_server/mpi/): the light set and the tree the
 // same at 1, 2, 3 and 4 ranks as in one process (VPLs, area and sky samples,
-// radiosity split over the ranks' receiver patches), the LBVH's subtrees merged on
-// the ranks, a rank that dies, a cancelled bake, the bake's own stop (a
-// deadline, a cancel) and a bake asking for more ranks than the server allows. The tests that start mpirun skip, saying why,
-// where mpirun or lightmass_rank is missing (the shares' determinism is checked
-// without MPI in index_shares_test and lbvh_subtrees_test).
+// radiosity split over the ranks' receiver patches), the LBVH built and written
+// over the ranks (split_lbvh.h: each rank's records at their indices, a valid
+// result channel, uneven shares), a rank that dies, a cancelled bake, the bake's
+// own stop (a deadline, a cancel) and a bake asking for more ranks than the
+// server allows. The tests that start mpirun skip, saying why, where mpirun or
+// lightmass_rank is missing (the shares' determinism and the tree written in
+// parts are checked without MPI in index_shares_test and lbvh_subtrees_test).
 #include <gtest/gtest.h>
 
 #include <unistd.h>

@@ -18,7 +18,8 @@ namespace {
 // indices), whose lights are the units' representative lights.
 class TopBuilder {
 public:
-    TopBuilder(std::span<const UnitSummary> units, const BuildOptions& options) : units_(units), options_(options) {
+    TopBuilder(std::span<const UnitSummary> units, const BuildOptions& options)
+        : units_(units), options_(options) {
         for (const UnitSummary& unit : units) lights_.push_back(unit.representative);
         arena_.lights = lights_;
         arena_.nodes.resize(units.size());  // the unread leaf slots
@@ -40,7 +41,8 @@ public:
         if (!left) return left;
         Result<uint32_t> right = join(*split, j);
         if (!right) return right;
-        arena_.nodes.push_back(merge_clusters(arena_, *left, *right, options_.representative_rule, options_.seed));
+        arena_.nodes.push_back(
+            merge_clusters(arena_, *left, *right, options_.representative_rule, options_.seed));
         return uint32_t(arena_.nodes.size() - 1);
     }
 
@@ -68,8 +70,8 @@ private:
             while (k < j && before < total / 2) before += units_[k++].keys;
             if (k < j && before == total / 2) return k;
         }
-        return make_error("the ranks' subtrees straddle a split of the tree (units " + std::to_string(i) + " to " +
-                          std::to_string(j) + ")");
+        return make_error("the ranks' subtrees straddle a split of the tree (units " + std::to_string(i) +
+                          " to " + std::to_string(j) + ")");
     }
 
     std::span<const UnitSummary> units_;
@@ -84,7 +86,8 @@ Result<uint32_t> build_top_nodes(std::span<const UnitSummary> units, TopBuilder&
     for (size_t i = 0; i < units.size();) {
         size_t j = i + 1;
         while (j < units.size() && units[j].group == units[i].group) ++j;
-        if (units[j - 1].group < units[i].group) return make_error("the ranks' subtrees are not in group order");
+        if (units[j - 1].group < units[i].group)
+            return make_error("the ranks' subtrees are not in group order");
         Result<uint32_t> root = builder.join(i, j);
         if (!root) return root;
         roots.push_back(*root);
@@ -96,7 +99,8 @@ Result<uint32_t> build_top_nodes(std::span<const UnitSummary> units, TopBuilder&
 }
 
 // Depth-first (left child first) from the root: each arena index with its depth.
-std::vector<std::pair<uint32_t, uint32_t>> depth_first(const BuildArena& arena, uint32_t root, size_t unit_count) {
+std::vector<std::pair<uint32_t, uint32_t>> depth_first(const BuildArena& arena, uint32_t root,
+                                                       size_t unit_count) {
     std::vector<std::pair<uint32_t, uint32_t>> order, stack{{root, 0}};
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();
@@ -120,7 +124,8 @@ Result<LbvhTop> build_lbvh_top(std::span<const UnitSummary> units, std::span<con
     if (units.empty()) return top;
     top.base_at.push_back(0);
     for (const UnitSummary& unit : units) top.base_at.push_back(top.base_at.back() + unit.levels);
-    if (top.base_at.back() != level_counts.size()) return make_error("the ranks sent the wrong number of depths");
+    if (top.base_at.back() != level_counts.size())
+        return make_error("the ranks sent the wrong number of depths");
     TopBuilder builder(units, options);
     Result<uint32_t> root = build_top_nodes(units, builder);
     if (!root) return root.failure();
@@ -130,7 +135,8 @@ Result<LbvhTop> build_lbvh_top(std::span<const UnitSummary> units, std::span<con
     const auto each_depth = [&](uint32_t index, uint32_t depth, auto&& take) {
         if (index >= 2 * unit_count) return take(depth, 1u, size_t(-1));
         const size_t u = index - unit_count;
-        for (size_t l = 0; l < units[u].levels; ++l) take(depth + uint32_t(l), level_counts[top.base_at[u] + l], top.base_at[u] + l);
+        for (size_t l = 0; l < units[u].levels; ++l)
+            take(depth + uint32_t(l), level_counts[top.base_at[u] + l], top.base_at[u] + l);
     };
     for (const auto& [index, depth] : order)
         each_depth(index, depth, [&](uint32_t d, uint32_t count, size_t) {
@@ -147,8 +153,10 @@ Result<LbvhTop> build_lbvh_top(std::span<const UnitSummary> units, std::span<con
     top.top_index.resize(top.nodes.size());
     for (const auto& [index, depth] : order)
         each_depth(index, depth, [&](uint32_t d, uint32_t count, size_t base) {
-            if (base != size_t(-1)) top.bases[base] = uint32_t(at_depth[d]);
-            else top.top_index[index - 2 * unit_count] = int32_t(at_depth[d]);
+            if (base != size_t(-1))
+                top.bases[base] = uint32_t(at_depth[d]);
+            else
+                top.top_index[index - 2 * unit_count] = int32_t(at_depth[d]);
             at_depth[d] += count;
         });
     top.representatives = builder.take_lights();
@@ -157,7 +165,8 @@ Result<LbvhTop> build_lbvh_top(std::span<const UnitSummary> units, std::span<con
 
 Status write_top_records(int fd, const LbvhTop& top, std::span<const int32_t> unit_representatives) {
     const size_t units = top.unit_count;
-    if (unit_representatives.size() != units) return make_error("the ranks sent the wrong number of representatives");
+    if (unit_representatives.size() != units)
+        return make_error("the ranks sent the wrong number of representatives");
     const auto index_of = [&](int32_t child) {
         const size_t c = size_t(child);
         return c >= 2 * units ? top.top_index[c - 2 * units] : int32_t(top.bases[top.base_at[c - units]]);

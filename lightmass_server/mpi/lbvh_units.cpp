@@ -22,14 +22,16 @@ struct KeyRange {
 
 // Whether a key outside the share, next to it, has the range's code prefix
 // (then the range is not a node of the global tree).
-bool prefix_reaches_outside(const SortedShare& share, const ShareNeighbours& near, uint32_t group, KeyRange r) {
+bool prefix_reaches_outside(const SortedShare& share, const ShareNeighbours& near, uint32_t group,
+                            KeyRange r) {
     const uint64_t first = share.keys[r.begin].code;
     const uint64_t last = share.keys[r.end - 1].code;
     const int prefix = std::countl_zero(first ^ last);  // 64 when equal: the whole code
     const auto has_prefix = [&](uint64_t code) { return std::countl_zero(code ^ first) >= prefix; };
-    const bool before = r.begin == 0 && near.has_before && near.before_group == group && has_prefix(near.before_code);
-    const bool after =
-        r.end == share.keys.size() && near.has_after && near.after_group == group && has_prefix(near.after_code);
+    const bool before =
+        r.begin == 0 && near.has_before && near.before_group == group && has_prefix(near.before_code);
+    const bool after = r.end == share.keys.size() && near.has_after && near.after_group == group &&
+                       has_prefix(near.after_code);
     return before || after;
 }
 
@@ -64,12 +66,14 @@ std::vector<std::pair<uint32_t, KeyRange>> unit_ranges(const SortedShare& share,
 class UnitLeaves {
 public:
     UnitLeaves(const SortedShare& share, const LbvhUnit& unit) {
-        for (uint32_t k = unit.begin; k < unit.end; ++k) by_index_.push_back({share.keys[k].leaf, k - unit.begin});
+        for (uint32_t k = unit.begin; k < unit.end; ++k)
+            by_index_.push_back({share.keys[k].leaf, k - unit.begin});
         std::sort(by_index_.begin(), by_index_.end());
     }
     // The key offset of leaf `index`, or -1 when it is not in the unit.
     int64_t offset_of(uint32_t index) const {
-        const auto at = std::lower_bound(by_index_.begin(), by_index_.end(), std::pair<uint32_t, uint32_t>{index, 0});
+        const auto at =
+            std::lower_bound(by_index_.begin(), by_index_.end(), std::pair<uint32_t, uint32_t>{index, 0});
         return at != by_index_.end() && at->first == index ? int64_t(at->second) : -1;
     }
 
@@ -83,7 +87,8 @@ private:
 Result<std::vector<std::vector<int32_t>>> unit_levels(const SortedShare& share, const LbvhUnit& unit,
                                                       const UnitLeaves* leaves) {
     std::vector<std::vector<int32_t>> levels;
-    levels.push_back({unit.inner.empty() ? (leaves ? 0 : int32_t(share.keys[unit.begin].leaf)) : encode_inner_child(0)});
+    levels.push_back(
+        {unit.inner.empty() ? (leaves ? 0 : int32_t(share.keys[unit.begin].leaf)) : encode_inner_child(0)});
     for (;;) {
         std::vector<int32_t> next;
         for (int32_t ref : levels.back()) {
@@ -109,8 +114,9 @@ Result<std::vector<LbvhUnit>> merge_units(const SortedShare& share, const ShareN
         LbvhUnit unit{group, range.begin, range.end, {}, {}};
         if (range.end - range.begin > 1) {
             const size_t n = range.end - range.begin;
-            Result<std::vector<BuildNode>> merged = merge_lbvh_subtree(
-                std::span(share.keys).subspan(range.begin, n), std::span(share.lights).subspan(range.begin, n), options);
+            Result<std::vector<BuildNode>> merged =
+                merge_lbvh_subtree(std::span(share.keys).subspan(range.begin, n),
+                                   std::span(share.lights).subspan(range.begin, n), options);
             if (!merged) return merged.failure();
             unit.inner = std::move(merged.value());
         }
@@ -146,7 +152,9 @@ Result<int32_t> write_unit_records(int fd, const SortedShare& share, const LbvhU
     for (size_t l = 0; l < levels->size(); ++l)
         for (size_t j = 0; j < (*levels)[l].size(); ++j)
             if ((*levels)[l][j] >= 0) leaf_index[size_t((*levels)[l][j])] = int32_t(bases[l] + j);
-    const auto representative_of = [&](const BuildNode& node) { return leaves.offset_of(node.representative); };
+    const auto representative_of = [&](const BuildNode& node) {
+        return leaves.offset_of(node.representative);
+    };
     LightTree chunk;
     for (size_t l = 0; l < levels->size(); ++l) {
         // Children sit side by side in the next depth, in this depth's order.
@@ -184,7 +192,8 @@ Status write_records_at(int fd, uint64_t first, const LightTree& chunk) {
     for (size_t done = 0; done < bytes.size();) {
         const ssize_t wrote = ::pwrite(fd, bytes.data() + done, bytes.size() - done, off_t(offset + done));
         if (wrote < 0 && errno == EINTR) continue;
-        if (wrote <= 0) return make_error(std::string("cannot write the tree's records: ") + std::strerror(errno));
+        if (wrote <= 0)
+            return make_error(std::string("cannot write the tree's records: ") + std::strerror(errno));
         done += size_t(wrote);
     }
     return Ok{};

@@ -155,7 +155,8 @@ Status write_rank_result(const fs::path& dir, const BuildResult& result,
     return write_rank_report(dir, result.report, rank_lines);
 }
 
-Status write_rank_report(const fs::path& dir, const BuildReport& r, const std::vector<std::string>& rank_lines) {
+Status write_rank_report(const fs::path& dir, const BuildReport& r,
+                         const std::vector<std::string>& rank_lines) {
     std::ostringstream text;
     text.precision(17);
     for (const std::string& effect : r.effects) text << "effect " << effect << "\n";

@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
     while (flags.stall) std::this_thread::sleep_for(std::chrono::seconds(1));
 
     RankStats stats;
-    Result<std::optional<BuildResult>> baked = bake_share(*job, rank, ranks, flags.job / "result.lcut", progress, stats);
+    Result<std::optional<BuildResult>> baked =
+        bake_share(*job, rank, ranks, flags.job / "result.lcut", progress, stats);
     if (!baked) fail(rank, flags.job, baked.error());
     const std::vector<std::string> lines = rank_lines(rank, ranks, stats);
     if (rank == 0) {

@@ -32,7 +32,9 @@ struct Coded {
     }
 };
 
-size_t bucket_of(size_t group, uint64_t code) { return (group << kBucketBits) | size_t(code >> (63 - kBucketBits)); }
+size_t bucket_of(size_t group, uint64_t code) {
+    return (group << kBucketBits) | size_t(code >> (63 - kBucketBits));
+}
 
 // Every group's curve over the bounds of its lights on every rank (min and max are exact: any order).
 std::array<LbvhCurve, kLightGroupCount> reduced_curves(const std::vector<SceneLight>& lights) {
@@ -52,7 +54,8 @@ std::array<LbvhCurve, kLightGroupCount> reduced_curves(const std::vector<SceneLi
     std::array<LbvhCurve, kLightGroupCount> curves;
     for (size_t g = 0; g < kLightGroupCount; ++g) {
         if (lo[3 * g] > hi[3 * g]) continue;  // no light of this group anywhere
-        curves[g] = lbvh_curve({lo[3 * g], lo[3 * g + 1], lo[3 * g + 2]}, {hi[3 * g], hi[3 * g + 1], hi[3 * g + 2]});
+        curves[g] =
+            lbvh_curve({lo[3 * g], lo[3 * g + 1], lo[3 * g + 2]}, {hi[3 * g], hi[3 * g + 1], hi[3 * g + 2]});
     }
     return curves;
 }
@@ -62,7 +65,8 @@ std::vector<uint16_t> bucket_ranks(const std::vector<uint64_t>& histogram, uint6
     std::vector<uint16_t> rank_of(histogram.size());
     uint64_t before = 0;
     for (size_t b = 0; b < histogram.size(); ++b) {
-        rank_of[b] = uint16_t(total == 0 ? 0 : std::min<uint64_t>(uint64_t(ranks - 1), before * uint64_t(ranks) / total));
+        rank_of[b] = uint16_t(
+            total == 0 ? 0 : std::min<uint64_t>(uint64_t(ranks - 1), before * uint64_t(ranks) / total));
         before += histogram[b];
     }
     return rank_of;
@@ -78,7 +82,8 @@ Result<std::vector<Shipped>> exchange(OwnedLights& mine, const std::vector<size_
     std::vector<Shipped> outgoing(count);
     std::vector<uint64_t> cursor(size_t(ranks), 0);
     for (int r = 1; r < ranks; ++r) cursor[size_t(r)] = cursor[size_t(r - 1)] + per_rank[size_t(r - 1)];
-    for (size_t i = 0; i < count; ++i) outgoing[cursor[destination[i]]++] = Shipped{mine.lights[i], mine.index[i]};
+    for (size_t i = 0; i < count; ++i)
+        outgoing[cursor[destination[i]]++] = Shipped{mine.lights[i], mine.index[i]};
     mine = OwnedLights{};
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -97,7 +102,8 @@ Result<std::vector<Shipped>> exchange(OwnedLights& mine, const std::vector<size_
     uint64_t incoming = 0;
     for (int r = 0; r < ranks; ++r) {
         if (incoming > uint64_t(std::numeric_limits<int>::max()))
-            return make_error("too large: this rank's share exceeds one MPI all-to-all's int counts; use more ranks");
+            return make_error(
+                "too large: this rank's share exceeds one MPI all-to-all's int counts; use more ranks");
         receive_at[size_t(r)] = int(incoming);
         incoming += uint64_t(receive_counts[size_t(r)]);
     }
@@ -112,7 +118,8 @@ Result<std::vector<Shipped>> exchange(OwnedLights& mine, const std::vector<size_
 Result<SortedShare> spread_by_space(OwnedLights mine, uint64_t& bytes_sent) {
     int ranks = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-    if (mine.lights.size() != mine.index.size()) return make_error("a rank's lights and their indices differ in number");
+    if (mine.lights.size() != mine.index.size())
+        return make_error("a rank's lights and their indices differ in number");
     const std::array<LbvhCurve, kLightGroupCount> curves = reduced_curves(mine.lights);
     std::vector<uint64_t> histogram(kBuckets, 0);
     std::vector<size_t> bucket(mine.lights.size());
@@ -124,7 +131,8 @@ Result<SortedShare> spread_by_space(OwnedLights mine, uint64_t& bytes_sent) {
     SortedShare share;
     share.total_lights = mine.lights.size();
     MPI_Allreduce(MPI_IN_PLACE, &share.total_lights, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
-    MPI_Allreduce(MPI_IN_PLACE, histogram.data(), int(histogram.size()), MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    MPI_Allreduce(MPI_IN_PLACE, histogram.data(), int(histogram.size()), MPI_UINT64_T, MPI_SUM,
+                  MPI_COMM_WORLD);
     const std::vector<uint16_t> rank_of = bucket_ranks(histogram, share.total_lights, ranks);
     histogram = {};
     for (size_t& b : bucket) b = rank_of[b];  // now each light's destination
@@ -135,7 +143,8 @@ Result<SortedShare> spread_by_space(OwnedLights mine, uint64_t& bytes_sent) {
     std::vector<Coded> order(arrived->size());
     for (size_t i = 0; i < order.size(); ++i) {
         const size_t g = light_group((*arrived)[i].light);
-        order[i] = Coded{lbvh_code((*arrived)[i].light, curves[g]), (*arrived)[i].leaf, uint32_t(i), uint8_t(g)};
+        order[i] =
+            Coded{lbvh_code((*arrived)[i].light, curves[g]), (*arrived)[i].leaf, uint32_t(i), uint8_t(g)};
     }
     tbb::parallel_sort(order.begin(), order.end());  // a strict total order: deterministic
     share.keys.resize(order.size());

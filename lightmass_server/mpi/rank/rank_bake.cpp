@@ -37,8 +37,8 @@ struct MadeLights {
 };
 
 // This rank's area-light samples, gathered on rank 0 when `gather`.
-Result<MadeLights<SceneLight>> area_lights(const RankJob& job, const Share& share, bool gather, RankStats& stats,
-                                           BakeNotes& notes) {
+Result<MadeLights<SceneLight>> area_lights(const RankJob& job, const Share& share, bool gather,
+                                           RankStats& stats, BakeNotes& notes) {
     const uint32_t budget = job.request.area_lights != 0 ? job.request.area_lights : kDefaultAreaLights;
     const uint64_t seed = job.request.seed;
     // The samples' count: the budget, raised to one per emissive triangle.
@@ -85,9 +85,11 @@ std::string indirect_census(const IndirectOptions& options, const IndirectStageR
 // shot). When `gather`, rank 0 gathers the lights in rank order: the
 // one-process lights. Without the gather (an LBVH built over the ranks) no
 // rank holds them all, so the VPLs' cap is the tree's own limit.
-Result<MadeLights<IndirectLight>> indirect_lights(const RankJob& job, const Share& share, const RayCaster* caster,
+Result<MadeLights<IndirectLight>> indirect_lights(const RankJob& job, const Share& share,
+                                                  const RayCaster* caster,
                                                   std::span<const SceneLight> sources, bool gather,
-                                                  const ProgressFn& progress, RankStats& stats, BakeNotes& notes) {
+                                                  const ProgressFn& progress, RankStats& stats,
+                                                  BakeNotes& notes) {
     IndirectOptions options = indirect_options(job.request.indirect, job.request.seed);
     const RadiosityParts parts{uint32_t(share.rank), uint32_t(share.ranks),
                                [&stats](const std::vector<double>& mine,
@@ -130,7 +132,8 @@ Result<MadeLights<IndirectLight>> indirect_lights(const RankJob& job, const Shar
 std::string phase_census(const BuildReport& report, int ranks) {
     std::string text = "lbvh over " + std::to_string(ranks) + " ranks (rank 0's clock):";
     for (const BuildPhase& phase : report.phases)
-        text += (text.back() == ':' ? " " : ", ") + phase.name + " " + std::to_string(int64_t(phase.ms)) + " ms";
+        text +=
+            (text.back() == ':' ? " " : ", ") + phase.name + " " + std::to_string(int64_t(phase.ms)) + " ms";
     return text;
 }
 
@@ -176,8 +179,9 @@ Result<BuildResult> build_on_rank_zero(const RankJob& job, const MadeLights<Scen
 
 }  // namespace
 
-Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks, const fs::path& tree_file,
-                                              const ProgressFn& progress, RankStats& stats) {
+Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks,
+                                              const fs::path& tree_file, const ProgressFn& progress,
+                                              RankStats& stats) {
     const Share share{rank, ranks};
     // An LBVH is built over the ranks; any other builder on rank 0, from every light.
     const bool gather = job_build_options(job.request).builder != BuilderKind::kLbvh;
@@ -220,8 +224,9 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     Result<BuildResult> built = BuildResult{};
     if (!gather) {
         OwnedLights owned = owned_lights(job, share, std::move(area), sky, std::move(bounced.value()));
-        Result<BuildReport> report = build_split_lbvh(std::move(owned), job_build_options(job.request), tree_file,
-                                                      share.root() ? progress : ProgressFn{}, stats);
+        Result<BuildReport> report =
+            build_split_lbvh(std::move(owned), job_build_options(job.request), tree_file,
+                             share.root() ? progress : ProgressFn{}, stats);
         if (!report) return report.failure();
         built->report = std::move(report.value());
     } else if (share.root()) {
@@ -231,7 +236,8 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
     if (!share.root()) return std::optional<BuildResult>{};
     built->report.effects = std::move(notes.effects);
     if (!gather) built->report.effects.push_back(phase_census(built->report, ranks));
-    built->report.warnings.insert(built->report.warnings.begin(), notes.warnings.begin(), notes.warnings.end());
+    built->report.warnings.insert(built->report.warnings.begin(), notes.warnings.begin(),
+                                  notes.warnings.end());
     return std::optional<BuildResult>(std::move(built.value()));
 }
 

@@ -10,8 +10,8 @@
 #include <optional>
 
 #include "lightcuts/result.h"
-#include "protocol/channel_records.h"
 #include "lightmass_server/mpi/rank_job.h"
+#include "protocol/channel_records.h"
 
 namespace lc::bake {
 
@@ -21,8 +21,8 @@ namespace lc::bake {
 inline constexpr uint64_t kMaxRankBakeIndirectLights = kMaxSceneLights;  // 16,777,216
 
 struct RankStats {
-    uint64_t lights_made = 0;  // by this rank, before the gather
-    uint64_t bytes_sent = 0;   // to the other ranks in the gathers and the merges
+    uint64_t lights_made = 0;   // by this rank, before the gather
+    uint64_t bytes_sent = 0;    // to the other ranks in the gathers and the merges
     bool tree_written = false;  // rank 0: the ranks wrote result.lcut themselves (split_lbvh.h)
 };
 
@@ -30,7 +30,7 @@ struct RankStats {
 // sent. An LBVH is built and written over the ranks into `tree_file`
 // (split_lbvh.h): rank 0 then returns an empty tree and sets stats.tree_written.
 Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int ranks,
-                                              const std::filesystem::path& tree_file, const ProgressFn& progress,
-                                              RankStats& stats);
+                                              const std::filesystem::path& tree_file,
+                                              const ProgressFn& progress, RankStats& stats);
 
 }  // namespace lc::bake

@@ -47,7 +47,8 @@ ShareNeighbours exchange_boundaries(const SortedShare& share, int rank, int rank
     ShareNeighbours near;
     for (int r = rank - 1; r >= 0 && !near.has_before; --r) {
         if (!all[size_t(r)].has) continue;
-        near = ShareNeighbours{true, false, uint32_t(all[size_t(r)].last_group), 0, all[size_t(r)].last_code, 0};
+        near =
+            ShareNeighbours{true, false, uint32_t(all[size_t(r)].last_group), 0, all[size_t(r)].last_code, 0};
     }
     for (int r = rank + 1; r < ranks && !near.has_after; ++r) {
         if (!all[size_t(r)].has) continue;
@@ -64,7 +65,8 @@ Result<int> create_channel_file(const fs::path& path, uint32_t node_count) {
     if (fd < 0) return make_error("cannot create " + path.string() + ": " + std::strerror(errno));
     const std::vector<uint8_t> prefix = encode_result_prefix(node_count);
     const off_t size = off_t(prefix.size() + uint64_t(node_count) * result_record_bytes());
-    if (::pwrite(fd, prefix.data(), prefix.size(), 0) != ssize_t(prefix.size()) || ::ftruncate(fd, size) != 0) {
+    if (::pwrite(fd, prefix.data(), prefix.size(), 0) != ssize_t(prefix.size()) ||
+        ::ftruncate(fd, size) != 0) {
         ::close(fd);
         return make_error("cannot size " + path.string() + ": " + std::strerror(errno));
     }
@@ -86,16 +88,19 @@ std::vector<uint32_t> scatter_bases(const std::vector<uint32_t>& all, const std:
 // This rank's units' records, into the file rank 0 made, units on several
 // threads (each writes its own records); each unit's root's representative's index.
 Result<std::vector<int32_t>> write_units(const fs::path& path, const SortedShare& share,
-                                         const std::vector<LbvhUnit>& units, const std::vector<uint32_t>& bases) {
+                                         const std::vector<LbvhUnit>& units,
+                                         const std::vector<uint32_t>& bases) {
     std::vector<size_t> base_at{0};
     for (const LbvhUnit& unit : units) base_at.push_back(base_at.back() + unit.level_counts.size());
     if (base_at.back() != bases.size())
-        return make_error("rank 0 sent " + std::to_string(bases.size()) + " bases for " + std::to_string(base_at.back()));
+        return make_error("rank 0 sent " + std::to_string(bases.size()) + " bases for " +
+                          std::to_string(base_at.back()));
     const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
     if (fd < 0) return make_error("cannot open " + path.string() + ": " + std::strerror(errno));
     std::vector<Result<int32_t>> written(units.size(), int32_t{-1});
     tbb::parallel_for(size_t{0}, units.size(), [&](size_t u) {
-        written[u] = write_unit_records(fd, share, units[u], std::span(bases).subspan(base_at[u], base_at[u + 1] - base_at[u]));
+        written[u] = write_unit_records(fd, share, units[u],
+                                        std::span(bases).subspan(base_at[u], base_at[u + 1] - base_at[u]));
     });
     std::vector<int32_t> representatives;
     for (Result<int32_t>& unit : written) {
@@ -125,12 +130,13 @@ Result<MergedShare> merge_share(OwnedLights mine, const BuildOptions& options, i
     Result<SortedShare> share = spread_by_space(std::move(mine), stats.bytes_sent);
     if (!share) return share.failure();
     if (share->total_lights > kMaxSceneLights)
-        return make_error("too large: " + std::to_string(share->total_lights) + " lights for one tree (limit " +
-                              std::to_string(kMaxSceneLights) + ")",
+        return make_error("too large: " + std::to_string(share->total_lights) +
+                              " lights for one tree (limit " + std::to_string(kMaxSceneLights) + ")",
                           ErrorKind::kRefused);
     const ShareNeighbours near = exchange_boundaries(*share, rank, ranks);
     say("merging each rank's subtrees", 30.0);
-    Result<std::vector<LbvhUnit>> units = merge_units(*share, near, unit_limit(share->total_lights, ranks), options);
+    Result<std::vector<LbvhUnit>> units =
+        merge_units(*share, near, unit_limit(share->total_lights, ranks), options);
     if (!units) return units.failure();
     return MergedShare{std::move(share.value()), std::move(units.value())};
 }
@@ -139,7 +145,8 @@ Result<MergedShare> merge_share(OwnedLights mine, const BuildOptions& options, i
 Status finish_channel_file(int fd, const LbvhTop& top, const std::vector<int32_t>& representatives,
                            const fs::path& partial, const fs::path& tree_file) {
     Status written = write_top_records(fd, top, representatives);
-    if (::close(fd) != 0 && written) written = make_error("cannot close " + partial.string() + ": " + std::strerror(errno));
+    if (::close(fd) != 0 && written)
+        written = make_error("cannot close " + partial.string() + ": " + std::strerror(errno));
     if (!written) return written;
     std::error_code ec;
     fs::rename(partial, tree_file, ec);
@@ -194,14 +201,16 @@ Result<BuildReport> build_split_lbvh(OwnedLights mine, const BuildOptions& optio
     const std::vector<uint32_t> bases = scatter_bases(top.bases, depths_per_rank);
     Result<std::vector<int32_t>> representatives = write_units(partial, merged->share, merged->units, bases);
     if (!representatives) return representatives.failure();
-    Result<std::vector<int32_t>> all_representatives = gather_in_rank_order(*representatives, stats.bytes_sent);
+    Result<std::vector<int32_t>> all_representatives =
+        gather_in_rank_order(*representatives, stats.bytes_sent);
     if (!all_representatives) return all_representatives.failure();
     timer.lap("records");
     if (rank != 0) return BuildReport{};
     LC_RETURN_IF_ERROR(finish_channel_file(fd, top, *all_representatives, partial, tree_file));
     timer.lap("top records");
     report.depth = top.depth;
-    report.build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    report.build_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.tree_written = true;
     return report;
 }
