@@ -98,14 +98,14 @@ void expect_valid_tree(const std::vector<uint8_t>& bytes, size_t lights, uint32_
     EXPECT_EQ(tree->leaf_count, lights) << ranks << " ranks";
 }
 
-// Shares that stress the split: three lights over four ranks (a rank with
-// none), and every light but a few at one point (one Morton code).
+// Shares that stress the split: no light at all, three lights over four ranks
+// (a rank with none), and every light but a few at one point (one Morton code).
 TEST(MpiBake, TheSplitLbvhWritesTheInProcessTreeForUnevenShares) {
     SKIP_WITHOUT_MPI();
     std::vector<SceneLight> piled = scattered_lights(2000);
     for (size_t i = 0; i < piled.size(); ++i)
         if (i % 50 != 0) piled[i].position = glm::vec3(2.0f, 3.0f, 4.0f);
-    for (std::vector<SceneLight> lights : {scattered_lights(3), piled}) {
+    for (std::vector<SceneLight> lights : {std::vector<SceneLight>{}, scattered_lights(3), piled}) {
         BakeInputs inputs = lights_only(lights);
         const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
         for (uint32_t ranks : {1u, 2u, 4u}) {
