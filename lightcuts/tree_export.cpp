@@ -68,34 +68,8 @@ void convert_nodes(const BuildArena& arena, const std::vector<uint32_t>& order,
             __builtin_prefetch(&exported_index[representative]);
         }
         const BuildNode node = arena.node(order[i]);
-        const SceneLight& light = arena.representative_light(node);
-        LightTreeNode& out = out_nodes[i];
-        out.guid = node.guid;
-        out.type = node.type;
-        const bool has_left = node.left != kNoBuildChild;
-        out.left = has_left ? first_child[i] : kNoChild;
-        out.right = node.right == kNoBuildChild ? kNoChild : first_child[i] + (has_left ? 1 : 0);
-        out.representative = exported_index[node.representative];
-
-        out.position = light.position;
-        out.direction = light.direction;
-        out.range = light.range;
-        out.spot_cos_inner = std::cos(light.inner_cone_angle);
-        out.spot_cos_outer = std::cos(light.outer_cone_angle);
-
-        out.intensity = nearest_vec3(node.intensity);
-        out.brightness = nearest_float(node.brightness);
-        out.radius = export_radius(node.radius);
-        out.falloff_exponent = 2.0f;
-        out.bbox_min = round_down(node.bbox_min);
-        out.bbox_max = round_up(node.bbox_max);
-        out.cone_axis = glm::vec3(node.cone_axis);
-        out.cone_cos = export_cone_cos(node.cone_cos);
-        out.mixed_types = node.mixed_types;
-        out.indirect = node.indirect;
-        out.patch = node.patch;
-        out.source_radius = light.source_radius;
-        out.bounce = node.left == kNoBuildChild && node.right == kNoBuildChild ? light.bounce : uint16_t{0};
+        out_nodes[i] = export_node(node, arena.representative_light(node), first_child[i],
+                                   exported_index[node.representative]);
     }
 }
 
@@ -113,6 +87,38 @@ float round_up_to_float(double value) {
     if (value <= -double(kFloatMax)) return -kFloatMax;
     const float f = float(value);
     return double(f) < value ? std::nextafter(f, kFloatMax) : f;
+}
+
+LightTreeNode export_node(const BuildNode& node, const SceneLight& light, int32_t first_child,
+                          int32_t representative_index) {
+    LightTreeNode out;
+    out.guid = node.guid;
+    out.type = node.type;
+    const bool has_left = node.left != kNoBuildChild;
+    out.left = has_left ? first_child : kNoChild;
+    out.right = node.right == kNoBuildChild ? kNoChild : first_child + (has_left ? 1 : 0);
+    out.representative = representative_index;
+
+    out.position = light.position;
+    out.direction = light.direction;
+    out.range = light.range;
+    out.spot_cos_inner = std::cos(light.inner_cone_angle);
+    out.spot_cos_outer = std::cos(light.outer_cone_angle);
+
+    out.intensity = nearest_vec3(node.intensity);
+    out.brightness = nearest_float(node.brightness);
+    out.radius = export_radius(node.radius);
+    out.falloff_exponent = 2.0f;
+    out.bbox_min = round_down(node.bbox_min);
+    out.bbox_max = round_up(node.bbox_max);
+    out.cone_axis = glm::vec3(node.cone_axis);
+    out.cone_cos = export_cone_cos(node.cone_cos);
+    out.mixed_types = node.mixed_types;
+    out.indirect = node.indirect;
+    out.patch = node.patch;
+    out.source_radius = light.source_radius;
+    out.bounce = node.left == kNoBuildChild && node.right == kNoBuildChild ? light.bounce : uint16_t{0};
+    return out;
 }
 
 ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const ParallelRanges& parallel) {

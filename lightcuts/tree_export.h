@@ -30,6 +30,13 @@ using ParallelRanges =
 // nodes are converted through `parallel` when given, else on this thread.
 ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const ParallelRanges& parallel = {});
 
+// One node as export_light_tree converts it: `first_child` is its left
+// child's exported index (the right one follows it), `representative_index`
+// the exported index of its representative leaf, whose light is `light`.
+// For trees whose nodes are numbered elsewhere (MPI ranks write their own).
+LightTreeNode export_node(const BuildNode& node, const SceneLight& light, int32_t first_child,
+                          int32_t representative_index);
+
 // Rounding helpers, exposed for tests.
 float round_down_to_float(double value);
 float round_up_to_float(double value);

@@ -47,24 +47,8 @@ struct SplitNode {
     int32_t left = -1, right = -1;
 };
 
-// Where [begin, end) splits: after the last code sharing the range's highest
-// differing bit with the first; the middle when every code is equal.
 uint32_t split_position(const std::vector<Keyed>& keys, uint32_t begin, uint32_t end) {
-    const uint64_t first = keys[begin].code;
-    const uint64_t last = keys[end - 1].code;
-    if (first == last) return begin + (end - begin) / 2;
-    const int common_prefix = std::countl_zero(first ^ last);
-    // Binary search for the first code that differs from `first` in that bit.
-    uint32_t lo = begin, hi = end - 1;  // keys[lo] has the bit clear, keys[hi] set
-    while (hi - lo > 1) {
-        const uint32_t mid = lo + (hi - lo) / 2;
-        if (std::countl_zero(first ^ keys[mid].code) > common_prefix) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    return hi;
+    return lbvh_split_position(keys, begin, end);
 }
 
 // Leaves sit in input order, far from their Morton neighbours, so the lowest
@@ -147,11 +131,9 @@ std::vector<uint32_t> assign_arena_slots(BuildArena& arena, const SplitHierarchy
 }
 
 // Bottom-up cluster attributes, one depth at a time from the deepest: the
-// merges of one depth are independent, so they run in parallel. Only the
-// nodes whose phase is `wanted` (every node when `phase` is empty).
+// merges of one depth are independent, so they run in parallel.
 Status merge_bottom_up(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of,
-                       const std::vector<uint8_t>& phase, uint8_t wanted, const BuildOptions& options,
-                       const BuildProgressFn& progress, size_t& merges) {
+                       const BuildOptions& options, const BuildProgressFn& progress, size_t& merges) {
     const size_t total_merges = (h.nodes.size() - 1) / 2;
     for (size_t d = h.depth_begin.size() - 1; d-- > 0;) {
         tbb::parallel_for(tbb::blocked_range<size_t>(h.depth_begin[d], h.depth_begin[d + 1], 4096),
@@ -162,7 +144,7 @@ Status merge_bottom_up(BuildArena& arena, const SplitHierarchy& h, const std::ve
                                   if (i + kPrefetchAhead / 2 < range.end())
                                       prefetch_children_lights(arena, h.nodes[i + kPrefetchAhead / 2], arena_of);
                                   const SplitNode& node = h.nodes[i];
-                                  if (node.left < 0 || (!phase.empty() && phase[i] != wanted)) continue;
+                                  if (node.left < 0) continue;
                                   arena.nodes[arena_of[i]] = merge_clusters(
                                       arena, arena_of[size_t(node.left)], arena_of[size_t(node.right)],
                                       options.representative_rule, options.seed);
@@ -188,82 +170,6 @@ std::vector<uint32_t> inner_nodes_below(const SplitHierarchy& h, uint32_t root) 
             if (h.nodes[size_t(child)].left >= 0) inner.push_back(uint32_t(child));
     }
     return inner;
-}
-
-// Phases of the split nodes with remote parts: 0 merged here first (part 0's
-// subtrees), 1 merged elsewhere, 2 merged here last (the top over the subtree
-// roots). The subtrees are the largest whose size is at most n / parts, given
-// to the parts in Morton order. Fills each remote part's subtree roots.
-std::vector<uint8_t> plan_parts(const SplitHierarchy& h, uint32_t parts, std::vector<std::vector<uint32_t>>& roots) {
-    const uint32_t n = h.nodes[0].end;
-    const uint32_t target = (n + parts - 1) / parts;
-    std::vector<uint8_t> phase(h.nodes.size(), 2);
-    roots.assign(parts, {});
-    std::vector<uint32_t> stack{0};
-    while (!stack.empty()) {
-        const uint32_t i = stack.back();
-        stack.pop_back();
-        const SplitNode& node = h.nodes[i];
-        if (node.end - node.begin > target) {
-            stack.push_back(uint32_t(node.right));  // the left child first: Morton order
-            stack.push_back(uint32_t(node.left));
-            continue;
-        }
-        if (node.left < 0) continue;  // a leaf: nothing to merge
-        const uint32_t part = uint32_t(uint64_t(node.begin) * parts / n);
-        for (uint32_t inner : inner_nodes_below(h, i)) phase[inner] = part == 0 ? 0 : 1;
-        if (part != 0) roots[part].push_back(i);
-    }
-    return phase;
-}
-
-// Writes a remote subtree's nodes (merge_lbvh_subtree's form) into their slots.
-Status place_subtree(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of, uint32_t root,
-                     const std::vector<BuildNode>& merged) {
-    const std::vector<uint32_t> inner = inner_nodes_below(h, root);
-    if (merged.size() != inner.size())
-        return make_error("a rank merged " + std::to_string(merged.size()) + " nodes of a subtree of " +
-                          std::to_string(inner.size()));
-    const auto slot_of = [&](int32_t child) -> int32_t {
-        if (child >= 0) return child;  // a leaf: its light's index
-        const size_t ordinal = size_t(-2 - child);
-        return ordinal < inner.size() ? int32_t(arena_of[inner[ordinal]]) : kNoBuildChild;
-    };
-    for (size_t k = 0; k < inner.size(); ++k) {
-        BuildNode node = merged[k];
-        node.left = slot_of(node.left);
-        node.right = slot_of(node.right);
-        if (node.left == kNoBuildChild || node.right == kNoBuildChild) return make_error("a rank sent a bad child");
-        arena.nodes[arena_of[inner[k]]] = node;
-    }
-    return Ok{};
-}
-
-// The split hierarchy's merges: here alone, or with whole subtrees merged by remote parts.
-Status merge_all(BuildArena& arena, const SplitHierarchy& h, const std::vector<uint32_t>& arena_of,
-                 const std::vector<Keyed>& keys, const BuildOptions& options, const BuildProgressFn& progress) {
-    size_t merges = 0;
-    const LbvhRemoteMerges* remote = options.lbvh_remote;
-    if (!remote || remote->parts < 2 || keys.size() < 2 * size_t(remote->parts))
-        return merge_bottom_up(arena, h, arena_of, {}, 0, options, progress, merges);
-    std::vector<std::vector<uint32_t>> roots;
-    const std::vector<uint8_t> phase = plan_parts(h, remote->parts, roots);
-    for (uint32_t part = 1; part < remote->parts; ++part) {
-        std::vector<std::span<const Keyed>> subtrees;
-        for (uint32_t root : roots[part])
-            subtrees.emplace_back(keys.data() + h.nodes[root].begin, h.nodes[root].end - h.nodes[root].begin);
-        LC_RETURN_IF_ERROR(remote->send(part, subtrees));
-    }
-    LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, phase, 0, options, progress, merges));
-    for (uint32_t part = 1; part < remote->parts; ++part) {
-        Result<std::vector<std::vector<BuildNode>>> merged = remote->receive(part);
-        if (!merged) return merged.failure();
-        if (merged->size() != roots[part].size()) return make_error("a rank merged the wrong number of subtrees");
-        for (size_t s = 0; s < merged->size(); ++s)
-            LC_RETURN_IF_ERROR(place_subtree(arena, h, arena_of, roots[part][s], (*merged)[s]));
-    }
-    merges = 0;
-    return merge_bottom_up(arena, h, arena_of, phase, 2, options, progress, merges);
 }
 
 }  // namespace
@@ -295,17 +201,13 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
         [](const Bounds& a, const Bounds& b) {
             return Bounds{glm::min(a.lo, b.lo), glm::max(a.hi, b.hi)};
         });
-    // One scale for all axes keeps the curve's cells cubic.
-    const glm::dvec3 size = bounds.hi - bounds.lo;
-    const double extent = std::max({size.x, size.y, size.z});
-    const double cells = double((1u << kBitsPerAxis) - 1);
-    const glm::dvec3 scale(extent > 0.0 ? cells / extent : 0.0);
+    const LbvhCurve curve = lbvh_curve(bounds.lo, bounds.hi);
 
     std::vector<Keyed> keys(leaves.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.size(), 4096),
                       [&](const tbb::blocked_range<size_t>& range) {
                           for (size_t i = range.begin(); i != range.end(); ++i) {
-                              keys[i] = Keyed{morton_code(point_of(leaves[i]), bounds.lo, scale), leaves[i]};
+                              keys[i] = Keyed{lbvh_code(arena.lights[leaves[i]], curve), leaves[i]};
                           }
                       });
     timer.lap("lbvh: bounds and Morton codes");
@@ -315,7 +217,8 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
     const SplitHierarchy hierarchy = split_hierarchy(keys);
     const std::vector<uint32_t> arena_of = assign_arena_slots(arena, hierarchy, keys);
     timer.lap("lbvh: splits");
-    LC_RETURN_IF_ERROR(merge_all(arena, hierarchy, arena_of, keys, options, progress));
+    size_t merges = 0;
+    LC_RETURN_IF_ERROR(merge_bottom_up(arena, hierarchy, arena_of, options, progress, merges));
     timer.lap("lbvh: cluster attributes");
     return int32_t(arena_of[0]);
 }
@@ -323,6 +226,35 @@ Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> lea
 }  // namespace lc::bake
 
 namespace lc::bake {
+
+LbvhCurve lbvh_curve(const glm::dvec3& lo, const glm::dvec3& hi) {
+    const glm::dvec3 size = hi - lo;
+    const double extent = std::max({size.x, size.y, size.z});
+    const double cells = double((1u << kBitsPerAxis) - 1);
+    return LbvhCurve{lo, glm::dvec3(extent > 0.0 ? cells / extent : 0.0)};
+}
+
+uint64_t lbvh_code(const SceneLight& light, const LbvhCurve& curve) {
+    return morton_code(light_point(light), curve.lo, curve.scale);
+}
+
+uint32_t lbvh_split_position(std::span<const LbvhKey> keys, uint32_t begin, uint32_t end) {
+    const uint64_t first = keys[begin].code;
+    const uint64_t last = keys[end - 1].code;
+    if (first == last) return begin + (end - begin) / 2;
+    const int common_prefix = std::countl_zero(first ^ last);
+    // Binary search for the first code that differs from `first` in that bit.
+    uint32_t lo = begin, hi = end - 1;  // keys[lo] has the bit clear, keys[hi] set
+    while (hi - lo > 1) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        if (std::countl_zero(first ^ keys[mid].code) > common_prefix) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return hi;
+}
 
 Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys, std::span<const SceneLight> lights,
                                                   const BuildOptions& options) {
@@ -347,7 +279,7 @@ Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys,
     const SplitHierarchy h = split_hierarchy(local_keys);
     const std::vector<uint32_t> arena_of = assign_arena_slots(arena, h, local_keys);
     size_t merges = 0;
-    LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, {}, 0, options, {}, merges));
+    LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, options, {}, merges));
     // Breadth-first inner nodes, children as global light indices or inner ordinals.
     const std::vector<uint32_t> inner = inner_nodes_below(h, 0);
     std::vector<int32_t> ordinal_of_slot(arena.nodes.size(), kNoBuildChild);

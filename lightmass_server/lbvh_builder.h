@@ -7,6 +7,8 @@
 // the agglomerative one, with uniform ones it can be below (docs/bench/).
 #include <cstdint>
 #include <functional>
+
+#include <glm/vec3.hpp>
 #include <span>
 #include <vector>
 
@@ -23,23 +25,24 @@ struct LbvhKey {
     bool operator<(const LbvhKey& o) const { return code < o.code || (code == o.code && leaf < o.leaf); }
 };
 
-// Whole subtrees of the split hierarchy merged by other processes (MPI ranks):
-// the largest subtrees of at most n / parts lights, in Morton order, go to
-// parts 0..parts-1; part 0 is merged here, then each other part's come back
-// and the top over the subtree roots is merged here. A subtree's splits and
-// merges depend on its lights alone, so the tree is the same for any parts.
-struct LbvhRemoteMerges {
-    uint32_t parts = 1;
-    // Hands part p its subtrees, each as its keys in Morton order.
-    std::function<Status(uint32_t part, const std::vector<std::span<const LbvhKey>>& subtrees)> send;
-    // Part p's subtrees merged, in the order sent (merge_lbvh_subtree's form).
-    std::function<Result<std::vector<std::vector<BuildNode>>>(uint32_t part)> receive;
+// The Z-order curve over one light group's bounds (one scale for all axes
+// keeps its cells cubic): the same codes in one process and on MPI ranks that
+// reduce the bounds over their lights (mpi/rank/morton_partition.h).
+struct LbvhCurve {
+    glm::dvec3 lo{0.0};
+    glm::dvec3 scale{0.0};
 };
+LbvhCurve lbvh_curve(const glm::dvec3& lo, const glm::dvec3& hi);
+// A light's code on the curve (its light_point, clamped into the bounds).
+uint64_t lbvh_code(const SceneLight& light, const LbvhCurve& curve);
+// Where the sorted range [begin, end) splits: after the last code sharing the
+// range's highest differing bit with the first; the middle when every code is equal.
+uint32_t lbvh_split_position(std::span<const LbvhKey> keys, uint32_t begin, uint32_t end);
 
 // An inner child in merge_lbvh_subtree's nodes: its breadth-first ordinal, encoded.
 inline int32_t encode_inner_child(uint32_t ordinal) { return -2 - int32_t(ordinal); }
 
-// On another process: merges the subtree over `keys` (Morton order; leaf: the
+// On an MPI rank (mpi/lbvh_units.h): merges the subtree over `keys` (Morton order; leaf: the
 // global light index) whose lights are `lights` (in key order). Returns its
 // inner nodes breadth-first; children, representatives and smallest light
 // indices are global light indices, inner children encode_inner_child(ordinal).

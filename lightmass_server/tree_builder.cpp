@@ -104,18 +104,6 @@ Status validate_lights(std::span<const SceneLight> lights) {
     return check_light(lights[first_bad], first_bad);
 }
 
-// The per-type trees: one per light type, then one per type of the indirect
-// lights (VPLs), then one per type of the radiosity patches. Indirect lights
-// never share a cluster with direct ones (so the renderer can clamp or skip
-// them by subtree), nor patches with VPLs (patches are not clamped). Direct
-// groups come first, so a tree without indirect lights is built as before.
-constexpr size_t kLightGroupCount = 3 * kLightTypeCount;
-
-size_t light_group(const SceneLight& light) {
-    const size_t kind = light.patch ? 2 : light.indirect ? 1 : 0;
-    return size_t(light.type) + kind * kLightTypeCount;
-}
-
 std::string light_group_name(size_t group) {
     const std::string type = light_type_name(LightType(group % kLightTypeCount));
     const char* kinds[] = {"", "indirect ", "patch "};
@@ -152,6 +140,11 @@ double elapsed_ms(std::chrono::steady_clock::time_point start) {
 }
 
 }  // namespace
+
+size_t light_group(const SceneLight& light) {
+    const size_t kind = light.patch ? 2 : light.indirect ? 1 : 0;
+    return size_t(light.type) + kind * kLightTypeCount;
+}
 
 Result<BuildResult> build_light_tree(std::span<const SceneLight> lights,
                                      const BuildOptions& options, const ProgressFn& progress) {

@@ -21,16 +21,12 @@ namespace lc::bake {
 // took 6.6 s exact here, 1.1 s approximate; docs/BENCHMARKS.md).
 inline constexpr uint32_t kDefaultExactPairingLimit = 32768;
 
-struct LbvhRemoteMerges;  // lbvh_builder.h
-
 struct BuildOptions {
     BuilderKind builder = BuilderKind::kOptimalPair;
     RepresentativeRule representative_rule = RepresentativeRule::kIntensity;
     PairingMode pairing = PairingMode::kAuto;
     uint32_t exact_pairing_limit = kDefaultExactPairingLimit;
     uint64_t seed = 0;
-    // LBVH only: whole subtrees merged by MPI ranks; null: all here.
-    const LbvhRemoteMerges* lbvh_remote = nullptr;
     // Polled inside the optimal-pair builder's levels (approximate pairing, merges), besides the
     // progress callback between levels; null: never stops.
     const BakeStop* stop = nullptr;
@@ -70,6 +66,15 @@ struct BuildResult {
     // and stays on disk as the result channel's bytes (a bake over MPI ranks).
     std::shared_ptr<const ResultChannelFile> channel_file;
 };
+
+// The per-type trees: one per light type, then one per type of the indirect
+// lights (VPLs), then one per type of the radiosity patches. Indirect lights
+// never share a cluster with direct ones (so the renderer can clamp or skip
+// them by subtree), nor patches with VPLs (patches are not clamped). Direct
+// groups come first, so a tree without indirect lights is built as before.
+// The groups' trees are joined left to right under junction nodes.
+inline constexpr size_t kLightGroupCount = 3 * kLightTypeCount;
+size_t light_group(const SceneLight& light);
 
 // Lights must already be validated (protocol/channel_records.h); every light
 // given becomes a leaf. Deterministic for equal lights, options and seed.

@@ -1,10 +1,12 @@
 // Bakes over MPI ranks (lightmass_server/mpi/): the light set and the tree the
 // same at 1, 2, 3 and 4 ranks as in one process (VPLs, area and sky samples,
-// radiosity split over the ranks' receiver patches), the LBVH's subtrees merged on
-// the ranks, a rank that dies, a cancelled bake, the bake's own stop (a
-// deadline, a cancel) and a bake asking for more ranks than the server allows. The tests that start mpirun skip, saying why,
-// where mpirun or lightmass_rank is missing (the shares' determinism is checked
-// without MPI in index_shares_test and lbvh_subtrees_test).
+// radiosity split over the ranks' receiver patches), the LBVH built and written
+// over the ranks (split_lbvh.h: each rank's records at their indices, a valid
+// result channel, uneven shares), a rank that dies, a cancelled bake, the bake's
+// own stop (a deadline, a cancel) and a bake asking for more ranks than the
+// server allows. The tests that start mpirun skip, saying why, where mpirun or
+// lightmass_rank is missing (the shares' determinism and the tree written in
+// parts are checked without MPI in index_shares_test and lbvh_subtrees_test).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -69,13 +71,61 @@ TEST(MpiBake, TheLbvhTreeIsTheSameWhenTheRanksMergeItsSubtrees) {
         inputs.ranks = ranks;
         Result<BuildResult> built = run_bake(inputs, {});
         EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
-        // Every rank but 0 sent merged nodes back (160 bytes each), beyond its lights.
+        // Every rank but 0 sent lights to the rank that owns their part of space (split_lbvh.h).
         for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{}) {
             if (effect.rfind("rank ", 0) == 0 && effect.rfind("rank 0 ", 0) != 0) {
                 EXPECT_EQ(effect.find("bytes_sent 0 "), std::string::npos) << effect;
             }
         }
     }
+}
+
+// Scene lights only, no geometry: the tree is built over the ranks from rank 0's lights alone.
+BakeInputs lights_only(std::vector<SceneLight> lights) {
+    BakeInputs inputs = cornell_inputs();
+    inputs.lights = std::make_shared<std::vector<SceneLight>>(std::move(lights));
+    inputs.geometry = nullptr;
+    inputs.environment = nullptr;
+    inputs.indirect.method = IndirectMethod::kOff;
+    return inputs;
+}
+
+// The records each rank wrote form a valid result channel (the coordinator
+// checked it when it adopted the file; decoding checks it again) of `lights` leaves.
+void expect_valid_tree(const std::vector<uint8_t>& bytes, size_t lights, uint32_t ranks) {
+    Result<LightTree> tree = decode_result_channel(bytes);
+    ASSERT_TRUE(tree.ok()) << ranks << " ranks: " << tree.error();
+    EXPECT_EQ(tree->leaf_count, lights) << ranks << " ranks";
+}
+
+// Shares that stress the split: no light at all, three lights over four ranks
+// (a rank with none), and every light but a few at one point (one Morton code).
+TEST(MpiBake, TheSplitLbvhWritesTheInProcessTreeForUnevenShares) {
+    SKIP_WITHOUT_MPI();
+    std::vector<SceneLight> piled = scattered_lights(2000);
+    for (size_t i = 0; i < piled.size(); ++i)
+        if (i % 50 != 0) piled[i].position = glm::vec3(2.0f, 3.0f, 4.0f);
+    for (std::vector<SceneLight> lights : {std::vector<SceneLight>{}, scattered_lights(3), piled}) {
+        BakeInputs inputs = lights_only(lights);
+        const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+        for (uint32_t ranks : {1u, 2u, 4u}) {
+            inputs.ranks = ranks;
+            const std::vector<uint8_t> split = tree_bytes(run_bake(inputs, {}));
+            EXPECT_EQ(split, in_process) << lights.size() << " lights, " << ranks << " ranks";
+            expect_valid_tree(split, lights.size(), ranks);
+        }
+    }
+}
+
+// Another builder still gathers every light on rank 0 and builds there.
+TEST(MpiBake, AnAgglomerativeTreeOverRanksIsTheInProcessTree) {
+    SKIP_WITHOUT_MPI();
+    BakeInputs inputs = cornell_inputs();
+    inputs.build.builder = BuilderKind::kAgglomerative;
+    inputs.indirect.vpl.particle_count = 1001;
+    const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+    inputs.ranks = 3;
+    EXPECT_EQ(tree_bytes(run_bake(inputs, {})), in_process);
 }
 
 TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
@@ -86,8 +136,10 @@ TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
     for (uint32_t ranks : {1u, 2u, 3u, 4u}) {
         inputs.ranks = ranks;
         Result<BuildResult> built = run_bake(inputs, {});
-        EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        const std::vector<uint8_t> bytes = tree_bytes(built);
+        EXPECT_EQ(bytes, in_process) << ranks << " ranks";
         if (!built) continue;
+        expect_valid_tree(bytes, (built->channel_file->node_count() + 1) / 2, ranks);
         // One "rank R ..." line per rank: every rank took part.
         size_t rank_lines = 0;
         for (const std::string& effect : built->report.effects) rank_lines += effect.rfind("rank ", 0) == 0;

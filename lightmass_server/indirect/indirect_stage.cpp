@@ -18,7 +18,7 @@ IndirectOptions indirect_options(const IndirectRequest& request, uint64_t seed) 
     return options;
 }
 
-std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
+std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights, uint64_t first_index) {
     std::vector<SceneLight> out;
     out.reserve(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) {
@@ -26,7 +26,7 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights) {
         glm::vec3 intensity = intensity_along_normal(bounced);
         float scale = std::max({intensity.x, intensity.y, intensity.z});
         if (!(scale > 0.0f)) continue;
-        const uint64_t index = i;
+        const uint64_t index = first_index + i;
         uint8_t bytes[12] = {'i', 'n', 'd', 'i'};
         for (int b = 0; b < 8; ++b) bytes[4 + b] = uint8_t(index >> (8 * b));
         SceneLight light;

@@ -39,7 +39,8 @@ struct IndirectStageResult {
 };
 
 // Oriented (cosine) tree lights, in order, with GUIDs from their index.
-std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights);
+// `first_index`: the first light's index among every part's (a rank's share of an MPI bake).
+std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights, uint64_t first_index = 0);
 
 // `caster` may be null when the geometry is empty.
 Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,

@@ -151,7 +151,12 @@ BuildOptions job_build_options(const BakeRequestMsg& request) {
 
 Status write_rank_result(const fs::path& dir, const BuildResult& result,
                          const std::vector<std::string>& rank_lines) {
-    const BuildReport& r = result.report;
+    LC_RETURN_IF_ERROR(write_result_channel(dir / "result.lcut", result.tree));
+    return write_rank_report(dir, result.report, rank_lines);
+}
+
+Status write_rank_report(const fs::path& dir, const BuildReport& r,
+                         const std::vector<std::string>& rank_lines) {
     std::ostringstream text;
     text.precision(17);
     for (const std::string& effect : r.effects) text << "effect " << effect << "\n";
@@ -160,7 +165,6 @@ Status write_rank_result(const fs::path& dir, const BuildResult& result,
          << r.pairing_lower_bound << "\nexact " << (r.exact ? 1 : 0) << "\nlevels " << r.levels << "\ndepth "
          << r.depth << "\n";
     for (const std::string& line : rank_lines) text << line << "\n";
-    LC_RETURN_IF_ERROR(write_result_channel(dir / "result.lcut", result.tree));
     return write_text(dir / "report.txt", text.str());
 }
 

@@ -49,9 +49,13 @@ BuildOptions job_build_options(const BakeRequestMsg& request);
 // "levels N", "depth N", "rank R lights N bytes_sent B peak_rss_kb K".
 Status write_rank_result(const std::filesystem::path& dir, const BuildResult& result,
                          const std::vector<std::string>& rank_lines);
+// report.txt alone, for a tree the ranks wrote into result.lcut themselves.
+Status write_rank_report(const std::filesystem::path& dir, const BuildReport& report,
+                         const std::vector<std::string>& rank_lines);
 // The tree stays on disk: `tree_file` (rank 0's result.lcut, moved out of the
 // job folder) is validated and adopted as the result's channel_file.
-Result<BuildResult> read_rank_result(const std::filesystem::path& dir, const std::filesystem::path& tree_file);
+Result<BuildResult> read_rank_result(const std::filesystem::path& dir,
+                                     const std::filesystem::path& tree_file);
 Status write_rank_error(const std::filesystem::path& dir, const std::string& text);
 Status write_rank_progress(const std::filesystem::path& dir, std::string_view stage, double percent);
 

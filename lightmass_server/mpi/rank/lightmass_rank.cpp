@@ -102,11 +102,13 @@ int main(int argc, char** argv) {
     while (flags.stall) std::this_thread::sleep_for(std::chrono::seconds(1));
 
     RankStats stats;
-    Result<std::optional<BuildResult>> baked = bake_share(*job, rank, ranks, progress, stats);
+    Result<std::optional<BuildResult>> baked =
+        bake_share(*job, rank, ranks, flags.job / "result.lcut", progress, stats);
     if (!baked) fail(rank, flags.job, baked.error());
     const std::vector<std::string> lines = rank_lines(rank, ranks, stats);
     if (rank == 0) {
-        Status written = write_rank_result(flags.job, **baked, lines);
+        Status written = stats.tree_written ? write_rank_report(flags.job, (*baked)->report, lines)
+                                            : write_rank_result(flags.job, **baked, lines);
         if (!written) fail(rank, flags.job, written.error());
     }
     MPI_Finalize();

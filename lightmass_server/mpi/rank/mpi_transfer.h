@@ -95,6 +95,21 @@ Result<std::vector<T>> all_gather_known_sizes(const std::vector<T>& mine, const 
     return all;
 }
 
+// Where this rank's `mine` items sit among every rank's, in rank order.
+struct ShareIndex {
+    uint64_t before = 0;  // items of the ranks before this one
+    uint64_t total = 0;   // items of every rank
+};
+inline ShareIndex index_of_share(uint64_t mine) {
+    ShareIndex index;
+    MPI_Exscan(&mine, &index.before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0) index.before = 0;  // MPI_Exscan leaves rank 0's undefined
+    MPI_Allreduce(&mine, &index.total, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    return index;
+}
+
 // Point to point: a size, then the bytes in pieces.
 inline void send_bytes(const void* data, uint64_t size, int to) {
     MPI_Send(&size, 1, MPI_UINT64_T, to, 0, MPI_COMM_WORLD);
