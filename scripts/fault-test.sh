@@ -4,8 +4,9 @@
 #       kill -9 the server mid-bake, ITERATIONS times; every time the client's
 #       previous tree (bake -o TREE.lcut) must be intact, byte for byte
 #   scripts/fault-test.sh stall [--peers 16] [--seconds 30]
-#       slow-byte peers (one byte every 0.5 s) and silent peers, while normal
-#       bakes run: when does the server drop them, and do the bakes still pass?
+#       slow-byte peers (one byte every 0.5 s), silent peers, and peers silent
+#       after opening a 200 MB channel (hostile_bake_bench), while normal bakes
+#       run: when does the server drop them, and do the bakes still pass?
 #   scripts/fault-test.sh hostile [--budget-mb 512] [--hostile-csv docs/bench/hostile_bake.csv]
 #       issue 27's rows, each against a fresh server at --memory-budget-mb
 #       BUDGET with its RSS sampled every 50 ms: deep and huge VPL bakes,
@@ -166,6 +167,31 @@ run_kill() {
     [ "$broken" -eq 0 ] && [ "$leftovers" -eq 0 ]
 }
 
+# stall_open_channel PORT: PEERS peers each open a 200 MB scene channel, send 2 bytes and go silent
+# (issue 27: the idle timeout never applied with a channel open); a bake runs meanwhile. Each must be
+# dropped by the read deadline; adds the peers not dropped and a failed bake to $failed.
+stall_open_channel() {
+    [ -x "$hostile_bin" ] || { echo "stall (silent after opening a channel): skipped, $hostile_bin not built"; return 0; }
+    local p pids=() closed=0 slowest=0 ms
+    for ((p = 0; p < peers; p++)); do
+        timeout 60 "$hostile_bin" "127.0.0.1:$1" silent-channel >"$work/silent_channel_$p.csv" 2>&1 &
+        pids+=($!)
+    done
+    background=("${pids[@]}")
+    sleep 0.5
+    if bake "$1" "$work/small.gltf" "$work/stall.lcut" 7 60 >/dev/null 2>&1; then baked=$((baked + 1)); else failed=$((failed + 1)); fi
+    for p in "${pids[@]}"; do wait "$p" || true; done
+    background=()
+    for ((p = 0; p < peers; p++)); do
+        grep -q '^silent-channel,closed,' "$work/silent_channel_$p.csv" || continue
+        closed=$((closed + 1))
+        ms=$(sed -n 's/.*closed \([0-9]*\) ms after going silent.*/\1/p' "$work/silent_channel_$p.csv")
+        [ "${ms:-0}" -gt "$slowest" ] && slowest=$ms
+    done
+    echo "stall (silent after opening a 200 MB channel): $closed of $peers dropped, the last ${slowest} ms after going silent"
+    failed=$((failed + peers - closed))
+}
+
 run_stall() {
     make_scene 1024 "$work/small.gltf"
     # Short limits so the figures come within the run; the defaults are 30 s, 600 s and 60 s
@@ -196,6 +222,7 @@ run_stall() {
         background=()
         echo "stall ($stall): $(cat "$work/$stall.json"); bakes meanwhile: slowest ${max_ms} ms"
     done
+    stall_open_channel "$port"
     kill -0 "$LC_SERVER_PID" 2>/dev/null || { echo "stall: the server died" >&2; failed=$((failed + 1)); }
     stop_server
     echo "stall: $baked bakes of 1024 lights passed and $failed failed while stalling peers were attached"
@@ -240,16 +267,17 @@ sigterm_row() {
     fi
 }
 
-# SIGTERM to exit, RUNS times at each point: a 4 M-sample area bake (sampling at 0.5 s, the
-# tree build's approximate levels after), the same after its client disconnected (the bake
-# cancelled 0.05 s and 2 s before the signal), and a radiosity bake's point-light pass.
+# SIGTERM to exit, RUNS times at each point: a 4 M-sample area bake (its sampling ends about
+# 0.4 s in, then the tree build's first steps and approximate levels), the same after its client
+# disconnected (the bake cancelled 0.05 s and 2 s before the signal), and a radiosity bake's
+# point-light pass.
 run_sigterm() {
     [ -x "$hostile_bin" ] || { echo "build $hostile_bin first (cmake --build build --target hostile_bake_bench)" >&2; return 2; }
-    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1" \
+    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1,freed_after_disconnect_ms" \
         >"$sigterm_csv"
     local over=0 total=0 verdict
     for ((r = 0; r < runs; r++)); do
-        for point in "area 500" "area 2000" "area 4000" "area 8000" "area 12000" "area 4000 3950" \
+        for point in "area 500" "area 700" "area 2000" "area 4000" "area 8000" "area 12000" "area 4000 3950" "area 10000 8000" \
             "area 6000 4000" "radiosity 5000"; do
             # shellcheck disable=SC2086
             verdict=$(sigterm_row $point)
@@ -281,8 +309,8 @@ run_footprint() {
         "points --size 4096" "points --size 32768" "points --size 65536" "points --size 262144"
         "points --size 1048576" "points --size 262144 --builder lbvh" "points --size 262144 --builder agglomerative"
         "points --size 1048576 --builder lbvh" "points --size 1048576 --builder agglomerative"
-        "points --size 16384 --exact" "points --size 65536 --exact" "area --size 262144" "area --size 1048576"
-        "vpl-fit --size 30000" "vpl-fit --size 300000" "radiosity --size 4 --patch-size 0.4"
+        "points --size 16384 --exact" "points --size 65536 --exact" "area --size 262144" "area --size 400000" "area --size 1048576"
+        "vpl-fit --size 30000" "vpl-fit --size 100000" "vpl-fit --size 300000" "radiosity --size 4 --patch-size 0.4"
         "radiosity --size 1000 --cancel-after-ms 5000" "environment --size 2048" "environment --size 8192")
     [ "$footprint_full" = yes ] && cases+=("area")
     for case in "${cases[@]}"; do
@@ -316,7 +344,7 @@ run_hostile() {
     hostile_row 4096 area --cancel-after-ms 4000
     hostile_row 4096 vpl-huge --cancel-after-ms 1500 --small
     # SIGTERM to exit within --sigterm-limit-ms: during radiosity, the 4 M-sample build, and after a disconnect.
-    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1" \
+    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1,freed_after_disconnect_ms" \
         >"$sigterm_csv"
     local point over=0
     for point in "radiosity 5000" "area 4000" "area 6000 4000"; do

@@ -60,9 +60,10 @@ TEST(BakeFootprint, EstimatesBoundTheMeasuredPeaksClosely) {
         uint64_t peak_mib;  // less the stored scene channel's reservation, which is counted apart
     };
     for (const Measured& m : {Measured{BuilderKind::kOptimalPair, 1048576, 562},
-                              Measured{BuilderKind::kLbvh, 1048576, 560},
-                              Measured{BuilderKind::kAgglomerative, 1048576, 625},
-                              Measured{BuilderKind::kOptimalPair, 262144, 145}}) {
+                              Measured{BuilderKind::kLbvh, 1048576, 553},
+                              Measured{BuilderKind::kAgglomerative, 1048576, 594},
+                              Measured{BuilderKind::kOptimalPair, 262144, 143},
+                              Measured{BuilderKind::kOptimalPair, 65536, 58}}) {
         BakeInputs inputs = with_lights(m.lights);
         inputs.build.builder = m.builder;
         const uint64_t estimate = estimate_bake_footprint(inputs, false).bytes;
@@ -94,9 +95,9 @@ TEST(BakeFootprint, AreaLightSamplesCountOnlyWhenATriangleEmits) {
         std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(0.5f), glm::vec3(1.0f)}));
     const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
     EXPECT_EQ(footprint.tree_lights, kMaxAreaLights);
-    // Measured: 2,226 MiB at its peak, run to the end (2.5 GB the audit saw before the builder shrank).
-    EXPECT_GT(footprint.bytes, 2226 * kMiB);
-    EXPECT_LT(footprint.bytes, 2226 * kMiB * 5 / 4);
+    // Measured: 2,226-2,290 MiB at its peak, run to the end (2.5 GB the audit saw before the builder shrank).
+    EXPECT_GT(footprint.bytes, 2290 * kMiB);
+    EXPECT_LT(footprint.bytes, 2290 * kMiB * 5 / 4);
 }
 
 TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {

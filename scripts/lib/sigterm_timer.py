@@ -6,8 +6,10 @@ SCENARIO against it, and AT_MS after the client started sends the server
 SIGTERM; the time is from the signal to waitpid() returning, so it includes
 the bake's stop, the server's shutdown and the kernel giving the process's
 memory back. With --disconnect-at-ms the client is killed first (its socket
-closed by the kernel), as a client that gives up would. Prints one CSV row:
-  scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1
+closed by the kernel), as a client that gives up would, and the time until
+the server's RSS is back within 64 MiB of where it started is measured too
+(the disconnect stops the bake and gives its memory back). Prints one CSV row:
+  scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1,freed_after_disconnect_ms
 where status is the server's exit status (0: a clean stop) or "RUNNING"
 (still there after --limit-ms, then killed). Every wait is bounded.
 """
@@ -41,6 +43,19 @@ def wait_exit(pid, limit_s):
         if time.monotonic() >= end:
             return None
         time.sleep(0.0002)
+
+
+def disconnect(client, pid, base_mib, until):
+    """Kills the client (the kernel closes its socket) and polls the server's RSS every
+    millisecond until the bake's memory is back (within 64 MiB of the RSS before it):
+    the milliseconds that took, or "" when it was not back by `until`."""
+    held = rss_mib(pid)
+    t0 = time.monotonic()
+    client.kill()
+    while held > base_mib + 64 and time.monotonic() < until:
+        time.sleep(0.001)
+        held = rss_mib(pid)
+    return f"{(time.monotonic() - t0) * 1000:.1f}" if held <= base_mib + 64 else ""
 
 
 def start_server(args, folder):
@@ -77,12 +92,14 @@ def main():
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         server, port = start_server(args, folder)
+        base = rss_mib(server.pid)
         client = subprocess.Popen([args.hostile_bin, f"127.0.0.1:{port}", args.scenario],
                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         started = time.monotonic()
+        freed_ms = ""
         if args.disconnect_at_ms > 0:
             time.sleep(max(0.0, started + args.disconnect_at_ms / 1000 - time.monotonic()))
-            client.kill()
+            freed_ms = disconnect(client, server.pid, base, started + args.at_ms / 1000)
         time.sleep(max(0.0, started + args.at_ms / 1000 - time.monotonic()))
         rss = rss_mib(server.pid)
         t0 = time.monotonic()
@@ -96,7 +113,7 @@ def main():
         client.wait()
         load1 = os.getloadavg()[0]
         print(f"{args.scenario},{args.at_ms},{args.disconnect_at_ms},{rss},{exit_ms:.1f},"
-              f"{'RUNNING' if status is None else status},{load1:.2f}", flush=True)
+              f"{'RUNNING' if status is None else status},{load1:.2f},{freed_ms}", flush=True)
         return 0 if status == 0 else 1
 
 
