@@ -146,6 +146,37 @@ int silent_channel(const std::string& server) {
     return 0;
 }
 
+struct Flags {
+    int cancel_after_ms = 0;
+    bool small = false;
+    Knobs knobs;
+};
+
+// The flags after HOST:PORT SCENARIO; unknown ones are ignored.
+Flags parse_flags(int argc, char** argv) {
+    Flags flags;
+    for (int i = 3; i < argc; ++i) {
+        const bool has_value = i + 1 < argc;
+        if (!std::strcmp(argv[i], "--cancel-after-ms") && has_value)
+            flags.cancel_after_ms = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--small"))
+            flags.small = true;
+        else if (!std::strcmp(argv[i], "--size") && has_value)
+            flags.knobs.size = uint32_t(std::strtoul(argv[++i], nullptr, 10));
+        else if (!std::strcmp(argv[i], "--exact"))
+            flags.knobs.pairing = lc::PairingMode::kExact;
+        else if (!std::strcmp(argv[i], "--patch-size") && has_value)
+            flags.knobs.patch_size = std::strtof(argv[++i], nullptr);
+        else if (!std::strcmp(argv[i], "--builder") && has_value) {
+            const std::string builder = argv[++i];
+            flags.knobs.builder = builder == "lbvh"            ? lc::BuilderKind::kLbvh
+                                  : builder == "agglomerative" ? lc::BuilderKind::kAgglomerative
+                                                               : lc::BuilderKind::kOptimalPair;
+        }
+    }
+    return flags;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -157,27 +188,10 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string server = argv[1], name = argv[2];
-    int cancel_after_ms = 0;
-    bool small = false;
-    Knobs knobs;
-    for (int i = 3; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--cancel-after-ms") && i + 1 < argc)
-            cancel_after_ms = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--small"))
-            small = true;
-        else if (!std::strcmp(argv[i], "--size") && i + 1 < argc)
-            knobs.size = uint32_t(std::strtoul(argv[++i], nullptr, 10));
-        else if (!std::strcmp(argv[i], "--exact"))
-            knobs.pairing = lc::PairingMode::kExact;
-        else if (!std::strcmp(argv[i], "--patch-size") && i + 1 < argc)
-            knobs.patch_size = std::strtof(argv[++i], nullptr);
-        else if (!std::strcmp(argv[i], "--builder") && i + 1 < argc) {
-            const std::string builder = argv[++i];
-            knobs.builder = builder == "lbvh"            ? lc::BuilderKind::kLbvh
-                            : builder == "agglomerative" ? lc::BuilderKind::kAgglomerative
-                                                         : lc::BuilderKind::kOptimalPair;
-        }
-    }
+    const Flags flags = parse_flags(argc, argv);
+    const int cancel_after_ms = flags.cancel_after_ms;
+    const bool small = flags.small;
+    const Knobs& knobs = flags.knobs;
     if (name == "silent-channel") return silent_channel(server);
     auto small_bake_ms = [&] {
         lc::client::BakeClientOptions quick;
