@@ -20,7 +20,8 @@ uint64_t emissive_triangles(const SceneGeometry& geometry) {
 }
 
 uint64_t tree_bytes_per_light(const BuildOptions& build) {
-    return build.builder == BuilderKind::kAgglomerative ? kAgglomerativeTreeBytesPerLight : kTreeBytesPerLight;
+    return build.builder == BuilderKind::kAgglomerative ? kAgglomerativeTreeBytesPerLight
+                                                        : kTreeBytesPerLight;
 }
 
 // The largest level the optimal-pair builder pairs exactly, in nodes.

@@ -18,9 +18,9 @@ namespace {
 // (left empty when no triangle emits), with their census line.
 Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
                        std::vector<std::string>& effects, std::vector<std::string>& warnings) {
-    Result<AreaLightSampling> sampled = sample_area_lights(*inputs.geometry, inputs.area_lights,
-                                                           inputs.build.seed, IndexRange{}, inputs.stop.get(),
-                                                           *inputs.lights);
+    Result<AreaLightSampling> sampled =
+        sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, IndexRange{},
+                           inputs.stop.get(), *inputs.lights);
     if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
     if (!sampled) return make_error("area lights: " + sampled.error());
     if (sampled->budget_raised) {
@@ -77,7 +77,8 @@ Result<std::vector<SceneLight>> join_lights(const std::vector<SceneLight>& scene
     auto append = [&](const std::vector<SceneLight>& from) {
         for (size_t begin = 0; begin < from.size(); begin += kStride) {
             if (poll.now()) return false;
-            all.insert(all.end(), from.begin() + begin, from.begin() + std::min(from.size(), begin + kStride));
+            all.insert(all.end(), from.begin() + begin,
+                       from.begin() + std::min(from.size(), begin + kStride));
         }
         return true;
     };

@@ -193,7 +193,8 @@ TEST(AreaLights, SamplesFollowTheLightsGivenBeforeThemAndTheBakeTreeIsTheSame) {
     }
     BakeInputs inputs = inputs_for(g, 500);
     Result<AreaLightSampling> alone = sample_area_lights(g, 500, inputs.build.seed);
-    Result<AreaLightSampling> after = sample_area_lights(g, 500, inputs.build.seed, IndexRange{}, nullptr, scene);
+    Result<AreaLightSampling> after =
+        sample_area_lights(g, 500, inputs.build.seed, IndexRange{}, nullptr, scene);
     ASSERT_TRUE(alone.ok() && after.ok());
     ASSERT_EQ(after->lights.size(), scene.size() + alone->lights.size());
     for (size_t i = 0; i < after->lights.size(); ++i) {

@@ -59,11 +59,10 @@ TEST(BakeFootprint, EstimatesBoundTheMeasuredPeaksClosely) {
         uint64_t lights;
         uint64_t peak_mib;  // less the stored scene channel's reservation, which is counted apart
     };
-    for (const Measured& m : {Measured{BuilderKind::kOptimalPair, 1048576, 562},
-                              Measured{BuilderKind::kLbvh, 1048576, 553},
-                              Measured{BuilderKind::kAgglomerative, 1048576, 594},
-                              Measured{BuilderKind::kOptimalPair, 262144, 143},
-                              Measured{BuilderKind::kOptimalPair, 65536, 58}}) {
+    for (const Measured& m :
+         {Measured{BuilderKind::kOptimalPair, 1048576, 562}, Measured{BuilderKind::kLbvh, 1048576, 553},
+          Measured{BuilderKind::kAgglomerative, 1048576, 594},
+          Measured{BuilderKind::kOptimalPair, 262144, 143}, Measured{BuilderKind::kOptimalPair, 65536, 58}}) {
         BakeInputs inputs = with_lights(m.lights);
         inputs.build.builder = m.builder;
         const uint64_t estimate = estimate_bake_footprint(inputs, false).bytes;
@@ -125,8 +124,9 @@ TEST(BakeFootprint, RadiosityCountsItsPatches) {
     inputs.indirect.radiosity.patch_size = 0.25f;  // edges 1 and 1.41: k = 6 on every triangle
     const BakeFootprint footprint = estimate_bake_footprint(inputs, false);
     EXPECT_EQ(footprint.tree_lights, 12u * 36u);
-    EXPECT_EQ(footprint.bytes, kBakeFixedBytes + 12 * kRayCasterBytesPerTriangle +
-                                   12 * 36 * (kBytesPerPatch + kTreeBytesPerLight + kExactPairingBytesPerNode));
+    EXPECT_EQ(footprint.bytes,
+              kBakeFixedBytes + 12 * kRayCasterBytesPerTriangle +
+                  12 * 36 * (kBytesPerPatch + kTreeBytesPerLight + kExactPairingBytesPerNode));
 }
 
 TEST(BakeFootprint, MegabytesReadWithThousandsSeparators) {

@@ -208,7 +208,8 @@ TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
     const std::vector<SceneLight> lights = scene_lights();
     const uint64_t scene_bytes = encode_scene_channel(lights).size();
     // Room for the scene channel and its bake's estimated peak, not for another channel that size.
-    const uint64_t bake_bytes = kBakeFixedBytes + lights.size() * (kTreeBytesPerLight + kExactPairingBytesPerNode);
+    const uint64_t bake_bytes =
+        kBakeFixedBytes + lights.size() * (kTreeBytesPerLight + kExactPairingBytesPerNode);
     MemoryBudget budget(scene_bytes + bake_bytes);
     ServerSessionOptions options;
     options.memory_budget = &budget;

@@ -106,7 +106,8 @@ Scenario make_scenario(const std::string& name, const std::string& server, const
         auto environment = std::make_shared<lc::Environment>();
         environment->map.width = sized(8192);
         environment->map.height = environment->map.width / 2;
-        environment->map.texels.assign(size_t(environment->map.width) * environment->map.height, glm::vec3(0.5f));
+        environment->map.texels.assign(size_t(environment->map.width) * environment->map.height,
+                                       glm::vec3(0.5f));
         s.options.environment = environment;
         s.options.environment_lights = 100000;
     } else if (name == "area" || name == "area-fit") {
