@@ -14,13 +14,27 @@
 namespace lc::bake {
 namespace {
 
+bool has_emissive_material(const SceneGeometry& geometry) {
+    for (const SurfaceTriangle& t : geometry.triangles) {
+        if (t.material >= geometry.materials.size()) continue;
+        const glm::vec3 e = geometry.materials[t.material].emission;
+        if (e.x + e.y + e.z > 0.0f) return true;
+    }
+    return false;
+}
+
 // The emissive triangles as oriented lights after the scene's, into `added`
-// (left empty when no triangle emits), with their census line.
+// (left empty when no triangle emits), with their census line. The scene's
+// lights are copied in front only when a triangle may emit.
 Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
                        std::vector<std::string>& effects, std::vector<std::string>& warnings) {
+    // No triangle emits without an emissive material, so then no sample needs the scene's lights before it.
+    std::vector<SceneLight> scene;
+    if (has_emissive_material(*inputs.geometry)) scene = *inputs.lights;
+    const size_t scene_count = scene.size();
     Result<AreaLightSampling> sampled =
         sample_area_lights(*inputs.geometry, inputs.area_lights, inputs.build.seed, IndexRange{},
-                           inputs.stop.get(), *inputs.lights);
+                           inputs.stop.get(), std::move(scene));
     if (!sampled && sampled.error_kind() == ErrorKind::kCancelled) return sampled.failure();
     if (!sampled) return make_error("area lights: " + sampled.error());
     if (sampled->budget_raised) {
@@ -28,7 +42,7 @@ Status add_area_lights(const BakeInputs& inputs, std::vector<SceneLight>& added,
                            std::to_string(sampled->emissive_triangles) +
                            " emissive triangles: one sample each");
     }
-    const size_t samples = sampled->lights.size() - std::min(sampled->lights.size(), inputs.lights->size());
+    const size_t samples = sampled->lights.size() - std::min(sampled->lights.size(), scene_count);
     if (sampled->emissive_triangles > 0 && samples > 0) {
         effects.push_back("area lights: simulated (" + std::to_string(sampled->emissive_triangles) +
                           " emissive triangles, " + std::to_string(samples) + " samples)");
