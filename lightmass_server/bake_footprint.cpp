@@ -19,6 +19,18 @@ uint64_t emissive_triangles(const SceneGeometry& geometry) {
     return count;
 }
 
+uint64_t tree_bytes_per_light(const BuildOptions& build) {
+    return build.builder == BuilderKind::kAgglomerative ? kAgglomerativeTreeBytesPerLight
+                                                        : kTreeBytesPerLight;
+}
+
+// The largest level the optimal-pair builder pairs exactly, in nodes.
+uint64_t exact_pairing_nodes(const BuildOptions& build, uint64_t tree_lights) {
+    if (build.builder != BuilderKind::kOptimalPair || build.pairing == PairingMode::kApproximate) return 0;
+    if (build.pairing == PairingMode::kExact) return tree_lights;
+    return std::min<uint64_t>(tree_lights, build.exact_pairing_limit);
+}
+
 // Lights the environment adds, and its sampler's table.
 void add_environment(const BakeInputs& inputs, BakeFootprint& out, uint64_t& largest_part) {
     const Environment& environment = *inputs.environment;
@@ -43,14 +55,14 @@ void add_indirect(const BakeInputs& inputs, BakeFootprint& out, uint64_t& larges
         const uint64_t most = paths > kMaxIndirectLights / bounces ? kMaxIndirectLights : paths * bounces;
         out.max_vpls = most;
         out.tree_lights += most;
-        const uint64_t part = most * (kBytesPerVpl + kTreeBytesPerLight);
+        const uint64_t part = most * (kBytesPerVpl + tree_bytes_per_light(inputs.build));
         out.bytes += most * kBytesPerVpl;
         if (part > largest_part) largest_part = part, out.largest = "up to " + std::to_string(most) + " VPLs";
     } else if (indirect.method == IndirectMethod::kRadiosity) {
         const uint64_t patches = std::min<uint64_t>(
             count_patches(*inputs.geometry, indirect.radiosity.patch_size), indirect.radiosity.max_patches);
         out.tree_lights += patches;
-        const uint64_t part = patches * (kBytesPerPatch + kTreeBytesPerLight);
+        const uint64_t part = patches * (kBytesPerPatch + tree_bytes_per_light(inputs.build));
         out.bytes += patches * kBytesPerPatch;
         if (part > largest_part)
             largest_part = part, out.largest = std::to_string(patches) + " radiosity patches";
@@ -74,8 +86,9 @@ BakeFootprint estimate_bake_footprint(const BakeInputs& inputs, bool recording) 
     }
     if (inputs.environment) add_environment(inputs, out, largest_part);
     add_indirect(inputs, out, largest_part);
-    const uint64_t tree = out.tree_lights * kTreeBytesPerLight;
-    out.bytes += tree;
+    const uint64_t tree = out.tree_lights * tree_bytes_per_light(inputs.build) +
+                          exact_pairing_nodes(inputs.build, out.tree_lights) * kExactPairingBytesPerNode;
+    out.bytes += kBakeFixedBytes + tree;
     // A recorded result is encoded whole beside the tree (two nodes a light).
     if (recording) out.bytes += out.tree_lights * 2 * sizeof(LightTreeNode);
     if (tree >= largest_part) out.largest = "a tree of " + std::to_string(out.tree_lights) + " lights";

@@ -3,9 +3,11 @@
 // and its stored channels before it starts, so the session can reserve it
 // against --memory-budget-mb (or refuse it as "busy" or "too large") instead
 // of finding out as the process grows. The per-item costs are the structures'
-// sizes times the copies the stages keep alive at once, checked against the
-// server's measured peak (docs/RELIABILITY.md). The stored channels are not
-// counted here: their reservations hold them already.
+// sizes times the copies the stages keep alive at once, calibrated against
+// the server's measured peak (VmHWM) for every stage at several sizes
+// (scripts/fault-test.sh footprint, docs/bench/bake_footprint.csv,
+// docs/RELIABILITY.md): an upper bound, by 7-16 % from a million lights up.
+// The stored channels are not counted here: their reservations hold them.
 #include <cstdint>
 #include <string>
 
@@ -13,10 +15,20 @@
 
 namespace lc::bake {
 
-// A light in the tree build: its SceneLight copies (the stage's own and the
-// tree's input list), the builder's arena (two 160-byte nodes), the level
-// vectors, and the exported tree (two 140-byte nodes).
-inline constexpr uint64_t kTreeBytesPerLight = 768;
+// A light in the tree build, measured at its peak through the server (the
+// bake's copy of its lights, the builder's arena and level buffers, the
+// exported tree; docs/bench/bake_footprint.csv) and rounded up: 553-572 bytes
+// at 1 M and 4 M lights with LBVH and the optimal-pair builder, 594 with the
+// agglomerative one.
+inline constexpr uint64_t kTreeBytesPerLight = 600;
+inline constexpr uint64_t kAgglomerativeTreeBytesPerLight = 640;
+// The optimal-pair builder's exact (LEMON) levels: their matching's graph
+// and certificate beside the tree, per node of the largest level it pairs
+// exactly (32,768 by default; every level with PairingMode::kExact).
+inline constexpr uint64_t kExactPairingBytesPerNode = 576;
+// What every bake holds whatever its size: its thread's buffers, the
+// matching's fixed part, the result stream's frames.
+inline constexpr uint64_t kBakeFixedBytes = uint64_t{20} << 20;
 // A VPL beside its tree light: the tracer's per-task and merged lists.
 inline constexpr uint64_t kBytesPerVpl = 160;
 // A radiosity patch beside its tree light: the patch, four double-precision

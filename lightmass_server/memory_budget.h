@@ -38,6 +38,7 @@ public:
     ~BudgetReservation() { reset(); }
 
     void reset();
+    uint64_t bytes() const { return bytes_; }
 
 private:
     MemoryBudget* budget_ = nullptr;

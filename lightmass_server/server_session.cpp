@@ -171,6 +171,14 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     return true;
 }
 
+uint64_t ServerSession::stored_channel_bytes() const {
+    uint64_t bytes = 0;
+    for (const auto& [name, scene] : scenes_) bytes += scene.reservation.bytes();
+    for (const auto& [name, environment] : environments_) bytes += environment.reservation.bytes();
+    for (const auto& [name, geometry] : geometries_) bytes += geometry.reservation.bytes();
+    return bytes;
+}
+
 uint64_t ServerSession::open_channel_bytes() const {
     uint64_t bytes = 0;
     for (const auto& [id, channel] : incoming_) bytes += channel.total_bytes;
@@ -404,6 +412,9 @@ bool ServerSession::reserve_bake(uint32_t bake_id, StartBake& start, BudgetReser
         return false;
     }
     reservation = BudgetReservation(budget, footprint.bytes);
+    spdlog::info("connection {}: bake {} reserves {} ({} tree lights at most) beside {} of stored channels",
+                 options_.connection_id, bake_id, megabytes_text(footprint.bytes), footprint.tree_lights,
+                 megabytes_text(stored_channel_bytes()));
     return true;
 }
 

@@ -154,6 +154,8 @@ private:
     // The inputs' estimated peak against the budget; false: refused (busy or too large), the error sent.
     bool reserve_bake(uint32_t bake_id, StartBake& start, BudgetReservation& reservation);
     uint64_t open_channel_bytes() const;
+    // What this connection's stored scenes, environments and geometries hold against the budget.
+    uint64_t stored_channel_bytes() const;
     void on_cancel(const CancelMsg& cancel);
 
     void send(Message message);

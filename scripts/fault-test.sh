@@ -4,8 +4,9 @@
 #       kill -9 the server mid-bake, ITERATIONS times; every time the client's
 #       previous tree (bake -o TREE.lcut) must be intact, byte for byte
 #   scripts/fault-test.sh stall [--peers 16] [--seconds 30]
-#       slow-byte peers (one byte every 0.5 s) and silent peers, while normal
-#       bakes run: when does the server drop them, and do the bakes still pass?
+#       slow-byte peers (one byte every 0.5 s), silent peers, and peers silent
+#       after opening a 200 MB channel (hostile_bake_bench), while normal bakes
+#       run: when does the server drop them, and do the bakes still pass?
 #   scripts/fault-test.sh hostile [--budget-mb 512] [--hostile-csv docs/bench/hostile_bake.csv]
 #       issue 27's rows, each against a fresh server at --memory-budget-mb
 #       BUDGET with its RSS sampled every 50 ms: deep and huge VPL bakes,
@@ -17,6 +18,15 @@
 #       an optimal-pair build of TREE_LIGHTS lights (every level exact) in
 #       process, cancelled CANCELS times spread over it: milliseconds from
 #       cancel() to the build's return, appended to docs/bench/tree_cancel.csv
+#   scripts/fault-test.sh sigterm [--runs 2] [--sigterm-limit-ms 100] [--sigterm-csv docs/bench/sigterm_exit.csv]
+#       SIGTERM to exit (waitpid) of a server in a 4 M-sample area bake at
+#       0.5 to 12 s, after its client disconnected, and in a radiosity bake,
+#       RUNS times each; fails on a clean stop slower than the limit
+#   scripts/fault-test.sh footprint [--footprint-csv docs/bench/bake_footprint.csv] [--footprint-full]
+#       each stage's bake run to the end on a fresh server: its VmHWM against
+#       the estimate it was admitted by (bake_footprint.h); fails where the
+#       peak is above the estimate plus the stored channels; --footprint-full
+#       adds the 4,194,304-sample area bake (minutes of one core)
 #   scripts/fault-test.sh soak [--minutes 60] [--csv docs/bench/soak_rss.csv]
 #       4 clients bake without pause; the server's RSS is sampled every 2 s
 #   scripts/fault-test.sh all  (kill, stall, then a 10-minute soak)
@@ -41,6 +51,11 @@ hostile_csv=docs/bench/hostile_bake.csv
 hostile_bin=build/bin/hostile_bake_bench
 tree_lights=32768
 cancels=24
+runs=2
+sigterm_limit_ms=100
+sigterm_csv=docs/bench/sigterm_exit.csv
+footprint_csv=docs/bench/bake_footprint.csv
+footprint_full=no
 label=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -55,6 +70,11 @@ while [ $# -gt 0 ]; do
         --hostile-bin) hostile_bin="$2"; shift 2 ;;
         --tree-lights) tree_lights="$2"; shift 2 ;;
         --cancels) cancels="$2"; shift 2 ;;
+        --runs) runs="$2"; shift 2 ;;
+        --sigterm-limit-ms) sigterm_limit_ms="$2"; shift 2 ;;
+        --sigterm-csv) sigterm_csv="$2"; shift 2 ;;
+        --footprint-csv) footprint_csv="$2"; shift 2 ;;
+        --footprint-full) footprint_full=yes; shift ;;
         --label) label="$2"; shift 2 ;;
         --server-bin) server_bin="$2"; shift 2 ;;
         --client-bin) client_bin="$2"; shift 2 ;;
@@ -147,6 +167,31 @@ run_kill() {
     [ "$broken" -eq 0 ] && [ "$leftovers" -eq 0 ]
 }
 
+# stall_open_channel PORT: PEERS peers each open a 200 MB scene channel, send 2 bytes and go silent
+# (issue 27: the idle timeout never applied with a channel open); a bake runs meanwhile. Each must be
+# dropped by the read deadline; adds the peers not dropped and a failed bake to $failed.
+stall_open_channel() {
+    [ -x "$hostile_bin" ] || { echo "stall (silent after opening a channel): skipped, $hostile_bin not built"; return 0; }
+    local p pids=() closed=0 slowest=0 ms
+    for ((p = 0; p < peers; p++)); do
+        timeout 60 "$hostile_bin" "127.0.0.1:$1" silent-channel >"$work/silent_channel_$p.csv" 2>&1 &
+        pids+=($!)
+    done
+    background=("${pids[@]}")
+    sleep 0.5
+    if bake "$1" "$work/small.gltf" "$work/stall.lcut" 7 60 >/dev/null 2>&1; then baked=$((baked + 1)); else failed=$((failed + 1)); fi
+    for p in "${pids[@]}"; do wait "$p" || true; done
+    background=()
+    for ((p = 0; p < peers; p++)); do
+        grep -q '^silent-channel,closed,' "$work/silent_channel_$p.csv" || continue
+        closed=$((closed + 1))
+        ms=$(sed -n 's/.*closed \([0-9]*\) ms after going silent.*/\1/p' "$work/silent_channel_$p.csv")
+        [ "${ms:-0}" -gt "$slowest" ] && slowest=$ms
+    done
+    echo "stall (silent after opening a 200 MB channel): $closed of $peers dropped, the last ${slowest} ms after going silent"
+    failed=$((failed + peers - closed))
+}
+
 run_stall() {
     make_scene 1024 "$work/small.gltf"
     # Short limits so the figures come within the run; the defaults are 30 s, 600 s and 60 s
@@ -177,6 +222,7 @@ run_stall() {
         background=()
         echo "stall ($stall): $(cat "$work/$stall.json"); bakes meanwhile: slowest ${max_ms} ms"
     done
+    stall_open_channel "$port"
     kill -0 "$LC_SERVER_PID" 2>/dev/null || { echo "stall: the server died" >&2; failed=$((failed + 1)); }
     stop_server
     echo "stall: $baked bakes of 1024 lights passed and $failed failed while stalling peers were attached"
@@ -205,24 +251,76 @@ hostile_row() {
     echo "$row,$(peak_rss_mib "$work/rss_$scenario.csv"),$after,$budget" | tee -a "$hostile_csv"
 }
 
-# SIGTERM while a radiosity bake shoots from its 1,000 point lights: milliseconds until the process is gone.
-hostile_sigterm() {
-    start_local_server "$server_bin" "$work" --quiet --memory-budget-mb "$1"
-    timeout 120 "$hostile_bin" "127.0.0.1:$LC_SERVER_PORT" radiosity >/dev/null 2>&1 &
-    local client=$! t0 t1 exited=yes
-    background=("$client")
-    sleep 5  # the patches are made; the point-light pass runs for minutes
-    t0=$(date +%s%N)
-    kill -TERM "$LC_SERVER_PID"
-    for _ in $(seq 1 500); do kill -0 "$LC_SERVER_PID" 2>/dev/null || break; sleep 0.002; done
-    t1=$(date +%s%N)
-    kill -0 "$LC_SERVER_PID" 2>/dev/null && exited=no
-    stop_server
-    wait "$client" 2>/dev/null || true
-    background=()
-    echo "sigterm,$([ $exited = yes ] && echo exited || echo RUNNING),radiosity,$(( (t1 - t0) / 1000000 )),,,SIGTERM to exit,,,$1" \
-        | tee -a "$hostile_csv"
-    [ "$exited" = yes ]
+# sigterm_row SCENARIO AT_MS [DISCONNECT_AT_MS]: SIGTERM to a fresh server AT_MS after the client
+# started (its client killed at DISCONNECT_AT_MS first when given), timed to waitpid (sigterm_timer.py);
+# appends the row to $sigterm_csv and says "over" when a clean stop took longer than the limit.
+sigterm_row() {
+    local row ms status
+    row=$(/usr/bin/python3 scripts/lib/sigterm_timer.py --server-bin "$server_bin" --hostile-bin "$hostile_bin" \
+        --scenario "$1" --at-ms "$2" --disconnect-at-ms "${3:-0}" --log "$work/server.log" || true)
+    [ -n "$row" ] || row="$1,$2,${3:-0},,,NO-ROW,"
+    echo "$(git rev-parse --short HEAD 2>/dev/null || echo unknown),$row" | tee -a "$sigterm_csv" >&2
+    ms=$(echo "$row" | cut -d, -f5)
+    status=$(echo "$row" | cut -d, -f6)
+    if [ "$status" != 0 ] || awk -v m="$ms" -v l="$sigterm_limit_ms" 'BEGIN { exit !(m == "" || m > l) }'; then
+        echo over
+    fi
+}
+
+# SIGTERM to exit, RUNS times at each point: a 4 M-sample area bake (its sampling ends about
+# 0.4 s in, then the tree build's first steps and approximate levels), the same after its client
+# disconnected (the bake cancelled 0.05 s and 2 s before the signal), and a radiosity bake's
+# point-light pass.
+run_sigterm() {
+    [ -x "$hostile_bin" ] || { echo "build $hostile_bin first (cmake --build build --target hostile_bake_bench)" >&2; return 2; }
+    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1,freed_after_disconnect_ms" \
+        >"$sigterm_csv"
+    local over=0 total=0 verdict
+    for ((r = 0; r < runs; r++)); do
+        for point in "area 500" "area 700" "area 2000" "area 4000" "area 8000" "area 12000" "area 4000 3950" "area 10000 8000" \
+            "area 6000 4000" "radiosity 5000"; do
+            # shellcheck disable=SC2086
+            verdict=$(sigterm_row $point)
+            total=$((total + 1))
+            [ "$verdict" = over ] && over=$((over + 1))
+        done
+    done
+    echo "sigterm: $total signals, $over took longer than ${sigterm_limit_ms} ms or did not stop cleanly" \
+        "(load average now $(cut -d' ' -f1-3 /proc/loadavg); rows in $sigterm_csv)"
+    [ "$over" -eq 0 ]
+}
+
+# footprint_row SCENARIO [BENCH ARGS...]: one bake to the end on a fresh server, its peak against its estimate.
+footprint_row() {
+    local row
+    row=$(/usr/bin/python3 scripts/lib/footprint_peak.py --server-bin "$server_bin" --hostile-bin "$hostile_bin" \
+        "$@" || true)
+    echo "$(git rev-parse --short HEAD 2>/dev/null || echo unknown),$row" | tee -a "$footprint_csv" >&2
+    case "$row" in *,baked | *,cancelled*) [ "$(echo "$row" | cut -d, -f10)" -ge 0 ] || echo over ;; *) echo over ;; esac
+}
+
+# Issue 27: each stage's estimate (bake_footprint.h) is an upper bound of what the server holds.
+run_footprint() {
+    [ -x "$hostile_bin" ] || { echo "build $hostile_bin first (cmake --build build --target hostile_bake_bench)" >&2; return 2; }
+    [ -s "$footprint_csv" ] || echo "code,stage,size,builder,threads,estimate_mib,channels_mib,base_mib,peak_mib,bake_peak_mib,headroom_mib,outcome" \
+        >"$footprint_csv"
+    local over=0 total=0 case
+    local cases=(
+        "points --size 4096" "points --size 32768" "points --size 65536" "points --size 262144"
+        "points --size 1048576" "points --size 262144 --builder lbvh" "points --size 262144 --builder agglomerative"
+        "points --size 1048576 --builder lbvh" "points --size 1048576 --builder agglomerative"
+        "points --size 16384 --exact" "points --size 65536 --exact" "area --size 262144" "area --size 400000" "area --size 1048576"
+        "vpl-fit --size 30000" "vpl-fit --size 100000" "vpl-fit --size 300000" "radiosity --size 4 --patch-size 0.4"
+        "radiosity --size 1000 --cancel-after-ms 5000" "environment --size 2048" "environment --size 8192")
+    [ "$footprint_full" = yes ] && cases+=("area")
+    for case in "${cases[@]}"; do
+        # shellcheck disable=SC2086
+        [ "$(footprint_row $case)" = over ] && over=$((over + 1))
+        total=$((total + 1))
+    done
+    echo "footprint: $total bakes run to the end, $over above their estimate plus their stored channels" \
+        "(rows in $footprint_csv)"
+    [ "$over" -eq 0 ]
 }
 
 run_hostile() {
@@ -245,7 +343,16 @@ run_hostile() {
     hostile_row 4096 area --cancel-after-ms 1500
     hostile_row 4096 area --cancel-after-ms 4000
     hostile_row 4096 vpl-huge --cancel-after-ms 1500 --small
-    hostile_sigterm 4096
+    # SIGTERM to exit within --sigterm-limit-ms: during radiosity, the 4 M-sample build, and after a disconnect.
+    [ -s "$sigterm_csv" ] || echo "code,scenario,signal_at_ms,disconnect_at_ms,rss_at_signal_mib,exit_ms,status,load1,freed_after_disconnect_ms" \
+        >"$sigterm_csv"
+    local point over=0
+    for point in "radiosity 5000" "area 4000" "area 6000 4000"; do
+        # shellcheck disable=SC2086
+        [ "$(sigterm_row $point)" = over ] && over=$((over + 1))
+    done
+    echo "hostile: SIGTERM to exit over ${sigterm_limit_ms} ms (or not clean) in $over of 3 (rows in $sigterm_csv)"
+    [ "$over" -eq 0 ]
 }
 
 # Issue 27: the exact (LEMON) levels of a tree build stop within milliseconds of a cancel.
@@ -327,7 +434,9 @@ case "$mode" in
     soak) run_soak ;;
     hostile) run_hostile ;;
     tree-cancel) run_tree_cancel ;;
+    sigterm) run_sigterm ;;
+    footprint) run_footprint ;;
     all) run_kill; run_stall; minutes=10; run_soak ;;
-    *) sed -n '2,25p' "$0"; exit 2 ;;
+    *) sed -n '2,35p' "$0"; exit 2 ;;
 esac
 check_sanitizer_reports

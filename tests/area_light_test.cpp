@@ -184,6 +184,39 @@ TEST(AreaLights, TreesAreByteIdenticalAtAnyThreadCount) {
     EXPECT_EQ(one->report.effects[1], "indirect: skipped: no bounce requested");
 }
 
+TEST(AreaLights, SamplesFollowTheLightsGivenBeforeThemAndTheBakeTreeIsTheSame) {
+    const SceneGeometry g = floor_under_square(1.0f, 1.0f, {1.0f, 0.5f, 0.25f});
+    std::vector<SceneLight> scene(3);
+    for (uint32_t i = 0; i < scene.size(); ++i) {
+        scene[i].guid = Guid{7, i, 0, 1};
+        scene[i].position = {float(i), 2.0f, 0.5f};
+    }
+    BakeInputs inputs = inputs_for(g, 500);
+    Result<AreaLightSampling> alone = sample_area_lights(g, 500, inputs.build.seed);
+    Result<AreaLightSampling> after =
+        sample_area_lights(g, 500, inputs.build.seed, IndexRange{}, nullptr, scene);
+    ASSERT_TRUE(alone.ok() && after.ok());
+    ASSERT_EQ(after->lights.size(), scene.size() + alone->lights.size());
+    for (size_t i = 0; i < after->lights.size(); ++i) {
+        const SceneLight& want = i < scene.size() ? scene[i] : alone->lights[i - scene.size()];
+        EXPECT_EQ(after->lights[i].guid, want.guid) << i;
+        EXPECT_EQ(after->lights[i].position, want.position) << i;
+    }
+    // The bake samples after a copy of the scene's lights: its tree is the one of the lights joined by hand.
+    inputs.lights = std::make_shared<const std::vector<SceneLight>>(scene);
+    Result<BuildResult> baked = run_bake(inputs, nullptr);
+    Result<BuildResult> by_hand = build_light_tree(after->lights, inputs.build, nullptr);
+    ASSERT_TRUE(baked.ok() && by_hand.ok());
+    EXPECT_EQ(baked->tree.leaf_count, 503u);
+    EXPECT_EQ(encode_result_channel(baked->tree), encode_result_channel(by_hand->tree));
+    EXPECT_EQ(baked->report.effects[0], "area lights: simulated (2 emissive triangles, 500 samples)");
+    // No triangle emits: the lights given before are dropped with the (empty) samples.
+    const SceneGeometry dark = floor_under_square(1.0f, 1.0f, glm::vec3(0.0f));
+    Result<AreaLightSampling> none = sample_area_lights(dark, 500, 1, IndexRange{}, nullptr, scene);
+    ASSERT_TRUE(none.ok());
+    EXPECT_TRUE(none->lights.empty());
+}
+
 TEST(AreaLights, WithoutEmissionOrGeometryTheCensusSaysSkipped) {
     SceneGeometry dark = floor_under_square(1.0f, 1.0f, glm::vec3(0.0f));
     // Degenerate emitters only: nothing to sample, no failure.

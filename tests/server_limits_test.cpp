@@ -184,12 +184,13 @@ TEST(ServerLimits, ConnectionsAboveTheLimitAreBusy) {
 }
 
 TEST(ServerLimits, ChannelsAboveTheMemoryBudgetAreBusy) {
-    auto server = start_server({"--memory-budget-mb", "1"});
+    // Room for a small bake (bake_footprint.h: 20 MiB a bake and its lights), not for a 32 MiB channel.
+    auto server = start_server({"--memory-budget-mb", "24"});
     ASSERT_TRUE(server);
     test::RawClient peer(test::port_of(server->address()));
     ASSERT_TRUE(peer.send(HelloMsg{kProtocolVersion, "test", ""}));
     ASSERT_TRUE(peer.receive().has_value());
-    ASSERT_TRUE(peer.send(OpenChannelMsg{1, scene_channel_name(kSceneGuid), 2u << 20}));
+    ASSERT_TRUE(peer.send(OpenChannelMsg{1, scene_channel_name(kSceneGuid), 32u << 20}));
     auto reply = peer.receive();
     ASSERT_TRUE(reply.has_value());
     auto* error = std::get_if<ErrorMsg>(&*reply);

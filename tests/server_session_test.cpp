@@ -208,7 +208,8 @@ TEST(ServerSession, ChannelsBeyondTheMemoryBudgetAreBusy) {
     const std::vector<SceneLight> lights = scene_lights();
     const uint64_t scene_bytes = encode_scene_channel(lights).size();
     // Room for the scene channel and its bake's estimated peak, not for another channel that size.
-    const uint64_t bake_bytes = lights.size() * kTreeBytesPerLight;
+    const uint64_t bake_bytes =
+        kBakeFixedBytes + lights.size() * (kTreeBytesPerLight + kExactPairingBytesPerNode);
     MemoryBudget budget(scene_bytes + bake_bytes);
     ServerSessionOptions options;
     options.memory_budget = &budget;
@@ -530,15 +531,15 @@ TEST(ServerSession, ABakeBeyondTheBudgetIsTooLargeAndOneThatDoesNotFitNowIsBusy)
     ASSERT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kTooLarge});
     const std::string text = std::get<ErrorMsg>(sent(refused)[0]).text;
     EXPECT_NE(text.find("the budget is 64 MB"), std::string::npos) << text;
-    EXPECT_NE(text.find("needs 3,"), std::string::npos) << text;  // 4.2 M lights x 768 bytes
+    EXPECT_NE(text.find("needs 2,"), std::string::npos) << text;  // 4.2 M lights x 600 bytes
 
-    // 50,000 samples (37 MB) fit once; a second session's while the first runs does not.
-    request.area_lights = 50000;
+    // 40,000 samples (61 MB) fit once; a second session's while the first runs does not.
+    request.area_lights = 40000;
     const uint64_t held = budget.used();
     ServerActions first = session.on_message(request);
     ASSERT_EQ(count_of<StartBake>(first), 1u);
     const uint64_t reserved = budget.used() - held;
-    EXPECT_GE(reserved, 50000 * kTreeBytesPerLight);
+    EXPECT_GE(reserved, 40000 * kTreeBytesPerLight);
     ServerSession other = session_with_scene(options);
     EXPECT_TRUE(error_codes(send_geometry(other, emissive_geometry(1.0f))).empty());
     EXPECT_EQ(error_codes(other.on_message(request)), std::vector<ErrorCode>{ErrorCode::kBusy});

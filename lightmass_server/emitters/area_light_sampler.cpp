@@ -99,7 +99,8 @@ glm::dvec3 emitted_power(const SceneGeometry& geometry, const SurfaceTriangle& t
 }
 
 Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint32_t budget, uint64_t seed,
-                                             IndexRange samples, const BakeStop* stop) {
+                                             IndexRange samples, const BakeStop* stop,
+                                             std::vector<SceneLight> before) {
     if (budget == 0) return make_error("the area-light budget is 0; give at least 1 sample");
     std::vector<Emitter> emitters;
     for (uint32_t i = 0; i < geometry.triangles.size(); ++i) {
@@ -120,7 +121,8 @@ Result<AreaLightSampling> sample_area_lights(const SceneGeometry& geometry, uint
     // every doubling, between two stop polls.
     uint64_t total = 0;
     for (const Emitter& e : emitters) total += e.samples;
-    out.lights.reserve(std::min(total, samples.end) - std::min(total, samples.begin));
+    out.lights = std::move(before);
+    out.lights.reserve(out.lights.size() + std::min(total, samples.end) - std::min(total, samples.begin));
 
     uint64_t first_sample = 0;  // the index of e's first sample in the whole output
     StopPoll poll(stop);

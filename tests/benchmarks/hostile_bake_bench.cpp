@@ -11,6 +11,13 @@
 //                  (its peak RSS checks the estimate it was admitted by)
 //   vpl-fit        100,000 paths of 3 bounces in a white furnace, to the end
 //   silent-channel opens a 200 MB channel, sends 2 bytes, goes silent
+//   points         --size point lights, no geometry, to the end (a tree
+//                  builder's peak: scripts/fault-test.sh footprint)
+// --size N scales a scenario for the footprint calibration: area and
+// area-fit's samples, vpl-fit's paths, radiosity's point lights (with
+// --patch-size), the environment map's width (height half of it), points'
+// lights; --builder optimal-pair|agglomerative|lbvh picks the tree builder,
+// --exact pairs every optimal-pair level exactly.
 // A bake is cancelled --cancel-after-ms after its first stage past "queued"
 // (0: not cancelled); the line gives the stage it was in and how long the
 // Cancel took to come back as an error. Prints one CSV row:
@@ -18,6 +25,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <mutex>
@@ -61,8 +69,19 @@ struct Scenario {
     lc::client::BakeClientOptions options;
 };
 
-Scenario make_scenario(const std::string& name, const std::string& server) {
+// What --size, --patch-size and --builder change; 0: the scenario's own value.
+struct Knobs {
+    uint32_t size = 0;
+    float patch_size = 0.0f;
+    lc::BuilderKind builder = lc::BuilderKind::kOptimalPair;
+    lc::PairingMode pairing = lc::PairingMode::kAuto;
+};
+
+Scenario make_scenario(const std::string& name, const std::string& server, const Knobs& knobs) {
     Scenario s;
+    s.options.builder = knobs.builder;
+    s.options.pairing = knobs.pairing;
+    auto sized = [&](uint32_t otherwise) { return knobs.size != 0 ? knobs.size : otherwise; };
     s.options.server = server;
     s.options.timeout_seconds = 900.0;
     s.lights = point_lights(4, 9);
@@ -70,7 +89,7 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
     if (name == "vpl-fit") {
         s.options.geometry =
             std::make_shared<const lc::SceneGeometry>(lc::test::closed_box({white, none}, 4.0f));
-        s.options.indirect = {lc::IndirectMethod::kVpl, 3, 100000};
+        s.options.indirect = {lc::IndirectMethod::kVpl, 3, sized(100000)};
     } else if (name == "vpl-deep" || name == "vpl-huge") {
         s.options.geometry = std::make_shared<const lc::SceneGeometry>(
             lc::test::closed_box({name == "vpl-deep" ? white : black, none}, 4.0f));
@@ -78,15 +97,17 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
                                  ? lc::IndirectRequest{lc::IndirectMethod::kVpl, 65535, 1000}
                                  : lc::IndirectRequest{lc::IndirectMethod::kVpl, 1, 1000000000};
     } else if (name == "radiosity") {
-        s.lights = point_lights(1000, 9);
+        s.lights = point_lights(sized(1000), 9);
         s.options.geometry =
             std::make_shared<const lc::SceneGeometry>(lc::test::closed_box({glm::vec3(0.5f), none}, 4.0f));
-        s.options.indirect = {lc::IndirectMethod::kRadiosity, 1, 1, 0.0141f, 0.01f};
+        const float patch_size = knobs.patch_size > 0.0f ? knobs.patch_size : 0.0141f;
+        s.options.indirect = {lc::IndirectMethod::kRadiosity, 1, 1, patch_size, 0.01f};
     } else if (name == "environment") {
         auto environment = std::make_shared<lc::Environment>();
-        environment->map.width = 8192;
-        environment->map.height = 4096;
-        environment->map.texels.assign(size_t(8192) * 4096, glm::vec3(0.5f));
+        environment->map.width = sized(8192);
+        environment->map.height = environment->map.width / 2;
+        environment->map.texels.assign(size_t(environment->map.width) * environment->map.height,
+                                       glm::vec3(0.5f));
         s.options.environment = environment;
         s.options.environment_lights = 100000;
     } else if (name == "area" || name == "area-fit") {
@@ -94,7 +115,9 @@ Scenario make_scenario(const std::string& name, const std::string& server) {
         panel.materials.push_back({glm::vec3(0.5f), glm::vec3(1.0f)});
         panel.triangles.push_back(lc::test::flat_triangle({0, 2, 0}, {1, 2, 0}, {0, 2, 1}, 0));
         s.options.geometry = std::make_shared<const lc::SceneGeometry>(std::move(panel));
-        s.options.area_lights = name == "area" ? lc::kMaxAreaLights : 400000;
+        s.options.area_lights = sized(name == "area" ? lc::kMaxAreaLights : 400000);
+    } else if (name == "points") {
+        s.lights = point_lights(sized(65536), 11);
     }
     return s;
 }
@@ -124,22 +147,52 @@ int silent_channel(const std::string& server) {
     return 0;
 }
 
+struct Flags {
+    int cancel_after_ms = 0;
+    bool small = false;
+    Knobs knobs;
+};
+
+// The flags after HOST:PORT SCENARIO; unknown ones are ignored.
+Flags parse_flags(int argc, char** argv) {
+    Flags flags;
+    for (int i = 3; i < argc; ++i) {
+        const bool has_value = i + 1 < argc;
+        if (!std::strcmp(argv[i], "--cancel-after-ms") && has_value)
+            flags.cancel_after_ms = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--small"))
+            flags.small = true;
+        else if (!std::strcmp(argv[i], "--size") && has_value)
+            flags.knobs.size = uint32_t(std::strtoul(argv[++i], nullptr, 10));
+        else if (!std::strcmp(argv[i], "--exact"))
+            flags.knobs.pairing = lc::PairingMode::kExact;
+        else if (!std::strcmp(argv[i], "--patch-size") && has_value)
+            flags.knobs.patch_size = std::strtof(argv[++i], nullptr);
+        else if (!std::strcmp(argv[i], "--builder") && has_value) {
+            const std::string builder = argv[++i];
+            flags.knobs.builder = builder == "lbvh"            ? lc::BuilderKind::kLbvh
+                                  : builder == "agglomerative" ? lc::BuilderKind::kAgglomerative
+                                                               : lc::BuilderKind::kOptimalPair;
+        }
+    }
+    return flags;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: %s HOST:PORT SCENARIO [--cancel-after-ms N] [--small]\n", argv[0]);
+        std::fprintf(stderr,
+                     "usage: %s HOST:PORT SCENARIO [--cancel-after-ms N] [--small] [--size N] "
+                     "[--patch-size S] [--builder optimal-pair|agglomerative|lbvh] [--exact]\n",
+                     argv[0]);
         return 2;
     }
     const std::string server = argv[1], name = argv[2];
-    int cancel_after_ms = 0;
-    bool small = false;
-    for (int i = 3; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--cancel-after-ms") && i + 1 < argc)
-            cancel_after_ms = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--small"))
-            small = true;
-    }
+    const Flags flags = parse_flags(argc, argv);
+    const int cancel_after_ms = flags.cancel_after_ms;
+    const bool small = flags.small;
+    const Knobs& knobs = flags.knobs;
     if (name == "silent-channel") return silent_channel(server);
     auto small_bake_ms = [&] {
         lc::client::BakeClientOptions quick;
@@ -153,7 +206,7 @@ int main(int argc, char** argv) {
         small_bake_ms();  // warm: the first connection's costs are not the bake's
         small_idle_ms = small_bake_ms();
     }
-    Scenario s = make_scenario(name, server);
+    Scenario s = make_scenario(name, server, knobs);
     std::mutex mutex;
     std::string stage = "queued";
     std::atomic<bool> started{false}, cancel{false};
