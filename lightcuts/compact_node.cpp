@@ -94,8 +94,4 @@ CompactBounds decode_bounds(const GpuTreeNode& node) {
     return b;
 }
 
-CompactBounds compact_bounds(const LightTreeNode& node) {
-    return decode_bounds(make_compact_node(node, 0, kEndOfWalk, kEndOfWalk));
-}
-
 }  // namespace lc

@@ -152,7 +152,7 @@ private:
 
 class BlockShader {
 public:
-    BlockShader(const LightTree& tree, std::span<const SceneLight> classic,
+    BlockShader(const WalkTree& tree, std::span<const SceneLight> classic,
                 const SupersampledFrame& frame, const CutSettings& settings,
                 std::vector<glm::dvec3>& sums, CornerSamples* samples)
         : tree_(tree), classic_(classic), frame_(frame), settings_(settings), sums_(sums),
@@ -350,7 +350,7 @@ private:
                                std::span(weights, size_t(count)), settings_.error_ratio * kInterpolationScale, rays_));
     }
 
-    const LightTree& tree_;
+    const WalkTree& tree_;
     std::span<const SceneLight> classic_;
     const SupersampledFrame& frame_;
     const CutSettings& settings_;
@@ -361,7 +361,7 @@ private:
 
 }  // namespace
 
-std::vector<glm::dvec3> shade_supersampled(const LightTree& tree,
+std::vector<glm::dvec3> shade_supersampled(const WalkTree& tree,
                                            std::span<const SceneLight> classic_lights,
                                            const SupersampledFrame& frame,
                                            const CutSettings& settings, SupersampleShading shading,

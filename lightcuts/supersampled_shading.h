@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/walk_tree.h"
 #include "lightcuts/scene_light.h"
 
 namespace lc {
@@ -63,7 +63,7 @@ struct SupersampleStats {
 // The mean radiance of each pixel's eye rays (row-major), with the classic
 // lights shaded exactly at every eye ray. Blocks are spread over `threads`
 // workers; the result does not depend on their number.
-std::vector<glm::dvec3> shade_supersampled(const LightTree& tree,
+std::vector<glm::dvec3> shade_supersampled(const WalkTree& tree,
                                            std::span<const SceneLight> classic_lights,
                                            const SupersampledFrame& frame,
                                            const CutSettings& settings, SupersampleShading shading,

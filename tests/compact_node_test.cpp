@@ -24,7 +24,7 @@ bool inside(const glm::dvec3& v, const glm::dvec3& lo, const glm::dvec3& hi) {
 // Every leaf under every node, checked against the node's decoded bounds
 // (an explicit stack per node: trees may be chains).
 void expect_conservative(const LightTree& tree) {
-    Result<GpuTree> gpu = make_gpu_tree(tree);
+    Result<WalkTree> gpu = make_walk_tree(tree);
     ASSERT_TRUE(gpu) << gpu.error();
     ASSERT_EQ(gpu->nodes.size(), tree.nodes.size());
     for (size_t i = 0; i < tree.nodes.size(); ++i) {

@@ -69,7 +69,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
     // Pre-order: 0 1 3 4 2 5 6.
     EXPECT_EQ(*escape, (std::vector<int32_t>{-1, 2, -1, 4, 2, 6, -1}));
 
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->nodes[0].first_child, 1);
     EXPECT_EQ(gpu->nodes[1].first_child, 3);
@@ -80,7 +80,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
 
 // The walk the shader does, with a refine decision per node: visits each cut
 // node once and returns them in pre-order.
-std::vector<int32_t> walk(const GpuTree& tree, const std::vector<bool>& refine) {
+std::vector<int32_t> walk(const WalkTree& tree, const std::vector<bool>& refine) {
     std::vector<int32_t> cut;
     int32_t i = tree.nodes.empty() ? kEndOfWalk : 0;
     size_t steps = 0;
@@ -105,7 +105,7 @@ TEST(GpuLayout, WalkProducesTheExpectedCuts) {
     LightTree tree;
     tree.nodes = {node(1, 2),   node(3, 4),  node(5, -1), node(-1, -1),
                   node(-1, -1), node(6, -1), node(-1, -1)};
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     std::vector<bool> all(7, true), none(7, false);
     EXPECT_EQ(walk(*gpu, all), (std::vector<int32_t>{3, 4, 6}));
@@ -135,13 +135,13 @@ TEST(GpuLayout, RejectsMalformedTrees) {
     LightTree not_finite;
     not_finite.nodes = {node(-1, -1)};
     not_finite.nodes[0].intensity.x = std::nanf("");
-    Result<GpuTree> g = make_gpu_tree(not_finite);
+    Result<WalkTree> g = make_walk_tree(not_finite);
     ASSERT_FALSE(g.ok());
     EXPECT_NE(g.error().find("intensity"), std::string::npos) << g.error();
     LightTree inner_representative;
     inner_representative.nodes = {node(1, 2), node(-1, -1), node(-1, -1)};
     inner_representative.nodes[0].representative = 0;  // itself, not a leaf
-    g = make_gpu_tree(inner_representative);
+    g = make_walk_tree(inner_representative);
     ASSERT_FALSE(g.ok());
     EXPECT_NE(g.error().find("not a leaf"), std::string::npos) << g.error();
 }
@@ -155,7 +155,7 @@ TEST(GpuLayout, MillionNodeChainNeedsNoRecursion) {
         chain.nodes[i].left = i + 1;
         chain.nodes[i].right = i + 2;
     }
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(chain));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(chain));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->depth, uint32_t(kNodes / 2));
     EXPECT_EQ(gpu->leaves.size(), size_t(kNodes / 2 + 1));

@@ -18,7 +18,7 @@
 
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/renderer.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/walk_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightcuts/supersampled_shading.h"
@@ -53,7 +53,7 @@ struct SupersampleRequest {
 // read them); the renderer keeps the last frame's targets.
 Result<SupersampledImage> render_supersampled(Renderer& renderer, const RenderSettings& settings,
                                               const SupersampleRequest& request,
-                                              const LightTree* tree,
+                                              const WalkTree* tree,
                                               std::span<const SceneLight> classic_lights);
 
 }  // namespace lc::client
