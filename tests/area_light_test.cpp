@@ -153,7 +153,7 @@ TEST(AreaLights, FloorUnderASquareEmitterMatchesTheFormFactor) {
     const SceneGeometry g = floor_under_square(float(side), float(height), glm::vec3(float(L)));
     Result<BuildResult> built = run_bake(inputs_for(g, kDefaultAreaLights), nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
-    const LightTree& tree = built->tree;
+    const WalkTree& tree = built->tree;
     EXPECT_EQ(tree.leaf_count, kDefaultAreaLights);
     CutSettings cuts;
     cuts.criterion = CutCriterion::kBound;

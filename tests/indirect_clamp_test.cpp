@@ -473,10 +473,10 @@ protected:
         settings_.error_ratio = float(kErrorRatio);
     }
 
-    std::unique_ptr<client::Renderer> renderer(const LightTree& tree, bool indirect = true) {
+    std::unique_ptr<client::Renderer> renderer(const WalkTree& tree, bool indirect = true) {
         client::RendererOptions options;
         options.indirect = indirect;
-        Result<std::unique_ptr<client::Renderer>> r = client::Renderer::create(*context_, scene_, &tree, options);
+        Result<std::unique_ptr<client::Renderer>> r = test::create_renderer(*context_, scene_, &tree, options);
         EXPECT_TRUE(r.ok()) << r.error();
         return r.ok() ? std::move(r).value() : nullptr;
     }
@@ -517,7 +517,7 @@ protected:
     }
 
     // Every pixel of every mode against the CPU evaluator: radiance, clamped and indirect energy.
-    void expect_gpu_shades_like_the_cpu(const LightTree& tree);
+    void expect_gpu_shades_like_the_cpu(const WalkTree& tree);
 
     Scene scene_;
     client::RenderSettings settings_;
@@ -552,7 +552,7 @@ TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode
     }
 }
 
-void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
+void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const WalkTree& tree) {
     std::unique_ptr<client::Renderer> r = renderer(tree);
     ASSERT_TRUE(r);
     for (const Mode& m : every_mode()) {
@@ -646,7 +646,7 @@ TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) 
     client::RendererOptions split_options;
     split_options.reference_evaluations_per_submission = 1;
     Result<std::unique_ptr<client::Renderer>> split =
-        client::Renderer::create(*context_, scene_, &tree, split_options);
+        test::create_renderer(*context_, scene_, &tree, split_options);
     ASSERT_TRUE(whole && split.ok());
     const Frame one = render(*whole, client::RenderMode::kReference, CutCriterion::kRadius);
     const Frame several = render(**split, client::RenderMode::kReference, CutCriterion::kRadius);
@@ -665,7 +665,7 @@ TEST_F(IndirectClampGpu, TheReferenceTracesEachVplsShadowRayOnce) {
     std::unique_ptr<client::Renderer> kept = renderer(tree);
     client::RendererOptions no_budget;
     no_budget.vpl_visibility_budget_bytes = 0;
-    Result<std::unique_ptr<client::Renderer>> traced = client::Renderer::create(*context_, scene_, &tree, no_budget);
+    Result<std::unique_ptr<client::Renderer>> traced = test::create_renderer(*context_, scene_, &tree, no_budget);
     ASSERT_TRUE(kept && traced.ok());
     const Frame a = render(*kept, client::RenderMode::kReference, CutCriterion::kRadius);
     const Frame b = render(**traced, client::RenderMode::kReference, CutCriterion::kRadius);

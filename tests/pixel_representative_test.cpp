@@ -39,13 +39,13 @@ uint32_t key_of_pixel(uint32_t x, uint32_t y) {
 }
 
 // Every leaf under `index`.
-std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
+std::vector<int32_t> leaves_under(const WalkTree& tree, int32_t index) {
     std::vector<int32_t> leaves, stack{index};
     while (!stack.empty()) {
         const int32_t i = stack.back();
         stack.pop_back();
         int32_t children[2];
-        const int n = valid_children(tree, i, children);
+        const int n = children_of(tree, i, children);
         if (n == 0) leaves.push_back(i);
         for (int c = 0; c < n; ++c) stack.push_back(children[c]);
     }
@@ -88,7 +88,7 @@ TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) 
         const uint32_t key = key_of_pixel(pixel, 3 * pixel);
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
             int32_t children[2];
-            const int n = valid_children(tree, i, children);
+            const int n = children_of(tree, i, children);
             const int32_t parent_rep = pixel_representative(tree, i, key);
             if (n == 0) {
                 EXPECT_EQ(parent_rep, i);
@@ -115,7 +115,7 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
         SCOPED_TRACE(cluster);
         double exact = 0.0;
         for (int32_t leaf : leaves_under(tree, cluster))
-            exact += rgb_sum(shade_node(tree.nodes[size_t(leaf)], p));
+            exact += rgb_sum(shade_node(tree, leaf, p));
         double mean = 0.0;
         const uint32_t side = 200;
         SurfacePoint q = p;
@@ -126,7 +126,7 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
         // 40,000 draws: a few per mille; the tree's one representative for
         // every pixel is off by several per cent.
         EXPECT_NEAR(mean, exact, 0.01 * exact);
-        EXPECT_GT(std::abs(rgb_sum(shade_node(tree.nodes[size_t(cluster)], p)) - exact), 0.03 * exact);
+        EXPECT_GT(std::abs(rgb_sum(shade_node(tree, cluster, p)) - exact), 0.03 * exact);
     }
 }
 
@@ -167,7 +167,7 @@ TEST(ImportanceRepresentative, TheClusterEstimateIsUnbiasedPerChannel) {
     for (int32_t cluster : {0, 1, 2}) {
         SCOPED_TRACE(cluster);
         glm::dvec3 exact(0.0);
-        for (int32_t leaf : leaves_under(tree, cluster)) exact += shade_node(tree.nodes[size_t(leaf)], p);
+        for (int32_t leaf : leaves_under(tree, cluster)) exact += shade_node(tree, leaf, p);
         glm::dvec3 mean(0.0);
         const uint32_t side = 200;
         SurfacePoint q = p;
@@ -198,14 +198,14 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
             test::surface({-4.0 + 0.2 * k, 0.0, 3.0 - 0.15 * k}, {0.0, 1.0, 0.0}, {0.5, 0.5, 0.5});
         p.pixel = {k, 7 * k};
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
-            const LightTreeNode& node = tree.nodes[size_t(i)];
+            const GpuTreeNode& node = tree.node(i);
             int32_t children[2];
             // A parent weighs at least its children together: the premise of the bound.
             const auto geometry = [&](const LightTreeNode& n) {
                 return double(device::importance_geometry(n.bbox_min, n.bbox_max, glm::vec3(p.position),
                                                           glm::vec3(p.normal), false));
             };
-            if (valid_children(tree, i, children) == 2) {
+            if (children_of(tree, i, children) == 2) {
                 const double children_weight =
                     device::representative_scalar(tree.nodes[size_t(children[0])].intensity) *
                         geometry(tree.nodes[size_t(children[0])]) +
@@ -230,7 +230,7 @@ TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {
     p.pixel = {5, 9};
     const CutSettings settings;  // kTree
     for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
-        const glm::dvec3 own = shade_node(tree.nodes[size_t(i)], p);
+        const glm::dvec3 own = shade_node(tree, i, p);
         const glm::dvec3 cluster = shade_cluster(tree, i, p, settings);
         EXPECT_EQ(own.x, cluster.x);
         EXPECT_EQ(own.y, cluster.y);

@@ -56,7 +56,7 @@ struct CutAgreement {
 
 // Renders lightcuts-bound and compares every geometry pixel with the CPU.
 CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings,
-                              const LightTree& tree, uint64_t* gpu_hits = nullptr) {
+                              const WalkTree& tree, uint64_t* gpu_hits = nullptr) {
     CutAgreement a;
     Result<RenderStats> stats = renderer.render(settings);
     EXPECT_TRUE(stats.ok()) << stats.error();
@@ -120,7 +120,7 @@ void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<Scene
     ASSERT_FALSE(tree.empty());
     RendererOptions visible;
     visible.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(context, scene, &tree, visible);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(48);
     settings.representatives = representatives;
@@ -177,7 +177,7 @@ TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) 
     Scene scene = make_room_scene();
     scene.lights = room_lights(400, LightTypeChoice::kPoint, 1.0f);
     LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(32);
     settings.share_cuts = true;
@@ -209,7 +209,7 @@ TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
     scene.lights = room_lights(2000, LightTypeChoice::kPoint, 0.5f);
     LightTree tree = test::agglomerative_tree(scene.lights);
     ASSERT_FALSE(tree.empty());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.criterion = CutCriterion::kBound;
@@ -257,7 +257,7 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(200, LightTypeChoice::kPoint, 1.0f);
     LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(32);
     settings.max_cut = 2;
@@ -281,7 +281,7 @@ TEST_F(BoundCriterion, RejectsBadCutSettings) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(8, LightTypeChoice::kPoint, 1.0f);
     LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
@@ -341,7 +341,7 @@ TEST_F(BoundCriterion, ErrorHeatmapOfARealFrameIsFinite) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(64, LightTypeChoice::kPoint, 1.0f);
     LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.criterion = CutCriterion::kBound;

@@ -120,7 +120,7 @@ auto per_pixel(const Renderer& renderer, PerPixel f) {
 }
 
 // The CPU's exact sum over the tree's leaves (reference mode), as an expected frame.
-auto leaves_frame(const Renderer& renderer, const LightTree& tree) {
+auto leaves_frame(const Renderer& renderer, const WalkTree& tree) {
     return per_pixel(renderer, [&tree](const SurfacePoint& p) {
         CutResult r;
         r.radiance = shade_tree_leaves(tree, p);
@@ -150,7 +150,7 @@ protected:
 };
 
 TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -161,7 +161,7 @@ TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
 }
 
 TEST_F(Shadows, BoundWalkAndHeapMatchTheCpu) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kBound;
@@ -194,7 +194,7 @@ TEST_F(Shadows, WalkSearchFinishesWhereOneInvocationWouldHitTheLoopLimit) {
     // finishes and matches the CPU.
     scene_.lights = furnished_room_lights(4000, 17);
     tree_ = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.width = settings_.height = 24;
     settings_.mode = RenderMode::kLightcuts;
@@ -231,7 +231,7 @@ TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
     }
     tree_ = test::agglomerative_tree(scene_.lights);
     scene_.lights.insert(scene_.lights.end(), classic.begin(), classic.end());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kRadius;
@@ -256,7 +256,7 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
         }
     scene_.lights = furnished_room_lights(400, 12);
     tree_ = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     const uint32_t chunk = (*renderer)->reference_chunk();
@@ -276,12 +276,12 @@ TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
     // its own (the leaves, then the parts' sum of this small image, whose
     // four workgroups split the leaves in layers): the same bytes and counts
     // as one submission.
-    Result<std::unique_ptr<Renderer>> whole = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> whole = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(whole.ok()) << whole.error();
     RendererOptions split_options;
     split_options.reference_evaluations_per_submission = 1;
     Result<std::unique_ptr<Renderer>> split =
-        Renderer::create(*context_, scene_, &tree_, split_options);
+        test::create_renderer(*context_, scene_, &tree_, split_options);
     ASSERT_TRUE(split.ok()) << split.error();
     settings_.mode = RenderMode::kReference;
     settings_.width = settings_.height = 16;
@@ -326,7 +326,7 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     scene.bounds_min = {-5, 0, -5};
     scene.bounds_max = {5, 3, 5};
     LightTree tree = test::agglomerative_tree(lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     if ((*renderer)->leaf_count() <= (*renderer)->reference_chunk())
@@ -371,7 +371,7 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
     }
     scene_.lights = lights;
     tree_ = test::agglomerative_tree(lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -389,7 +389,7 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     Scene empty = make_room_scene();
     empty.lights = scene_.lights;
     LightTree tree = test::agglomerative_tree(empty.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, empty, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, empty, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_FALSE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -401,7 +401,7 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     RendererOptions off;
     off.shadows = ShadowMode::kOff;
     Result<std::unique_ptr<Renderer>> no_shadows =
-        Renderer::create(*context_, scene_, &tree_, off);
+        test::create_renderer(*context_, scene_, &tree_, off);
     ASSERT_TRUE(no_shadows.ok()) << no_shadows.error();
     EXPECT_FALSE((*no_shadows)->effects().shadows);
     stats = (*no_shadows)->render(settings_);
@@ -421,7 +421,7 @@ TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {
     LightTree tree = test::agglomerative_tree(with);
     Scene scene = scene_;
     scene.lights = with;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree), false);

@@ -28,7 +28,7 @@ protected:
         settings_.criterion = CutCriterion::kBound;
         settings_.width = settings_.height = kSize;
         settings_.camera = test::furnished_room_camera();
-        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+        Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
         ASSERT_TRUE(renderer.ok()) << renderer.error();
         renderer_ = std::move(renderer).value();
         ASSERT_TRUE(renderer_->effects().shadows);
