@@ -23,15 +23,15 @@ namespace lc {
 namespace {
 
 // The builder's scalar intensity in float, as the draw reads it.
-double scalar_intensity(const LightTreeNode& node) {
+double scalar_intensity(const GpuTreeNode& node) {
     return double(node.intensity.x + node.intensity.y + node.intensity.z);
 }
 
-LightTree random_tree(int count, uint64_t seed) {
+WalkTree random_tree(int count, uint64_t seed) {
     std::mt19937_64 rng(seed);
     const std::vector<SceneLight> lights = test::random_lights_in_box(
         rng, count, LightType::kPoint, {-4.0f, 1.0f, -4.0f}, {4.0f, 3.0f, 4.0f}, false);
-    return test::morton_pairing_tree(lights, seed);
+    return test::walk_tree(test::morton_pairing_tree(lights, seed));
 }
 
 uint32_t key_of_pixel(uint32_t x, uint32_t y) {
@@ -53,7 +53,7 @@ std::vector<int32_t> leaves_under(const WalkTree& tree, int32_t index) {
 }
 
 TEST(PixelRepresentative, DrawsEachLeafInProportionToItsIntensity) {
-    const LightTree tree = random_tree(24, 3);
+    const WalkTree tree = random_tree(24, 3);
     // The root and a cluster a few levels down, over 256 x 256 pixels.
     for (int32_t cluster : {0, 5}) {
         SCOPED_TRACE(cluster);
@@ -83,7 +83,7 @@ TEST(PixelRepresentative, DrawsEachLeafInProportionToItsIntensity) {
 }
 
 TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) {
-    const LightTree tree = random_tree(40, 5);
+    const WalkTree tree = random_tree(40, 5);
     for (uint32_t pixel = 0; pixel < 64; ++pixel) {
         const uint32_t key = key_of_pixel(pixel, 3 * pixel);
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
@@ -103,7 +103,7 @@ TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) 
 }
 
 TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
-    const LightTree tree = random_tree(32, 11);
+    const WalkTree tree = random_tree(32, 11);
     const SurfacePoint p = test::surface({0.5, 0.0, -0.5}, {0.0, 1.0, 0.0});
     CutSettings settings;
     settings.representatives = Representatives::kPixel;
@@ -131,7 +131,7 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
 }
 
 TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds) {
-    const LightTree tree = random_tree(200, 17);
+    const WalkTree tree = random_tree(200, 17);
     CutSettings settings;
     settings.criterion = CutCriterion::kBound;
     settings.error_ratio = 0.01;
@@ -160,7 +160,7 @@ TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds)
 }
 
 TEST(ImportanceRepresentative, TheClusterEstimateIsUnbiasedPerChannel) {
-    const LightTree tree = random_tree(32, 11);
+    const WalkTree tree = random_tree(32, 11);
     const SurfacePoint p = test::surface({0.5, 0.0, -0.5}, {0.0, 1.0, 0.0});
     CutSettings settings;
     settings.representatives = Representatives::kImportance;
@@ -188,7 +188,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
     std::vector<SceneLight> lights = test::random_lights_in_box(
         rng, 120, LightType::kPoint, {-4.0f, 1.0f, -4.0f}, {4.0f, 3.0f, 4.0f}, false);
     for (SceneLight& light : lights) light.color = glm::vec3(1.0f);
-    const LightTree tree = test::morton_pairing_tree(lights, 31);
+    const WalkTree tree = test::walk_tree(test::morton_pairing_tree(lights, 31));
     CutSettings settings;
     settings.representatives = Representatives::kImportance;
     const double f_r = 0.5 / test::kPi;
@@ -201,7 +201,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
             const GpuTreeNode& node = tree.node(i);
             int32_t children[2];
             // A parent weighs at least its children together: the premise of the bound.
-            const auto geometry = [&](const LightTreeNode& n) {
+            const auto geometry = [&](const GpuTreeNode& n) {
                 return double(device::importance_geometry(n.bbox_min, n.bbox_max, glm::vec3(p.position),
                                                           glm::vec3(p.normal), false));
             };
@@ -217,7 +217,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
             const glm::dvec3 estimate = shade_cluster(tree, i, p, settings);
             const double bound = double(node.intensity.x) * geometry(node) * f_r;
             EXPECT_LE(estimate.x, bound * (1.0 + 1e-4)) << "node " << i;
-            differs_from_tree += std::abs(estimate.x - shade_node(node, p).x) > 1e-9 * bound;
+            differs_from_tree += std::abs(estimate.x - shade_node(tree, i, p).x) > 1e-9 * bound;
         }
     }
     // Not the tree's estimate I_C f_rep under another name.
@@ -225,7 +225,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
 }
 
 TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {
-    const LightTree tree = random_tree(50, 23);
+    const WalkTree tree = random_tree(50, 23);
     SurfacePoint p = test::surface({1.0, 0.0, 0.0});
     p.pixel = {5, 9};
     const CutSettings settings;  // kTree
@@ -239,7 +239,7 @@ TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {
 }
 
 TEST(PixelRepresentative, DrawsDependOnThePixelAndTheSeedOnly) {
-    const LightTree tree = random_tree(64, 29);
+    const WalkTree tree = random_tree(64, 29);
     CutSettings settings;
     settings.representatives = Representatives::kPixel;
     SurfacePoint a = test::surface({0.0, 0.0, 0.0});
