@@ -45,9 +45,10 @@ glm::dvec3 emissive_at(const GBufferReadback& g, size_t i) {
 // True when p sits within float rounding of some node's influence sphere, where
 // float and double may legitimately pick different cuts.
 bool near_radius_boundary(const WalkTree& tree, const SurfacePoint& p) {
-    for (const LightTreeNode& n : tree.nodes) {
-        if (n.radius < 0.0f || n.is_leaf()) continue;
-        double d = glm::length(p.position - glm::dvec3(n.position));
+    for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
+        const GpuTreeNode& n = tree.node(i);
+        if (n.radius < 0.0f || is_leaf(n)) continue;
+        double d = glm::length(p.position - glm::dvec3(tree.light_of(i).position));
         if (std::abs(d - n.radius) <= 1e-4 * std::max(1.0, double(n.radius))) return true;
     }
     return false;
@@ -108,7 +109,7 @@ protected:
     // `tree` is given, cut sizes and hashes must match the CPU's too.
     template <typename Expected>
     Comparison render_and_compare(Renderer& renderer, const RenderSettings& settings,
-                                  Expected expected, const LightTree* cut_tree = nullptr) {
+                                  Expected expected, const WalkTree* cut_tree = nullptr) {
         Comparison c;
         Result<RenderStats> stats = renderer.render(settings);
         EXPECT_TRUE(stats.ok()) << stats.error();
@@ -192,9 +193,10 @@ TEST_F(GpuVsCpu, ReferenceWithoutTreeMatchesSceneLights) {
 }
 
 TEST_F(GpuVsCpu, ReferenceAndLightcutsWithHandMadeTree) {
-    LightTree tree = test::make_pairing_tree(tree_lights());
-    ASSERT_EQ(tree.leaf_count, tree_lights().size());
-    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree);
+    const LightTree imported = test::make_pairing_tree(tree_lights());
+    ASSERT_EQ(imported.leaf_count, tree_lights().size());
+    const WalkTree tree = test::walk_tree(imported);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     std::vector<SceneLight> classic = classic_lights();
 
@@ -235,8 +237,8 @@ TEST_F(GpuVsCpu, LightcutsWithBuilderTreeAndRanges) {
     options.builder = BuilderKind::kOptimalPair;
     Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
-    const WalkTree& tree = built->tree;
-    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree);
+    const WalkTree tree = test::walk_tree(built->tree);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
     settings_.mode = RenderMode::kLightcuts;
@@ -281,8 +283,8 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
     // representative (the left leaf) that encloses the rest of the chain.
     for (int k = kLeaves - 2; k >= 0; --k) {
         LightTreeNode& spine = tree.nodes[2 * k];
-        const GpuTreeNode& left = tree.node(2 * k + 1);
-        const GpuTreeNode& right = tree.node(2 * k + 2);
+        const LightTreeNode& left = tree.nodes[2 * k + 1];
+        const LightTreeNode& right = tree.nodes[2 * k + 2];
         spine.position = left.position;
         spine.representative = 2 * k + 1;
         spine.intensity = left.intensity + right.intensity;
@@ -290,8 +292,9 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
         spine.radius = 0.2f + 6.0f * float(kLeaves - 1 - k) / float(kLeaves);
     }
     tree.leaf_count = kLeaves;
+    const WalkTree walk = test::walk_tree(tree);
     scene_.lights.clear();
-    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &walk);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_EQ((*renderer)->tree_depth(), uint32_t(kLeaves - 1));
 
@@ -300,7 +303,7 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
     CutSettings radius;
     Comparison c = render_and_compare(
         **renderer, settings_,
-        [&](const SurfacePoint& p) { return shade_lightcuts(tree, {}, p, radius); }, &tree);
+        [&](const SurfacePoint& p) { return shade_lightcuts(walk, {}, p, radius); }, &walk);
     EXPECT_GT(c.compared, c.geometry_pixels * 99 / 100);
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
