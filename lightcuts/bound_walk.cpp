@@ -23,7 +23,7 @@ Pass walk_pass(const WalkTree& tree, const SurfacePoint& p, const CutSettings& s
                double tau, bool keep_nodes) {
     Pass pass;
     pass.cut = walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
-        const double key = error_key(tree, index, child_count, p);
+        const double key = error_key(tree, index, p);
         const bool refine = child_count > 0 && (joins_types(node) || key > tau);
         if (!refine) {
             pass.worst = std::max(pass.worst, key);

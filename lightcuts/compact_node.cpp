@@ -85,10 +85,15 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     return out;
 }
 
-CompactBounds decode_bounds(const GpuTreeNode& node) {
+CompactBounds decode_box(const GpuTreeNode& node) {
     CompactBounds b;
     b.bbox_min = glm::dvec3(node.bbox_min);
     b.bbox_max = glm::dvec3(node.bbox_max);
+    return b;
+}
+
+CompactBounds decode_bounds(const GpuTreeNode& node) {
+    CompactBounds b = decode_box(node);
     b.cone_axis = decode_octahedral(node.cone_axis);
     b.cone_cos = node.cone_cos;
     return b;

@@ -36,5 +36,7 @@ struct CompactBounds {
 // The CPU evaluator bounds a node from the walk tree's compact node (the
 // one the shaders read) through this, exactly as the shaders do.
 CompactBounds decode_bounds(const GpuTreeNode& node);
+// The box alone, the cone left as every direction (for lights that have none to read).
+CompactBounds decode_box(const GpuTreeNode& node);
 
 }  // namespace lc

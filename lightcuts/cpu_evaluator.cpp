@@ -76,17 +76,18 @@ shading::ClusterShape cluster_shape_of(const WalkTree& tree, int32_t index) {
     const GpuTreeNode& node = tree.node(index);
     const GpuLight& representative = tree.light_of(index);
     const LightType type = node_type(node);
-    const CompactBounds bounds = decode_bounds(node);
     shading::ClusterShape c;
     c.directional = type == LightType::kDirectional;
     c.spot = type == LightType::kSpot;
     c.oriented = type == LightType::kOriented;
     c.leaf = is_leaf(node);
-    c.bbox_min = bounds.bbox_min;
-    c.bbox_max = bounds.bbox_max;
     c.position = glm::dvec3(representative.position);
     c.range = representative.range;
     c.radius = node.radius;
+    // Only spots and oriented lights read the cone: the others skip unpacking its axis.
+    const CompactBounds bounds = c.spot || c.oriented ? decode_bounds(node) : decode_box(node);
+    c.bbox_min = bounds.bbox_min;
+    c.bbox_max = bounds.bbox_max;
     c.cone_axis = bounds.cone_axis;
     c.cone_cos = bounds.cone_cos;
     return c;
@@ -164,8 +165,7 @@ CutEntry make_entry(const WalkTree& tree, int32_t index, const SurfacePoint& p, 
         e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
         e.estimate = e.unit * glm::dvec3(node.intensity);
     }
-    int32_t children[2];
-    e.key = error_key(tree, index, children_of(tree, index, children), p);
+    e.key = error_key(tree, index, p);
     return e;
 }
 

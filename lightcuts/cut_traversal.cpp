@@ -24,9 +24,10 @@ void CutTally::copy_to(CutResult& result, double clamp_ratio) const {
     if (indirect.leaves > 0) result.radiance = device::indirect_clamped(radiance, indirect, clamp_ratio, result.clamped);
 }
 
-double error_key(const WalkTree& tree, int32_t index, int child_count, const SurfacePoint& p) {
-    if (child_count == 0) return 0.0;
-    if (joins_types(tree.node(index))) return std::numeric_limits<double>::infinity();
+double error_key(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
+    const GpuTreeNode& node = tree.node(index);
+    if (is_leaf(node)) return 0.0;
+    if (joins_types(node)) return std::numeric_limits<double>::infinity();
     return max_channel(node_contribution_bound(tree, index, p));
 }
 

@@ -39,10 +39,10 @@ inline bool left_out(const GpuLight& light, const CutSettings& settings) {
     return !settings.indirect && is_indirect(light);
 }
 
-// The bound criterion's key of node `index` with `child_count` valid
-// children: the largest channel of its error bound; 0 for a leaf (exact),
-// +inf for a mixed-type junction (always refined).
-double error_key(const WalkTree& tree, int32_t index, int child_count, const SurfacePoint& p);
+// The bound criterion's key of node `index`: the largest channel of its
+// error bound; 0 for a leaf (exact), +inf for a mixed-type junction (always
+// refined).
+double error_key(const WalkTree& tree, int32_t index, const SurfacePoint& p);
 
 // The bound criterion's rule, from the settings: a cut is done when every
 // node's key is <= limit(total), or when it reaches max_cut nodes.
