@@ -19,8 +19,8 @@ struct Pass {
 // The cut of every node whose bound exceeds tau refined (mixed-type junctions
 // always). The cut is a function of tau alone, so the walk's order does not
 // matter; the shader walks in pre-order.
-Pass walk_pass(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
-               double tau, bool keep_nodes) {
+Pass walk_pass(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings, double tau,
+               bool keep_nodes) {
     Pass pass;
     pass.cut = walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
         const double key = error_key(tree, index, p);

@@ -139,10 +139,10 @@ bool shares_representative(const WalkTree& tree, int32_t parent, const int32_t c
         return tree.node(children[c]).representative == tree.node(parent).representative;
     if (settings.representatives == Representatives::kImportance) return false;
     // The pixel's representative of the parent is the one of the child its draw takes there.
-    const bool takes_first = child_count < 2 || device::pixel_takes_first_child(
-                                                    pixel_representative_key(p, settings), uint32_t(parent),
-                                                    tree.node(children[0]).intensity,
-                                                    tree.node(children[1]).intensity);
+    const bool takes_first =
+        child_count < 2 ||
+        device::pixel_takes_first_child(pixel_representative_key(p, settings), uint32_t(parent),
+                                        tree.node(children[0]).intensity, tree.node(children[1]).intensity);
     return (c == 0) == takes_first;
 }
 
@@ -173,11 +173,12 @@ CutEntry make_entry(const WalkTree& tree, int32_t index, const SurfacePoint& p, 
 // unbounded, always inside) around its representative, and always at a
 // mixed-type junction.
 CutResult radius_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings) {
-    const CutTally cut = walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
-        if (child_count == 0) return false;
-        if (joins_types(node) || node.radius < 0.0f) return true;
-        return glm::length(p.position - glm::dvec3(tree.light_of(index).position)) < double(node.radius);
-    });
+    const CutTally cut =
+        walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
+            if (child_count == 0) return false;
+            if (joins_types(node) || node.radius < 0.0f) return true;
+            return glm::length(p.position - glm::dvec3(tree.light_of(index).position)) < double(node.radius);
+        });
     CutResult result;
     cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
     return result;
@@ -289,9 +290,11 @@ int32_t pixel_representative(const WalkTree& tree, int32_t index, uint32_t key) 
 PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                      const CutSettings& settings) {
     switch (settings.representatives) {
-        case Representatives::kTree: break;
+        case Representatives::kTree:
+            break;
         case Representatives::kPixel:
-            return {tree.node(pixel_representative(tree, index, pixel_representative_key(p, settings))).representative,
+            return {tree.node(pixel_representative(tree, index, pixel_representative_key(p, settings)))
+                        .representative,
                     1.0};
         case Representatives::kImportance: {
             const Descent draw = descend(tree, index, pixel_representative_key(p, settings),
@@ -305,7 +308,8 @@ PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p,
 glm::dvec3 shade_cluster(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                          const CutSettings& settings) {
     const GpuTreeNode& node = tree.node(index);
-    if (settings.representatives == Representatives::kTree || is_leaf(node)) return shade_node(tree, index, p);
+    if (settings.representatives == Representatives::kTree || is_leaf(node))
+        return shade_node(tree, index, p);
     if (settings.representatives == Representatives::kPixel)
         return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
     const PixelDraw draw = pixel_draw(tree, index, p, settings);
@@ -341,8 +345,8 @@ glm::dvec3 shade_tree_leaves(const WalkTree& tree, const SurfacePoint& p) {
 glm::dvec3 node_contribution_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
     const GpuTreeNode& node = tree.node(index);
     if (joins_types(node) && !is_leaf(node)) return glm::dvec3(std::numeric_limits<double>::infinity());
-    return shading::response_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent,
-                                   p.mirror, p.position, p.normal) *
+    return shading::response_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent, p.mirror,
+                                   p.position, p.normal) *
            glm::dvec3(node.intensity);
 }
 
@@ -351,8 +355,8 @@ glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
 }
 
 glm::dvec3 material_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
-    return shading::material_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent,
-                                   p.mirror, p.position);
+    return shading::material_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent, p.mirror,
+                                   p.position);
 }
 
 CutResult shade_tree_reference(const WalkTree& tree, std::span<const SceneLight> classic_lights,

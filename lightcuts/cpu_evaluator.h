@@ -107,8 +107,7 @@ struct PixelDraw {
     uint32_t light = 0;
     double probability = 1.0;
 };
-PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p,
-                     const CutSettings& settings);
+PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings);
 // Node `index` evaluated as a cluster at p through the settings'
 // representative: shade_node() for kTree, the pixel's leaf with the
 // cluster's intensity for kPixel, the drawn leaf's light over its

@@ -10,7 +10,8 @@ void CutTally::add(int32_t node_index, const GpuTreeNode& node, const glm::dvec3
     radiance += node_radiance;
     // The paper clamps single lights; clusters are the refinement's.
     device::add_cut_node(indirect, is_indirect(node),
-                         device::clamped_leaf(is_indirect(node), is_patch(node), is_leaf(node)), node_radiance);
+                         device::clamped_leaf(is_indirect(node), is_patch(node), is_leaf(node)),
+                         node_radiance);
     size += 1;
     hash += cut_hash_term(uint32_t(node_index));
 }

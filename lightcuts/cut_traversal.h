@@ -60,8 +60,7 @@ struct BoundRule {
 // and tallied); a node left_out() is neither. An explicit stack, no recursion:
 // a chain-shaped tree is as deep as it has lights.
 template <typename Refine>
-CutTally walk_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
-                  Refine&& refine) {
+CutTally walk_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings, Refine&& refine) {
     CutTally tally;
     std::vector<int32_t> stack{0};
     while (!stack.empty()) {

@@ -120,8 +120,7 @@ CutResult counted_lightcut(const WalkTree& tree, const SurfacePoint& p, const Cu
         // shaded again, open, to tell a blocked ray from no ray.
         const SurfacePoint open = without_occluders(p);
         for (const CutNodeEstimate& entry : cut) {
-            if (max_channel(entry.estimate) > 0.0 ||
-                max_channel(shade_node(tree, entry.node, open)) > 0.0)
+            if (max_channel(entry.estimate) > 0.0 || max_channel(shade_node(tree, entry.node, open)) > 0.0)
                 ++rays.rays;
         }
     }
@@ -130,8 +129,7 @@ CutResult counted_lightcut(const WalkTree& tree, const SurfacePoint& p, const Cu
 }
 
 ReconstructionSample make_reconstruction_sample(const WalkTree& tree, const SurfacePoint& p,
-                                                const CutSettings& settings,
-                                                ShadowRayCount& rays) {
+                                                const CutSettings& settings, ShadowRayCount& rays) {
     ReconstructionSample sample;
     sample.point = p;
     if (tree.empty()) return sample;
@@ -242,8 +240,15 @@ public:
     ReconstructionWalk(const WalkTree& tree, const SurfacePoint& p,
                        std::span<const ReconstructionSample* const> samples, std::span<const double> weights,
                        size_t K, double error_ratio, ShadowRayCount& rays)
-        : tree_(tree), p_(p), open_(without_occluders(p)), glossy_(shading::has_lobe(p.specular, p.exponent)),
-          samples_(samples), weights_(weights), K_(K), error_ratio_(error_ratio), rays_(rays) {
+        : tree_(tree),
+          p_(p),
+          open_(without_occluders(p)),
+          glossy_(shading::has_lobe(p.specular, p.exponent)),
+          samples_(samples),
+          weights_(weights),
+          K_(K),
+          error_ratio_(error_ratio),
+          rays_(rays) {
         for (size_t k = 0; k < K; ++k) total_here_ += weights[k] * max_channel(samples[k]->radiance);
     }
 
@@ -328,8 +333,8 @@ private:
         return true;
     }
 
-    WalkEntry child_entry(const WalkEntry& e, const NodeAtSamples& n, const GpuTreeNode& node, int32_t child_node,
-                          int c) const {
+    WalkEntry child_entry(const WalkEntry& e, const NodeAtSamples& n, const GpuTreeNode& node,
+                          int32_t child_node, int c) const {
         WalkEntry child;
         child.node = child_node;
         const double ratio = intensity_ratio(tree_.node(child_node), node);
@@ -360,8 +365,7 @@ private:
 
 glm::dvec3 reconstruction_cut(const WalkTree& tree, const SurfacePoint& p,
                               std::span<const ReconstructionSample* const> samples,
-                              std::span<const double> weights, double error_ratio,
-                              ShadowRayCount& rays) {
+                              std::span<const double> weights, double error_ratio, ShadowRayCount& rays) {
     const size_t K = std::min(samples.size(), size_t(kMaxReconstructionSamples));
     if (tree.empty() || K == 0) return glm::dvec3(0.0);
     for (size_t k = 0; k < K; ++k) {

@@ -64,15 +64,13 @@ CutResult counted_lightcut(const WalkTree& tree, const SurfacePoint& p, const Cu
 
 // counted_lightcut at p, processed into the sample reconstruction cuts read.
 ReconstructionSample make_reconstruction_sample(const WalkTree& tree, const SurfacePoint& p,
-                                                const CutSettings& settings,
-                                                ShadowRayCount& rays);
+                                                const CutSettings& settings, ShadowRayCount& rays);
 
 // What the samples (with weights summing to 1, at most kMaxReconstructionSamples)
 // predict for the tree's lights at p, by the paper's four rules: discard,
 // interpolate, cluster evaluate, refine. `error_ratio` is the lightcut's.
 glm::dvec3 reconstruction_cut(const WalkTree& tree, const SurfacePoint& p,
                               std::span<const ReconstructionSample* const> samples,
-                              std::span<const double> weights, double error_ratio,
-                              ShadowRayCount& rays);
+                              std::span<const double> weights, double error_ratio, ShadowRayCount& rays);
 
 }  // namespace lc

@@ -27,13 +27,27 @@ struct WalkTree {
     const GpuLight& light_of(int32_t index) const { return leaves[node(index).representative]; }
 };
 
-inline LightType node_type(const GpuTreeNode& node) { return LightType(node.flags >> kNodeTypeShift); }
-inline bool is_leaf(const GpuTreeNode& node) { return node.first_child == kEndOfWalk; }
-inline bool joins_types(const GpuTreeNode& node) { return (node.flags & kNodeMixedTypes) != 0; }
-inline bool is_indirect(const GpuTreeNode& node) { return (node.flags & kNodeIndirect) != 0; }
-inline bool is_patch(const GpuTreeNode& node) { return (node.flags & kNodePatch) != 0; }
-inline bool is_indirect(const GpuLight& light) { return (light.flags & kGpuLightIndirect) != 0; }
-inline bool is_patch(const GpuLight& light) { return (light.flags & kGpuLightPatch) != 0; }
+inline LightType node_type(const GpuTreeNode& node) {
+    return LightType(node.flags >> kNodeTypeShift);
+}
+inline bool is_leaf(const GpuTreeNode& node) {
+    return node.first_child == kEndOfWalk;
+}
+inline bool joins_types(const GpuTreeNode& node) {
+    return (node.flags & kNodeMixedTypes) != 0;
+}
+inline bool is_indirect(const GpuTreeNode& node) {
+    return (node.flags & kNodeIndirect) != 0;
+}
+inline bool is_patch(const GpuTreeNode& node) {
+    return (node.flags & kNodePatch) != 0;
+}
+inline bool is_indirect(const GpuLight& light) {
+    return (light.flags & kGpuLightIndirect) != 0;
+}
+inline bool is_patch(const GpuLight& light) {
+    return (light.flags & kGpuLightPatch) != 0;
+}
 
 // The children of node `index` (left before right, as the import form had
 // them), from the pre-order links: the first child, and its escape when that

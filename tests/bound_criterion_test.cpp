@@ -17,8 +17,7 @@ namespace {
 
 // The paper's refinement written the slow, obvious way: rescan the cut for the
 // largest bound and re-add the total from scratch at every step.
-CutResult brute_force_bound_cut(const WalkTree& tree, const SurfacePoint& p, double ratio,
-                                uint32_t max_cut) {
+CutResult brute_force_bound_cut(const WalkTree& tree, const SurfacePoint& p, double ratio, uint32_t max_cut) {
     auto key = [&](int32_t i) {
         const GpuTreeNode& n = tree.node(i);
         if (is_leaf(n)) return 0.0;

@@ -58,8 +58,7 @@ ThresholdCut cut_by_ancestors(const WalkTree& tree, const SurfacePoint& p, doubl
 }
 
 // The pass schedule of bound_walk.h written out over cut_by_ancestors.
-CutResult walk_by_ancestors(const WalkTree& tree, const SurfacePoint& p, double ratio,
-                            uint32_t max_cut) {
+CutResult walk_by_ancestors(const WalkTree& tree, const SurfacePoint& p, double ratio, uint32_t max_cut) {
     CutResult result;
     double tau = std::numeric_limits<double>::infinity();
     double fit = 0.0, over = 0.0;

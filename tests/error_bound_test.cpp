@@ -100,8 +100,7 @@ TEST(ErrorBound, OrientedClusterBoundFollowsTheEmittersCosine) {
         panel.push_back(s);
     }
     const WalkTree tree = walk_tree(morton_pairing_tree(panel, 1));
-    EXPECT_EQ(node_contribution_bound(tree, 0, surface({0, 0, 10}, {0, 0, -1})),
-              glm::dvec3(0.0));
+    EXPECT_EQ(node_contribution_bound(tree, 0, surface({0, 0, 10}, {0, 0, -1})), glm::dvec3(0.0));
     EXPECT_GT(node_contribution_bound(tree, 0, surface({0, 0, 0})).x, 0.0);
     // Far to the side, seen from a wall facing the panel: the emitter cosine
     // is about 0.5 / 20 = 0.025.

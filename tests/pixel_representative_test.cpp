@@ -114,8 +114,7 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
     for (int32_t cluster : {0, 1, 2}) {
         SCOPED_TRACE(cluster);
         double exact = 0.0;
-        for (int32_t leaf : leaves_under(tree, cluster))
-            exact += rgb_sum(shade_node(tree, leaf, p));
+        for (int32_t leaf : leaves_under(tree, cluster)) exact += rgb_sum(shade_node(tree, leaf, p));
         double mean = 0.0;
         const uint32_t side = 200;
         SurfacePoint q = p;

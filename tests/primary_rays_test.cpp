@@ -108,7 +108,8 @@ TEST_F(PrimaryRays, AutoKeepsRasterOnACpuDeviceAndTexturesRefuseRays) {
     settings.width = settings.height = 16;
     settings.camera = test::furnished_room_camera();
     settings.mode = client::RenderMode::kReference;
-    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, nullptr, RendererOptions{});
+    Result<std::unique_ptr<Renderer>> renderer =
+        test::create_renderer(*context_, scene, nullptr, RendererOptions{});
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     Result<client::RenderStats> stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();

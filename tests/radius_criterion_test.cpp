@@ -60,17 +60,15 @@ TEST(RadiusCriterion, MixedJunctionsAreAlwaysRefinedAndClassicLightsAdded) {
     const CutResult r = shade_lightcuts(walk, std::span(&classic, 1), p, {CutCriterion::kRadius});
     EXPECT_EQ(r.cut_size, 2u);  // the junction's children, not the junction
     EXPECT_EQ(r.cut_hash, hash_of({1, 2}));
-    expect_near_rel(
-        r.radiance,
-        shade_node(walk, 1, p) + shade_node(walk, 2, p) + shade_light(classic, p),
-        1e-12);
+    expect_near_rel(r.radiance, shade_node(walk, 1, p) + shade_node(walk, 2, p) + shade_light(classic, p),
+                    1e-12);
     EXPECT_GT(r.radiance.x, 0.9 / kPi);  // 100 cd at 10 units
 }
 
 TEST(RadiusCriterion, EmptyTreeGivesOnlyClassicLights) {
     SceneLight classic = make_light(LightType::kPoint, {0, 0, 1}, 1.0f);
-    const CutResult r = shade_lightcuts(WalkTree{}, std::span(&classic, 1), surface({0, 0, 0}),
-                                        {CutCriterion::kRadius});
+    const CutResult r =
+        shade_lightcuts(WalkTree{}, std::span(&classic, 1), surface({0, 0, 0}), {CutCriterion::kRadius});
     EXPECT_EQ(r.cut_size, 0u);
     expect_near_rel(r.radiance, glm::dvec3(1.0 / kPi), 1e-12);
 }

@@ -55,8 +55,8 @@ struct CutAgreement {
 };
 
 // Renders lightcuts-bound and compares every geometry pixel with the CPU.
-CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings,
-                              const WalkTree& tree, uint64_t* gpu_hits = nullptr) {
+CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings, const WalkTree& tree,
+                              uint64_t* gpu_hits = nullptr) {
     CutAgreement a;
     Result<RenderStats> stats = renderer.render(settings);
     EXPECT_TRUE(stats.ok()) << stats.error();

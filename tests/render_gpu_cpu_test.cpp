@@ -108,8 +108,8 @@ protected:
     // Renders, then compares every geometry pixel with `expected(p)`; when
     // `tree` is given, cut sizes and hashes must match the CPU's too.
     template <typename Expected>
-    Comparison render_and_compare(Renderer& renderer, const RenderSettings& settings,
-                                  Expected expected, const WalkTree* cut_tree = nullptr) {
+    Comparison render_and_compare(Renderer& renderer, const RenderSettings& settings, Expected expected,
+                                  const WalkTree* cut_tree = nullptr) {
         Comparison c;
         Result<RenderStats> stats = renderer.render(settings);
         EXPECT_TRUE(stats.ok()) << stats.error();
@@ -302,8 +302,8 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
     settings_.width = settings_.height = kSize;
     CutSettings radius;
     Comparison c = render_and_compare(
-        **renderer, settings_,
-        [&](const SurfacePoint& p) { return shade_lightcuts(walk, {}, p, radius); }, &walk);
+        **renderer, settings_, [&](const SurfacePoint& p) { return shade_lightcuts(walk, {}, p, radius); },
+        &walk);
     EXPECT_GT(c.compared, c.geometry_pixels * 99 / 100);
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();

@@ -68,7 +68,8 @@ protected:
     std::unique_ptr<Renderer> make_renderer(uint32_t filter_frames) {
         RendererOptions options;
         options.realtime.filter_frames = filter_frames;
-        Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_, options);
+        Result<std::unique_ptr<Renderer>> renderer =
+            test::create_renderer(*context_, scene_, &tree_, options);
         EXPECT_TRUE(renderer.ok()) << renderer.error();
         if (renderer.ok()) {
             EXPECT_TRUE((*renderer)->effects().shadows);

@@ -400,8 +400,7 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
 
     RendererOptions off;
     off.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> no_shadows =
-        client::Renderer::create(*context_, scene_, &tree_, off);
+    Result<std::unique_ptr<Renderer>> no_shadows = client::Renderer::create(*context_, scene_, &tree_, off);
     ASSERT_TRUE(no_shadows.ok()) << no_shadows.error();
     EXPECT_FALSE((*no_shadows)->effects().shadows);
     stats = (*no_shadows)->render(settings_);

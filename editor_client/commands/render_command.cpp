@@ -127,9 +127,8 @@ RenderedFrame render_real_time(Renderer& renderer, const RenderSettings& setting
 
 // `tiles` (not empty: a reference strided over tiles) renders those alone and
 // gathers them into an image of (W/K)x(H/K), K the tiles' stride.
-RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
-                           const SupersampleRequest* spp, const WalkTree* tree,
-                           std::span<const SceneLight> classic,
+RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings, const SupersampleRequest* spp,
+                           const WalkTree* tree, std::span<const SceneLight> classic,
                            std::span<const PixelRegion> tiles = {}, uint32_t tile_stride = 1) {
     // Timings are of the work alone, not of lavapipe compiling the shaders.
     if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
@@ -402,8 +401,7 @@ void apply_auto_exposure(const RenderOptions& options, const RenderRequest& requ
 // --compare-reference and --mode error: the reference with the same eye rays,
 // the error statistics, and for `error` the heatmap as the image.
 void compare_with_reference(Renderer& renderer, const RenderRequest& request, const SupersampleRequest* spp,
-                            const WalkTree* tree, std::span<const SceneLight> classic,
-                            RenderedFrame& image) {
+                            const WalkTree* tree, std::span<const SceneLight> classic, RenderedFrame& image) {
     RenderSettings reference_settings = request.settings;
     reference_settings.mode = RenderMode::kReference;
     std::optional<SupersampleRequest> reference_spp;

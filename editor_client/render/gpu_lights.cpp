@@ -22,8 +22,10 @@ Status GpuLights::upload(const vk::Context& context, const Scene& scene, const W
         }
     }
     // The walk tree is uploaded as it is, not copied.
-    const std::span<const GpuLight> leaves = tree != nullptr ? std::span(tree->leaves) : std::span(scene_leaves);
-    const std::span<const GpuTreeNode> nodes = tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
+    const std::span<const GpuLight> leaves =
+        tree != nullptr ? std::span(tree->leaves) : std::span(scene_leaves);
+    const std::span<const GpuTreeNode> nodes =
+        tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
     tree_depth_ = tree != nullptr ? tree->depth : 0;
     if (leaves.size() > UINT32_MAX || nodes.size() > size_t(INT32_MAX) || classic.size() > UINT32_MAX)
         return make_error("too many lights for 32-bit counts");

@@ -36,8 +36,7 @@ Renderer::~Renderer() {
 }
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, const Scene& scene,
-                                                   const WalkTree* tree,
-                                                   const RendererOptions& options) {
+                                                   const WalkTree* tree, const RendererOptions& options) {
     const uint32_t max_invocations =
         context.physical().properties.limits.maxComputeWorkGroupInvocations;
     if (options.workgroup_size == 0 ||
@@ -72,7 +71,8 @@ Status Renderer::set_tree(const WalkTree* tree) {
     Status uploaded = lights_.upload(context_, scene_, tree);
     descriptors_.mark_dirty();
     if (!uploaded) return uploaded;
-    const std::span<const GpuTreeNode> nodes = tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
+    const std::span<const GpuTreeNode> nodes =
+        tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
     LC_RETURN_IF_ERROR(passes_->real_time().set_tree_nodes(context_.command_pool(), nodes));
     SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most

@@ -17,7 +17,6 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/gpu_layout.h"
 #include "editor_client/render/background_buffers.h"
 #include "editor_client/render/frame_descriptors.h"
 #include "editor_client/render/frame_measurements.h"
@@ -33,13 +32,14 @@
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
 #include "editor_client/render/vpl_visibility.h"
+#include "editor_client/vk/context.h"
 #include "lightcuts/environment.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
-#include "lightcuts/scene.h"
-#include "editor_client/vk/context.h"
 #include "lightcuts/walk_tree.h"
-#include "lightcuts/result.h"
 
 namespace lc::client {
 

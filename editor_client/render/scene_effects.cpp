@@ -288,8 +288,8 @@ std::vector<EffectDecision> SceneEffects::skipped() const {
     return out;
 }
 
-SceneEffects analyse_scene_effects(const Scene& scene, const WalkTree* tree,
-                                   ShadowMode shadow_mode, bool indirect) {
+SceneEffects analyse_scene_effects(const Scene& scene, const WalkTree* tree, ShadowMode shadow_mode,
+                                   bool indirect) {
     const ShadedLights lights = shaded_lights(scene, tree);
     const MaterialCensus materials = census_materials(scene);
     const std::string has =

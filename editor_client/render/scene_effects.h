@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/shadow_ray.h"
 #include "lightcuts/scene.h"
+#include "lightcuts/shadow_ray.h"
 #include "lightcuts/walk_tree.h"
 
 namespace lc::client {
