@@ -118,6 +118,39 @@ TEST(GpuLayout, WalkProducesTheExpectedCuts) {
     EXPECT_EQ(walk(*gpu, right_side), (std::vector<int32_t>{1, 5}));
 }
 
+// The CPU evaluator finds a node's children from the walk links alone: the
+// import form's left and right, in that order, one-child nodes included.
+TEST(GpuLayout, WalkTreeChildrenAreTheImportedOnes) {
+    //          0
+    //       1     2
+    //      3 4    5 (left only)
+    //            6   7 (right only: 7's left is absent)
+    //                8
+    LightTree tree;
+    tree.nodes = {node(1, 2),   node(3, 4), node(5, -1), node(-1, -1), node(-1, -1),
+                  node(6, 7),   node(-1, -1), node(-1, 8), node(-1, -1)};
+    tree = with_representatives(tree);
+    Result<WalkTree> walk = make_walk_tree(tree);
+    ASSERT_TRUE(walk.ok()) << walk.error();
+    uint32_t leaves = 0;
+    for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
+        const LightTreeNode& imported = tree.nodes[size_t(i)];
+        std::vector<int32_t> expected;
+        for (int32_t child : {imported.left, imported.right})
+            if (child != kNoChild) expected.push_back(child);
+        int32_t children[2];
+        const int count = children_of(*walk, i, children);
+        EXPECT_EQ(std::vector<int32_t>(children, children + count), expected) << "node " << i;
+        EXPECT_EQ(is_leaf(walk->node(i)), imported.is_leaf()) << "node " << i;
+        // A node is evaluated through its representative's leaf light.
+        EXPECT_EQ(&walk->light_of(i), &walk->light_of(imported.representative)) << "node " << i;
+        if (imported.is_leaf()) {
+            EXPECT_EQ(walk->node(i).representative, leaves++) << "node " << i;
+        }
+    }
+    EXPECT_EQ(walk->leaves.size(), size_t(leaves));
+}
+
 TEST(GpuLayout, RejectsMalformedTrees) {
     LightTree backwards;
     backwards.nodes = {node(1, 2), node(-1, -1), node(1, -1)};  // 1 has two parents
