@@ -19,12 +19,12 @@ struct Pass {
 // The cut of every node whose bound exceeds tau refined (mixed-type junctions
 // always). The cut is a function of tau alone, so the walk's order does not
 // matter; the shader walks in pre-order.
-Pass walk_pass(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
-               double tau, bool keep_nodes) {
+Pass walk_pass(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings, double tau,
+               bool keep_nodes) {
     Pass pass;
-    pass.cut = walk_cut(tree, p, settings, [&](int32_t index, const LightTreeNode& node, int child_count) {
-        const double key = error_key(tree, index, child_count, p);
-        const bool refine = child_count > 0 && (node.mixed_types || key > tau);
+    pass.cut = walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
+        const double key = error_key(tree, index, p);
+        const bool refine = child_count > 0 && (joins_types(node) || key > tau);
         if (!refine) {
             pass.worst = std::max(pass.worst, key);
             if (keep_nodes) pass.nodes.push_back(index);
@@ -40,7 +40,7 @@ double bisection_threshold(double fit_hi, double over_lo) {
     return device::bisection_threshold(fit_hi, over_lo);
 }
 
-CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult bound_walk_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes) {
     CutResult result;
     if (tree.empty()) return result;

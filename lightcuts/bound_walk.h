@@ -45,7 +45,7 @@ double bisection_threshold(double fit_hi, double over_lo);
 // The cut of the bound criterion by threshold passes (classic lights not
 // included), with the kept pass's nodes appended to `nodes` when given (as
 // bound_heap_cut does: what an audit of the cut's error reads node by node).
-CutResult bound_walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult bound_walk_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes = nullptr);
 
 }  // namespace lc

@@ -85,17 +85,18 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     return out;
 }
 
-CompactBounds decode_bounds(const GpuTreeNode& node) {
+CompactBounds decode_box(const GpuTreeNode& node) {
     CompactBounds b;
     b.bbox_min = glm::dvec3(node.bbox_min);
     b.bbox_max = glm::dvec3(node.bbox_max);
-    b.cone_axis = decode_octahedral(node.cone_axis);
-    b.cone_cos = node.cone_cos;
     return b;
 }
 
-CompactBounds compact_bounds(const LightTreeNode& node) {
-    return decode_bounds(make_compact_node(node, 0, kEndOfWalk, kEndOfWalk));
+CompactBounds decode_bounds(const GpuTreeNode& node) {
+    CompactBounds b = decode_box(node);
+    b.cone_axis = decode_octahedral(node.cone_axis);
+    b.cone_cos = node.cone_cos;
+    return b;
 }
 
 }  // namespace lc

@@ -1,6 +1,6 @@
 #pragma once
-// The light tree's nodes as the GPU walks them and the CPU evaluator bounds
-// them: GpuTreeNode (lightcuts/device/gpu_structs.h), 64 bytes, made from a
+// The light tree's nodes as the GPU and the CPU evaluator walk them
+// (walk_tree.h): GpuTreeNode (lightcuts/device/gpu_structs.h), 64 bytes, made from a
 // float tree node and decoded back in this one place (pbrt-v4's
 // CompactLightBounds is the model). No light parameter is quantised: the node
 // names its representative leaf, whose light the shader reads, and carries the
@@ -33,9 +33,10 @@ struct CompactBounds {
     glm::dvec3 cone_axis{0.0, 0.0, -1.0};  // unit
     double cone_cos = -1.0;                // -1: every direction
 };
+// The CPU evaluator bounds a node from the walk tree's compact node (the
+// one the shaders read) through this, exactly as the shaders do.
 CompactBounds decode_bounds(const GpuTreeNode& node);
-// decode_bounds(make_compact_node(node, ...)): the CPU evaluator bounds a
-// node exactly as the shaders do.
-CompactBounds compact_bounds(const LightTreeNode& node);
+// The box alone, the cone left as every direction (for lights that have none to read).
+CompactBounds decode_box(const GpuTreeNode& node);
 
 }  // namespace lc

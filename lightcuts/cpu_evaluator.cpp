@@ -64,33 +64,32 @@ shading::Emitter emitter_of(const SceneLight& light) {
                         light.source_radius);
 }
 
-// A node's representative is read here only, its bounds in cluster_shape_of().
-shading::Emitter emitter_of(const LightTreeNode& node) {
-    return make_emitter(node.type, node.position, node.direction, node.range, node.spot_cos_inner,
-                        node.spot_cos_outer, node.source_radius);
+// A node's representative is read here only (a leaf light), its bounds in cluster_shape_of().
+shading::Emitter emitter_of(const GpuLight& light) {
+    return make_emitter(LightType(light.type), light.position, light.direction, light.range,
+                        light.spot_cos_inner, light.spot_cos_outer, light.source_radius);
 }
 
-shading::ClusterShape cluster_shape_of(const LightTreeNode& node) {
+// The box and cone the shaders see, decoded from the compact node; the
+// position and range are the representative's.
+shading::ClusterShape cluster_shape_of(const WalkTree& tree, int32_t index) {
+    const GpuTreeNode& node = tree.node(index);
+    const GpuLight& representative = tree.light_of(index);
+    const LightType type = node_type(node);
     shading::ClusterShape c;
-    c.directional = node.type == LightType::kDirectional;
-    c.spot = node.type == LightType::kSpot;
-    c.oriented = node.type == LightType::kOriented;
-    c.leaf = node.is_leaf();
-    // The box and cone the shaders see. The compact node keeps the float box
-    // as it is; its cone is widened by the packing and only spots and
-    // oriented lights read it, so only they pay for packing it here.
-    c.bbox_min = glm::dvec3(node.bbox_min);
-    c.bbox_max = glm::dvec3(node.bbox_max);
-    c.position = glm::dvec3(node.position);
-    c.range = node.range;
+    c.directional = type == LightType::kDirectional;
+    c.spot = type == LightType::kSpot;
+    c.oriented = type == LightType::kOriented;
+    c.leaf = is_leaf(node);
+    c.position = glm::dvec3(representative.position);
+    c.range = representative.range;
     c.radius = node.radius;
-    c.cone_axis = glm::dvec3(0.0, 0.0, 1.0);
-    c.cone_cos = -1.0;
-    if (c.spot || c.oriented) {
-        const CompactBounds bounds = compact_bounds(node);
-        c.cone_axis = bounds.cone_axis;
-        c.cone_cos = bounds.cone_cos;
-    }
+    // Only spots and oriented lights read the cone: the others skip unpacking its axis.
+    const CompactBounds bounds = c.spot || c.oriented ? decode_bounds(node) : decode_box(node);
+    c.bbox_min = bounds.bbox_min;
+    c.bbox_max = bounds.bbox_max;
+    c.cone_axis = bounds.cone_axis;
+    c.cone_cos = bounds.cone_cos;
     return c;
 }
 
@@ -102,6 +101,10 @@ glm::dvec3 unit_response(LightType type, const shading::Emitter& e, const Surfac
         G *= light_visibility(*p.occluders, p.shadow_bias, type, e.position, e.direction,
                               p.position, p.normal);
     return material_response(p, l) * G;
+}
+
+glm::dvec3 unit_response(const GpuLight& light, const SurfacePoint& p) {
+    return unit_response(LightType(light.type), emitter_of(light), p);
 }
 
 // One node of the heap search's cut.
@@ -121,42 +124,39 @@ bool heap_less(const CutEntry& a, const CutEntry& b) {
 
 // Per unit intensity, what node `index` evaluated as a cluster returns (kTree
 // and kPixel): its representative's response.
-glm::dvec3 cluster_unit_response(const LightTree& tree, int32_t index, const SurfacePoint& p,
+glm::dvec3 cluster_unit_response(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                                  const CutSettings& settings) {
-    const LightTreeNode& node = tree.nodes[size_t(index)];
-    if (settings.representatives == Representatives::kTree)
-        return unit_response(node.type, emitter_of(node), p);
-    const LightTreeNode& leaf = tree.nodes[size_t(pixel_draw(tree, index, p, settings).leaf)];
-    return unit_response(leaf.type, emitter_of(leaf), p);
+    if (settings.representatives == Representatives::kTree) return unit_response(tree.light_of(index), p);
+    return unit_response(tree.leaves[pixel_draw(tree, index, p, settings).light], p);
 }
 
-// Whether child c of `parent` (children as valid_children lists them) has
+// Whether child c of `parent` (children as children_of lists them) has
 // its parent's evaluation per unit intensity (kImportance: never, its
 // estimates scale by the draw's probability).
-bool shares_representative(const LightTree& tree, int32_t parent, const int32_t children[2], int child_count,
+bool shares_representative(const WalkTree& tree, int32_t parent, const int32_t children[2], int child_count,
                            int c, const SurfacePoint& p, const CutSettings& settings) {
     if (settings.representatives == Representatives::kTree)
-        return tree.nodes[size_t(children[c])].representative == tree.nodes[size_t(parent)].representative;
+        return tree.node(children[c]).representative == tree.node(parent).representative;
     if (settings.representatives == Representatives::kImportance) return false;
     // The pixel's representative of the parent is the one of the child its draw takes there.
-    const bool takes_first = child_count < 2 || device::pixel_takes_first_child(
-                                                    pixel_representative_key(p, settings), uint32_t(parent),
-                                                    tree.nodes[size_t(children[0])].intensity,
-                                                    tree.nodes[size_t(children[1])].intensity);
+    const bool takes_first =
+        child_count < 2 ||
+        device::pixel_takes_first_child(pixel_representative_key(p, settings), uint32_t(parent),
+                                        tree.node(children[0]).intensity, tree.node(children[1]).intensity);
     return (c == 0) == takes_first;
 }
 
 // A child's weight in the importance draw, in float as the shaders compute it.
-float importance_weight(const LightTreeNode& node, const SurfacePoint& p) {
+float importance_weight(const GpuTreeNode& node, const SurfacePoint& p) {
     return device::importance_weight(
         node.intensity,
         device::importance_geometry(node.bbox_min, node.bbox_max, glm::vec3(p.position), glm::vec3(p.normal),
-                                    node.type == LightType::kDirectional));
+                                    node_type(node) == LightType::kDirectional));
 }
 
-CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings,
+CutEntry make_entry(const WalkTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings,
                     const glm::dvec3* reuse_unit) {
-    const LightTreeNode& node = tree.nodes[size_t(index)];
+    const GpuTreeNode& node = tree.node(index);
     CutEntry e;
     e.node = index;
     if (settings.representatives == Representatives::kImportance) {
@@ -165,19 +165,20 @@ CutEntry make_entry(const LightTree& tree, int32_t index, const SurfacePoint& p,
         e.unit = reuse_unit ? *reuse_unit : cluster_unit_response(tree, index, p, settings);
         e.estimate = e.unit * glm::dvec3(node.intensity);
     }
-    int32_t children[2];
-    e.key = error_key(tree, index, valid_children(tree, index, children), p);
+    e.key = error_key(tree, index, p);
     return e;
 }
 
 // Refined while p lies strictly inside the node's influence radius (radius < 0:
-// unbounded, always inside), and always at a mixed_types junction.
-CutResult radius_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
-    const CutTally cut = walk_cut(tree, p, settings, [&](int32_t, const LightTreeNode& node, int child_count) {
-        if (child_count == 0) return false;
-        if (node.mixed_types || node.radius < 0.0f) return true;
-        return glm::length(p.position - glm::dvec3(node.position)) < double(node.radius);
-    });
+// unbounded, always inside) around its representative, and always at a
+// mixed-type junction.
+CutResult radius_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings) {
+    const CutTally cut =
+        walk_cut(tree, p, settings, [&](int32_t index, const GpuTreeNode& node, int child_count) {
+            if (child_count == 0) return false;
+            if (joins_types(node) || node.radius < 0.0f) return true;
+            return glm::length(p.position - glm::dvec3(tree.light_of(index).position)) < double(node.radius);
+        });
     CutResult result;
     cut.copy_to(result, indirect_clamp_ratio(settings.error_ratio));
     return result;
@@ -185,11 +186,11 @@ CutResult radius_cut(const LightTree& tree, const SurfacePoint& p, const CutSett
 
 }  // namespace
 
-CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult bound_heap_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes) {
     const BoundRule rule(settings);
     CutResult result;
-    if (left_out(tree.nodes[0], settings)) return result;
+    if (left_out(tree.node(0), settings)) return result;
     std::vector<CutEntry> heap{make_entry(tree, 0, p, settings, nullptr)};
     glm::dvec3 total = heap.front().estimate;
     // The cut's indirect leaves (never refined, so only added): the rule reads
@@ -197,8 +198,8 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     const double clamp_ratio = indirect_clamp_ratio(settings.error_ratio);
     device::IndirectSums leaves = device::no_indirect_sums();
     const auto add_if_indirect_leaf = [&](const CutEntry& entry) {
-        const LightTreeNode& node = tree.nodes[size_t(entry.node)];
-        if (device::clamped_leaf(node.indirect, node.patch, node.is_leaf()))
+        const GpuTreeNode& node = tree.node(entry.node);
+        if (device::clamped_leaf(is_indirect(node), is_patch(node), is_leaf(node)))
             device::add_indirect_leaf(leaves, entry.estimate);
     };
     const auto rule_total = [&] {
@@ -220,9 +221,9 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
         heap.pop_back();
         total -= parent.estimate;
         int32_t children[2];
-        const int child_count = valid_children(tree, parent.node, children);
+        const int child_count = children_of(tree, parent.node, children);
         for (int c = 0; c < child_count; ++c) {
-            if (left_out(tree.nodes[size_t(children[c])], settings)) continue;
+            if (left_out(tree.node(children[c]), settings)) continue;
             // The child that shares the representative reuses its evaluation.
             const bool shares =
                 shares_representative(tree, parent.node, children, child_count, c, p, settings);
@@ -235,22 +236,12 @@ CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const Cut
     }
     // The running total drifts with 1e12 intensity ratios; sum afresh.
     CutTally cut;
-    for (const CutEntry& entry : heap) cut.add(entry.node, tree.nodes[size_t(entry.node)], entry.estimate);
+    for (const CutEntry& entry : heap) cut.add(entry.node, tree.node(entry.node), entry.estimate);
     cut.copy_to(result, clamp_ratio);
     if (nodes != nullptr) {
         for (const CutEntry& entry : heap) nodes->push_back({entry.node, entry.estimate});
     }
     return result;
-}
-
-int valid_children(const LightTree& tree, int32_t index, int32_t out[2]) {
-    const LightTreeNode& node = tree.nodes[size_t(index)];
-    const int32_t size = static_cast<int32_t>(tree.nodes.size());
-    int count = 0;
-    for (int32_t child : {node.left, node.right}) {
-        if (child > index && child < size) out[count++] = child;
-    }
-    return count;
 }
 
 uint32_t cut_hash_term(uint32_t node_index) { return device::cut_hash_term(node_index); }
@@ -261,20 +252,26 @@ uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& sett
 
 namespace {
 
+// A leaf node reached by a descent, with its probability.
+struct Descent {
+    int32_t leaf = 0;
+    double probability = 1.0;
+};
+
 // The descent from node `index` to a leaf, each junction's child drawn in
 // proportion to weight(child); the probability of the leaf reached.
 template <typename Weight>
-PixelDraw descend(const LightTree& tree, int32_t index, uint32_t key, Weight&& weight) {
-    PixelDraw draw{index, 1.0};
+Descent descend(const WalkTree& tree, int32_t index, uint32_t key, Weight&& weight) {
+    Descent draw{index, 1.0};
     // Children come after their parents, so the descent ends.
     for (;;) {
         int32_t children[2];
-        const int child_count = valid_children(tree, draw.leaf, children);
+        const int child_count = children_of(tree, draw.leaf, children);
         if (child_count == 0) return draw;
         bool first = true;
         if (child_count == 2) {
-            const float w0 = weight(tree.nodes[size_t(children[0])]);
-            const float w1 = weight(tree.nodes[size_t(children[1])]);
+            const float w0 = weight(tree.node(children[0]));
+            const float w1 = weight(tree.node(children[1]));
             first = device::pixel_takes_first(key, uint32_t(draw.leaf), w0, w1);
             if (w0 + w1 > 0.0f) draw.probability *= double(first ? w0 : w1) / (double(w0) + double(w1));
         }
@@ -284,36 +281,40 @@ PixelDraw descend(const LightTree& tree, int32_t index, uint32_t key, Weight&& w
 
 }  // namespace
 
-int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key) {
+int32_t pixel_representative(const WalkTree& tree, int32_t index, uint32_t key) {
     return descend(tree, index, key,
-                   [](const LightTreeNode& node) { return device::representative_scalar(node.intensity); })
+                   [](const GpuTreeNode& node) { return device::representative_scalar(node.intensity); })
         .leaf;
 }
 
-PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p,
+PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                      const CutSettings& settings) {
     switch (settings.representatives) {
         case Representatives::kTree:
-            return {tree.nodes[size_t(index)].is_leaf() ? index : tree.nodes[size_t(index)].representative,
-                    1.0};
+            break;
         case Representatives::kPixel:
-            return {pixel_representative(tree, index, pixel_representative_key(p, settings)), 1.0};
-        case Representatives::kImportance:
-            return descend(tree, index, pixel_representative_key(p, settings),
-                           [&](const LightTreeNode& node) { return importance_weight(node, p); });
+            return {tree.node(pixel_representative(tree, index, pixel_representative_key(p, settings)))
+                        .representative,
+                    1.0};
+        case Representatives::kImportance: {
+            const Descent draw = descend(tree, index, pixel_representative_key(p, settings),
+                                         [&](const GpuTreeNode& node) { return importance_weight(node, p); });
+            return {tree.node(draw.leaf).representative, draw.probability};
+        }
     }
-    return {index, 1.0};
+    return {tree.node(index).representative, 1.0};  // a leaf represents itself
 }
 
-glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
+glm::dvec3 shade_cluster(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                          const CutSettings& settings) {
-    const LightTreeNode& node = tree.nodes[size_t(index)];
-    if (settings.representatives == Representatives::kTree || node.is_leaf()) return shade_node(node, p);
+    const GpuTreeNode& node = tree.node(index);
+    if (settings.representatives == Representatives::kTree || is_leaf(node))
+        return shade_node(tree, index, p);
     if (settings.representatives == Representatives::kPixel)
         return cluster_unit_response(tree, index, p, settings) * glm::dvec3(node.intensity);
     const PixelDraw draw = pixel_draw(tree, index, p, settings);
     if (!(draw.probability > 0.0)) return glm::dvec3(0.0);
-    return shade_node(tree.nodes[size_t(draw.leaf)], p) / draw.probability;
+    return shade_light(tree.leaves[draw.light], p) / draw.probability;
 }
 
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p) {
@@ -321,8 +322,12 @@ glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p) {
     return unit_response(light.type, emitter_of(light), p) * intensity;
 }
 
-glm::dvec3 shade_node(const LightTreeNode& node, const SurfacePoint& p) {
-    return unit_response(node.type, emitter_of(node), p) * glm::dvec3(node.intensity);
+glm::dvec3 shade_light(const GpuLight& light, const SurfacePoint& p) {
+    return unit_response(light, p) * glm::dvec3(light.intensity);
+}
+
+glm::dvec3 shade_node(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
+    return unit_response(tree.light_of(index), p) * glm::dvec3(tree.node(index).intensity);
 }
 
 glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoint& p) {
@@ -331,20 +336,17 @@ glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoin
     return sum;
 }
 
-glm::dvec3 shade_tree_leaves(const LightTree& tree, const SurfacePoint& p) {
+glm::dvec3 shade_tree_leaves(const WalkTree& tree, const SurfacePoint& p) {
     glm::dvec3 sum(0.0);
-    for (const LightTreeNode& node : tree.nodes) {
-        if (node.is_leaf()) sum += shade_node(node, p);
-    }
+    for (const GpuLight& light : tree.leaves) sum += shade_light(light, p);
     return sum;
 }
 
-glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint& p) {
-    if (node.mixed_types && !node.is_leaf()) {
-        return glm::dvec3(std::numeric_limits<double>::infinity());
-    }
-    return shading::response_bound(cluster_shape_of(node), p.albedo, p.specular, p.exponent,
-                                   p.mirror, p.position, p.normal) *
+glm::dvec3 node_contribution_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
+    const GpuTreeNode& node = tree.node(index);
+    if (joins_types(node) && !is_leaf(node)) return glm::dvec3(std::numeric_limits<double>::infinity());
+    return shading::response_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent, p.mirror,
+                                   p.position, p.normal) *
            glm::dvec3(node.intensity);
 }
 
@@ -352,22 +354,22 @@ glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l) {
     return shading::brdf(p.albedo, p.specular, p.exponent, p.mirror, l);
 }
 
-glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p) {
-    return shading::material_bound(cluster_shape_of(node), p.albedo, p.specular, p.exponent,
-                                   p.mirror, p.position);
+glm::dvec3 material_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
+    return shading::material_bound(cluster_shape_of(tree, index), p.albedo, p.specular, p.exponent, p.mirror,
+                                   p.position);
 }
 
-CutResult shade_tree_reference(const LightTree& tree, std::span<const SceneLight> classic_lights,
+CutResult shade_tree_reference(const WalkTree& tree, std::span<const SceneLight> classic_lights,
                                const SurfacePoint& p, const CutSettings& settings) {
     CutResult result;
     glm::dvec3 others(0.0);
     std::vector<glm::dvec3> clamped_leaves;
-    for (const LightTreeNode& node : tree.nodes) {
-        if (!node.is_leaf() || left_out(node, settings)) continue;
-        const glm::dvec3 contribution = shade_node(node, p);
+    for (const GpuLight& light : tree.leaves) {
+        if (left_out(light, settings)) continue;
+        const glm::dvec3 contribution = shade_light(light, p);
         result.cut_size += 1;
-        if (node.indirect) result.indirect += contribution;
-        if (device::clamped_leaf(node.indirect, node.patch, true)) {
+        if (is_indirect(light)) result.indirect += contribution;
+        if (device::clamped_leaf(is_indirect(light), is_patch(light), true)) {
             clamped_leaves.push_back(contribution);
         } else {
             others += contribution;
@@ -381,7 +383,7 @@ CutResult shade_tree_reference(const LightTree& tree, std::span<const SceneLight
     return result;
 }
 
-CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
+CutResult shade_lightcuts(const WalkTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings) {
     CutResult result;
     if (!tree.empty()) {

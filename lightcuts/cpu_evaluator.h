@@ -1,6 +1,8 @@
 #pragma once
-// The CPU evaluator: the same estimators as the shaders, in double precision.
-// Ground truth for tests and the exact reference for error measurements.
+// The CPU evaluator: the same estimators as the shaders, in double precision,
+// over the same walk tree (walk_tree.h: the compact nodes and leaf lights the
+// shaders read). Ground truth for tests and the exact reference for error
+// measurements.
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -8,8 +10,8 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/light_tree.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc {
 
@@ -63,7 +65,7 @@ struct CutSettings {
     double error_ratio = 0.02;
     uint32_t max_cut = kDefaultMaxCut;
     BoundSearch search = BoundSearch::kWalk;
-    // Indirect lights (LightTreeNode::indirect) on: their leaves are clamped
+    // Indirect lights (kNodeIndirect, kGpuLightIndirect) on: their leaves are clamped
     // to half the error ratio of the pixel (device/indirect_clamp.glsl.h);
     // off: every indirect node is left out of the cut (render --indirect off).
     bool indirect = true;
@@ -92,54 +94,51 @@ struct CutResult {
 // over its node indices i. The shaders compute the same.
 uint32_t cut_hash_term(uint32_t node_index);
 
-// The children of node `index` that are valid (a malformed index counts as
-// absent; children always come after their parent, so any traversal ends):
-// writes them to `out` and returns how many.
-int valid_children(const LightTree& tree, int32_t index, int32_t out[2]);
-
 // The key every per-pixel draw at p starts from (its pixel and the seed).
 uint32_t pixel_representative_key(const SurfacePoint& p, const CutSettings& settings);
 // The leaf node reached by the per-pixel draw with `key` from node `index`
 // in proportion to intensity (the node itself when it is a leaf): the
 // pixel's representative of it (kPixel).
-int32_t pixel_representative(const LightTree& tree, int32_t index, uint32_t key);
-// A leaf drawn at p from node `index` under the settings' representatives,
-// with the probability it was drawn with (1 for kTree, whose leaf is the
-// node's own representative).
+int32_t pixel_representative(const WalkTree& tree, int32_t index, uint32_t key);
+// A leaf drawn at p from node `index` under the settings' representatives:
+// its light (an index into tree.leaves), with the probability it was drawn
+// with (1 for kTree, whose leaf is the node's own representative).
 struct PixelDraw {
-    int32_t leaf = 0;
+    uint32_t light = 0;
     double probability = 1.0;
 };
-PixelDraw pixel_draw(const LightTree& tree, int32_t index, const SurfacePoint& p,
-                     const CutSettings& settings);
+PixelDraw pixel_draw(const WalkTree& tree, int32_t index, const SurfacePoint& p, const CutSettings& settings);
 // Node `index` evaluated as a cluster at p through the settings'
 // representative: shade_node() for kTree, the pixel's leaf with the
 // cluster's intensity for kPixel, the drawn leaf's light over its
 // probability for kImportance.
-glm::dvec3 shade_cluster(const LightTree& tree, int32_t index, const SurfacePoint& p,
+glm::dvec3 shade_cluster(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                          const CutSettings& settings);
 
 // Outgoing radiance at p from one light (shading_model.h), exact.
 glm::dvec3 shade_light(const SceneLight& light, const SurfacePoint& p);
-// A tree node evaluated as a cluster: the representative's position, direction,
-// range and spot cone, with the cluster's RGB intensity.
-glm::dvec3 shade_node(const LightTreeNode& node, const SurfacePoint& p);
+// The same for a leaf light of the walk tree, with its own intensity.
+glm::dvec3 shade_light(const GpuLight& light, const SurfacePoint& p);
+// Node `index` evaluated as a cluster: its representative leaf light's
+// position, direction, range and spot cone, with the cluster's RGB intensity.
+glm::dvec3 shade_node(const WalkTree& tree, int32_t index, const SurfacePoint& p);
 // The exact sum over every light given.
 glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoint& p);
 // The exact sum over the tree's leaves (what the tree represents).
-glm::dvec3 shade_tree_leaves(const LightTree& tree, const SurfacePoint& p);
+glm::dvec3 shade_tree_leaves(const WalkTree& tree, const SurfacePoint& p);
 // Upper bound, per channel, on the exact contribution at p of every light under
-// `node` and on its cluster estimate (so on the cluster's error): material
+// node `index` and on its cluster estimate (so on the cluster's error): material
 // bound x geometric bound (visibility = 1) x cluster RGB intensity. Used by the
-// bound criterion; +inf for mixed_types junctions, which are always refined.
-glm::dvec3 node_contribution_bound(const LightTreeNode& node, const SurfacePoint& p);
+// bound criterion; +inf for mixed-type junctions, which are always refined.
+// The box and cone are decoded from the compact node (decode_bounds).
+glm::dvec3 node_contribution_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p);
 // f_r at p towards the unit direction l: albedo / pi plus the glossy lobe
 // (material_model.h).
 glm::dvec3 material_response(const SurfacePoint& p, const glm::dvec3& l);
 // Upper bound, per channel, of the material's f_r at p over every light of the
 // node: the diffuse term plus the lobe at the largest cosine between the
 // mirror direction and a direction to the node's box (paper Sec. 4.1).
-glm::dvec3 material_bound(const LightTreeNode& node, const SurfacePoint& p);
+glm::dvec3 material_bound(const WalkTree& tree, int32_t index, const SurfacePoint& p);
 // One node of a cut with its cluster estimate (paper Eq. 2, visibility included).
 struct CutNodeEstimate {
     int32_t node = 0;
@@ -148,16 +147,16 @@ struct CutNodeEstimate {
 // The bound criterion's heap search (BoundSearch::kHeap; classic lights not
 // included), with the cut's nodes appended to `nodes` when given (the
 // samples of reconstruction cuts are made from them).
-CutResult bound_heap_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult bound_heap_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                          std::vector<CutNodeEstimate>* nodes = nullptr);
 // Reference mode: every leaf of the tree, exact, its indirect leaves clamped
 // exactly (exact_indirect_clamp.h; left out with settings.indirect off), plus
 // the classic lights. cut_size counts the leaves.
-CutResult shade_tree_reference(const LightTree& tree, std::span<const SceneLight> classic_lights,
+CutResult shade_tree_reference(const WalkTree& tree, std::span<const SceneLight> classic_lights,
                                const SurfacePoint& p, const CutSettings& settings);
 // Lightcuts over the tree, plus the classic lights shaded one by one, with the
 // indirect leaves clamped (or indirect light left out, settings.indirect).
-CutResult shade_lightcuts(const LightTree& tree, std::span<const SceneLight> classic_lights,
+CutResult shade_lightcuts(const WalkTree& tree, std::span<const SceneLight> classic_lights,
                           const SurfacePoint& p, const CutSettings& settings);
 
 }  // namespace lc

@@ -6,11 +6,12 @@ namespace lc {
 
 double max_channel(const glm::dvec3& v) { return std::max({v.x, v.y, v.z}); }
 
-void CutTally::add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance) {
+void CutTally::add(int32_t node_index, const GpuTreeNode& node, const glm::dvec3& node_radiance) {
     radiance += node_radiance;
     // The paper clamps single lights; clusters are the refinement's.
-    device::add_cut_node(indirect, node.indirect,
-                         device::clamped_leaf(node.indirect, node.patch, node.is_leaf()), node_radiance);
+    device::add_cut_node(indirect, is_indirect(node),
+                         device::clamped_leaf(is_indirect(node), is_patch(node), is_leaf(node)),
+                         node_radiance);
     size += 1;
     hash += cut_hash_term(uint32_t(node_index));
 }
@@ -24,11 +25,11 @@ void CutTally::copy_to(CutResult& result, double clamp_ratio) const {
     if (indirect.leaves > 0) result.radiance = device::indirect_clamped(radiance, indirect, clamp_ratio, result.clamped);
 }
 
-double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p) {
-    if (child_count == 0) return 0.0;
-    const LightTreeNode& node = tree.nodes[size_t(index)];
-    if (node.mixed_types) return std::numeric_limits<double>::infinity();
-    return max_channel(node_contribution_bound(node, p));
+double error_key(const WalkTree& tree, int32_t index, const SurfacePoint& p) {
+    const GpuTreeNode& node = tree.node(index);
+    if (is_leaf(node)) return 0.0;
+    if (joins_types(node)) return std::numeric_limits<double>::infinity();
+    return max_channel(node_contribution_bound(tree, index, p));
 }
 
 double indirect_clamp_ratio(double error_ratio) { return 0.5 * std::max(error_ratio, 0.0); }

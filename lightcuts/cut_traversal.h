@@ -24,21 +24,25 @@ struct CutTally {
     uint32_t hash = 0;
     device::IndirectSums indirect = device::no_indirect_sums();
 
-    void add(int32_t node_index, const LightTreeNode& node, const glm::dvec3& node_radiance);
+    void add(int32_t node_index, const GpuTreeNode& node, const glm::dvec3& node_radiance);
     // The cut's part of a CutResult (max_cut_hit and passes left as they are),
     // its indirect leaves clamped at `clamp_ratio` of the cut's total.
     void copy_to(CutResult& result, double clamp_ratio) const;
 };
 
-// Whether a search leaves node out of the cut altogether (render --indirect off).
-inline bool left_out(const LightTreeNode& node, const CutSettings& settings) {
-    return !settings.indirect && node.indirect;
+// Whether a search leaves a node (or a leaf light) out of the cut altogether
+// (render --indirect off).
+inline bool left_out(const GpuTreeNode& node, const CutSettings& settings) {
+    return !settings.indirect && is_indirect(node);
+}
+inline bool left_out(const GpuLight& light, const CutSettings& settings) {
+    return !settings.indirect && is_indirect(light);
 }
 
-// The bound criterion's key of node `index` with `child_count` valid
-// children: the largest channel of its error bound; 0 for a leaf (exact),
-// +inf for a mixed_types junction (always refined).
-double error_key(const LightTree& tree, int32_t index, int child_count, const SurfacePoint& p);
+// The bound criterion's key of node `index`: the largest channel of its
+// error bound; 0 for a leaf (exact), +inf for a mixed-type junction (always
+// refined).
+double error_key(const WalkTree& tree, int32_t index, const SurfacePoint& p);
 
 // The bound criterion's rule, from the settings: a cut is done when every
 // node's key is <= limit(total), or when it reaches max_cut nodes.
@@ -52,21 +56,20 @@ struct BoundRule {
 };
 
 // The cut that `refine(index, node, child_count)` selects, in pre-order: a
-// node is refined into its valid children or taken as a cluster (shaded at p
+// node is refined into its children or taken as a cluster (shaded at p
 // and tallied); a node left_out() is neither. An explicit stack, no recursion:
 // a chain-shaped tree is as deep as it has lights.
 template <typename Refine>
-CutTally walk_cut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
-                  Refine&& refine) {
+CutTally walk_cut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings, Refine&& refine) {
     CutTally tally;
     std::vector<int32_t> stack{0};
     while (!stack.empty()) {
         const int32_t index = stack.back();
         stack.pop_back();
-        const LightTreeNode& node = tree.nodes[size_t(index)];
+        const GpuTreeNode& node = tree.node(index);
         if (left_out(node, settings)) continue;
         int32_t children[2];
-        const int child_count = valid_children(tree, index, children);
+        const int child_count = children_of(tree, index, children);
         if (refine(index, node, child_count)) {
             for (int c = child_count - 1; c >= 0; --c) stack.push_back(children[c]);
         } else {

@@ -9,7 +9,7 @@
 
 namespace lc {
 
-// One record per node of `nodes` (compact pre-order nodes, make_gpu_tree):
+// One record per node of `nodes` (compact pre-order nodes, make_walk_tree):
 // a leaf's record is unused; an internal node's holds its children's bounding
 // spheres (radius -1 for a directional or mixed-type child, weighed by
 // intensity alone), scalar intensities and destinations (a node index, or

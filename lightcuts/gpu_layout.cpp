@@ -103,10 +103,10 @@ Result<std::vector<int32_t>> derive_escape_indices(const LightTree& tree) {
     return escape;
 }
 
-Result<GpuTree> make_gpu_tree(const LightTree& tree) {
+Result<WalkTree> make_walk_tree(const LightTree& tree) {
     Result<std::vector<int32_t>> escape = derive_escape_indices(tree);
     if (!escape) return make_error(escape.error());
-    GpuTree gpu;
+    WalkTree gpu;
     const size_t n = tree.nodes.size();
     // Each leaf's index among the leaves (leaf_lights), where representatives point.
     constexpr uint32_t kNotALeaf = UINT32_MAX;

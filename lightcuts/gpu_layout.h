@@ -1,6 +1,6 @@
 #pragma once
 // The one place that converts scene lights and tree nodes into the structs the
-// shaders read (lightcuts/device/gpu_structs.h, shared with the GLSL).
+// shaders (and the CPU evaluator's walks) read (lightcuts/device/gpu_structs.h, shared with the GLSL).
 #include <cstdint>
 #include <vector>
 
@@ -8,6 +8,7 @@
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc {
 
@@ -22,17 +23,9 @@ GpuLight make_gpu_leaf_light(const LightTreeNode& node);
 // child index that is out of range, not greater than its parent's, or shared.
 Result<std::vector<int32_t>> derive_escape_indices(const LightTree& tree);
 
-// Everything the GPU reads about a tree.
-struct GpuTree {
-    std::vector<GpuTreeNode> nodes;  // compact nodes (compact_node.h)
-    // The tree's leaves in index order: reference mode's lights, and the
-    // nodes' representatives.
-    std::vector<GpuLight> leaves;
-    uint32_t depth = 0;            // longest root-to-leaf path, in edges
-};
-
-// Fails on malformed links, non-finite values, or a representative that is
-// not a leaf.
-Result<GpuTree> make_gpu_tree(const LightTree& tree);
+// The tree as the GPU and the CPU evaluator walk it (walk_tree.h): the one
+// conversion from the import form. Fails on malformed links, non-finite
+// values, or a representative that is not a leaf.
+Result<WalkTree> make_walk_tree(const LightTree& tree);
 
 }  // namespace lc

@@ -21,9 +21,10 @@ namespace {
 constexpr double kMuchBrighter = 2.0;
 
 // Unit direction from x towards a node's representative.
-glm::dvec3 direction_to(const LightTreeNode& node, const glm::dvec3& x) {
-    if (node.type == LightType::kDirectional) return -glm::normalize(glm::dvec3(node.direction));
-    const glm::dvec3 to_light = glm::dvec3(node.position) - x;
+glm::dvec3 direction_to(const GpuLight& representative, const glm::dvec3& x) {
+    if (LightType(representative.type) == LightType::kDirectional)
+        return -glm::normalize(glm::dvec3(representative.direction));
+    const glm::dvec3 to_light = glm::dvec3(representative.position) - x;
     const double distance = glm::length(to_light);
     return distance > 0.0 ? to_light / distance : glm::dvec3(0.0, 0.0, 1.0);
 }
@@ -74,15 +75,16 @@ SurfacePoint without_occluders(const SurfacePoint& p) {
 // A cluster evaluated as a lightcut does (Eq. 2), its shadow ray counted.
 // The shaded value with visibility is the open one times V in {0, 1}
 // (cpu_evaluator's unit_response), so the ray is traced on its own.
-glm::dvec3 evaluate_cluster(const LightTreeNode& node, const SurfacePoint& p,
+glm::dvec3 evaluate_cluster(const WalkTree& tree, int32_t index, const SurfacePoint& p,
                             const SurfacePoint& open, ShadowRayCount& rays) {
-    const glm::dvec3 unshadowed = shade_node(node, open);
+    const glm::dvec3 unshadowed = shade_node(tree, index, open);
     if (max_channel(unshadowed) <= 0.0) return glm::dvec3(0.0);
     if (p.occluders == nullptr) return unshadowed;
     ++rays.rays;
+    const GpuLight& light = tree.light_of(index);
     const double visible =
-        light_visibility(*p.occluders, p.shadow_bias, node.type, glm::dvec3(node.position),
-                         glm::dvec3(node.direction), p.position, p.normal);
+        light_visibility(*p.occluders, p.shadow_bias, LightType(light.type), glm::dvec3(light.position),
+                         glm::dvec3(light.direction), p.position, p.normal);
     return visible > 0.0 ? unshadowed : glm::dvec3(0.0);
 }
 
@@ -100,7 +102,7 @@ struct WalkEntry {
     std::array<SampleRef, kMaxReconstructionSamples> refs;
 };
 
-double intensity_ratio(const LightTreeNode& child, const LightTreeNode& parent) {
+double intensity_ratio(const GpuTreeNode& child, const GpuTreeNode& parent) {
     const double parent_intensity = max_channel(glm::dvec3(parent.intensity));
     return parent_intensity > 0.0 ? max_channel(glm::dvec3(child.intensity)) / parent_intensity
                                   : 0.0;
@@ -108,7 +110,7 @@ double intensity_ratio(const LightTreeNode& child, const LightTreeNode& parent) 
 
 }  // namespace
 
-CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult counted_lightcut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                            ShadowRayCount& rays, std::vector<CutNodeEstimate>* nodes) {
     if (tree.empty()) return {};
     std::vector<CutNodeEstimate> cut;
@@ -118,8 +120,7 @@ CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const C
         // shaded again, open, to tell a blocked ray from no ray.
         const SurfacePoint open = without_occluders(p);
         for (const CutNodeEstimate& entry : cut) {
-            if (max_channel(entry.estimate) > 0.0 ||
-                max_channel(shade_node(tree.nodes[size_t(entry.node)], open)) > 0.0)
+            if (max_channel(entry.estimate) > 0.0 || max_channel(shade_node(tree, entry.node, open)) > 0.0)
                 ++rays.rays;
         }
     }
@@ -127,9 +128,8 @@ CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const C
     return result;
 }
 
-ReconstructionSample make_reconstruction_sample(const LightTree& tree, const SurfacePoint& p,
-                                                const CutSettings& settings,
-                                                ShadowRayCount& rays) {
+ReconstructionSample make_reconstruction_sample(const WalkTree& tree, const SurfacePoint& p,
+                                                const CutSettings& settings, ShadowRayCount& rays) {
     ReconstructionSample sample;
     sample.point = p;
     if (tree.empty()) return sample;
@@ -165,13 +165,13 @@ ReconstructionSample make_reconstruction_sample(const LightTree& tree, const Sur
         if (const uint32_t k = on_cut[size_t(next.node)]; k > 0) {
             sample.nodes.back().impostor.on_cut = true;
             L.push_back(cut[k - 1].estimate);
-            d.push_back(direction_to(tree.nodes[size_t(next.node)], p.position));
+            d.push_back(direction_to(tree.light_of(next.node), p.position));
             continue;
         }
         L.emplace_back(0.0);
         d.emplace_back(0.0);
         int32_t children[2];
-        const int child_count = valid_children(tree, next.node, children);
+        const int child_count = children_of(tree, next.node, children);
         for (int c = child_count - 1; c >= 0; --c) stack.push_back({children[c], slot, c});
     }
     for (const CutNodeEstimate& entry : cut) on_cut[size_t(entry.node)] = 0;
@@ -237,11 +237,18 @@ NodeAtSamples node_at_samples(const WalkEntry& e, std::span<const Reconstruction
 // One point's walk down the tree, guided by the samples' cuts.
 class ReconstructionWalk {
 public:
-    ReconstructionWalk(const LightTree& tree, const SurfacePoint& p,
+    ReconstructionWalk(const WalkTree& tree, const SurfacePoint& p,
                        std::span<const ReconstructionSample* const> samples, std::span<const double> weights,
                        size_t K, double error_ratio, ShadowRayCount& rays)
-        : tree_(tree), p_(p), open_(without_occluders(p)), glossy_(shading::has_lobe(p.specular, p.exponent)),
-          samples_(samples), weights_(weights), K_(K), error_ratio_(error_ratio), rays_(rays) {
+        : tree_(tree),
+          p_(p),
+          open_(without_occluders(p)),
+          glossy_(shading::has_lobe(p.specular, p.exponent)),
+          samples_(samples),
+          weights_(weights),
+          K_(K),
+          error_ratio_(error_ratio),
+          rays_(rays) {
         for (size_t k = 0; k < K; ++k) total_here_ += weights[k] * max_channel(samples[k]->radiance);
     }
 
@@ -258,14 +265,14 @@ public:
 
 private:
     void visit(const WalkEntry& e, std::vector<WalkEntry>& stack) {
-        const LightTreeNode& node = tree_.nodes[size_t(e.node)];
+        const GpuTreeNode& node = tree_.node(e.node);
         int32_t children[2];
-        const int child_count = valid_children(tree_, e.node, children);
+        const int child_count = children_of(tree_, e.node, children);
         const bool leaf = child_count == 0;
         const NodeAtSamples n = node_at_samples(e, samples_, K_);
         const double spread = max_channel(n.hi - n.lo);
         const double tau = error_ratio_ * n.smallest_total;
-        const bool junction = node.mixed_types && !leaf;
+        const bool junction = joins_types(node) && !leaf;
 
         // 1. Discard: dark at every sample.
         if (!junction && n.usable && n.gamma_max <= 0.0) return;
@@ -275,10 +282,10 @@ private:
         // 3. Evaluate the cluster as a lightcut would: a leaf, or a node small
         // against the threshold that some sample's cut reached.
         if (leaf) {
-            radiance_ += evaluate_cluster(node, p_, open_, rays_);
+            radiance_ += evaluate_cluster(tree_, e.node, p_, open_, rays_);
             return;
         }
-        if (!junction && n.any_at_or_below && evaluates(node, n, tau) && evaluate(node, n, tau)) return;
+        if (!junction && n.any_at_or_below && evaluates(e.node, n, tau) && evaluate(e.node, n, tau)) return;
         // 4. Refine.
         for (int c = child_count - 1; c >= 0; --c) stack.push_back(child_entry(e, n, node, children[c], c));
     }
@@ -303,34 +310,34 @@ private:
     // lightcut's own test here, its bound against the error ratio times the
     // samples' interpolated total; that test alone decides for a node the
     // samples' lobes could not see.
-    bool evaluates(const LightTreeNode& node, const NodeAtSamples& n, double tau) const {
+    bool evaluates(int32_t node, const NodeAtSamples& n, double tau) const {
         const bool small_at_samples = n.usable && n.gamma_max < tau;
         if (!glossy_) return small_at_samples;
         return (small_at_samples || !n.usable) &&
-               max_channel(node_contribution_bound(node, p_)) <= error_ratio_ * total_here_;
+               max_channel(node_contribution_bound(tree_, node, p_)) <= error_ratio_ * total_here_;
     }
 
     // Adds the cluster's evaluation, unless it is far brighter here than any
     // sample predicts (its representative close to this point): then it is
     // refined instead, as the paper does.
-    bool evaluate(const LightTreeNode& node, const NodeAtSamples& n, double tau) {
+    bool evaluate(int32_t node, const NodeAtSamples& n, double tau) {
         // What the samples predict here, and at least the threshold.
         double expected = 0.0;
         for (size_t k = 0; k < K_; ++k) {
             const glm::dvec3 M = material_term(p_, n.imp[k]->direction);
             expected = std::max({expected, max_channel(M * n.gamma[k]), max_channel(M) * tau});
         }
-        const glm::dvec3 evaluated = evaluate_cluster(node, p_, open_, rays_);
+        const glm::dvec3 evaluated = evaluate_cluster(tree_, node, p_, open_, rays_);
         if (max_channel(evaluated) > kMuchBrighter * expected) return false;
         radiance_ += evaluated;
         return true;
     }
 
-    WalkEntry child_entry(const WalkEntry& e, const NodeAtSamples& n, const LightTreeNode& node, int32_t child_node,
-                          int c) const {
+    WalkEntry child_entry(const WalkEntry& e, const NodeAtSamples& n, const GpuTreeNode& node,
+                          int32_t child_node, int c) const {
         WalkEntry child;
         child.node = child_node;
-        const double ratio = intensity_ratio(tree_.nodes[size_t(child_node)], node);
+        const double ratio = intensity_ratio(tree_.node(child_node), node);
         for (size_t k = 0; k < K_; ++k) {
             const SampleRef& ref = e.refs[k];
             const int32_t slot =
@@ -341,7 +348,7 @@ private:
         return child;
     }
 
-    const LightTree& tree_;
+    const WalkTree& tree_;
     const SurfacePoint& p_;
     const SurfacePoint open_;
     const bool glossy_;
@@ -356,10 +363,9 @@ private:
 
 }  // namespace
 
-glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
+glm::dvec3 reconstruction_cut(const WalkTree& tree, const SurfacePoint& p,
                               std::span<const ReconstructionSample* const> samples,
-                              std::span<const double> weights, double error_ratio,
-                              ShadowRayCount& rays) {
+                              std::span<const double> weights, double error_ratio, ShadowRayCount& rays) {
     const size_t K = std::min(samples.size(), size_t(kMaxReconstructionSamples));
     if (tree.empty() || K == 0) return glm::dvec3(0.0);
     for (size_t k = 0; k < K; ++k) {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc {
 
@@ -39,7 +39,7 @@ inline constexpr int32_t kBelowCut = -1;
 // (the paper's layout: records with offsets to their children, no lookup).
 struct SampleNode {
     Impostor impostor;
-    int32_t children[2] = {kBelowCut, kBelowCut};  // in valid_children's order
+    int32_t children[2] = {kBelowCut, kBelowCut};  // in children_of's order
 };
 
 // A lightcut at one point, processed for interpolation: a record for every
@@ -59,20 +59,18 @@ struct ShadowRayCount {
 
 // The bound criterion's lightcut at p (heap search, tree lights only), its
 // shadow rays counted in `rays`; the cut's nodes appended to `nodes` when given.
-CutResult counted_lightcut(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings,
+CutResult counted_lightcut(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings,
                            ShadowRayCount& rays, std::vector<CutNodeEstimate>* nodes = nullptr);
 
 // counted_lightcut at p, processed into the sample reconstruction cuts read.
-ReconstructionSample make_reconstruction_sample(const LightTree& tree, const SurfacePoint& p,
-                                                const CutSettings& settings,
-                                                ShadowRayCount& rays);
+ReconstructionSample make_reconstruction_sample(const WalkTree& tree, const SurfacePoint& p,
+                                                const CutSettings& settings, ShadowRayCount& rays);
 
 // What the samples (with weights summing to 1, at most kMaxReconstructionSamples)
 // predict for the tree's lights at p, by the paper's four rules: discard,
 // interpolate, cluster evaluate, refine. `error_ratio` is the lightcut's.
-glm::dvec3 reconstruction_cut(const LightTree& tree, const SurfacePoint& p,
+glm::dvec3 reconstruction_cut(const WalkTree& tree, const SurfacePoint& p,
                               std::span<const ReconstructionSample* const> samples,
-                              std::span<const double> weights, double error_ratio,
-                              ShadowRayCount& rays);
+                              std::span<const double> weights, double error_ratio, ShadowRayCount& rays);
 
 }  // namespace lc

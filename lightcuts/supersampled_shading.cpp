@@ -152,10 +152,13 @@ private:
 
 class BlockShader {
 public:
-    BlockShader(const LightTree& tree, std::span<const SceneLight> classic,
-                const SupersampledFrame& frame, const CutSettings& settings,
-                std::vector<glm::dvec3>& sums, CornerSamples* samples)
-        : tree_(tree), classic_(classic), frame_(frame), settings_(settings), sums_(sums),
+    BlockShader(const WalkTree& tree, std::span<const SceneLight> classic, const SupersampledFrame& frame,
+                const CutSettings& settings, std::vector<glm::dvec3>& sums, CornerSamples* samples)
+        : tree_(tree),
+          classic_(classic),
+          frame_(frame),
+          settings_(settings),
+          sums_(sums),
           samples_(samples) {}
 
     // One 16x16 image block, started as 4x4 blocks.
@@ -350,7 +353,7 @@ private:
                                std::span(weights, size_t(count)), settings_.error_ratio * kInterpolationScale, rays_));
     }
 
-    const LightTree& tree_;
+    const WalkTree& tree_;
     std::span<const SceneLight> classic_;
     const SupersampledFrame& frame_;
     const CutSettings& settings_;
@@ -361,11 +364,10 @@ private:
 
 }  // namespace
 
-std::vector<glm::dvec3> shade_supersampled(const LightTree& tree,
-                                           std::span<const SceneLight> classic_lights,
-                                           const SupersampledFrame& frame,
-                                           const CutSettings& settings, SupersampleShading shading,
-                                           uint32_t threads, SupersampleStats& stats) {
+std::vector<glm::dvec3> shade_supersampled(const WalkTree& tree, std::span<const SceneLight> classic_lights,
+                                           const SupersampledFrame& frame, const CutSettings& settings,
+                                           SupersampleShading shading, uint32_t threads,
+                                           SupersampleStats& stats) {
     std::vector<glm::dvec3> sums(size_t(frame.width) * frame.height, glm::dvec3(0.0));
     if (frame.spp() == 0) return sums;
     const ImageBlocks blocks(frame.width, frame.height);

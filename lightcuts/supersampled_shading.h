@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/light_tree.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc {
 
@@ -63,11 +63,10 @@ struct SupersampleStats {
 // The mean radiance of each pixel's eye rays (row-major), with the classic
 // lights shaded exactly at every eye ray. Blocks are spread over `threads`
 // workers; the result does not depend on their number.
-std::vector<glm::dvec3> shade_supersampled(const LightTree& tree,
-                                           std::span<const SceneLight> classic_lights,
-                                           const SupersampledFrame& frame,
-                                           const CutSettings& settings, SupersampleShading shading,
-                                           uint32_t threads, SupersampleStats& stats);
+std::vector<glm::dvec3> shade_supersampled(const WalkTree& tree, std::span<const SceneLight> classic_lights,
+                                           const SupersampledFrame& frame, const CutSettings& settings,
+                                           SupersampleShading shading, uint32_t threads,
+                                           SupersampleStats& stats);
 
 // `count` jittered sub-pixel offsets: one per cell of the smallest square grid
 // holding `count` (cells taken in a seeded order when count is not a square),

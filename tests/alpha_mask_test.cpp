@@ -184,7 +184,7 @@ TEST(AlphaMask, GpuShadowThroughCheckerboardMatchesTheAnalyticFraction) {
     const Scene scene = masked_quad_scene(AlphaMode::kMask);
     RendererOptions options;
     options.shadows = ShadowMode::kOn;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context, scene, nullptr, options);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context, scene, nullptr, options);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = 128;
@@ -240,7 +240,7 @@ std::optional<glm::vec2> uv_on_mesh(const Mesh& mesh, const glm::vec3& p, float 
 
 Result<GBufferReadback> gbuffer_of(const vk::Context& context, const Scene& scene,
                                    const RenderSettings& settings) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(context, scene, nullptr);
     if (!renderer) return make_error(renderer.error());
     Result<RenderStats> stats = (*renderer)->render(settings);
     if (!stats) return make_error(stats.error());

@@ -16,6 +16,7 @@
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "protocol/channel_records.h"
 #include "rectangle_form_factor.h"
+#include "tree_fixtures.h"
 
 namespace lc::bake {
 namespace {
@@ -153,8 +154,8 @@ TEST(AreaLights, FloorUnderASquareEmitterMatchesTheFormFactor) {
     const SceneGeometry g = floor_under_square(float(side), float(height), glm::vec3(float(L)));
     Result<BuildResult> built = run_bake(inputs_for(g, kDefaultAreaLights), nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
-    const LightTree& tree = built->tree;
-    EXPECT_EQ(tree.leaf_count, kDefaultAreaLights);
+    EXPECT_EQ(built->tree.leaf_count, kDefaultAreaLights);
+    const WalkTree tree = test::walk_tree(built->tree);
     CutSettings cuts;
     cuts.criterion = CutCriterion::kBound;
     cuts.error_ratio = 0.005;

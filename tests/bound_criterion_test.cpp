@@ -17,19 +17,18 @@ namespace {
 
 // The paper's refinement written the slow, obvious way: rescan the cut for the
 // largest bound and re-add the total from scratch at every step.
-CutResult brute_force_bound_cut(const LightTree& tree, const SurfacePoint& p, double ratio,
-                                uint32_t max_cut) {
+CutResult brute_force_bound_cut(const WalkTree& tree, const SurfacePoint& p, double ratio, uint32_t max_cut) {
     auto key = [&](int32_t i) {
-        const LightTreeNode& n = tree.nodes[size_t(i)];
-        if (n.is_leaf()) return 0.0;
-        if (n.mixed_types) return std::numeric_limits<double>::infinity();
-        return max_channel(node_contribution_bound(n, p));
+        const GpuTreeNode& n = tree.node(i);
+        if (is_leaf(n)) return 0.0;
+        if (joins_types(n)) return std::numeric_limits<double>::infinity();
+        return max_channel(node_contribution_bound(tree, i, p));
     };
     std::vector<int32_t> cut{0};
     CutResult result;
     while (true) {
         glm::dvec3 total(0.0);
-        for (int32_t i : cut) total += shade_node(tree.nodes[size_t(i)], p);
+        for (int32_t i : cut) total += shade_node(tree, i, p);
         size_t worst = 0;
         for (size_t k = 1; k < cut.size(); ++k) {
             const double a = key(cut[k]), b = key(cut[worst]);
@@ -43,13 +42,13 @@ CutResult brute_force_bound_cut(const LightTree& tree, const SurfacePoint& p, do
                 break;
             }
         }
-        const LightTreeNode& n = tree.nodes[size_t(cut[worst])];
+        int32_t children[2];
+        const int count = children_of(tree, cut[worst], children);
         cut.erase(cut.begin() + std::ptrdiff_t(worst));
-        cut.push_back(n.left);
-        cut.push_back(n.right);
+        cut.insert(cut.end(), children, children + count);
     }
     for (int32_t i : cut) {
-        result.radiance += shade_node(tree.nodes[size_t(i)], p);
+        result.radiance += shade_node(tree, i, p);
         result.cut_hash += cut_hash_term(uint32_t(i));
     }
     result.cut_size = uint32_t(cut.size());
@@ -60,7 +59,7 @@ TEST(BoundCriterion, ConvergesToTheExactValueAsErrorRatioGoesToZero) {
     std::mt19937_64 rng(3);
     for (int scene = 0; scene < 4; ++scene) {
         const std::vector<SceneLight> lights = mixed_scene(rng);
-        const LightTree tree = morton_pairing_tree(lights, uint64_t(scene));
+        const WalkTree tree = walk_tree(morton_pairing_tree(lights, uint64_t(scene)));
         std::uniform_real_distribution<double> u(-6, 6);
         for (int k = 0; k < 30; ++k) {
             const SurfacePoint p =
@@ -93,7 +92,7 @@ TEST(BoundCriterion, ErrorStaysWithinTheSumOfTheCutsBoundsAndCutsAreSublinear) {
                                    lamp + glm::vec3(0.5f), false);
         lights.insert(lights.end(), bulbs.begin(), bulbs.end());
     }
-    const LightTree tree = morton_pairing_tree(lights, 9);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 9));
     std::uniform_real_distribution<double> u(-100, 100);
     uint64_t total_cut = 0;
     for (int k = 0; k < 200; ++k) {
@@ -112,7 +111,7 @@ TEST(BoundCriterion, ErrorStaysWithinTheSumOfTheCutsBoundsAndCutsAreSublinear) {
 TEST(BoundCriterion, PicksTheSameCutAsABruteForceRefinement) {
     std::mt19937_64 rng(31);
     const std::vector<SceneLight> lights = mixed_scene(rng);
-    const LightTree tree = morton_pairing_tree(lights, 6);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 6));
     std::uniform_real_distribution<double> u(-6, 6);
     int different = 0;
     for (int k = 0; k < 300; ++k) {
@@ -136,7 +135,7 @@ TEST(BoundCriterion, MaxCutStopsRefinementAndSaysSo) {
     std::mt19937_64 rng(5);
     std::vector<SceneLight> lights =
         random_lights_in_box(rng, 64, LightType::kPoint, {-2, -2, 1}, {2, 2, 2}, false);
-    const LightTree tree = morton_pairing_tree(lights, 2);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 2));
     const CutResult r =
         shade_lightcuts(tree, {}, surface({0, 0, 0}), {CutCriterion::kBound, 0.0, 5, BoundSearch::kHeap});
     EXPECT_TRUE(r.max_cut_hit);
@@ -152,7 +151,7 @@ TEST(BoundCriterion, ZeroIntensityLightsNeedNoRefinement) {
     std::vector<SceneLight> lights =
         random_lights_in_box(rng, 16, LightType::kPoint, {-2, -2, 1}, {2, 2, 2}, false);
     for (SceneLight& l : lights) l.intensity = 0.0f;
-    const LightTree tree = morton_pairing_tree(lights, 2);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 2));
     for (CutCriterion criterion : {CutCriterion::kBound, CutCriterion::kRadius}) {
         const CutResult r = shade_lightcuts(tree, {}, surface({0, 0, 0}), {criterion, 0.02, 1000});
         EXPECT_EQ(r.radiance, glm::dvec3(0.0));
@@ -167,7 +166,7 @@ TEST(BoundCriterion, IntensityRatiosOf1e12StayAccurate) {
     std::vector<SceneLight> lights =
         random_lights_in_box(rng, 32, LightType::kPoint, {-3, -3, 1}, {3, 3, 2}, false);
     for (size_t i = 0; i < lights.size(); ++i) lights[i].intensity = (i % 2 == 0) ? 1e6f : 1e-6f;
-    const LightTree tree = morton_pairing_tree(lights, 4);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 4));
     std::uniform_real_distribution<double> u(-3, 3);
     for (int k = 0; k < 20; ++k) {
         const SurfacePoint p = surface({u(rng), u(rng), 0});
@@ -185,14 +184,14 @@ TEST(BoundCriterion, PointExactlyOnALightStaysFinite) {
     std::mt19937_64 rng(17);
     std::vector<SceneLight> lights =
         random_lights_in_box(rng, 9, LightType::kPoint, {-1, -1, 0}, {1, 1, 1}, false);
-    const LightTree tree = morton_pairing_tree(lights, 1);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 1));
     for (const SceneLight& l : lights) {
         const SurfacePoint p = surface(glm::dvec3(l.position));
         for (CutCriterion criterion : {CutCriterion::kBound, CutCriterion::kRadius}) {
             const CutResult r = shade_lightcuts(tree, {}, p, {criterion, 0.02, 1000});
             EXPECT_TRUE(finite3(r.radiance));
         }
-        EXPECT_TRUE(finite3(node_contribution_bound(tree.nodes[0], p)));
+        EXPECT_TRUE(finite3(node_contribution_bound(tree, 0, p)));
     }
 }
 
@@ -200,7 +199,7 @@ TEST(BoundCriterion, DirectionalOnlyScenesConverge) {
     std::mt19937_64 rng(19);
     std::vector<SceneLight> suns =
         random_lights_in_box(rng, 50, LightType::kDirectional, {0, 0, 0}, {0, 0, 0}, false);
-    const LightTree tree = morton_pairing_tree(suns, 3);
+    const WalkTree tree = walk_tree(morton_pairing_tree(suns, 3));
     const SurfacePoint p = surface({0, 0, 0}, {0.3, -0.2, 1});
     expect_near_rel(shade_lightcuts(tree, {}, p, {CutCriterion::kBound, 0.0, 1000}).radiance,
                     shade_tree_leaves(tree, p), 1e-12);

@@ -26,21 +26,21 @@ struct ThresholdCut {
     double worst = 0.0;
 };
 
-ThresholdCut cut_by_ancestors(const LightTree& tree, const SurfacePoint& p, double tau) {
+ThresholdCut cut_by_ancestors(const WalkTree& tree, const SurfacePoint& p, double tau) {
     const size_t n = tree.nodes.size();
     std::vector<int32_t> parent(n, -1);
     std::vector<double> key(n, 0.0);
     for (size_t i = 0; i < n; ++i) {
-        const LightTreeNode& node = tree.nodes[i];
-        if (node.is_leaf()) continue;
-        parent[size_t(node.left)] = int32_t(i);
-        parent[size_t(node.right)] = int32_t(i);
-        key[i] = node.mixed_types ? std::numeric_limits<double>::infinity()
-                                  : max_channel(node_contribution_bound(node, p));
+        int32_t children[2];
+        const int count = children_of(tree, int32_t(i), children);
+        if (count == 0) continue;
+        for (int c = 0; c < count; ++c) parent[size_t(children[c])] = int32_t(i);
+        key[i] = joins_types(tree.nodes[i]) ? std::numeric_limits<double>::infinity()
+                                            : max_channel(node_contribution_bound(tree, int32_t(i), p));
     }
     auto refined = [&](size_t i) {
-        const LightTreeNode& node = tree.nodes[i];
-        return !node.is_leaf() && (node.mixed_types || key[i] > tau);
+        const GpuTreeNode& node = tree.nodes[i];
+        return !is_leaf(node) && (joins_types(node) || key[i] > tau);
     };
     ThresholdCut cut;
     for (size_t i = 0; i < n; ++i) {
@@ -49,7 +49,7 @@ ThresholdCut cut_by_ancestors(const LightTree& tree, const SurfacePoint& p, doub
         for (int32_t a = parent[i]; a >= 0 && reached; a = parent[size_t(a)])
             reached = refined(size_t(a));
         if (!reached) continue;
-        cut.radiance += shade_node(tree.nodes[i], p);
+        cut.radiance += shade_node(tree, int32_t(i), p);
         cut.size += 1;
         cut.hash += cut_hash_term(uint32_t(i));
         if (!std::isinf(key[i])) cut.worst = std::max(cut.worst, key[i]);
@@ -58,8 +58,7 @@ ThresholdCut cut_by_ancestors(const LightTree& tree, const SurfacePoint& p, doub
 }
 
 // The pass schedule of bound_walk.h written out over cut_by_ancestors.
-CutResult walk_by_ancestors(const LightTree& tree, const SurfacePoint& p, double ratio,
-                            uint32_t max_cut) {
+CutResult walk_by_ancestors(const WalkTree& tree, const SurfacePoint& p, double ratio, uint32_t max_cut) {
     CutResult result;
     double tau = std::numeric_limits<double>::infinity();
     double fit = 0.0, over = 0.0;
@@ -93,7 +92,7 @@ CutResult walk_by_ancestors(const LightTree& tree, const SurfacePoint& p, double
 TEST(BoundWalk, FindsTheSameCutsAsThresholdCutsFoundByAncestry) {
     std::mt19937_64 rng(41);
     const std::vector<SceneLight> lights = mixed_scene(rng);
-    const LightTree tree = morton_pairing_tree(lights, 6);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 6));
     std::uniform_real_distribution<double> u(-6, 6);
     int hits = 0;
     for (int k = 0; k < 300; ++k) {
@@ -119,7 +118,7 @@ TEST(BoundWalk, GivesTheNodesOfTheCutItKept) {
     // cluster estimate, a partition of the leaves.
     std::mt19937_64 rng(59);
     const std::vector<SceneLight> lights = mixed_scene(rng);
-    const LightTree tree = morton_pairing_tree(lights, 7);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 7));
     std::uniform_real_distribution<double> u(-6, 6);
     int hits = 0;
     for (int k = 0; k < 100; ++k) {
@@ -136,21 +135,23 @@ TEST(BoundWalk, GivesTheNodesOfTheCutItKept) {
         uint32_t hash = 0;
         std::vector<int> covered(tree.nodes.size(), 0);
         for (const CutNodeEstimate& n : nodes) {
-            expect_near_rel(n.estimate, shade_node(tree.nodes[size_t(n.node)], p), 1e-15, 1e-300);
+            expect_near_rel(n.estimate, shade_node(tree, n.node, p), 1e-15, 1e-300);
             sum += n.estimate;
             hash += cut_hash_term(uint32_t(n.node));
             std::vector<int32_t> stack{n.node};
             while (!stack.empty()) {
-                const LightTreeNode& node = tree.nodes[size_t(stack.back())];
-                covered[size_t(stack.back())] += 1;
+                const int32_t index = stack.back();
+                covered[size_t(index)] += 1;
                 stack.pop_back();
-                if (!node.is_leaf()) stack.insert(stack.end(), {node.left, node.right});
+                int32_t children[2];
+                const int count = children_of(tree, index, children);
+                stack.insert(stack.end(), children, children + count);
             }
         }
         EXPECT_EQ(hash, r.cut_hash);
         expect_near_rel(sum, r.radiance, 1e-12, 1e-300);
         for (size_t i = 0; i < tree.nodes.size(); ++i) {
-            if (tree.nodes[i].is_leaf()) {
+            if (is_leaf(tree.nodes[i])) {
                 EXPECT_EQ(covered[i], 1) << "leaf " << i;
             }
         }
@@ -162,7 +163,7 @@ TEST(BoundWalk, GivesTheNodesOfTheCutItKept) {
 TEST(BoundWalk, CutIsAtLeastAsFineAsTheRuleAsksAndWithinItsBounds) {
     std::mt19937_64 rng(43);
     const std::vector<SceneLight> lights = mixed_scene(rng);
-    const LightTree tree = morton_pairing_tree(lights, 9);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 9));
     std::uniform_real_distribution<double> u(-6, 6);
     for (int k = 0; k < 300; ++k) {
         const SurfacePoint p =
@@ -186,7 +187,7 @@ TEST(BoundWalk, OverMaxCutKeepsTheLastWholePassAndSaysSo) {
     std::mt19937_64 rng(5);
     std::vector<SceneLight> lights =
         random_lights_in_box(rng, 64, LightType::kPoint, {-2, -2, 1}, {2, 2, 2}, false);
-    const LightTree tree = morton_pairing_tree(lights, 2);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 2));
     const CutResult r = shade_lightcuts(tree, {}, surface({0, 0, 0}), {CutCriterion::kBound, 0.0, 5});
     EXPECT_TRUE(r.max_cut_hit);
     EXPECT_GE(r.cut_size, 1u);
@@ -206,7 +207,7 @@ TEST(BoundWalk, AtTheCapKeepsACutCloseToIt) {
     std::mt19937_64 rng(53);
     const std::vector<SceneLight> lights =
         random_lights_in_box(rng, 3000, LightType::kPoint, {-5, -5, 0.2f}, {5, 5, 3}, false);
-    const LightTree tree = morton_pairing_tree(lights, 4);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 4));
     std::uniform_real_distribution<double> u(-5, 5);
     double fine_cut = 0.0, coarse_cut = 0.0;
     for (int k = 0; k < 50; ++k) {
@@ -229,7 +230,7 @@ TEST(BoundWalk, AgreesWithTheHeapOnErrorAndCutSizeOverARoom) {
     std::mt19937_64 rng(47);
     const std::vector<SceneLight> lights =
         random_lights_in_box(rng, 2000, LightType::kPoint, {-5, -5, 0.2f}, {5, 5, 3}, false);
-    const LightTree tree = morton_pairing_tree(lights, 3);
+    const WalkTree tree = walk_tree(morton_pairing_tree(lights, 3));
     std::uniform_real_distribution<double> u(-5, 5);
     double walk_err = 0, heap_err = 0, walk_cut = 0, heap_cut = 0;
     const int points = 200;

@@ -18,13 +18,13 @@
 namespace lc {
 namespace {
 
-GpuTree gpu_tree(const std::vector<SceneLight>& lights) {
+WalkTree gpu_tree(const std::vector<SceneLight>& lights) {
     bake::BuildOptions options;
     options.builder = BuilderKind::kAgglomerative;
     options.seed = 5;
     Result<bake::BuildResult> built = bake::build_light_tree(lights, options, {});
     EXPECT_TRUE(built) << (built ? "" : built.error());
-    Result<GpuTree> gpu = make_gpu_tree(built->tree);
+    Result<WalkTree> gpu = make_walk_tree(built->tree);
     EXPECT_TRUE(gpu) << (gpu ? "" : gpu.error());
     return std::move(gpu).value();
 }
@@ -51,7 +51,7 @@ void reach(const std::vector<GpuDrawPair>& pairs, int node, double probability, 
 }
 
 TEST(DrawPairs, RecordsNameEachNodesChildrenAndBoundTheirBoxes) {
-    const GpuTree tree = gpu_tree(test::random_lights(200, 11, LightType::kPoint));
+    const WalkTree tree = gpu_tree(test::random_lights(200, 11, LightType::kPoint));
     const std::vector<GpuDrawPair> pairs = make_draw_pairs(tree.nodes);
     ASSERT_EQ(pairs.size(), tree.nodes.size());
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
@@ -76,7 +76,7 @@ TEST(DrawPairs, RecordsNameEachNodesChildrenAndBoundTheirBoxes) {
 TEST(DrawPairs, ADescentReachesEveryLeafOnceWithProbabilitiesSummingToOne) {
     for (LightType type : {LightType::kPoint, LightType::kSpot, LightType::kDirectional}) {
         SCOPED_TRACE(int(type));
-        const GpuTree tree = gpu_tree(test::random_lights(120, 3, type));
+        const WalkTree tree = gpu_tree(test::random_lights(120, 3, type));
         const std::vector<GpuDrawPair> pairs = make_draw_pairs(tree.nodes);
         // A point inside the lights' volume, facing up: some children lie behind it.
         const vec3 x(0.1f, 0.2f, 0.3f), n(0.0f, 1.0f, 0.0f);
@@ -96,7 +96,7 @@ TEST(DrawPairs, ADescentReachesEveryLeafOnceWithProbabilitiesSummingToOne) {
 }
 
 TEST(DrawPairs, DirectionalAndOneChildNodesAndAnEmptyTree) {
-    const GpuTree directional = gpu_tree(test::random_lights(8, 5, LightType::kDirectional));
+    const WalkTree directional = gpu_tree(test::random_lights(8, 5, LightType::kDirectional));
     for (const GpuDrawPair& pair : make_draw_pairs(directional.nodes)) {
         EXPECT_LT(pair.radius0, 0.0f);
         EXPECT_LT(pair.radius1, 0.0f);

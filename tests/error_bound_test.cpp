@@ -41,8 +41,7 @@ TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
             for (SceneLight& l : lights)
                 l.direction = glm::normalize(axis + 0.1f * glm::vec3(u(rng), u(rng), u(rng)));
         }
-        const LightTree tree = morton_pairing_tree(lights, uint64_t(config));
-        const LightTreeNode& root = tree.nodes[0];
+        const WalkTree tree = walk_tree(morton_pairing_tree(lights, uint64_t(config)));
 
         // Ten shading points per cluster: 10^6 (cluster, point) cases in all.
         for (int point = 0; point < kPointsPerCluster; ++point) {
@@ -70,9 +69,9 @@ TEST(ErrorBound, IsConservativeOverManyRandomConfigurations) {
             p.mirror = shading::mirror_direction(p.normal, p.position, eye);
         }
 
-        const glm::dvec3 bound = node_contribution_bound(root, p);
+        const glm::dvec3 bound = node_contribution_bound(tree, 0, p);
         const glm::dvec3 exact = shade_reference(lights, p);
-        const glm::dvec3 estimate = shade_node(root, p);
+        const glm::dvec3 estimate = shade_node(tree, 0, p);
         for (int c = 0; c < 3; ++c) {
             ASSERT_TRUE(std::isfinite(bound[c]));
             // Lights and nodes store spot cosines at different precisions: 1e-6.
@@ -100,17 +99,16 @@ TEST(ErrorBound, OrientedClusterBoundFollowsTheEmittersCosine) {
         s.guid = Guid{4, 4, 4, uint32_t(i + 1)};
         panel.push_back(s);
     }
-    const LightTree tree = morton_pairing_tree(panel, 1);
-    EXPECT_EQ(node_contribution_bound(tree.nodes[0], surface({0, 0, 10}, {0, 0, -1})),
-              glm::dvec3(0.0));
-    EXPECT_GT(node_contribution_bound(tree.nodes[0], surface({0, 0, 0})).x, 0.0);
+    const WalkTree tree = walk_tree(morton_pairing_tree(panel, 1));
+    EXPECT_EQ(node_contribution_bound(tree, 0, surface({0, 0, 10}, {0, 0, -1})), glm::dvec3(0.0));
+    EXPECT_GT(node_contribution_bound(tree, 0, surface({0, 0, 0})).x, 0.0);
     // Far to the side, seen from a wall facing the panel: the emitter cosine
     // is about 0.5 / 20 = 0.025.
     const SurfacePoint side = surface({20, 0, 4.5}, {-1, 0, 0});
     std::vector<SceneLight> as_points = panel;
     for (SceneLight& l : as_points) l.type = LightType::kPoint;
-    const double oriented = node_contribution_bound(tree.nodes[0], side).x;
-    const double point = node_contribution_bound(morton_pairing_tree(as_points, 1).nodes[0], side).x;
+    const double oriented = node_contribution_bound(tree, 0, side).x;
+    const double point = node_contribution_bound(walk_tree(morton_pairing_tree(as_points, 1)), 0, side).x;
     EXPECT_GE(oriented, shade_reference(panel, side).x);
     EXPECT_LT(oriented, 0.1 * point);
 }
@@ -125,19 +123,19 @@ TEST(ErrorBound, IsZeroBehindASpotClusterAndOutsideTheRadius) {
         s.outer_cone_angle = 0.5f;
         spots.push_back(s);
     }
-    const LightTree tree = morton_pairing_tree(spots, 1);
+    const WalkTree tree = walk_tree(morton_pairing_tree(spots, 1));
     // Above the spots, which all shine down: no light can arrive.
     const SurfacePoint above = surface({0, 0, 10}, {0, 0, -1});
-    EXPECT_EQ(node_contribution_bound(tree.nodes[0], above), glm::dvec3(0.0));
+    EXPECT_EQ(node_contribution_bound(tree, 0, above), glm::dvec3(0.0));
     EXPECT_EQ(shade_reference(spots, above), glm::dvec3(0.0));
     // Below them: positive.
-    EXPECT_GT(node_contribution_bound(tree.nodes[0], surface({0, 0, 0})).x, 0.0);
+    EXPECT_GT(node_contribution_bound(tree, 0, surface({0, 0, 0})).x, 0.0);
 
     std::vector<SceneLight> ranged{
         make_light(LightType::kPoint, {0, 0, 1}, 1.0f, glm::vec3(1), 2.0f),
         make_light(LightType::kPoint, {1, 0, 1}, 1.0f, glm::vec3(1), 2.0f)};
-    const LightTree small = morton_pairing_tree(ranged, 1);
-    EXPECT_EQ(node_contribution_bound(small.nodes[0], surface({10, 0, 0})), glm::dvec3(0.0));
+    const WalkTree small = walk_tree(morton_pairing_tree(ranged, 1));
+    EXPECT_EQ(node_contribution_bound(small, 0, surface({10, 0, 0})), glm::dvec3(0.0));
 }
 
 // The bounds must also hold on trees from the real builder (its radii, boxes
@@ -151,8 +149,8 @@ TEST(ErrorBound, HoldsOnTreesFromTheServerBuilder) {
     Result<bake::BuildResult> built =
         bake::build_light_tree(lights, options, [](std::string_view, double) { return true; });
     ASSERT_TRUE(built.ok()) << built.error();
-    const LightTree& tree = built->tree;
-    ASSERT_EQ(tree.leaf_count, lights.size());
+    ASSERT_EQ(built->tree.leaf_count, lights.size());
+    const WalkTree tree = walk_tree(built->tree);
     std::uniform_real_distribution<double> u(-7, 7);
     for (int k = 0; k < 300; ++k) {
         const SurfacePoint p =
@@ -160,16 +158,14 @@ TEST(ErrorBound, HoldsOnTreesFromTheServerBuilder) {
         // Exact sum per subtree, bottom-up (children come after parents).
         std::vector<glm::dvec3> exact(tree.nodes.size(), glm::dvec3(0.0));
         for (size_t i = tree.nodes.size(); i-- > 0;) {
-            const LightTreeNode& n = tree.nodes[i];
-            if (n.is_leaf()) {
-                exact[i] = shade_node(n, p);
-            } else {
-                exact[i] = exact[size_t(n.left)] + exact[size_t(n.right)];
-            }
+            int32_t children[2];
+            const int count = children_of(tree, int32_t(i), children);
+            if (count == 0) exact[i] = shade_node(tree, int32_t(i), p);
+            for (int c = 0; c < count; ++c) exact[i] += exact[size_t(children[c])];
         }
         for (size_t i = 0; i < tree.nodes.size(); ++i) {
-            if (tree.nodes[i].mixed_types) continue;
-            const glm::dvec3 bound = node_contribution_bound(tree.nodes[i], p);
+            if (joins_types(tree.nodes[i])) continue;
+            const glm::dvec3 bound = node_contribution_bound(tree, int32_t(i), p);
             for (int c = 0; c < 3; ++c) {
                 ASSERT_GE(bound[c] * (1.0 + 1e-5) + 1e-300, exact[i][c]) << "node " << i;
             }

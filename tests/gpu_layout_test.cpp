@@ -69,7 +69,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
     // Pre-order: 0 1 3 4 2 5 6.
     EXPECT_EQ(*escape, (std::vector<int32_t>{-1, 2, -1, 4, 2, 6, -1}));
 
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->nodes[0].first_child, 1);
     EXPECT_EQ(gpu->nodes[1].first_child, 3);
@@ -80,7 +80,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
 
 // The walk the shader does, with a refine decision per node: visits each cut
 // node once and returns them in pre-order.
-std::vector<int32_t> walk(const GpuTree& tree, const std::vector<bool>& refine) {
+std::vector<int32_t> walk(const WalkTree& tree, const std::vector<bool>& refine) {
     std::vector<int32_t> cut;
     int32_t i = tree.nodes.empty() ? kEndOfWalk : 0;
     size_t steps = 0;
@@ -105,7 +105,7 @@ TEST(GpuLayout, WalkProducesTheExpectedCuts) {
     LightTree tree;
     tree.nodes = {node(1, 2),   node(3, 4),  node(5, -1), node(-1, -1),
                   node(-1, -1), node(6, -1), node(-1, -1)};
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(tree));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(tree));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     std::vector<bool> all(7, true), none(7, false);
     EXPECT_EQ(walk(*gpu, all), (std::vector<int32_t>{3, 4, 6}));
@@ -116,6 +116,39 @@ TEST(GpuLayout, WalkProducesTheExpectedCuts) {
     std::vector<bool> right_side = root_only;
     right_side[2] = true;
     EXPECT_EQ(walk(*gpu, right_side), (std::vector<int32_t>{1, 5}));
+}
+
+// The CPU evaluator finds a node's children from the walk links alone: the
+// import form's left and right, in that order, one-child nodes included.
+TEST(GpuLayout, WalkTreeChildrenAreTheImportedOnes) {
+    //          0
+    //       1     2
+    //      3 4    5 (left only)
+    //            6   7 (right only: 7's left is absent)
+    //                8
+    LightTree tree;
+    tree.nodes = {node(1, 2),   node(3, 4), node(5, -1), node(-1, -1), node(-1, -1),
+                  node(6, 7),   node(-1, -1), node(-1, 8), node(-1, -1)};
+    tree = with_representatives(tree);
+    Result<WalkTree> walk = make_walk_tree(tree);
+    ASSERT_TRUE(walk.ok()) << walk.error();
+    uint32_t leaves = 0;
+    for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
+        const LightTreeNode& imported = tree.nodes[size_t(i)];
+        std::vector<int32_t> expected;
+        for (int32_t child : {imported.left, imported.right})
+            if (child != kNoChild) expected.push_back(child);
+        int32_t children[2];
+        const int count = children_of(*walk, i, children);
+        EXPECT_EQ(std::vector<int32_t>(children, children + count), expected) << "node " << i;
+        EXPECT_EQ(is_leaf(walk->node(i)), imported.is_leaf()) << "node " << i;
+        // A node is evaluated through its representative's leaf light.
+        EXPECT_EQ(&walk->light_of(i), &walk->light_of(imported.representative)) << "node " << i;
+        if (imported.is_leaf()) {
+            EXPECT_EQ(walk->node(i).representative, leaves++) << "node " << i;
+        }
+    }
+    EXPECT_EQ(walk->leaves.size(), size_t(leaves));
 }
 
 TEST(GpuLayout, RejectsMalformedTrees) {
@@ -135,13 +168,13 @@ TEST(GpuLayout, RejectsMalformedTrees) {
     LightTree not_finite;
     not_finite.nodes = {node(-1, -1)};
     not_finite.nodes[0].intensity.x = std::nanf("");
-    Result<GpuTree> g = make_gpu_tree(not_finite);
+    Result<WalkTree> g = make_walk_tree(not_finite);
     ASSERT_FALSE(g.ok());
     EXPECT_NE(g.error().find("intensity"), std::string::npos) << g.error();
     LightTree inner_representative;
     inner_representative.nodes = {node(1, 2), node(-1, -1), node(-1, -1)};
     inner_representative.nodes[0].representative = 0;  // itself, not a leaf
-    g = make_gpu_tree(inner_representative);
+    g = make_walk_tree(inner_representative);
     ASSERT_FALSE(g.ok());
     EXPECT_NE(g.error().find("not a leaf"), std::string::npos) << g.error();
 }
@@ -155,7 +188,7 @@ TEST(GpuLayout, MillionNodeChainNeedsNoRecursion) {
         chain.nodes[i].left = i + 1;
         chain.nodes[i].right = i + 2;
     }
-    Result<GpuTree> gpu = make_gpu_tree(with_representatives(chain));
+    Result<WalkTree> gpu = make_walk_tree(with_representatives(chain));
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->depth, uint32_t(kNodes / 2));
     EXPECT_EQ(gpu->leaves.size(), size_t(kNodes / 2 + 1));

@@ -390,7 +390,7 @@ std::vector<CutSettings> every_search() {
 }
 
 TEST(IndirectClampCpu, AVplOneMillimetreFromAWallAddsAtMostTheRatio) {
-    const LightTree tree = build(lights_with_indirect(false));
+    const WalkTree tree = test::walk_tree(build(lights_with_indirect(false)));
     for (CutSettings settings : every_search()) {
         // The bound searches' cuts of the direct light may differ by the error
         // ratio between the two (the spike, clamped, still raises the total).
@@ -416,7 +416,7 @@ TEST(IndirectClampCpu, AVplOneMillimetreFromAWallAddsAtMostTheRatio) {
 
 // The same spike as a patch: the disk's 1 / (d^2 + r^2) instead of a clamp.
 TEST(IndirectClampCpu, APatchOneMillimetreFromAWallIsADiskNotASpike) {
-    const LightTree tree = build(lights_with_patches(false));
+    const WalkTree tree = test::walk_tree(build(lights_with_patches(false)));
     const SceneLight spike = lights_with_patches(false)[direct_lights().size()];
     CutSettings exhaustive;  // the radius criterion refines every cluster of unbounded lights
     for (const SurfacePoint& p : wall_and_floor_points()) {
@@ -443,8 +443,8 @@ TEST(IndirectClampCpu, APatchOneMillimetreFromAWallIsADiskNotASpike) {
 }
 
 TEST(IndirectClampCpu, IndirectOffEqualsATreeWithoutIndirectLights) {
-    const LightTree with = build(lights_with_indirect(true));
-    const LightTree without = build(direct_lights());
+    const WalkTree with = test::walk_tree(build(lights_with_indirect(true)));
+    const WalkTree without = test::walk_tree(build(direct_lights()));
     for (CutSettings settings : every_search()) {
         settings.indirect = false;
         for (const SurfacePoint& p : wall_and_floor_points()) {
@@ -473,7 +473,7 @@ protected:
         settings_.error_ratio = float(kErrorRatio);
     }
 
-    std::unique_ptr<client::Renderer> renderer(const LightTree& tree, bool indirect = true) {
+    std::unique_ptr<client::Renderer> renderer(const WalkTree& tree, bool indirect = true) {
         client::RendererOptions options;
         options.indirect = indirect;
         Result<std::unique_ptr<client::Renderer>> r = client::Renderer::create(*context_, scene_, &tree, options);
@@ -517,14 +517,14 @@ protected:
     }
 
     // Every pixel of every mode against the CPU evaluator: radiance, clamped and indirect energy.
-    void expect_gpu_shades_like_the_cpu(const LightTree& tree);
+    void expect_gpu_shades_like_the_cpu(const WalkTree& tree);
 
     Scene scene_;
     client::RenderSettings settings_;
 };
 
 TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode) {
-    const LightTree tree = build(lights_with_indirect(false));
+    const WalkTree tree = test::walk_tree(build(lights_with_indirect(false)));
     std::unique_ptr<client::Renderer> on = renderer(tree, true);
     std::unique_ptr<client::Renderer> off = renderer(tree, false);
     ASSERT_TRUE(on && off);
@@ -552,7 +552,7 @@ TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode
     }
 }
 
-void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
+void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const WalkTree& tree) {
     std::unique_ptr<client::Renderer> r = renderer(tree);
     ASSERT_TRUE(r);
     for (const Mode& m : every_mode()) {
@@ -595,7 +595,7 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const LightTree& tree) {
 }
 
 TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
-    expect_gpu_shades_like_the_cpu(build(lights_with_indirect(true)));
+    expect_gpu_shades_like_the_cpu(test::walk_tree(build(lights_with_indirect(true))));
 }
 
 // Every pixel lit by VPLs only: a spike 1 mm from the wall and 300 weak VPLs.
@@ -603,7 +603,7 @@ TEST_F(IndirectClampGpu, TheGpuClampsLikeTheCpu) {
 TEST_F(IndirectClampGpu, TheReferenceClampsIndirectOnlyPixelsExactly) {
     std::vector<SceneLight> lights = lights_with_indirect(true);
     lights.erase(lights.begin(), lights.begin() + std::ptrdiff_t(direct_lights().size()));
-    const LightTree tree = build(lights);
+    const WalkTree tree = test::walk_tree(build(lights));
     std::unique_ptr<client::Renderer> r = renderer(tree);
     ASSERT_TRUE(r);
     const Frame f = render(*r, client::RenderMode::kReference, CutCriterion::kRadius);
@@ -633,14 +633,14 @@ TEST_F(IndirectClampGpu, TheReferenceClampsIndirectOnlyPixelsExactly) {
 
 // Patches (disks, not clamped) beside clamped VPLs, in every mode.
 TEST_F(IndirectClampGpu, TheGpuShadesPatchesLikeTheCpu) {
-    expect_gpu_shades_like_the_cpu(build(lights_with_patches(true)));
+    expect_gpu_shades_like_the_cpu(test::walk_tree(build(lights_with_patches(true))));
 }
 
 // The clamp's sums ride in the walk states from dispatch to dispatch: a
 // reference split over submissions (every dispatch its own: this small
 // image's leaves in layers of workgroups, then their sum) keeps them.
 TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) {
-    const LightTree tree = build(lights_with_indirect(true));
+    const WalkTree tree = test::walk_tree(build(lights_with_indirect(true)));
     settings_.width = settings_.height = 16;
     std::unique_ptr<client::Renderer> whole = renderer(tree);
     client::RendererOptions split_options;
@@ -661,7 +661,7 @@ TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) 
 // and leaf) instead of tracing each VPL's shadow ray again: the same frame,
 // bit for bit, with the VPLs' rays traced once; over budget they trace again.
 TEST_F(IndirectClampGpu, TheReferenceTracesEachVplsShadowRayOnce) {
-    const LightTree tree = build(lights_with_indirect(true));
+    const WalkTree tree = test::walk_tree(build(lights_with_indirect(true)));
     std::unique_ptr<client::Renderer> kept = renderer(tree);
     client::RendererOptions no_budget;
     no_budget.vpl_visibility_budget_bytes = 0;
@@ -683,8 +683,8 @@ TEST_F(IndirectClampGpu, TheReferenceTracesEachVplsShadowRayOnce) {
 }
 
 TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
-    const LightTree with = build(lights_with_indirect(true));
-    const LightTree without = build(direct_lights());
+    const WalkTree with = test::walk_tree(build(lights_with_indirect(true)));
+    const WalkTree without = test::walk_tree(build(direct_lights()));
     std::unique_ptr<client::Renderer> off = renderer(with, false);
     std::unique_ptr<client::Renderer> direct = renderer(without);
     ASSERT_TRUE(off && direct);

@@ -116,8 +116,12 @@ TEST(MaterialBound, IsConservativeOverAMillionRandomConfigurations) {
         p.specular = m.specular;
         p.exponent = m.exponent;
 
-        LightTreeNode node;
-        node.type = directional ? LightType::kDirectional : LightType::kPoint;
+        // A one-node walk tree: the bound reads its type and box.
+        WalkTree one;
+        one.nodes.resize(1);
+        one.leaves.resize(1);
+        GpuTreeNode& node = one.nodes[0];
+        node.flags = uint32_t(directional ? LightType::kDirectional : LightType::kPoint) << kNodeTypeShift;
         glm::dvec3 lo, hi;
         if (directional) {
             // A box around a cone of unit directions.
@@ -135,7 +139,7 @@ TEST(MaterialBound, IsConservativeOverAMillionRandomConfigurations) {
         node.bbox_max = glm::vec3(hi);
         lo = glm::dvec3(node.bbox_min);  // the float box is what the bound sees
         hi = glm::dvec3(node.bbox_max);
-        const glm::dvec3 bound = material_bound(node, p);
+        const glm::dvec3 bound = material_bound(one, 0, p);
 
         auto check = [&](const glm::dvec3& y) {
             glm::dvec3 l = directional ? -y : y - p.position;

@@ -52,7 +52,7 @@ TEST(NormalMap, TangentsWithoutAFrameAreStillOrthogonalUnitVectors) {
 constexpr uint32_t kWidth = 320, kHeight = 256;
 
 Result<GBufferReadback> front_gbuffer(const vk::Context& context, const Scene& scene) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(context, scene, nullptr);
     if (!renderer) return make_error(renderer.error());
     RenderSettings settings;
     settings.width = kWidth;

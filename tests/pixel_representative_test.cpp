@@ -23,15 +23,15 @@ namespace lc {
 namespace {
 
 // The builder's scalar intensity in float, as the draw reads it.
-double scalar_intensity(const LightTreeNode& node) {
+double scalar_intensity(const GpuTreeNode& node) {
     return double(node.intensity.x + node.intensity.y + node.intensity.z);
 }
 
-LightTree random_tree(int count, uint64_t seed) {
+WalkTree random_tree(int count, uint64_t seed) {
     std::mt19937_64 rng(seed);
     const std::vector<SceneLight> lights = test::random_lights_in_box(
         rng, count, LightType::kPoint, {-4.0f, 1.0f, -4.0f}, {4.0f, 3.0f, 4.0f}, false);
-    return test::morton_pairing_tree(lights, seed);
+    return test::walk_tree(test::morton_pairing_tree(lights, seed));
 }
 
 uint32_t key_of_pixel(uint32_t x, uint32_t y) {
@@ -39,13 +39,13 @@ uint32_t key_of_pixel(uint32_t x, uint32_t y) {
 }
 
 // Every leaf under `index`.
-std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
+std::vector<int32_t> leaves_under(const WalkTree& tree, int32_t index) {
     std::vector<int32_t> leaves, stack{index};
     while (!stack.empty()) {
         const int32_t i = stack.back();
         stack.pop_back();
         int32_t children[2];
-        const int n = valid_children(tree, i, children);
+        const int n = children_of(tree, i, children);
         if (n == 0) leaves.push_back(i);
         for (int c = 0; c < n; ++c) stack.push_back(children[c]);
     }
@@ -53,7 +53,7 @@ std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
 }
 
 TEST(PixelRepresentative, DrawsEachLeafInProportionToItsIntensity) {
-    const LightTree tree = random_tree(24, 3);
+    const WalkTree tree = random_tree(24, 3);
     // The root and a cluster a few levels down, over 256 x 256 pixels.
     for (int32_t cluster : {0, 5}) {
         SCOPED_TRACE(cluster);
@@ -83,12 +83,12 @@ TEST(PixelRepresentative, DrawsEachLeafInProportionToItsIntensity) {
 }
 
 TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) {
-    const LightTree tree = random_tree(40, 5);
+    const WalkTree tree = random_tree(40, 5);
     for (uint32_t pixel = 0; pixel < 64; ++pixel) {
         const uint32_t key = key_of_pixel(pixel, 3 * pixel);
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
             int32_t children[2];
-            const int n = valid_children(tree, i, children);
+            const int n = children_of(tree, i, children);
             const int32_t parent_rep = pixel_representative(tree, i, key);
             if (n == 0) {
                 EXPECT_EQ(parent_rep, i);
@@ -103,7 +103,7 @@ TEST(PixelRepresentative, AParentsRepresentativeIsTheOneOfTheChildItsDrawTakes) 
 }
 
 TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
-    const LightTree tree = random_tree(32, 11);
+    const WalkTree tree = random_tree(32, 11);
     const SurfacePoint p = test::surface({0.5, 0.0, -0.5}, {0.0, 1.0, 0.0});
     CutSettings settings;
     settings.representatives = Representatives::kPixel;
@@ -114,8 +114,7 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
     for (int32_t cluster : {0, 1, 2}) {
         SCOPED_TRACE(cluster);
         double exact = 0.0;
-        for (int32_t leaf : leaves_under(tree, cluster))
-            exact += rgb_sum(shade_node(tree.nodes[size_t(leaf)], p));
+        for (int32_t leaf : leaves_under(tree, cluster)) exact += rgb_sum(shade_node(tree, leaf, p));
         double mean = 0.0;
         const uint32_t side = 200;
         SurfacePoint q = p;
@@ -126,12 +125,12 @@ TEST(PixelRepresentative, TheClusterEstimateIsUnbiasedOverPixels) {
         // 40,000 draws: a few per mille; the tree's one representative for
         // every pixel is off by several per cent.
         EXPECT_NEAR(mean, exact, 0.01 * exact);
-        EXPECT_GT(std::abs(rgb_sum(shade_node(tree.nodes[size_t(cluster)], p)) - exact), 0.03 * exact);
+        EXPECT_GT(std::abs(rgb_sum(shade_node(tree, cluster, p)) - exact), 0.03 * exact);
     }
 }
 
 TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds) {
-    const LightTree tree = random_tree(200, 17);
+    const WalkTree tree = random_tree(200, 17);
     CutSettings settings;
     settings.criterion = CutCriterion::kBound;
     settings.error_ratio = 0.01;
@@ -160,14 +159,14 @@ TEST(PixelRepresentative, SearchesReuseAParentsEvaluationOnlyWhereItIsTheChilds)
 }
 
 TEST(ImportanceRepresentative, TheClusterEstimateIsUnbiasedPerChannel) {
-    const LightTree tree = random_tree(32, 11);
+    const WalkTree tree = random_tree(32, 11);
     const SurfacePoint p = test::surface({0.5, 0.0, -0.5}, {0.0, 1.0, 0.0});
     CutSettings settings;
     settings.representatives = Representatives::kImportance;
     for (int32_t cluster : {0, 1, 2}) {
         SCOPED_TRACE(cluster);
         glm::dvec3 exact(0.0);
-        for (int32_t leaf : leaves_under(tree, cluster)) exact += shade_node(tree.nodes[size_t(leaf)], p);
+        for (int32_t leaf : leaves_under(tree, cluster)) exact += shade_node(tree, leaf, p);
         glm::dvec3 mean(0.0);
         const uint32_t side = 200;
         SurfacePoint q = p;
@@ -188,7 +187,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
     std::vector<SceneLight> lights = test::random_lights_in_box(
         rng, 120, LightType::kPoint, {-4.0f, 1.0f, -4.0f}, {4.0f, 3.0f, 4.0f}, false);
     for (SceneLight& light : lights) light.color = glm::vec3(1.0f);
-    const LightTree tree = test::morton_pairing_tree(lights, 31);
+    const WalkTree tree = test::walk_tree(test::morton_pairing_tree(lights, 31));
     CutSettings settings;
     settings.representatives = Representatives::kImportance;
     const double f_r = 0.5 / test::kPi;
@@ -198,14 +197,14 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
             test::surface({-4.0 + 0.2 * k, 0.0, 3.0 - 0.15 * k}, {0.0, 1.0, 0.0}, {0.5, 0.5, 0.5});
         p.pixel = {k, 7 * k};
         for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
-            const LightTreeNode& node = tree.nodes[size_t(i)];
+            const GpuTreeNode& node = tree.node(i);
             int32_t children[2];
             // A parent weighs at least its children together: the premise of the bound.
-            const auto geometry = [&](const LightTreeNode& n) {
+            const auto geometry = [&](const GpuTreeNode& n) {
                 return double(device::importance_geometry(n.bbox_min, n.bbox_max, glm::vec3(p.position),
                                                           glm::vec3(p.normal), false));
             };
-            if (valid_children(tree, i, children) == 2) {
+            if (children_of(tree, i, children) == 2) {
                 const double children_weight =
                     device::representative_scalar(tree.nodes[size_t(children[0])].intensity) *
                         geometry(tree.nodes[size_t(children[0])]) +
@@ -217,7 +216,7 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
             const glm::dvec3 estimate = shade_cluster(tree, i, p, settings);
             const double bound = double(node.intensity.x) * geometry(node) * f_r;
             EXPECT_LE(estimate.x, bound * (1.0 + 1e-4)) << "node " << i;
-            differs_from_tree += std::abs(estimate.x - shade_node(node, p).x) > 1e-9 * bound;
+            differs_from_tree += std::abs(estimate.x - shade_node(tree, i, p).x) > 1e-9 * bound;
         }
     }
     // Not the tree's estimate I_C f_rep under another name.
@@ -225,12 +224,12 @@ TEST(ImportanceRepresentative, TheEstimateStaysUnderTheClustersWeight) {
 }
 
 TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {
-    const LightTree tree = random_tree(50, 23);
+    const WalkTree tree = random_tree(50, 23);
     SurfacePoint p = test::surface({1.0, 0.0, 0.0});
     p.pixel = {5, 9};
     const CutSettings settings;  // kTree
     for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
-        const glm::dvec3 own = shade_node(tree.nodes[size_t(i)], p);
+        const glm::dvec3 own = shade_node(tree, i, p);
         const glm::dvec3 cluster = shade_cluster(tree, i, p, settings);
         EXPECT_EQ(own.x, cluster.x);
         EXPECT_EQ(own.y, cluster.y);
@@ -239,7 +238,7 @@ TEST(PixelRepresentative, TreeRepresentativesAreTheNodesOwn) {
 }
 
 TEST(PixelRepresentative, DrawsDependOnThePixelAndTheSeedOnly) {
-    const LightTree tree = random_tree(64, 29);
+    const WalkTree tree = random_tree(64, 29);
     CutSettings settings;
     settings.representatives = Representatives::kPixel;
     SurfacePoint a = test::surface({0.0, 0.0, 0.0});

@@ -81,7 +81,7 @@ TEST_F(PrimaryRays, TheRealTimeModeLightsAGBufferCastAsRays) {
     for (PrimaryChoice primary : {PrimaryChoice::kRaster, PrimaryChoice::kRays}) {
         RendererOptions options;
         options.primary = primary;
-        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree, options);
+        Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree, options);
         ASSERT_TRUE(renderer.ok()) << renderer.error();
         Result<client::RenderStats> stats = (*renderer)->render(settings);
         ASSERT_TRUE(stats.ok()) << stats.error();
@@ -108,7 +108,8 @@ TEST_F(PrimaryRays, AutoKeepsRasterOnACpuDeviceAndTexturesRefuseRays) {
     settings.width = settings.height = 16;
     settings.camera = test::furnished_room_camera();
     settings.mode = client::RenderMode::kReference;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, nullptr, RendererOptions{});
+    Result<std::unique_ptr<Renderer>> renderer =
+        test::create_renderer(*context_, scene, nullptr, RendererOptions{});
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     Result<client::RenderStats> stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
@@ -123,7 +124,7 @@ TEST_F(PrimaryRays, AutoKeepsRasterOnACpuDeviceAndTexturesRefuseRays) {
     scene.materials[0].base_color_texture = 0;
     RendererOptions rays;
     rays.primary = PrimaryChoice::kRays;
-    Result<std::unique_ptr<Renderer>> textured = Renderer::create(*context_, scene, nullptr, rays);
+    Result<std::unique_ptr<Renderer>> textured = test::create_renderer(*context_, scene, nullptr, rays);
     ASSERT_TRUE(textured.ok()) << textured.error();
     Result<client::RenderStats> refused = (*textured)->render(settings);
     ASSERT_FALSE(refused.ok());

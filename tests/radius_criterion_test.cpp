@@ -33,13 +33,14 @@ TEST(RadiusCriterion, PicksTheExpectedCutsOnTheThesisTree) {
     };
     for (const Case& c : cases) {
         const SurfacePoint p = surface(c.point);
-        const CutResult r = shade_lightcuts(tree, {}, p, radius);
+        const WalkTree walk = walk_tree(tree);
+        const CutResult r = shade_lightcuts(walk, {}, p, radius);
         EXPECT_EQ(r.cut_size, c.cut.size()) << "at x = " << c.point.x << ", y = " << c.point.y;
         uint32_t h = 0;
         glm::dvec3 expected(0.0);
         for (uint32_t n : c.cut) {
             h += cut_hash_term(n);
-            expected += shade_node(tree.nodes[n], p);
+            expected += shade_node(walk, n, p);
         }
         EXPECT_EQ(r.cut_hash, h) << "at x = " << c.point.x << ", y = " << c.point.y;
         expect_near_rel(r.radiance, expected, 1e-12);
@@ -55,20 +56,19 @@ TEST(RadiusCriterion, MixedJunctionsAreAlwaysRefinedAndClassicLightsAdded) {
     const SurfacePoint p = surface({1000, 0, 0});
     tree.nodes[0].mixed_types = true;
     SceneLight classic = make_light(LightType::kPoint, {1000, 0, 10}, 100.0f);
-    const CutResult r = shade_lightcuts(tree, std::span(&classic, 1), p, {CutCriterion::kRadius});
+    const WalkTree walk = walk_tree(tree);
+    const CutResult r = shade_lightcuts(walk, std::span(&classic, 1), p, {CutCriterion::kRadius});
     EXPECT_EQ(r.cut_size, 2u);  // the junction's children, not the junction
     EXPECT_EQ(r.cut_hash, hash_of({1, 2}));
-    expect_near_rel(
-        r.radiance,
-        shade_node(tree.nodes[1], p) + shade_node(tree.nodes[2], p) + shade_light(classic, p),
-        1e-12);
+    expect_near_rel(r.radiance, shade_node(walk, 1, p) + shade_node(walk, 2, p) + shade_light(classic, p),
+                    1e-12);
     EXPECT_GT(r.radiance.x, 0.9 / kPi);  // 100 cd at 10 units
 }
 
 TEST(RadiusCriterion, EmptyTreeGivesOnlyClassicLights) {
     SceneLight classic = make_light(LightType::kPoint, {0, 0, 1}, 1.0f);
-    const CutResult r = shade_lightcuts(LightTree{}, std::span(&classic, 1), surface({0, 0, 0}),
-                                        {CutCriterion::kRadius});
+    const CutResult r =
+        shade_lightcuts(WalkTree{}, std::span(&classic, 1), surface({0, 0, 0}), {CutCriterion::kRadius});
     EXPECT_EQ(r.cut_size, 0u);
     expect_near_rel(r.radiance, glm::dvec3(1.0 / kPi), 1e-12);
 }
@@ -95,9 +95,10 @@ TEST(RadiusCriterion, DeepChainDoesNotOverflowTheStack) {
     }
     tree.leaf_count = kLeaves;
     const SurfacePoint p = surface({50, 5, 0});
-    const CutResult r = shade_lightcuts(tree, {}, p, {CutCriterion::kRadius});
+    const WalkTree walk = walk_tree(tree);
+    const CutResult r = shade_lightcuts(walk, {}, p, {CutCriterion::kRadius});
     EXPECT_EQ(r.cut_size, uint32_t(kLeaves));
-    expect_near_rel(r.radiance, shade_tree_leaves(tree, p), 1e-10);
+    expect_near_rel(r.radiance, shade_tree_leaves(walk, p), 1e-10);
 }
 
 }  // namespace

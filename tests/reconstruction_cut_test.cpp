@@ -27,7 +27,7 @@ constexpr uint32_t kSpp = 16;
 
 struct FloorScene {
     std::vector<SceneLight> lights;
-    LightTree tree;
+    WalkTree tree;
     ShadowBvh occluders;
 };
 
@@ -36,7 +36,7 @@ FloorScene floor_scene() {
     std::mt19937_64 rng(7);
     s.lights = test::random_lights_in_box(rng, 512, LightType::kPoint, {-3.0f, -3.0f, 1.5f},
                                           {3.0f, 3.0f, 2.5f}, false);
-    s.tree = test::morton_pairing_tree(s.lights, 11);
+    s.tree = test::walk_tree(test::morton_pairing_tree(s.lights, 11));
     // A table top 0.8 above the floor: two triangles over [-0.6, 0.6]^2.
     const std::vector<glm::vec3> top = {{-0.6f, -0.6f, 0.8f}, {0.6f, -0.6f, 0.8f},
                                         {0.6f, 0.6f, 0.8f},   {-0.6f, -0.6f, 0.8f},

@@ -52,7 +52,7 @@ TEST_F(AreaLightRender, FloorMatchesTheFormFactorAndThePanelShowsItsEmission) {
     const LightTree& tree = built->tree;
     ASSERT_EQ(tree.leaf_count, kDefaultAreaLights);
 
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = 48;

@@ -86,7 +86,7 @@ TEST_F(BackgroundRender, UniformEnvironmentShowsItsRadianceExactlyInEveryMode) {
     const std::shared_ptr<Environment> environment = uniform_environment(L);
     const LightTree tree = environment_tree(*environment, 256);
     const Scene scene = ground_scene(false);
-    auto renderer = Renderer::create(*context_, scene, &tree);
+    auto renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
     struct Case {
@@ -129,7 +129,7 @@ TEST_F(BackgroundRender, IntensityScalesTheBackgroundAndNoEnvironmentLeavesItBla
     auto environment = uniform_environment(L);
     environment->intensity = 3.0f;
     const Scene scene = ground_scene(false);
-    auto renderer = Renderer::create(*context_, scene, nullptr);
+    auto renderer = test::create_renderer(*context_, scene, nullptr);
     ASSERT_TRUE(renderer) << renderer.error();
     const RenderSettings settings = looking({0, 1, 0}, {0, 1, -5});
     for (bool with_environment : {true, false}) {
@@ -154,7 +154,7 @@ TEST_F(BackgroundRender, SkyMatchesTheCpuPreethamModelAndShowsTheSun) {
     environment->intensity = 0.5f;
     const glm::dvec3 sun = sun_direction(*environment->sky);
     const Scene scene = ground_scene(false);
-    auto renderer = Renderer::create(*context_, scene, nullptr);
+    auto renderer = test::create_renderer(*context_, scene, nullptr);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
     const glm::vec3 eye(0, 1, 0);
@@ -192,7 +192,7 @@ TEST_F(BackgroundRender, RotationTurnsTheBackgroundWithTheLight) {
     environment->rotation_deg = 90.0f;
     const LightTree tree = environment_tree(*environment, 512);
     const Scene scene = ground_scene(true);
-    auto renderer = Renderer::create(*context_, scene, &tree);
+    auto renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer) << renderer.error();
     ASSERT_TRUE((*renderer)->set_environment(environment));
 

@@ -55,8 +55,8 @@ struct CutAgreement {
 };
 
 // Renders lightcuts-bound and compares every geometry pixel with the CPU.
-CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings,
-                              const LightTree& tree, uint64_t* gpu_hits = nullptr) {
+CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings, const WalkTree& tree,
+                              uint64_t* gpu_hits = nullptr) {
     CutAgreement a;
     Result<RenderStats> stats = renderer.render(settings);
     EXPECT_TRUE(stats.ok()) << stats.error();
@@ -116,11 +116,11 @@ void expect_gpu_cuts_match_the_cpu(vk::Context& context, const std::vector<Scene
                                    Representatives representatives = Representatives::kTree) {
     Scene scene = make_room_scene();
     scene.lights = lights;
-    const LightTree tree = test::agglomerative_tree(lights);
+    const WalkTree tree = test::walk_tree(test::agglomerative_tree(lights));
     ASSERT_FALSE(tree.empty());
     RendererOptions visible;
     visible.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(context, scene, &tree, visible);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(context, scene, &tree, visible);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(48);
     settings.representatives = representatives;
@@ -176,8 +176,8 @@ TEST_F(BoundCriterion, GpuCutsMatchTheCpuEvaluatorWithImportanceDrawnRepresentat
 TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(400, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(32);
     settings.share_cuts = true;
@@ -207,9 +207,9 @@ TEST_F(BoundCriterion, PerPixelRepresentativesAreAFunctionOfThePixelAndTheSeed) 
 TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(2000, LightTypeChoice::kPoint, 0.5f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene.lights));
     ASSERT_FALSE(tree.empty());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.criterion = CutCriterion::kBound;
@@ -256,8 +256,8 @@ TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
 TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(200, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings = room_bound_settings(32);
     settings.max_cut = 2;
@@ -280,8 +280,8 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
 TEST_F(BoundCriterion, RejectsBadCutSettings) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(8, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.mode = RenderMode::kLightcuts;
@@ -340,8 +340,8 @@ TEST(AutoExposure, MapsTheLogAverageTo018) {
 TEST_F(BoundCriterion, ErrorHeatmapOfARealFrameIsFinite) {
     Scene scene = make_room_scene();
     scene.lights = room_lights(64, LightTypeChoice::kPoint, 1.0f);
-    LightTree tree = test::agglomerative_tree(scene.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.criterion = CutCriterion::kBound;

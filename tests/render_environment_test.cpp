@@ -59,7 +59,7 @@ protected:
         const std::vector<SceneLight> lights = uniform_environment_lights();
         const LightTree tree = test::agglomerative_tree(lights);
         const Scene scene = ground_scene(wall);  // the renderer keeps a reference
-        auto renderer = Renderer::create(*context_, scene, &tree);
+        auto renderer = test::create_renderer(*context_, scene, &tree);
         EXPECT_TRUE(renderer) << renderer.error();
         if (!renderer) return {};
         EXPECT_TRUE((*renderer)->effects().shadows);

@@ -39,7 +39,7 @@ TEST_F(ErrorSweepRender, SmallerRatiosCostMoreAndErrLess) {
     ASSERT_EQ(scene.lights.size(), 1500u);
     const LightTree tree = test::agglomerative_tree(scene.lights);
     ASSERT_FALSE(tree.empty());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
     RenderSettings settings;

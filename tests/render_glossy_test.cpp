@@ -123,8 +123,8 @@ TEST(GlossyEffect, IsSimulatedOnlyWhenAMaterialHasALobe) {
 }
 
 TEST_F(Glossy, ReferenceMatchesTheCpuEvaluator) {
-    LightTree tree = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene_.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     Result<RenderStats> stats = (*renderer)->render(settings_);
@@ -165,8 +165,8 @@ TEST_F(Glossy, ReferenceMatchesTheCpuEvaluator) {
 }
 
 TEST_F(Glossy, BoundCutsMatchTheCpuAndTheHighlightIsThere) {
-    LightTree tree = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene_.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kBound;
@@ -212,8 +212,8 @@ TEST_F(Glossy, BoundCutsMatchTheCpuAndTheHighlightIsThere) {
 }
 
 TEST_F(Glossy, LightcutsErrorAgainstTheReferenceStaysBounded) {
-    LightTree tree = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(scene_.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     ASSERT_TRUE((*renderer)->render(settings_).ok());

@@ -44,10 +44,11 @@ glm::dvec3 emissive_at(const GBufferReadback& g, size_t i) {
 
 // True when p sits within float rounding of some node's influence sphere, where
 // float and double may legitimately pick different cuts.
-bool near_radius_boundary(const LightTree& tree, const SurfacePoint& p) {
-    for (const LightTreeNode& n : tree.nodes) {
-        if (n.radius < 0.0f || n.is_leaf()) continue;
-        double d = glm::length(p.position - glm::dvec3(n.position));
+bool near_radius_boundary(const WalkTree& tree, const SurfacePoint& p) {
+    for (int32_t i = 0; i < int32_t(tree.nodes.size()); ++i) {
+        const GpuTreeNode& n = tree.node(i);
+        if (n.radius < 0.0f || is_leaf(n)) continue;
+        double d = glm::length(p.position - glm::dvec3(tree.light_of(i).position));
         if (std::abs(d - n.radius) <= 1e-4 * std::max(1.0, double(n.radius))) return true;
     }
     return false;
@@ -107,8 +108,8 @@ protected:
     // Renders, then compares every geometry pixel with `expected(p)`; when
     // `tree` is given, cut sizes and hashes must match the CPU's too.
     template <typename Expected>
-    Comparison render_and_compare(Renderer& renderer, const RenderSettings& settings,
-                                  Expected expected, const LightTree* cut_tree = nullptr) {
+    Comparison render_and_compare(Renderer& renderer, const RenderSettings& settings, Expected expected,
+                                  const WalkTree* cut_tree = nullptr) {
         Comparison c;
         Result<RenderStats> stats = renderer.render(settings);
         EXPECT_TRUE(stats.ok()) << stats.error();
@@ -176,7 +177,7 @@ protected:
 };
 
 TEST_F(GpuVsCpu, ReferenceWithoutTreeMatchesSceneLights) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     std::vector<SceneLight> lights = scene_.lights;  // tree lights and classic alike
@@ -192,8 +193,9 @@ TEST_F(GpuVsCpu, ReferenceWithoutTreeMatchesSceneLights) {
 }
 
 TEST_F(GpuVsCpu, ReferenceAndLightcutsWithHandMadeTree) {
-    LightTree tree = test::make_pairing_tree(tree_lights());
-    ASSERT_EQ(tree.leaf_count, tree_lights().size());
+    const LightTree imported = test::make_pairing_tree(tree_lights());
+    ASSERT_EQ(imported.leaf_count, tree_lights().size());
+    const WalkTree tree = test::walk_tree(imported);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     std::vector<SceneLight> classic = classic_lights();
@@ -235,7 +237,7 @@ TEST_F(GpuVsCpu, LightcutsWithBuilderTreeAndRanges) {
     options.builder = BuilderKind::kOptimalPair;
     Result<bake::BuildResult> built = bake::build_light_tree(lights, options, nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
-    const LightTree& tree = built->tree;
+    const WalkTree tree = test::walk_tree(built->tree);
     Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
@@ -290,8 +292,9 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
         spine.radius = 0.2f + 6.0f * float(kLeaves - 1 - k) / float(kLeaves);
     }
     tree.leaf_count = kLeaves;
+    const WalkTree walk = test::walk_tree(tree);
     scene_.lights.clear();
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &walk);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_EQ((*renderer)->tree_depth(), uint32_t(kLeaves - 1));
 
@@ -299,8 +302,8 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
     settings_.width = settings_.height = kSize;
     CutSettings radius;
     Comparison c = render_and_compare(
-        **renderer, settings_,
-        [&](const SurfacePoint& p) { return shade_lightcuts(tree, {}, p, radius); }, &tree);
+        **renderer, settings_, [&](const SurfacePoint& p) { return shade_lightcuts(walk, {}, p, radius); },
+        &walk);
     EXPECT_GT(c.compared, c.geometry_pixels * 99 / 100);
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
@@ -309,7 +312,7 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
 }
 
 TEST_F(GpuVsCpu, ToneMappedDisplayMatchesTheCpuCurve) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     settings_.exposure = 2.5f;
@@ -339,7 +342,7 @@ TEST_F(GpuVsCpu, CutsAndCutSizeVisualisation) {
         if (l.type != LightType::kDirectional && l.range == 0.0f) l.range = 3.0f;
     scene_.lights = lights;
     LightTree tree = test::make_pairing_tree(lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
     settings_.mode = RenderMode::kCuts;
@@ -400,7 +403,7 @@ TEST_F(GpuVsCpu, NonFiniteRadianceIsCountedAndWrittenAsZero) {
     // must count those pixels and write 0, never Inf.
     scene_.lights = {test::point_light({0.0f, 0.001f, 0.0f}, {1, 1, 1}, 3.0e38f)};
     test::set_unit_guid(scene_.lights[0], 0);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     Result<RenderStats> stats = (*renderer)->render(settings_);
@@ -417,12 +420,12 @@ TEST_F(GpuVsCpu, NonFiniteRadianceIsCountedAndWrittenAsZero) {
 
 TEST_F(GpuVsCpu, BadInputIsRefusedWithAMessage) {
     scene_.lights[0].intensity = std::nanf("");
-    Result<std::unique_ptr<Renderer>> bad_light = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> bad_light = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_FALSE(bad_light.ok());
     EXPECT_FALSE(bad_light.error().empty());
 
     scene_.lights[0].intensity = 1.0f;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     Result<RenderStats> no_tree = (*renderer)->render(settings_);
@@ -432,14 +435,14 @@ TEST_F(GpuVsCpu, BadInputIsRefusedWithAMessage) {
     scene_.meshes[0].indices.push_back(999);
     scene_.meshes[0].indices.push_back(0);
     scene_.meshes[0].indices.push_back(1);
-    Result<std::unique_ptr<Renderer>> bad_mesh = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> bad_mesh = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_FALSE(bad_mesh.ok());
     EXPECT_NE(bad_mesh.error().find("mesh 0"), std::string::npos) << bad_mesh.error();
 }
 
 TEST_F(GpuVsCpu, EmptySceneAndZeroLightsRenderBlack) {
     Scene empty;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, empty, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, empty, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
@@ -447,7 +450,7 @@ TEST_F(GpuVsCpu, EmptySceneAndZeroLightsRenderBlack) {
 
     scene_.lights.clear();
     LightTree no_lights;
-    renderer = Renderer::create(*context_, scene_, &no_lights);
+    renderer = test::create_renderer(*context_, scene_, &no_lights);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     for (RenderMode mode : {RenderMode::kReference, RenderMode::kLightcuts, RenderMode::kCutSize}) {
         settings_.mode = mode;
@@ -470,7 +473,7 @@ TEST_F(GpuVsCpu, TexturedEmissiveSurfaceDecodesSrgb) {
     scene_.materials[0].base_color_texture = 0;
     scene_.materials[0].emissive_texture = 0;
     scene_.materials[0].emissive_factor = {0.5f, 0.5f, 0.5f};
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, nullptr);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, nullptr);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_TRUE((*renderer)->effects().textures);
     EXPECT_TRUE((*renderer)->effects().emissive);

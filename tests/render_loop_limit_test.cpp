@@ -36,7 +36,7 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     // All lights unbounded: the radius criterion refines to every leaf, so its
     // cut is the whole tree and its sum is the reference.
     LightTree tree = test::make_pairing_tree(scene.lights);
-    auto renderer = Renderer::create(*context, scene, &tree);
+    auto renderer = test::create_renderer(*context, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
 
     RenderSettings settings;
@@ -85,7 +85,7 @@ TEST(LoopLimit, OverBudgetWorkIsRefusedWithTheReason) {
         scene.lights.push_back(light);
     }
     LightTree tree = test::make_pairing_tree(scene.lights);
-    auto renderer = Renderer::create(*context, scene, &tree);
+    auto renderer = test::create_renderer(*context, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = 8;
@@ -110,7 +110,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     LightTree tree = test::make_pairing_tree(scene.lights);
     for (LightTreeNode& node : tree.nodes)
         if (!node.is_leaf()) node.mixed_types = true;
-    auto renderer = Renderer::create(*context, scene, &tree);
+    auto renderer = test::create_renderer(*context, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = 8;
@@ -124,7 +124,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     EXPECT_EQ(stats->nonfinite_pixels, 0u);
     // A normal tree of the same lights walks to the end.
     LightTree normal = test::make_pairing_tree(scene.lights);
-    auto renderer2 = Renderer::create(*context, scene, &normal);
+    auto renderer2 = test::create_renderer(*context, scene, &normal);
     ASSERT_TRUE(renderer2.ok()) << renderer2.error();
     stats = (*renderer2)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
@@ -167,7 +167,7 @@ TEST(LoopLimit, ReferenceModeWithoutLightsRendersItsEmissionWhateverTheBvh) {
     scene.meshes.push_back(tessellated_floor(160, 0));  // 51,200 triangles
     client::RendererOptions options;
     options.shadows = ShadowMode::kOn;
-    auto renderer = Renderer::create(*context, scene, nullptr, options);
+    auto renderer = test::create_renderer(*context, scene, nullptr, options);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
 
@@ -198,7 +198,7 @@ TEST(LoopLimit, ReferenceModeWithoutLightsRendersItsEmissionWhateverTheBvh) {
     SceneLight light = test::point_light({0.0f, 2.0f, 0.0f}, glm::vec3(1.0f), 1.0f);
     test::set_unit_guid(light, 0);
     scene.lights.push_back(light);
-    auto lit = Renderer::create(*context, scene, nullptr, options);
+    auto lit = test::create_renderer(*context, scene, nullptr, options);
     ASSERT_TRUE(lit.ok()) << lit.error();
     auto refused = (*lit)->render(settings);
     ASSERT_FALSE(refused.ok());

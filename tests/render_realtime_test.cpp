@@ -69,7 +69,8 @@ protected:
     std::unique_ptr<Renderer> make_renderer(uint32_t filter_frames) {
         RendererOptions options;
         options.realtime.filter_frames = filter_frames;
-        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_, options);
+        Result<std::unique_ptr<Renderer>> renderer =
+            test::create_renderer(*context_, scene_, &tree_, options);
         EXPECT_TRUE(renderer.ok()) << renderer.error();
         if (renderer.ok()) {
             EXPECT_TRUE((*renderer)->effects().shadows);
@@ -240,7 +241,7 @@ TEST_F(RealTime, ANewSettingStartsANewHistory) {
     settings_.realtime_cut = 16;
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     EXPECT_EQ(renderer_->real_time_frames(), 1u);
-    ASSERT_TRUE(renderer_->set_tree(&tree_).ok());
+    ASSERT_TRUE(test::set_tree(*renderer_, &tree_).ok());
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     EXPECT_EQ(renderer_->real_time_frames(), 1u);
 }

@@ -120,7 +120,7 @@ auto per_pixel(const Renderer& renderer, PerPixel f) {
 }
 
 // The CPU's exact sum over the tree's leaves (reference mode), as an expected frame.
-auto leaves_frame(const Renderer& renderer, const LightTree& tree) {
+auto leaves_frame(const Renderer& renderer, const WalkTree& tree) {
     return per_pixel(renderer, [&tree](const SurfacePoint& p) {
         CutResult r;
         r.radiance = shade_tree_leaves(tree, p);
@@ -134,7 +134,7 @@ protected:
         LC_REQUIRE_VULKAN(context_);
         scene_ = make_furnished_room_scene();
         scene_.lights = furnished_room_lights(40, 11);
-        tree_ = test::agglomerative_tree(scene_.lights);
+        tree_ = test::walk_tree(test::agglomerative_tree(scene_.lights));
         settings_.width = settings_.height = kSize;
         settings_.camera = room_camera();
     }
@@ -145,12 +145,12 @@ protected:
     }
     std::unique_ptr<vk::Context> context_;
     Scene scene_;
-    LightTree tree_;
+    WalkTree tree_;
     RenderSettings settings_;
 };
 
 TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -161,7 +161,7 @@ TEST_F(Shadows, ReferenceMatchesTheCpuWithTheSameOccluders) {
 }
 
 TEST_F(Shadows, BoundWalkAndHeapMatchTheCpu) {
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kBound;
@@ -193,8 +193,8 @@ TEST_F(Shadows, WalkSearchFinishesWhereOneInvocationWouldHitTheLoopLimit) {
     // limit cuts short runs again in the next dispatch, so every pixel
     // finishes and matches the CPU.
     scene_.lights = furnished_room_lights(4000, 17);
-    tree_ = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    tree_ = test::walk_tree(test::agglomerative_tree(scene_.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.width = settings_.height = 24;
     settings_.mode = RenderMode::kLightcuts;
@@ -229,9 +229,9 @@ TEST_F(Shadows, RadiusCriterionAndClassicLightsMatchTheCpu) {
         test::set_unit_guid(c, 500 + uint32_t(classic.size()));
         classic.push_back(c);
     }
-    tree_ = test::agglomerative_tree(scene_.lights);
+    tree_ = test::walk_tree(test::agglomerative_tree(scene_.lights));
     scene_.lights.insert(scene_.lights.end(), classic.begin(), classic.end());
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kLightcuts;
     settings_.criterion = CutCriterion::kRadius;
@@ -255,8 +255,8 @@ TEST_F(Shadows, ReferenceOverManyDispatchesMatchesTheCpu) {
             scene_.meshes.push_back(top);
         }
     scene_.lights = furnished_room_lights(400, 12);
-    tree_ = test::agglomerative_tree(scene_.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    tree_ = test::walk_tree(test::agglomerative_tree(scene_.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     const uint32_t chunk = (*renderer)->reference_chunk();
@@ -276,12 +276,12 @@ TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
     // its own (the leaves, then the parts' sum of this small image, whose
     // four workgroups split the leaves in layers): the same bytes and counts
     // as one submission.
-    Result<std::unique_ptr<Renderer>> whole = Renderer::create(*context_, scene_, &tree_);
+    Result<std::unique_ptr<Renderer>> whole = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(whole.ok()) << whole.error();
     RendererOptions split_options;
     split_options.reference_evaluations_per_submission = 1;
     Result<std::unique_ptr<Renderer>> split =
-        Renderer::create(*context_, scene_, &tree_, split_options);
+        client::Renderer::create(*context_, scene_, &tree_, split_options);
     ASSERT_TRUE(split.ok()) << split.error();
     settings_.mode = RenderMode::kReference;
     settings_.width = settings_.height = 16;
@@ -325,8 +325,8 @@ TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
     scene.lights = lights;
     scene.bounds_min = {-5, 0, -5};
     scene.bounds_max = {5, 3, 5};
-    LightTree tree = test::agglomerative_tree(lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     if ((*renderer)->leaf_count() <= (*renderer)->reference_chunk())
@@ -370,8 +370,8 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
         lights.push_back(*l);
     }
     scene_.lights = lights;
-    tree_ = test::agglomerative_tree(lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+    tree_ = test::walk_tree(test::agglomerative_tree(lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene_, &tree_);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     ASSERT_TRUE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -388,8 +388,8 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
 TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     Scene empty = make_room_scene();
     empty.lights = scene_.lights;
-    LightTree tree = test::agglomerative_tree(empty.lights);
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, empty, &tree);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(empty.lights));
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, empty, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     EXPECT_FALSE((*renderer)->effects().shadows);
     settings_.mode = RenderMode::kReference;
@@ -400,8 +400,7 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
 
     RendererOptions off;
     off.shadows = ShadowMode::kOff;
-    Result<std::unique_ptr<Renderer>> no_shadows =
-        Renderer::create(*context_, scene_, &tree_, off);
+    Result<std::unique_ptr<Renderer>> no_shadows = client::Renderer::create(*context_, scene_, &tree_, off);
     ASSERT_TRUE(no_shadows.ok()) << no_shadows.error();
     EXPECT_FALSE((*no_shadows)->effects().shadows);
     stats = (*no_shadows)->render(settings_);
@@ -418,10 +417,10 @@ TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {
     test::set_unit_guid(sealed, 777);
     std::vector<SceneLight> with = scene_.lights;
     with.push_back(sealed);
-    LightTree tree = test::agglomerative_tree(with);
+    WalkTree tree = test::walk_tree(test::agglomerative_tree(with));
     Scene scene = scene_;
     scene.lights = with;
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree);
+    Result<std::unique_ptr<Renderer>> renderer = client::Renderer::create(*context_, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     settings_.mode = RenderMode::kReference;
     Agreement a = compare(**renderer, settings_, leaves_frame(**renderer, tree), false);

@@ -36,7 +36,7 @@ protected:
         scene_ = make_furnished_room_scene();
         scene_.lights = test::room_lights(1500, 23, LightTypeChoice::kPoint, 0.8f);
         tree_ = test::agglomerative_tree(scene_.lights);
-        Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene_, &tree_);
+        Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
         ASSERT_TRUE(renderer.ok()) << renderer.error();
         renderer_ = std::move(renderer).value();
         ASSERT_TRUE(renderer_->effects().shadows);

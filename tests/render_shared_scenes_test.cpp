@@ -58,7 +58,7 @@ void render_every_mode(const std::filesystem::path& path, bool add_lights,
     Result<bake::BuildResult> built = bake::build_light_tree(scene->lights, {}, nullptr);
     ASSERT_TRUE(built.ok()) << built.error();
 
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context, *scene, &built->tree);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context, *scene, &built->tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = kSize;

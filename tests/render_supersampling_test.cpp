@@ -23,7 +23,7 @@ protected:
         if (!context_) return;
         scene_ = make_furnished_room_scene();
         scene_.lights = test::room_lights(300, 5, LightTypeChoice::kPoint, 2.0f);
-        tree_ = test::agglomerative_tree(scene_.lights);
+        tree_ = test::walk_tree(test::agglomerative_tree(scene_.lights));
         settings_.mode = RenderMode::kLightcuts;
         settings_.criterion = CutCriterion::kBound;
         settings_.width = settings_.height = kSize;
@@ -48,7 +48,7 @@ protected:
     }
 
     Scene scene_;
-    LightTree tree_;
+    WalkTree tree_;
     RenderSettings settings_;
     std::unique_ptr<Renderer> renderer_;
 };

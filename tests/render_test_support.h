@@ -16,22 +16,46 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/material_model.h"
 #include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/image_io.h"
 #include "editor_client/render/renderer.h"
-#include "lightcuts/scene.h"
 #include "editor_client/scene/scene_generator.h"
+#include "editor_client/vk/context.h"
+#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/light_tree.h"
+#include "lightcuts/material_model.h"
+#include "lightcuts/scene.h"
 #include "lightmass_server/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/dump.h"
-#include "editor_client/vk/context.h"
-#include "lightcuts/light_tree.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {
+
+// The renderer over `scene` and `tree` (the import form; null: none), which
+// it takes in its walk form (make_walk_tree), as the commands give it.
+inline Result<std::unique_ptr<client::Renderer>> create_renderer(
+    const vk::Context& context, const Scene& scene, const LightTree* tree,
+    const client::RendererOptions& options = {}) {
+    if (tree == nullptr) return client::Renderer::create(context, scene, nullptr, options);
+    Result<WalkTree> walk = make_walk_tree(*tree);
+    if (!walk) return make_error("light tree: " + walk.error());
+    return client::Renderer::create(context, scene, &*walk, options);
+}
+// The renderer keeps the scene: a temporary is refused, as Renderer::create does.
+Result<std::unique_ptr<client::Renderer>> create_renderer(
+    const vk::Context& context, const Scene&& scene, const LightTree* tree,
+    const client::RendererOptions& options = {}) = delete;
+
+// Renderer::set_tree with the import form.
+inline Status set_tree(client::Renderer& renderer, const LightTree* tree) {
+    if (tree == nullptr) return renderer.set_tree(nullptr);
+    Result<WalkTree> walk = make_walk_tree(*tree);
+    if (!walk) return make_error("light tree: " + walk.error());
+    return renderer.set_tree(&*walk);
+}
 
 // The scene's G-buffer as `settings` frames it, rasterised or cast as rays
 // (`primary`); empty (with a test failure) when the renderer refuses.
@@ -39,7 +63,7 @@ inline client::GBufferReadback gbuffer_of(vk::Context& context, const Scene& sce
                                           client::PrimaryChoice primary, const client::RenderSettings& settings) {
     client::RendererOptions options;
     options.primary = primary;
-    Result<std::unique_ptr<client::Renderer>> renderer = client::Renderer::create(context, scene, nullptr, options);
+    Result<std::unique_ptr<client::Renderer>> renderer = create_renderer(context, scene, nullptr, options);
     EXPECT_TRUE(renderer.ok()) << renderer.error();
     if (!renderer.ok()) return {};
     Status drawn = (*renderer)->render_gbuffer(settings);

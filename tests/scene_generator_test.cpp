@@ -11,12 +11,13 @@
 #include <numbers>
 #include <set>
 
-#include "lightcuts/cpu_evaluator.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
+#include "lightcuts/cpu_evaluator.h"
 #include "lightmass_server/tree_builder.h"
 #include "test_paths.h"
+#include "tree_fixtures.h"
 
 namespace lc::client {
 namespace {
@@ -141,11 +142,12 @@ TEST(ThesisScenes, Test1ShowsThreeRadiusCutsOnTheFloor) {
         scene.lights, options, [](std::string_view, double) { return true; });
     ASSERT_TRUE(built.ok()) << built.error();
     // Walk across the floor: the radius criterion picks exactly three different cuts.
+    const WalkTree tree = test::walk_tree(built->tree);
     std::set<uint32_t> cuts;
     for (float x = scene.bounds_min.x; x <= scene.bounds_max.x; x += 5.0f) {
         SurfacePoint p;
         p.position = glm::dvec3(x, 0.0, 0.0);
-        const CutResult cut = shade_lightcuts(built->tree, {}, p, {CutCriterion::kRadius});
+        const CutResult cut = shade_lightcuts(tree, {}, p, {CutCriterion::kRadius});
         cuts.insert(cut.cut_hash);
     }
     EXPECT_EQ(cuts.size(), 3u);

@@ -17,13 +17,14 @@ TEST(ShadeTreeLeaves, EqualsReferenceOnTheTreesLights) {
         random_lights_in_box(rng, 33, LightType::kSpot, {-4, -4, 1}, {4, 4, 3}, true);
     const LightTree tree = morton_pairing_tree(lights, 5);
     ASSERT_EQ(tree.leaf_count, 33u);
+    const WalkTree walk = walk_tree(tree);
     for (int k = 0; k < 50; ++k) {
         std::uniform_real_distribution<double> u(-4, 4);
         const SurfacePoint p = surface({u(rng), u(rng), 0}, {u(rng) * 0.1, u(rng) * 0.1, 1});
         // The node stores its RGB intensity and spot cosines as floats; the spot
         // ramp divides by cos_inner - cos_outer (~0.01), so float rounding
         // reaches a few 1e-6 relative.
-        expect_near_rel(shade_tree_leaves(tree, p), shade_reference(lights, p), 2e-5, 1e-12);
+        expect_near_rel(shade_tree_leaves(walk, p), shade_reference(lights, p), 2e-5, 1e-12);
     }
 }
 

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <utility>
+
+#include "lightcuts/gpu_layout.h"
 
 namespace lc::test {
 namespace {
@@ -328,6 +331,12 @@ LightTree make_pairing_tree(const std::vector<SceneLight>& lights) {
         if (tree.nodes[i].is_leaf()) ++tree.leaf_count;
     }
     return tree;
+}
+
+WalkTree walk_tree(const LightTree& tree) {
+    Result<WalkTree> walk = make_walk_tree(tree);
+    EXPECT_TRUE(walk.ok()) << walk.error();
+    return walk.ok() ? std::move(walk).value() : WalkTree{};
 }
 
 bool finite3(const glm::dvec3& v) {

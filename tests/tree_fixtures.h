@@ -13,6 +13,7 @@
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::test {
 
@@ -50,6 +51,10 @@ LightTree morton_pairing_tree(const std::vector<SceneLight>& lights, uint64_t se
 // (unbounded when a child is). Lights of different types are joined only by
 // a mixed_types junction at the top.
 LightTree make_pairing_tree(const std::vector<SceneLight>& lights);
+
+// `tree` as the CPU evaluator and the renderer walk it (make_walk_tree); a
+// test failure, and an empty tree, when it is malformed.
+WalkTree walk_tree(const LightTree& tree);
 
 bool finite3(const glm::dvec3& v);
 

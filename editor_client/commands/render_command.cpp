@@ -55,6 +55,7 @@
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "editor_client/vk/context.h"
+#include "lightcuts/gpu_layout.h"
 
 namespace lc::client {
 namespace {
@@ -132,9 +133,8 @@ RenderedFrame render_real_time(Renderer& renderer, const RenderSettings& setting
 
 // `tiles` (not empty: a reference strided over tiles) renders those alone and
 // gathers them into an image of (W/K)x(H/K), K the tiles' stride.
-RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings,
-                           const SupersampleRequest* spp, const LightTree* tree,
-                           std::span<const SceneLight> classic,
+RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings, const SupersampleRequest* spp,
+                           const WalkTree* tree, std::span<const SceneLight> classic,
                            std::span<const PixelRegion> tiles = {}, uint32_t tile_stride = 1) {
     // Timings are of the work alone, not of lavapipe compiling the shaders.
     if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
@@ -318,7 +318,7 @@ RenderRequest make_request(const RenderOptions& options, const Scene& scene, boo
 // decision (none without one), which the stats list besides the renderer's.
 std::optional<EffectDecision> prepare_renderer(Renderer& renderer, const RenderOptions& options,
                                                const Scene& scene, const TreeSource& source,
-                                               const LightTree* tree) {
+                                               const WalkTree* tree) {
     std::vector<EffectDecision> decisions = renderer.effects().decisions;
     std::optional<EffectDecision> sky_decision;
     // A bake loaded it already; a tree from a dump was baked with it.
@@ -338,7 +338,7 @@ std::optional<EffectDecision> prepare_renderer(Renderer& renderer, const RenderO
 }
 
 std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const RenderOptions& options,
-                                          const Scene& scene, const LightTree* tree) {
+                                          const Scene& scene, const WalkTree* tree) {
     RendererOptions renderer_options;
     renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
     renderer_options.indirect = options.bake.renders_indirect();
@@ -402,7 +402,7 @@ std::optional<SupersampleRequest> supersample_request(const RenderOptions& optio
 // or of --spp eye rays), its size and stride in the stats, tone-mapped at the
 // automatic exposure where the flags leave it to the command.
 RenderedFrame render_image(Renderer& renderer, const RenderOptions& options, const RenderRequest& request,
-                           const SupersampleRequest* spp, const LightTree* tree,
+                           const SupersampleRequest* spp, const WalkTree* tree,
                            std::span<const SceneLight> classic) {
     const RenderSettings& settings = request.settings;
     RenderedFrame rendered =
@@ -430,8 +430,7 @@ void apply_auto_exposure(const RenderOptions& options, const RenderRequest& requ
 // --compare-reference and --mode error: the reference with the same eye rays,
 // the error statistics, and for `error` the heatmap as the image.
 void compare_with_reference(Renderer& renderer, const RenderRequest& request, const SupersampleRequest* spp,
-                            const LightTree* tree, std::span<const SceneLight> classic,
-                            RenderedFrame& image) {
+                            const WalkTree* tree, std::span<const SceneLight> classic, RenderedFrame& image) {
     RenderSettings reference_settings = request.settings;
     reference_settings.mode = RenderMode::kReference;
     std::optional<SupersampleRequest> reference_spp;
@@ -476,15 +475,36 @@ void write_images(const RenderOptions& options, const RenderRequest& request, co
     if (!pfm) fail(pfm.error());
 }
 
+// The imported tree as the renderer and the CPU evaluator both walk it, and
+// the one fact of the imported form the walk form does not keep.
+struct RenderTree {
+    std::optional<WalkTree> walk;  // none without a tree source
+    uint32_t deepest_vpl_bounce = 0;
+
+    const WalkTree* get() const { return walk ? &*walk : nullptr; }
+};
+
+// Converts the imported tree (null: none) once and lets it go: the command
+// keeps one node array.
+RenderTree walk_tree_of(std::shared_ptr<const LightTree> imported) {
+    RenderTree tree;
+    if (!imported) return tree;
+    Result<WalkTree> walk = make_walk_tree(*imported);
+    if (!walk) fail("light tree: " + walk.error());
+    tree.walk = std::move(walk).value();
+    tree.deepest_vpl_bounce = deepest_vpl_bounce(*imported);
+    return tree;
+}
+
 // What the tree's indirect light is, or why there is none, in a line.
 void print_indirect_census(const RenderStats& stats, const Scene& scene, const TreeSource& source,
-                           const LightTree* tree) {
+                           const RenderTree& tree) {
     IndirectCensusFacts indirect_facts;
-    indirect_facts.has_tree = tree != nullptr;
+    indirect_facts.has_tree = tree.walk.has_value();
     indirect_facts.vpls = stats.indirect_lights - stats.indirect_patches;
     indirect_facts.patches = stats.indirect_patches;
-    // Only a tree with VPLs has a bounce to name (one pass over its nodes).
-    if (tree && indirect_facts.vpls > 0) indirect_facts.deepest_vpl_bounce = deepest_vpl_bounce(*tree);
+    // Only a tree with VPLs has a bounce to name.
+    if (tree.walk && indirect_facts.vpls > 0) indirect_facts.deepest_vpl_bounce = tree.deepest_vpl_bounce;
     indirect_facts.left_out = stats.indirect == "off";
     indirect_facts.clamped_fraction = stats.clamped_fraction();
     if (source.bake) indirect_facts.baked = source.bake->indirect;
@@ -531,7 +551,7 @@ void run_render(const RenderOptions& options) {
     ProgressDisplay progress(stderr);
     const TreeSource source = tree_source(options, scene, progress);
     const RenderRequest request = make_request(options, scene, !source.empty());
-    std::shared_ptr<const LightTree> tree = or_fail(obtain_tree(scene, source));
+    const RenderTree tree = walk_tree_of(or_fail(obtain_tree(scene, source)));
     progress.finish();
 
     vk::ContextOptions context_options;
@@ -566,7 +586,7 @@ void run_render(const RenderOptions& options) {
                      "warning: the device's loop limit cut %llu pixels' cut search short; they "
                      "keep their last complete pass (counted in loop_limit_stops)\n",
                      (unsigned long long)stats.loop_limit_stops);
-    print_indirect_census(stats, scene, source, tree.get());
+    print_indirect_census(stats, scene, source, tree);
     print_report(stats, options, request, command_ms);
 }
 

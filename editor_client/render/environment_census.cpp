@@ -5,7 +5,7 @@
 
 namespace lc::client {
 
-EffectDecision environment_decision(const Environment& environment, const LightTree* tree,
+EffectDecision environment_decision(const Environment& environment, const WalkTree* tree,
                                     size_t scene_directional_lights) {
     EffectDecision decision;
     decision.name = environment.has_sky() ? "sun and sky" : "environment";
@@ -16,8 +16,7 @@ EffectDecision environment_decision(const Environment& environment, const LightT
     // The sky's lights are the tree's directional leaves beyond the scene's own
     // (area samples and bounces, also made on the server, are oriented).
     size_t directional = 0;
-    for (const LightTreeNode& node : tree->nodes)
-        directional += node.is_leaf() && node.type == LightType::kDirectional;
+    for (const GpuLight& leaf : tree->leaves) directional += LightType(leaf.type) == LightType::kDirectional;
     const size_t lights = directional > scene_directional_lights ? directional - scene_directional_lights : 0;
     if (lights == 0) {
         decision.reason = "the tree holds no lights beyond the scene's (baked without it, or it emits no light)";

@@ -5,14 +5,14 @@
 
 #include "editor_client/render/scene_effects.h"
 #include "lightcuts/environment.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::client {
 
 // `tree`: the baked tree (null without a tree source); `scene_directional_lights`:
 // the scene's own directional lights in it (non-classic); the tree's other
 // directional leaves came from the sky.
-EffectDecision environment_decision(const Environment& environment, const LightTree* tree,
+EffectDecision environment_decision(const Environment& environment, const WalkTree* tree,
                                     size_t scene_directional_lights);
 
 }  // namespace lc::client

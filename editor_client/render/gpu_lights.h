@@ -1,6 +1,6 @@
 #pragma once
-// The lights a frame shades, on the GPU: the tree's leaves (or, without a
-// tree, the scene's lights), the tree's compact nodes and the classic lights
+// The lights a frame shades, on the GPU: the walk tree's leaves (or, without
+// a tree, the scene's lights), its compact nodes and the classic lights
 // (shaded one by one), with their counts.
 #include <vulkan/vulkan.h>
 
@@ -10,17 +10,16 @@
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/device/gpu_structs.h"
-#include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::client {
 
 class GpuLights {
 public:
-    // Uploads the scene's lights and `tree` (null: none). Returns the tree's
-    // compact nodes, for the passes that keep records of their own.
-    Result<std::vector<GpuTreeNode>> upload(const vk::Context& context, const Scene& scene, const LightTree* tree);
+    // Uploads the scene's lights and `tree` (null: none) as they are.
+    Status upload(const vk::Context& context, const Scene& scene, const WalkTree* tree);
 
     bool has_tree() const { return has_tree_; }
     uint32_t leaf_count() const { return leaf_count_; }

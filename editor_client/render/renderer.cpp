@@ -36,8 +36,7 @@ Renderer::~Renderer() {
 }
 
 Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, const Scene& scene,
-                                                   const LightTree* tree,
-                                                   const RendererOptions& options) {
+                                                   const WalkTree* tree, const RendererOptions& options) {
     const uint32_t max_invocations =
         context.physical().properties.limits.maxComputeWorkGroupInvocations;
     if (options.workgroup_size == 0 ||
@@ -67,12 +66,14 @@ Status Renderer::create_frame_resources() {
     return background_.create(context_);
 }
 
-Status Renderer::set_tree(const LightTree* tree) {
+Status Renderer::set_tree(const WalkTree* tree) {
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
-    Result<std::vector<GpuTreeNode>> nodes = lights_.upload(context_, scene_, tree);
+    Status uploaded = lights_.upload(context_, scene_, tree);
     descriptors_.mark_dirty();
-    if (!nodes) return make_error(nodes.error());
-    LC_RETURN_IF_ERROR(passes_->real_time().set_tree_nodes(context_.command_pool(), *nodes));
+    if (!uploaded) return uploaded;
+    const std::span<const GpuTreeNode> nodes =
+        tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
+    LC_RETURN_IF_ERROR(passes_->real_time().set_tree_nodes(context_.command_pool(), nodes));
     SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most
     // light edits leave them as they were, and the BVH stays.

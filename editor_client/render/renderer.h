@@ -17,7 +17,6 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/gpu_layout.h"
 #include "editor_client/render/background_buffers.h"
 #include "editor_client/render/frame_descriptors.h"
 #include "editor_client/render/frame_measurements.h"
@@ -33,13 +32,14 @@
 #include "editor_client/render/render_targets.h"
 #include "editor_client/render/scene_effects.h"
 #include "editor_client/render/vpl_visibility.h"
+#include "editor_client/vk/context.h"
 #include "lightcuts/environment.h"
+#include "lightcuts/gpu_layout.h"
+#include "lightcuts/result.h"
+#include "lightcuts/scene.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
-#include "lightcuts/scene.h"
-#include "editor_client/vk/context.h"
-#include "lightcuts/light_tree.h"
-#include "lightcuts/result.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::client {
 
@@ -76,21 +76,22 @@ struct GBufferReadback {
 class Renderer {
 public:
     // The scene is uploaded once and must outlive the renderer (set_tree reads
-    // its lights again); `tree` (may be null) is copied to the GPU.
+    // its lights again); `tree` (may be null) is copied to the GPU as it is
+    // (make_walk_tree makes it from the imported tree).
     static Result<std::unique_ptr<Renderer>> create(const vk::Context& context, const Scene& scene,
-                                                    const LightTree* tree,
+                                                    const WalkTree* tree,
                                                     const RendererOptions& options = {});
     // A temporary scene would die before the renderer that keeps it (ASan
     // found tests passing one): refused at compile time.
     static Result<std::unique_ptr<Renderer>> create(const vk::Context& context, const Scene&& scene,
-                                                    const LightTree* tree,
+                                                    const WalkTree* tree,
                                                     const RendererOptions& options = {}) = delete;
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
 
     // Replaces the tree (null: none) and re-analyses the effects. Waits for the GPU.
-    Status set_tree(const LightTree* tree);
+    Status set_tree(const WalkTree* tree);
     bool has_tree() const { return lights_.has_tree(); }
     // The environment pixels without geometry show (null: black, the
     // default); the tree's lights stand for its light. Waits for the GPU.

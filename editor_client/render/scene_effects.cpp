@@ -120,12 +120,11 @@ struct ShadedLights {
     }
 };
 
-ShadedLights shaded_lights(const Scene& scene, const LightTree* tree) {
+ShadedLights shaded_lights(const Scene& scene, const WalkTree* tree) {
     ShadedLights lights;
     if (tree != nullptr) {
-        for (const LightTreeNode& node : tree->nodes) {
-            if (node.is_leaf()) lights.add(node.type, node.range, node.position, node.direction);
-        }
+        for (const GpuLight& leaf : tree->leaves)
+            lights.add(LightType(leaf.type), leaf.range, leaf.position, leaf.direction);
     }
     for (const SceneLight& light : scene.lights) {
         if (!light.classic && tree != nullptr) continue;
@@ -203,17 +202,17 @@ void decide_material_inputs(const MaterialCensus& materials, SceneEffects& effec
 
 // Bounced light is the server's (bake --indirect): the renderer traces no
 // bounce of its own, it clamps or leaves out the tree's indirect lights.
-void count_indirect_lights(const LightTree* tree, SceneEffects& effects) {
+void count_indirect_lights(const WalkTree* tree, SceneEffects& effects) {
     if (tree == nullptr) return;
-    for (const LightTreeNode& node : tree->nodes) {
-        effects.indirect_lights += node.is_leaf() && node.indirect;
-        effects.indirect_patches += node.is_leaf() && node.patch;
+    for (const GpuLight& leaf : tree->leaves) {
+        effects.indirect_lights += is_indirect(leaf);
+        effects.indirect_patches += is_patch(leaf);
     }
 }
 
 // Area lights light the scene through the tree's oriented leaves, which the
 // server sampled from the emissive triangles (area_light_sampler.h).
-void decide_area_lights(const Scene& scene, const LightTree* tree, size_t orienteds, SceneEffects& effects) {
+void decide_area_lights(const Scene& scene, const WalkTree* tree, size_t orienteds, SceneEffects& effects) {
     const size_t emissive_triangles = emissive_triangle_count(extract_surface_geometry(scene));
     // The indirect lights are oriented too, but no area light's samples.
     const size_t samples = tree != nullptr ? orienteds - size_t(effects.indirect_lights) : 0;
@@ -289,8 +288,8 @@ std::vector<EffectDecision> SceneEffects::skipped() const {
     return out;
 }
 
-SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
-                                   ShadowMode shadow_mode, bool indirect) {
+SceneEffects analyse_scene_effects(const Scene& scene, const WalkTree* tree, ShadowMode shadow_mode,
+                                   bool indirect) {
     const ShadedLights lights = shaded_lights(scene, tree);
     const MaterialCensus materials = census_materials(scene);
     const std::string has =

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/shadow_ray.h"
 #include "lightcuts/scene.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/shadow_ray.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::client {
 
@@ -51,7 +51,7 @@ struct SceneEffects {
 // lights always come from the scene. `shadows`: auto simulates visibility when
 // a surface may hide a light (occlusion_analysis.h); on and off are the user's.
 // `indirect`: the tree's indirect lights are clamped (true) or left out.
-SceneEffects analyse_scene_effects(const Scene& scene, const LightTree* tree,
+SceneEffects analyse_scene_effects(const Scene& scene, const WalkTree* tree,
                                    ShadowMode shadows = ShadowMode::kAuto, bool indirect = true);
 
 // [{name, reason}, ...]

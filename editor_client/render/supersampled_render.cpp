@@ -103,8 +103,7 @@ std::optional<SppMethod> parse_spp_method(std::string_view text) {
 }
 
 Result<SupersampledImage> render_supersampled(Renderer& renderer, const RenderSettings& settings,
-                                              const SupersampleRequest& request,
-                                              const LightTree* tree,
+                                              const SupersampleRequest& request, const WalkTree* tree,
                                               std::span<const SceneLight> classic_lights) {
     if (request.spp == 0) return make_error("--spp must be at least 1");
     // One eye ray per pixel passes through its centre, as in a plain frame.

@@ -18,10 +18,10 @@
 
 #include "editor_client/render/render_settings.h"
 #include "editor_client/render/renderer.h"
-#include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightcuts/supersampled_shading.h"
+#include "lightcuts/walk_tree.h"
 
 namespace lc::client {
 
@@ -52,8 +52,7 @@ struct SupersampleRequest {
 // `tree` and `classic_lights` are what the renderer holds (the CPU methods
 // read them); the renderer keeps the last frame's targets.
 Result<SupersampledImage> render_supersampled(Renderer& renderer, const RenderSettings& settings,
-                                              const SupersampleRequest& request,
-                                              const LightTree* tree,
+                                              const SupersampleRequest& request, const WalkTree* tree,
                                               std::span<const SceneLight> classic_lights);
 
 }  // namespace lc::client

@@ -92,7 +92,7 @@ double channel_bucketed_clamp(const glm::dvec3& others, const std::vector<glm::d
     return total;
 }
 
-PixelClamp audit_pixel(const LightTree& tree, const SurfacePoint& p, const CutSettings& settings) {
+PixelClamp audit_pixel(const WalkTree& tree, const SurfacePoint& p, const CutSettings& settings) {
     PixelClamp a;
     const double ratio = indirect_clamp_ratio(settings.error_ratio);
     std::vector<CutNodeEstimate> nodes;
@@ -100,8 +100,8 @@ PixelClamp audit_pixel(const LightTree& tree, const SurfacePoint& p, const CutSe
     glm::dvec3 others(0.0);
     std::vector<glm::dvec3> leaves;
     for (const CutNodeEstimate& n : nodes) {
-        const LightTreeNode& node = tree.nodes[size_t(n.node)];
-        if (node.indirect && !node.patch && node.is_leaf()) {
+        const GpuTreeNode& node = tree.node(n.node);
+        if (is_indirect(node) && !is_patch(node) && is_leaf(node)) {
             leaves.push_back(n.estimate);
         } else {
             others += n.estimate;
@@ -114,10 +114,9 @@ PixelClamp audit_pixel(const LightTree& tree, const SurfacePoint& p, const CutSe
 
     others = glm::dvec3(0.0);
     leaves.clear();
-    for (const LightTreeNode& node : tree.nodes) {
-        if (!node.is_leaf()) continue;
-        const glm::dvec3 c = shade_node(node, p);
-        if (node.indirect && !node.patch) {
+    for (const GpuLight& light : tree.leaves) {
+        const glm::dvec3 c = shade_light(light, p);
+        if (is_indirect(light) && !is_patch(light)) {
             leaves.push_back(c);
             a.vpls_lighting += sum_of(c) > 0.0;
         } else {
@@ -156,7 +155,7 @@ int run(int argc, char** argv) {
     for_each_index(pixels.size(), [&](size_t k) {
         const auto [x, y] = pixels[k];
         const SurfacePoint p = diagnostic_point(d, settings.width, x, y);
-        audits[k] = audit_pixel(*d.tree, p, cut);
+        audits[k] = audit_pixel(d.walk, p, cut);
         audits[k].x = x;
         audits[k].y = y;
     });

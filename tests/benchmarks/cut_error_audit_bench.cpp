@@ -46,14 +46,14 @@ constexpr double kTolerance = 0.02;
 
 double luminance(const glm::dvec3& v) { return 0.2126 * v.x + 0.7152 * v.y + 0.0722 * v.z; }
 
-std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
+std::vector<int32_t> leaves_under(const WalkTree& tree, int32_t index) {
     std::vector<int32_t> leaves;
     std::vector<int32_t> stack{index};
     while (!stack.empty()) {
         const int32_t i = stack.back();
         stack.pop_back();
         int32_t children[2];
-        const int count = valid_children(tree, i, children);
+        const int count = children_of(tree, i, children);
         if (count == 0) leaves.push_back(i);
         for (int c = 0; c < count; ++c) stack.push_back(children[c]);
     }
@@ -62,14 +62,14 @@ std::vector<int32_t> leaves_under(const LightTree& tree, int32_t index) {
 
 // z-score of the junctions' draws: 0 on average when each takes its first
 // child's representative with probability I_first / I.
-double representative_draw_z(const LightTree& tree) {
+double representative_draw_z(const WalkTree& tree) {
     double z = 0.0, junctions = 0.0;
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
         int32_t children[2];
-        if (valid_children(tree, int32_t(i), children) != 2) continue;
-        const LightTreeNode& first = tree.nodes[size_t(children[0])];
+        if (children_of(tree, int32_t(i), children) != 2) continue;
+        const GpuTreeNode& first = tree.node(children[0]);
         const double I_first = luminance(glm::dvec3(first.intensity));
-        const double I = I_first + luminance(glm::dvec3(tree.nodes[size_t(children[1])].intensity));
+        const double I = I_first + luminance(glm::dvec3(tree.node(children[1]).intensity));
         const double p = I_first / I;
         if (!(p > 0.0 && p < 1.0)) continue;
         const double took_first = tree.nodes[i].representative == first.representative ? 1.0 : 0.0;
@@ -100,7 +100,7 @@ struct PixelAudit {
 // node would give with that leaf as its representative.
 using Draws = std::vector<std::pair<double, double>>;
 
-PixelAudit audit_pixel(const LightTree& tree, const SurfacePoint& shadowed, const CutSettings& settings,
+PixelAudit audit_pixel(const WalkTree& tree, const SurfacePoint& shadowed, const CutSettings& settings,
                        uint64_t seed) {
     SurfacePoint open = shadowed;
     open.occluders = nullptr;
@@ -119,15 +119,14 @@ PixelAudit audit_pixel(const LightTree& tree, const SurfacePoint& shadowed, cons
     std::vector<Draws> draws;
     double variance = 0.0;
     for (const CutNodeEstimate& n : nodes) {
-        const LightTreeNode& node = tree.nodes[size_t(n.node)];
+        const GpuTreeNode& node = tree.node(n.node);
         const double I_C = luminance(glm::dvec3(node.intensity));
         double exact = 0.0, light = 0.0, visible_light = 0.0, I_sum = 0.0;
         Draws cdf;
         for (int32_t leaf_index : leaves_under(tree, n.node)) {
-            const LightTreeNode& leaf = tree.nodes[size_t(leaf_index)];
-            const double v = luminance(shade_node(leaf, shadowed));
-            const double u = luminance(shade_node(leaf, open));
-            const double I = luminance(glm::dvec3(leaf.intensity));
+            const double v = luminance(shade_node(tree, leaf_index, shadowed));
+            const double u = luminance(shade_node(tree, leaf_index, open));
+            const double I = luminance(glm::dvec3(tree.node(leaf_index).intensity));
             exact += v;
             light += u;
             if (v > 0.0) visible_light += u;
@@ -145,15 +144,15 @@ PixelAudit audit_pixel(const LightTree& tree, const SurfacePoint& shadowed, cons
         const double estimate = luminance(n.estimate);
         const double error = estimate - exact;
         const double visible = light > 0.0 ? visible_light / light : 1.0;
-        const bool hidden = estimate == 0.0 && luminance(shade_node(node, open)) > 0.0;
+        const bool hidden = estimate == 0.0 && luminance(shade_node(tree, n.node, open)) > 0.0;
         (hidden ? a.error_hidden_rep : a.error_visible_rep) += error;
         if (hidden && visible > 0.5) ++a.hidden_rep_mostly_visible;
         if (std::abs(error) > std::abs(a.worst_node_error)) {
             a.worst_node_error = error;
             a.worst_node_visible = visible;
         }
-        if (!node.is_leaf()) {
-            const glm::dvec3 b = node_contribution_bound(node, shadowed);
+        if (!is_leaf(node)) {
+            const glm::dvec3 b = node_contribution_bound(tree, n.node, shadowed);
             const double bound = std::max({b.x, b.y, b.z}) * (1.0 + 1e-9);
             if (light > bound || std::abs(error) > bound) ++a.bound_violations;
         }
@@ -185,7 +184,7 @@ int run(int argc, char** argv) {
         return 2;
     }
     GBufferDiagnostic d = load_diagnostic(argv[1], argv[2]);
-    const LightTree& tree = *d.tree;
+    const WalkTree& tree = d.walk;
     std::fprintf(stderr, "representative draws: z = %.2f over the junctions\n",
                  representative_draw_z(tree));
 

@@ -18,6 +18,7 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/vk/context.h"
+#include "lightcuts/gpu_layout.h"
 
 namespace lc::client {
 
@@ -32,7 +33,8 @@ T or_exit(Result<T> r) {
 
 struct GBufferDiagnostic {
     Scene scene;
-    std::shared_ptr<const LightTree> tree;
+    std::shared_ptr<const LightTree> tree;  // the import form, for the audits' tree census
+    WalkTree walk;                          // what the renderer and the CPU evaluator walk
     std::unique_ptr<vk::Context> context;  // the renderer keeps a reference to it
     std::unique_ptr<Renderer> renderer;
     GBufferReadback gbuffer;
@@ -45,6 +47,7 @@ inline GBufferDiagnostic load_diagnostic(const char* scene_path, const char* tre
     TreeSource source;
     source.dump = tree_dump;
     d.tree = or_exit(obtain_tree(d.scene, source));
+    if (d.tree) d.walk = or_exit(make_walk_tree(*d.tree));
     return d;
 }
 
@@ -69,7 +72,7 @@ inline void draw_gbuffer(GBufferDiagnostic& d, const RenderSettings& settings) {
     vk::ContextOptions context_options;
     context_options.validation = false;
     d.context = std::make_unique<vk::Context>(or_exit(vk::Context::create(context_options)));
-    d.renderer = or_exit(Renderer::create(*d.context, d.scene, d.tree.get(), {}));
+    d.renderer = or_exit(Renderer::create(*d.context, d.scene, d.tree ? &d.walk : nullptr, {}));
     if (Status drawn = d.renderer->render_gbuffer(settings); !drawn) {
         std::cerr << drawn.error() << "\n";
         std::exit(1);

@@ -19,7 +19,7 @@ class DrawPairSet {
 public:
     static Result<DrawPairSet> create(const vk::Device& device);
 
-    // The records of `nodes` (make_gpu_tree's; empty: no tree). The caller has
+    // The records of `nodes` (make_walk_tree's; empty: no tree). The caller has
     // waited for the frames that read the old ones.
     Status upload(const vk::CommandPool& pool, std::span<const GpuTreeNode> nodes);
 
