@@ -38,7 +38,7 @@ TEST_F(RealTimeSweepRender, MoreFramesErrLessAndTheBudgetHolds) {
     const LightTree tree = test::agglomerative_tree(scene.lights);
     RendererOptions options;
     options.realtime.filter_frames = 0;  // the plain mean, as the command's sweep renders it
-    Result<std::unique_ptr<Renderer>> renderer = Renderer::create(*context_, scene, &tree, options);
+    Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene, &tree, options);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;
     settings.width = settings.height = 40;
