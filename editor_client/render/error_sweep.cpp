@@ -28,21 +28,28 @@ Result<std::vector<float>> parse_error_list(std::string_view text) {
     return ratios;
 }
 
-Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
-                                   const std::vector<float>& error_ratios) {
-    ErrorSweep sweep;
+Result<ReferenceFrame> render_reference_frame(Renderer& renderer, const RenderSettings& settings) {
     RenderSettings reference_settings = settings;
     reference_settings.mode = RenderMode::kReference;
     LC_RETURN_IF_ERROR(renderer.warm_up(reference_settings));
-    Result<RenderStats> reference_stats = renderer.render(reference_settings);
-    if (!reference_stats) return make_error("reference: " + reference_stats.error());
-    Result<std::vector<float>> reference = renderer.read_hdr();
-    if (!reference) return make_error(reference.error());
-    sweep.reference_ms = reference_stats->render_ms;
-    sweep.reference_wall_ms = reference_stats->wall_ms;
-    sweep.lights = reference_stats->lights;
-    sweep.reference_shadow_rays = reference_stats->shadow_rays;
-    sweep.shadows = reference_stats->shadows;
+    Result<RenderStats> stats = renderer.render(reference_settings);
+    if (!stats) return make_error("reference: " + stats.error());
+    Result<std::vector<float>> image = renderer.read_hdr();
+    if (!image) return make_error(image.error());
+    return ReferenceFrame{std::move(stats).value(), std::move(image).value()};
+}
+
+Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
+                                   const std::vector<float>& error_ratios) {
+    ErrorSweep sweep;
+    Result<ReferenceFrame> frame = render_reference_frame(renderer, settings);
+    if (!frame) return make_error(frame.error());
+    const std::vector<float>* reference = &frame->image;
+    sweep.reference_ms = frame->stats.render_ms;
+    sweep.reference_wall_ms = frame->stats.wall_ms;
+    sweep.lights = frame->stats.lights;
+    sweep.reference_shadow_rays = frame->stats.shadow_rays;
+    sweep.shadows = frame->stats.shadows;
 
     RenderSettings lightcuts = settings;
     lightcuts.mode = RenderMode::kLightcuts;

@@ -38,6 +38,14 @@ struct ErrorSweep {
     std::vector<ErrorSweepRow> rows;
 };
 
+// One reference frame of `settings`' view (after a warm-up) and its image:
+// what a sweep measures against.
+struct ReferenceFrame {
+    RenderStats stats;
+    std::vector<float> image;
+};
+Result<ReferenceFrame> render_reference_frame(Renderer& renderer, const RenderSettings& settings);
+
 // "0.005,0.01,0.02": finite ratios >= 0, at least one.
 Result<std::vector<float>> parse_error_list(std::string_view text);
 

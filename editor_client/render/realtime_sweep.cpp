@@ -5,6 +5,7 @@
 #include <string>
 
 #include "editor_client/render/error_stats.h"
+#include "editor_client/render/error_sweep.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
@@ -96,21 +97,16 @@ Result<RealTimeSweep> run_realtime_sweep(Renderer& renderer, const RenderSetting
                                          const std::vector<uint32_t>& cuts,
                                          const std::vector<uint32_t>& frame_counts) {
     RealTimeSweep sweep;
-    RenderSettings reference_settings = settings;
-    reference_settings.mode = RenderMode::kReference;
-    LC_RETURN_IF_ERROR(renderer.warm_up(reference_settings));
-    Result<RenderStats> reference_stats = renderer.render(reference_settings);
-    if (!reference_stats) return make_error("reference: " + reference_stats.error());
-    Result<std::vector<float>> reference = renderer.read_hdr();
+    Result<ReferenceFrame> reference = render_reference_frame(renderer, settings);
     if (!reference) return make_error(reference.error());
-    sweep.reference_ms = reference_stats->render_ms;
-    sweep.lights = reference_stats->lights;
-    sweep.shadows = reference_stats->shadows;
+    sweep.reference_ms = reference->stats.render_ms;
+    sweep.lights = reference->stats.lights;
+    sweep.shadows = reference->stats.shadows;
     RenderSettings real_time = settings;
     real_time.mode = RenderMode::kRealTime;
     for (uint32_t cut : cuts) {
         real_time.realtime_cut = cut;
-        LC_RETURN_IF_ERROR(sweep_cut(renderer, real_time, *reference, frame_counts, sweep));
+        LC_RETURN_IF_ERROR(sweep_cut(renderer, real_time, reference->image, frame_counts, sweep));
     }
     renderer.restart_real_time();  // the caller's frames are not the sweep's
     return sweep;

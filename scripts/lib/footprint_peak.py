@@ -23,6 +23,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import server_launch  # noqa: E402
+
 
 def status_mib(pid, field):
     with open(f"/proc/{pid}/status") as status:
@@ -33,24 +36,11 @@ def status_mib(pid, field):
 
 
 def start_server(args, folder, log_path):
-    port_file = os.path.join(folder, "port")
     with open(log_path, "wb") as log:
-        server = subprocess.Popen(
-            [args.server_bin, "--listen", "127.0.0.1:0", "--port-file", port_file,
-             "--memory-budget-mb", str(args.budget_mb), "--max-bake-seconds", str(args.limit_s),
-             "--threads", str(args.threads)],
-            stdout=subprocess.DEVNULL, stderr=log)
-    end = time.monotonic() + 20
-    while time.monotonic() < end:
-        if os.path.exists(port_file) and os.path.getsize(port_file) > 0:
-            with open(port_file) as f:
-                return server, int(f.read().strip())
-        if server.poll() is not None:
-            break
-        time.sleep(0.05)
-    server.kill()
-    server.wait()
-    sys.exit("lightmass_server did not start")
+        return server_launch.start_server(
+            args.server_bin, folder,
+            ["--memory-budget-mb", str(args.budget_mb), "--max-bake-seconds", str(args.limit_s),
+             "--threads", str(args.threads)], log)
 
 
 def main():

@@ -21,6 +21,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import server_launch  # noqa: E402
+
 
 def rss_mib(pid):
     try:
@@ -59,23 +62,10 @@ def disconnect(client, pid, base_mib, until):
 
 
 def start_server(args, folder):
-    port_file = os.path.join(folder, "port")
     log = open(args.log, "ab") if args.log else subprocess.DEVNULL
-    server = subprocess.Popen(
-        [args.server_bin, "--listen", "127.0.0.1:0", "--port-file", port_file,
-         "--memory-budget-mb", str(args.budget_mb), "--read-timeout-ms", "2000"] + args.server_arg,
-        stdout=subprocess.DEVNULL, stderr=log)
-    end = time.monotonic() + 20
-    while time.monotonic() < end:
-        if os.path.exists(port_file) and os.path.getsize(port_file) > 0:
-            with open(port_file) as f:
-                return server, int(f.read().strip())
-        if server.poll() is not None:
-            break
-        time.sleep(0.05)
-    server.kill()
-    server.wait()
-    sys.exit("lightmass_server did not start")
+    return server_launch.start_server(
+        args.server_bin, folder,
+        ["--memory-budget-mb", str(args.budget_mb), "--read-timeout-ms", "2000"] + args.server_arg, log)
 
 
 def main():
