@@ -26,7 +26,8 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
     tls_opt->excludes(spawn_opt);
     ca_opt->excludes(spawn_opt);
     cmd.add_option("--builder", builder,
-                   "Tree builder; auto: optimal-pair up to 131,072 lights, agglomerative above")
+                   "Tree builder; auto: optimal-pair up to 131,072 lights, agglomerative up to "
+                   "524,288, LBVH above")
         ->check(CLI::IsMember({"auto", "optimal-pair", "agglomerative", "lbvh"}))
         ->capture_default_str();
     cmd.add_option("--pairing", pairing, "optimal-pair pairing: exact, approximate, or auto (exact up to --exact-limit)")
@@ -117,11 +118,13 @@ std::string BakeFlags::resolved_builder(const Scene& scene, std::string* why) co
     size_t tree_lights = 0;
     for (const SceneLight& light : scene.lights) tree_lights += light.classic ? 0 : 1;
     const bool large = tree_lights > kAutoBuilderLightLimit;
+    const bool huge = tree_lights > kAutoLbvhLightLimit;
     if (why) {
+        const size_t limit = huge ? kAutoLbvhLightLimit : kAutoBuilderLightLimit;
         *why = "auto: " + std::to_string(tree_lights) + (large ? " lights > " : " lights <= ") +
-               std::to_string(kAutoBuilderLightLimit);
+               std::to_string(limit);
     }
-    return large ? "agglomerative" : "optimal-pair";
+    return huge ? "lbvh" : large ? "agglomerative" : "optimal-pair";
 }
 
 }  // namespace lc::client

@@ -16,7 +16,8 @@ struct BakeFlags {
     std::string token_file;
     bool tls = false;
     std::string tls_ca;
-    // auto: optimal-pair up to kAutoBuilderLightLimit tree lights, agglomerative above.
+    // auto: optimal-pair up to kAutoBuilderLightLimit tree lights, agglomerative up to
+    // kAutoLbvhLightLimit, LBVH above.
     std::string builder = "auto";
     std::string pairing = "auto";
     std::string representative = "intensity";
@@ -52,5 +53,9 @@ struct BakeFlags {
 // Above this many tree lights, --builder auto bakes agglomeratively: the
 // optimal-pair build took 30 s of a 34 s bake at 2^20 lights (docs/BENCHMARKS.md).
 inline constexpr size_t kAutoBuilderLightLimit = size_t{1} << 17;
+// Above this many, by LBVH: the agglomerative build took 8.9 s of an 11.2 s bake
+// at 2^20 lights on an idle two-core box, the LBVH 1.4 s, for a tree about 1.25x
+// the agglomerative's error at the same E (docs/BENCHMARKS.md).
+inline constexpr size_t kAutoLbvhLightLimit = size_t{1} << 19;
 
 }  // namespace lc::client
