@@ -64,10 +64,10 @@ for path, how in ((sys.argv[1], "shared cuts"), (sys.argv[2], "shared cuts, impo
 PY
 
 # The real-time mode on the same room and view: stochastic lightcuts, one cut per 8x8 block of at
-# most K nodes, one light drawn in each node per pixel, shaded without visibility, then 4 of them
-# picked by their light for a shadow ray (--realtime-rays, the default): 4 shadow rays per pixel
-# whatever the number of lights; unbiased, so it trades lightcuts' bias for noise that the frames of
-# a still view average away. What its accuracy costs in time (--sweep-realtime): K = 8, 16 and 32,
+# most K nodes, one light drawn in each node per pixel and its shadow ray: at most K shadow rays per
+# pixel whatever the number of lights; unbiased, so it trades lightcuts' bias for noise that the
+# frames of a still view average away (each draw's uniform steps along a Weyl sequence from frame
+# to frame, so they spread evenly). What its accuracy costs in time (--sweep-realtime): K = 8, 16 and 32,
 # each measured after 1, 4, 16 and 64 frames against one exact reference; the image is K = 16's
 # mean of 64 frames.
 "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --size 128x128 \

@@ -82,7 +82,7 @@ splits() {  # the same frames without shadow rays, and the deterministic editor
     local dir="$cache/realtime_$lights"
     frame "$dir" lightcuts_0.02_noshadow --mode lightcuts --error 0.02 --shadows off
     frame "$dir" realtime_16_noshadow --mode realtime --realtime-cut 16 --frames 8 --shadows off
-    # The shadow-ray budget (--realtime-rays, 4 by default): a ray per node, and one ray.
+    # The shadow-ray budget (--realtime-rays; 0, a ray per node, by default): per node, and one ray.
     frame "$dir" realtime_16_pernode --mode realtime --realtime-cut 16 --realtime-rays 0 --frames 8
     frame "$dir" realtime_16_oneray --mode realtime --realtime-cut 16 --realtime-rays 1 --frames 8
     frame "$dir" lightcuts_0.02_shared --mode lightcuts --error 0.02 --share-cuts

@@ -2,7 +2,8 @@
 // render --realtime-rays S): every drawn light of the block's cut is shaded
 // without its visibility, S of them are picked, each in proportion to that
 // unshadowed radiance (one weighted reservoir per pick, filled as the cut is
-// walked), and only the picks trace a shadow ray. A pick j estimates the
+// walked, its uniforms spread over the picks and the frames), and only the
+// picks trace a shadow ray. A pick j estimates the
 // cut's visible radiance as c_j V_j / P(j) = V_j W c_j / w_j (w = the largest
 // channel of c, W their sum over the cut); the mean of S picks is unbiased,
 // and its noise comes from visibility alone: none where the cut's lights are
@@ -10,6 +11,7 @@
 #ifndef LC_SHADOW_RAY_BUDGET_GLSL
 #define LC_SHADOW_RAY_BUDGET_GLSL
 
+#include "frame_strata.glsl"
 #include "indirect_clamp.glsl"
 #include "pixel_representative.glsl"
 
@@ -25,6 +27,7 @@ struct BudgetPick {
 
 struct ShadowBudget {
     BudgetPick picks[kMaxStochasticRays];
+    StratifiedChain chains[kMaxStochasticRays];  // each pick's uniform
     float total;  // W: the sum of w over the cut so far
 };
 
@@ -35,27 +38,37 @@ bool shadow_budget_applies(uint cut_size) {
     return kStochasticRays > 0u && kStochasticRays < cut_size && !kIndirectClamp;
 }
 
+// The picks' uniforms are one stratum of the frame spread over the S picks
+// (u + s / S: systematic, so a light worth several picks gets about that
+// many) and stretched as the cut is walked (frame_strata.glsl).
 ShadowBudget empty_shadow_budget() {
     ShadowBudget b;
-    for (uint s = 0u; s < kMaxStochasticRays; ++s) b.picks[s] = BudgetPick(0u, vec3(0.0), 0.0, 0u, false);
+    float u = frame_stratum(kStrataPick, 0u);
+    for (uint s = 0u; s < kMaxStochasticRays; ++s) {
+        b.picks[s] = BudgetPick(0u, vec3(0.0), 0.0, 0u, false);
+        b.chains[s] = start_chain(fract(u + float(s) / float(max(kStochasticRays, 1u))));
+    }
     b.total = 0.0;
     return b;
 }
 
-// Pick s's uniform at the cut's k-th node: the pixel's draws key (this frame's)
-// mixed with the pick, so picks and descents are independent.
-float pick_uniform(uint s, uint k) {
+// A fresh uniform for pick s at the cut's k-th node, this frame's own: the
+// pixel's draws key mixed with the pick, so picks and descents are independent.
+float fresh_pick_uniform(uint s, uint k) {
     return representative_uniform(cut_hash_term(g_pixel_key + 0x68E31DA4u * (s + 1u)), k);
 }
 
 // Offers the cut's k-th drawn light to every pick: pick s takes it with
-// probability w / W so far, which leaves each light picked with w / W in the end.
+// probability w / W so far (its uniform in the lower share), which leaves
+// each light picked with w / W in the end.
 void offer_to_budget(inout ShadowBudget b, uint k, uint light, vec3 radiance, uint node_flags, bool leaf) {
     float w = max(radiance.x, max(radiance.y, radiance.z));
     if (!(w > 0.0)) return;
+    float before = b.total;
     b.total += w;
     for (uint s = 0u; s < kStochasticRays; ++s) {
-        if (pick_uniform(s, k) * b.total < w) b.picks[s] = BudgetPick(light, radiance, w, node_flags, leaf);
+        if (chain_takes_first(b.chains[s], w, before)) b.picks[s] = BudgetPick(light, radiance, w, node_flags, leaf);
+        if (chain_worn(b.chains[s])) b.chains[s] = start_chain(fresh_pick_uniform(s, k));
     }
 }
 

@@ -135,7 +135,7 @@ Cut shade_block_cut(SurfacePoint p, bool surface) {
         GpuTreeNode node0 = tree_nodes[i0];
         GpuTreeNode node1 = tree_nodes[i1];
         Descent d0 = start_descent(i0, node0);
-        Descent d1 = second ? start_descent(i1, node1) : Descent(-1, 1.0);
+        Descent d1 = second ? start_descent(i1, node1) : Descent(-1, 1.0, start_chain(0.0));
         descend_both(d0, d1, p);
         shade_cut_node(cut, budget, budgeted, k, i0, node0, d0, p, surface);
         if (second) shade_cut_node(cut, budget, budgeted, k + 1u, i1, node1, d1, p, surface);
@@ -162,6 +162,7 @@ void main() {
         return;  // the whole workgroup: no barrier follows
     }
     g_pixel_key = pixel_representative_key(uint(pixel.x), uint(pixel.y), frame.frame_seed);
+    set_frame_strata(pixel, frame.draw_seed, frame.frame_number);
     Cut cut = shade_block_cut(p, surface);
     if (!inside) return;
     if (!surface) {

@@ -74,8 +74,11 @@ struct RenderCamera {
 inline constexpr uint32_t kScaleBarRows = 16;
 
 // The real-time mode's shadow rays per pixel unless asked otherwise (render
-// --realtime-rays; 0: one per cut node).
-inline constexpr uint32_t kDefaultRealtimeRays = 4;
+// --realtime-rays; 0: one per cut node). One per node by default: on a GPU
+// its rays cost little (docs/BENCHMARKS.md: 1 ms of 5.5 at K = 16 on an H200),
+// and with draws spread over frames it reaches a given error sooner than a
+// budget of 4 on lavapipe too; a budget (1 to 8) is for slow devices.
+inline constexpr uint32_t kDefaultRealtimeRays = 0;
 
 // The real-time mode's shadow rays per pixel and frame at most: the budget,
 // or one per cut node where it is 0 or the cut is smaller.

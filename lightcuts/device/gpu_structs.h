@@ -162,13 +162,18 @@ struct LC_ALIGN16 GpuFrameConstants {
     uint lattice_step LC_DEFAULT(0u);
     uint lattice_origin_x LC_DEFAULT(0u);
     uint lattice_origin_y LC_DEFAULT(0u);
-    // The real-time mode's frame number (stochastic_cuts.comp): its pivots and
-    // light draws are drawn anew from it every frame.
+    // The real-time mode's frame key (stochastic_cuts.comp): what its frames
+    // draw independently of each other (the uniforms of worn chains) hashes it.
     uint frame_seed LC_DEFAULT(0u);
     // Reference mode's exact clamp: the sums' pass keeps each VPL's visibility
     // (kBindVplVisibility, this many GpuVisibilityBits per pixel) and Newton's
     // passes read it instead of tracing the ray again; 0: they trace.
     uint vpl_visibility_stride LC_DEFAULT(0u);
+    // The real-time mode's frames in order and its seed (render
+    // --representative-seed): its uniforms step along Weyl sequences, so a
+    // still view's frames spread its draws evenly (frame_strata.glsl).
+    uint frame_number LC_DEFAULT(0u);
+    uint draw_seed LC_DEFAULT(0u);
 };
 
 // 128 bits of kept visibility: bit (leaf & 127) of the pixel's word leaf / 128

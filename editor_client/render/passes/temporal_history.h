@@ -33,6 +33,9 @@ struct TemporalPolicy {
     uint32_t moving_history_cap = 12;       // a moving one: MegaLights keeps at most 12
     uint32_t filter_frames = kRealTimeRefinedFrames;  // the spatial filter fades out over these
     float position_tolerance = 0.02f;       // reprojection, x the eye distance
+    // The frames' draws step along Weyl sequences (frame_strata.glsl); false
+    // draws every frame independently (what render_realtime_test compares).
+    bool spread_frames = true;
 };
 
 class TemporalHistory {
