@@ -1,5 +1,6 @@
 #include "editor_client/commands/bake_options.h"
 
+#include <glm/glm.hpp>
 #include <map>
 
 #include "editor_client/commands/command_errors.h"
@@ -113,10 +114,34 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     return options;
 }
 
+// Whether some material emits: the server then samples the emissive
+// triangles into --area-lights lights. (A material no drawn triangle uses
+// still counts: the estimate errs by area_lights at most.)
+static bool some_material_emits(const Scene& scene) {
+    for (const Material& m : scene.materials)
+        if (glm::any(glm::greaterThan(m.emissive_factor, glm::vec3(0.0f)))) return true;
+    return false;
+}
+
+size_t BakeFlags::expected_tree_lights(const Scene& scene) const {
+    size_t lights = 0;
+    for (const SceneLight& light : scene.lights) lights += light.classic ? 0 : 1;
+    if (some_material_emits(scene)) lights += area_lights;
+    if (environment.requested() || scene.environment)
+        lights += environment.lights.value_or(kDefaultEnvironmentLights);
+    if (indirect == "vpl" && indirect_request.bounces > 0) {
+        // Every path leaves at most one light per bounce, and the server keeps
+        // at most kMaxIndirectLights.
+        const uint64_t paths = indirect_request.vpl_count;
+        const uint64_t bounces = indirect_request.bounces;
+        lights += size_t(paths > kMaxIndirectLights / bounces ? kMaxIndirectLights : paths * bounces);
+    }
+    return lights;
+}
+
 std::string BakeFlags::resolved_builder(const Scene& scene, std::string* why) const {
     if (builder != "auto") return builder;
-    size_t tree_lights = 0;
-    for (const SceneLight& light : scene.lights) tree_lights += light.classic ? 0 : 1;
+    const size_t tree_lights = expected_tree_lights(scene);
     const bool large = tree_lights > kAutoBuilderLightLimit;
     const bool huge = tree_lights > kAutoLbvhLightLimit;
     if (why) {

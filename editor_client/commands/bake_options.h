@@ -45,8 +45,14 @@ struct BakeFlags {
     // Loads the environment, the flags' or else the scene's (Scene::environment),
     // if any; a subcommand ends on a bad one (command_errors.h).
     BakeClientOptions to_options(const Scene& scene) const;
+    // The tree lights a bake of `scene` with these flags is expected to hold:
+    // the scene's (not classic), and what the server makes: --area-lights where
+    // a material emits, the environment's lights, up to --vpl-count x
+    // --bounces VPLs (radiosity patches are not counted: they depend on the
+    // meshes' area).
+    size_t expected_tree_lights(const Scene& scene) const;
     // The builder a bake of `scene` uses: --builder, or for auto the one its
-    // size picks; `why` (if given) is set to the reason auto chose it.
+    // expected tree size picks; `why` (if given) is set to the reason auto chose it.
     std::string resolved_builder(const Scene& scene, std::string* why = nullptr) const;
 };
 
