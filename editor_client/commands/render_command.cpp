@@ -369,8 +369,9 @@ void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderR
 void print_realtime_sweep_of(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
     RealTimeSweep sweep =
         or_fail(run_realtime_sweep(renderer, request.settings, request.sweep_cuts, request.sweep_frames));
-    std::printf("real-time sweep, %u shadow rays a pixel at most (0: one per cut node), %ux%u:\n",
-                request.settings.realtime_rays, request.width, request.height);
+    const uint32_t rays = request.settings.realtime_rays;
+    const std::string budget = rays == 0 ? "a shadow ray per cut node" : std::to_string(rays) + " shadow rays a pixel";
+    std::printf("real-time sweep, %s, %ux%u:\n", budget.c_str(), request.width, request.height);
     print_realtime_sweep(stdout, sweep);
     if (!options.sweep_csv.empty()) {
         if (Status written = write_realtime_sweep_csv(options.sweep_csv, sweep); !written) fail(written.error());
