@@ -50,7 +50,7 @@ glm::dvec3 decode_octahedral(uint32_t bits) {
     return glm::normalize(v);
 }
 
-GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative,
+GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative, float representative_range,
                               int32_t first_child, int32_t escape) {
     GpuTreeNode out;
     out.intensity = node.intensity;
@@ -61,7 +61,8 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     out.escape = escape;
     out.radius = node.radius;
     out.flags = (node.mixed_types ? kNodeMixedTypes : 0u) | (node.indirect ? kNodeIndirect : 0u) |
-                (node.patch ? kNodePatch : 0u) | (uint32_t(node.type) << kNodeTypeShift);
+                (node.patch ? kNodePatch : 0u) | (representative_range > 0.0f ? kNodeBoundedRepresentative : 0u) |
+                (uint32_t(node.type) << kNodeTypeShift);
     // A cone that excludes nothing, or that nothing can be learnt from,
     // becomes "every direction" (the bound then excludes nothing either).
     const glm::dvec3 axis(node.cone_axis);

@@ -22,8 +22,9 @@ uint32_t encode_octahedral(const glm::dvec3& unit);
 glm::dvec3 decode_octahedral(uint32_t bits);
 
 // The compact node of `node`; `representative` is its representative's index
-// among the tree's leaves (leaf_lights), first_child and escape its walk links.
-GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative,
+// among the tree's leaves (leaf_lights) and `representative_range` its range,
+// first_child and escape its walk links.
+GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative, float representative_range,
                               int32_t first_child, int32_t escape);
 
 // What the bound criterion reads from a compact node, in double.

@@ -128,8 +128,8 @@ Result<WalkTree> make_walk_tree(const LightTree& tree) {
             return make_error("tree node " + std::to_string(i) + ": representative " +
                               std::to_string(representative) + " is not a leaf");
         const int32_t first_child = node.left != kNoChild ? node.left : node.right;
-        gpu.nodes[i] = make_compact_node(node, leaf_index[size_t(representative)], first_child,
-                                         (*escape)[i]);
+        gpu.nodes[i] = make_compact_node(node, leaf_index[size_t(representative)],
+                                         tree.nodes[size_t(representative)].range, first_child, (*escape)[i]);
         for (int32_t child : {node.left, node.right})
             if (child != kNoChild) depth[child] = depth[i] + 1;
         gpu.depth = std::max(gpu.depth, depth[i]);

@@ -20,9 +20,9 @@ vec3 decode_octahedral(uint bits) {
     return normalize(v);
 }
 
-// The compact node (and its representative leaf `rep`, both loaded once by the
-// caller) as the bounds see it; effects the scene lacks compile away.
-ClusterShape cluster_shape_of(GpuTreeNode node, GpuLight rep) {
+// The compact node (loaded once by the caller) and its representative's
+// position and range as the bounds see them; effects the scene lacks compile away.
+ClusterShape cluster_shape_of(GpuTreeNode node, vec3 rep_position, float rep_range) {
     uint type = node.flags >> kNodeTypeShift;
     ClusterShape c;
     c.directional = kDirectionalLights && type == kLightDirectional;
@@ -31,8 +31,8 @@ ClusterShape cluster_shape_of(GpuTreeNode node, GpuLight rep) {
     c.leaf = node.first_child == kEndOfWalk;
     c.bbox_min = node.bbox_min;
     c.bbox_max = node.bbox_max;
-    c.position = rep.position;
-    c.range = rep.range;
+    c.position = rep_position;
+    c.range = rep_range;
     c.radius = node.radius;
     c.cone_axis = decode_octahedral(node.cone_axis);
     c.cone_cos = node.cone_cos;
@@ -40,8 +40,8 @@ ClusterShape cluster_shape_of(GpuTreeNode node, GpuLight rep) {
 }
 
 // Upper bound of f_r x G (visibility 1) per unit intensity over a node's lights.
-vec3 response_bound_of(GpuTreeNode node, GpuLight rep, SurfacePoint p) {
-    return response_bound(cluster_shape_of(node, rep), p.albedo, p.specular, p.exponent, p.mirror,
+vec3 response_bound_of(GpuTreeNode node, vec3 rep_position, float rep_range, SurfacePoint p) {
+    return response_bound(cluster_shape_of(node, rep_position, rep_range), p.albedo, p.specular, p.exponent, p.mirror,
                           p.position, p.normal);
 }
 

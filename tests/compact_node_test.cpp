@@ -88,11 +88,32 @@ TEST(CompactNode, AZeroWidthConeIsWidenedByWhatThePackingMovedItsAxis) {
     node.type = LightType::kSpot;
     node.cone_axis = glm::normalize(glm::vec3(1, 2, 3));
     node.cone_cos = 1.0f;
-    const CompactBounds bounds = decode_bounds(make_compact_node(node, 0, kEndOfWalk, kEndOfWalk));
+    const CompactBounds bounds = decode_bounds(make_compact_node(node, 0, 0.0f, kEndOfWalk, kEndOfWalk));
     const glm::dvec3 axis = glm::normalize(glm::dvec3(node.cone_axis));
     EXPECT_GT(glm::length(bounds.cone_axis - axis), 0.0);  // the packing moved the axis
     EXPECT_GE(glm::dot(axis, bounds.cone_axis), bounds.cone_cos);
     EXPECT_GT(bounds.cone_cos, std::cos(1e-3));  // by little
+}
+
+// The bound loads a node's representative only where the flag says it has a
+// range: the flag must follow the representative, leaf or cluster.
+TEST(CompactNode, FlagsTheNodesWhoseRepresentativeHasARange) {
+    std::vector<SceneLight> lights = test::random_lights(64, 41, LightType::kPoint);
+    for (size_t i = 0; i < lights.size(); ++i) lights[i].range = i % 3 == 0 ? 2.5f : 0.0f;
+    const LightTree tree = build(lights, BuilderKind::kAgglomerative);
+    Result<WalkTree> walk = make_walk_tree(tree);
+    ASSERT_TRUE(walk) << walk.error();
+    size_t flagged = 0;
+    for (size_t i = 0; i < tree.nodes.size(); ++i) {
+        const GpuTreeNode& node = walk->nodes[i];
+        const bool bounded = walk->leaves[node.representative].range > 0.0f;
+        EXPECT_EQ((node.flags & kNodeBoundedRepresentative) != 0u, bounded) << "node " << i;
+        flagged += bounded ? 1 : 0;
+    }
+    EXPECT_GT(flagged, 0u);
+    EXPECT_LT(flagged, tree.nodes.size());
+    EXPECT_EQ(make_compact_node(tree.nodes[0], 0, 0.0f, kEndOfWalk, kEndOfWalk).flags & kNodeBoundedRepresentative,
+              0u);
 }
 
 TEST(CompactNode, BoundsHoldEveryLeafOnRandomTrees) {

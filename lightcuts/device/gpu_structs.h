@@ -18,11 +18,15 @@ LC_CONST uint kLightOriented = 3u;
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;
 
-// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, kNodePatch, and the
-// node's LightType from bit kNodeTypeShift on.
+// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, kNodePatch,
+// kNodeBoundedRepresentative, and the node's LightType from bit
+// kNodeTypeShift on.
 LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
 LC_CONST uint kNodeIndirect = 2u;    // every light below is indirect (LightTreeNode::indirect)
 LC_CONST uint kNodePatch = 4u;       // every light below is a radiosity patch (LightTreeNode::patch)
+// The representative has a range (> 0): the bounds read its position and
+// range. Clear: the node is unbounded, and a bound need not load the light.
+LC_CONST uint kNodeBoundedRepresentative = 8u;
 LC_CONST uint kNodeTypeShift = 8u;
 
 // GpuLight::flags
@@ -63,7 +67,8 @@ struct LC_ALIGN16 GpuTreeNode {
     float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
     uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
     float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
-    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | kNodePatch | type << kNodeTypeShift
+    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | kNodePatch |
+                                        // kNodeBoundedRepresentative | type << kNodeTypeShift
 };
 
 // Counters the lighting pass accumulates with atomics (reset every frame).
