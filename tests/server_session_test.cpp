@@ -570,7 +570,8 @@ TEST(ServerSession, VplBakesCarryTheirLightCapAndSmallBakesTheSmallLane) {
 
     request.bake_id = 3;
     request.indirect = {IndirectMethod::kVpl, 2, 1000, 0.25f, 0.01f};
-    start = first_of<StartBake>(session.on_message(request));
+    const ServerActions shallow = session.on_message(request);  // `start` points into it
+    start = first_of<StartBake>(shallow);
     ASSERT_NE(start, nullptr);
     EXPECT_EQ(start->inputs.indirect.vpl.max_lights, 2000u);
 }
@@ -585,7 +586,8 @@ TEST(ServerSession, ABakeOverRanksTakesTheBigPoolAndReservesItsFootprint) {
     BakeRequestMsg request = bake_request(1);
     request.ranks = 2;
     const uint64_t held = budget.used();
-    const StartBake* start = first_of<StartBake>(session.on_message(request));
+    const ServerActions actions = session.on_message(request);  // `start` points into it
+    const StartBake* start = first_of<StartBake>(actions);
     ASSERT_NE(start, nullptr);
     EXPECT_EQ(start->inputs.ranks, 2u);
     EXPECT_FALSE(start->small);

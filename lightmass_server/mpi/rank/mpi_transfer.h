@@ -62,10 +62,11 @@ Result<std::vector<T>> gather_to_all(const std::vector<T>& mine, uint64_t& bytes
     Result<std::vector<T>> all = gather_in_rank_order(mine, bytes_sent);
     if (!all) return all;
     std::vector<uint8_t> bytes(all->size() * sizeof(T));
-    std::memcpy(bytes.data(), all->data(), bytes.size());
+    // Only rank 0 holds the gather; memcpy must not see another rank's empty (null) vector.
+    if (!bytes.empty()) std::memcpy(bytes.data(), all->data(), bytes.size());
     broadcast_bytes(bytes);
     std::vector<T> out(bytes.size() / sizeof(T));
-    std::memcpy(out.data(), bytes.data(), bytes.size());
+    if (!bytes.empty()) std::memcpy(out.data(), bytes.data(), bytes.size());
     return out;
 }
 
