@@ -1,5 +1,6 @@
 #include "editor_client/render/error_sweep.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -9,12 +10,21 @@
 
 namespace lc::client {
 
-Result<std::vector<float>> parse_error_list(std::string_view text) {
-    std::vector<float> ratios;
+std::vector<std::string_view> split_sweep_list(std::string_view text) {
+    std::vector<std::string_view> items;
     size_t start = 0;
     while (start <= text.size()) {
         const size_t comma = std::min(text.find(',', start), text.size());
-        const std::string item(text.substr(start, comma - start));
+        items.push_back(text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return items;
+}
+
+Result<std::vector<float>> parse_error_list(std::string_view text) {
+    std::vector<float> ratios;
+    for (std::string_view view : split_sweep_list(text)) {
+        const std::string item(view);
         float value = 0.0f;
         const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
         if (item.empty() || ec != std::errc() || end != item.data() + item.size() ||
@@ -23,7 +33,6 @@ Result<std::vector<float>> parse_error_list(std::string_view text) {
                               "' is not a finite error ratio >= 0 (expected e.g. "
                               "0.005,0.01,0.02,0.05)");
         ratios.push_back(value);
-        start = comma + 1;
     }
     return ratios;
 }

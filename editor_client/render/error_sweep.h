@@ -49,6 +49,10 @@ Result<ReferenceFrame> render_reference_frame(Renderer& renderer, const RenderSe
 // "0.005,0.01,0.02": finite ratios >= 0, at least one.
 Result<std::vector<float>> parse_error_list(std::string_view text);
 
+// A sweep flag's comma-separated list split into its items, empty ones kept
+// ("", "1,,2", a trailing comma), so that the parsers refuse them by name.
+std::vector<std::string_view> split_sweep_list(std::string_view text);
+
 // Renders the reference once, then lightcuts (settings' criterion, max cut and
 // search) at each ratio. Leaves the renderer holding the last lightcuts frame.
 Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,

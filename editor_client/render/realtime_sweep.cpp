@@ -77,10 +77,8 @@ Status sweep_cut(Renderer& renderer, RenderSettings settings, const std::vector<
 Result<std::vector<uint32_t>> parse_count_list(std::string_view text, std::string_view flag, uint32_t min,
                                                uint32_t max) {
     std::vector<uint32_t> values;
-    size_t start = 0;
-    while (start <= text.size()) {
-        const size_t comma = std::min(text.find(',', start), text.size());
-        const std::string item(text.substr(start, comma - start));
+    for (std::string_view view : split_sweep_list(text)) {
+        const std::string item(view);
         uint32_t value = 0;
         const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
         if (item.empty() || ec != std::errc() || end != item.data() + item.size() || value < min ||
@@ -88,7 +86,6 @@ Result<std::vector<uint32_t>> parse_count_list(std::string_view text, std::strin
             return make_error(std::string(flag) + ": '" + item + "' is not an integer in " + std::to_string(min) +
                               " .. " + std::to_string(max) + " above the one before it");
         values.push_back(value);
-        start = comma + 1;
     }
     return values;
 }

@@ -66,8 +66,9 @@ void RealTimePass::dispatch(VkCommandBuffer cmd, const Frame& frame, Stage stage
     constants.frame_seed = frames_recorded_ * 0x9E3779B9u + frame.settings->representative_seed;
     // Spread: the frames step along each pixel's sequences. Independent: every
     // frame starts its sequences from offsets of its own (frame 0 of a new seed).
-    constants.frame_number = spread_frames_ ? frames_recorded_ : 0u;
-    constants.draw_seed = spread_frames_ ? frame.settings->representative_seed : constants.frame_seed;
+    const bool spread = history_.policy().spread_frames;
+    constants.frame_number = spread ? frames_recorded_ : 0u;
+    constants.draw_seed = spread ? frame.settings->representative_seed : constants.frame_seed;
     vkCmdPushConstants(cmd, layout_.handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants),
                        &constants);
     const uint32_t size = frame.workgroup_size;

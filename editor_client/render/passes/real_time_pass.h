@@ -37,10 +37,7 @@ public:
     void drop_history() { history_.drop(); }
     // Frames in the history after the last recorded frame (1: a new start).
     uint32_t frames_accumulated() const { return history_.frames_accumulated(); }
-    void set_policy(const TemporalPolicy& policy) {
-        history_.set_policy(policy);
-        spread_frames_ = policy.spread_frames;
-    }
+    void set_policy(const TemporalPolicy& policy) { history_.set_policy(policy); }
     // The light-draw records of a new tree (its compact nodes; empty: none).
     Status set_tree_nodes(const vk::CommandPool& pool, std::span<const GpuTreeNode> nodes) {
         return draws_.upload(pool, nodes);
@@ -58,7 +55,6 @@ private:
     vk::PipelineLayout layout_;
     std::array<VkPipeline, kStageCount> pipelines_{};
     uint32_t frames_recorded_ = 0;  // every frame's draws are seeded by its number
-    bool spread_frames_ = true;     // TemporalPolicy::spread_frames
 };
 
 }  // namespace lc::client

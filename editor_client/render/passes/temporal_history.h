@@ -62,6 +62,7 @@ public:
     // start or a camera move; a moving view keeps a short history besides).
     uint32_t frames_accumulated() const { return frame_number_; }
     void set_policy(const TemporalPolicy& policy) { policy_ = policy; }
+    const TemporalPolicy& policy() const { return policy_; }
 
 private:
     struct Images {
