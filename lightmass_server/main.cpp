@@ -15,8 +15,8 @@
 
 #include "protocol/asio.h"
 #include "lightmass_server/mpi/mpi_flags.h"
-#include "lightmass_server/auth_token.h"
-#include "lightmass_server/server.h"
+#include "lightmass_server/net/auth_token.h"
+#include "lightmass_server/net/server.h"
 
 namespace {
 

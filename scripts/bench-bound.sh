@@ -18,13 +18,13 @@
 # `render --sweep-error 0.02,0.01,0.005 --sweep-csv`: one reference frame, then
 # lightcuts at each ratio, every frame timed after a warm-up (lavapipe compiles
 # shaders on first use). Writes docs/bench/bound_targets.csv:
-#   scene, layout, size, then the sweep's columns (editor_client/render/error_sweep.h):
+#   scene, layout, size, then the sweep's columns (editor_client/render/sweeps/error_sweep.h):
 #   lights, shadows, reference_ms, error_ratio, lightcuts_ms, speedup, avg_cut,
 #   cut_p99, max_cut_hits, rel_err_mean, rel_err_p99, frac_over_error,
 #   frac_over_2pct, max_err, reference_shadow_rays, shadow_rays, loop_limit_stops
 # The *_ms columns are the whole frame's GPU time (G-buffer, lighting, tone map)
 # by timestamps. Error statistics are over pixels whose reference luminance
-# exceeds 1e-3 x the mean (editor_client/render/error_stats.h).
+# exceeds 1e-3 x the mean (editor_client/render/analysis/error_stats.h).
 # Usage: scripts/bench-bound.sh [build-dir] [--large]
 #   --large adds 131072 lights at 128x128 (the shadowed reference takes minutes).
 set -euo pipefail

@@ -17,7 +17,7 @@ Groups (--only picks some; rows of the other groups are kept from an earlier run
   figure   one scene side by side: reference, lightcuts, error and cut-size heatmaps
 
 Error columns come from the client's own comparison (render --compare-reference,
-editor_client/render/error_stats.h) when the reference is cheap; otherwise they
+editor_client/render/analysis/error_stats.h) when the reference is cheap; otherwise they
 are computed here from the float images with the same definition (the column
 error_source says which). When both exist, the numpy values are kept too
 (numpy_err_mean, numpy_err_p99) so the checker can hold one against the other.

@@ -1,4 +1,4 @@
-// The real-time mode's own set (set kTemporalSet, owned by RealTimePass): the
+// The real-time mode's own set (set kTemporalSet, owned by RealtimePass): the
 // accumulated history and the world positions it was shaded at, the previous
 // frame's (In) and this frame's (Out), and the temporal parameters. The
 // frame's set 0 (frame_bindings.glsl) is bound beside it.

@@ -2,7 +2,7 @@
 // growing waits up to a cap, and one log line per interval, not one per failure.
 #include <gtest/gtest.h>
 
-#include "lightmass_server/accept_backoff.h"
+#include "lightmass_server/net/accept_backoff.h"
 
 namespace lc::bake {
 namespace {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "lightmass_server/agglomerative_builder.h"
-#include "lightmass_server/lbvh_builder.h"
-#include "lightmass_server/optimal_pair_builder.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/agglomerative_builder.h"
+#include "lightmass_server/builders/lbvh_builder.h"
+#include "lightmass_server/builders/optimal_pair_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "tree_invariants.h"
 
 namespace lc::bake {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "editor_client/render/renderer.h"
-#include "editor_client/render/scene_effects.h"
+#include "editor_client/render/analysis/scene_effects.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/alpha_mask.h"

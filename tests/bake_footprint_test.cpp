@@ -1,6 +1,6 @@
 // The estimate a bake is admitted by (issue 27): each heavy part of the
 // table's rows counted from the request, before anything runs.
-#include "lightmass_server/bake_footprint.h"
+#include "lightmass_server/bake/bake_footprint.h"
 
 #include <gtest/gtest.h>
 

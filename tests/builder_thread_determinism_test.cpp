@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "tree_invariants.h"
 

@@ -15,8 +15,8 @@
 
 #include "editor_client/bake/client_outputs.h"
 #include "editor_client/bake/client_session.h"
-#include "lightmass_server/result_stream.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/net/result_stream.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"

@@ -11,7 +11,7 @@
 
 #include "lightcuts/compact_node.h"
 #include "lightcuts/gpu_layout.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "tree_invariants.h"
 
 namespace lc {

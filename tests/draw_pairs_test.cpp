@@ -12,7 +12,7 @@
 #include "lightcuts/device/pixel_representative.glsl.h"
 #include "lightcuts/draw_pairs.h"
 #include "lightcuts/gpu_layout.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "tree_invariants.h"
 
 namespace lc {

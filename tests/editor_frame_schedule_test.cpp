@@ -196,10 +196,10 @@ TEST(EditorFrameSchedule, ChangedSettingsLightsOrALostImageRestartTheRefinement)
     EXPECT_FALSE(schedule.refined_for(inputs.settings, 2)) << "still refining";
 }
 
-TEST(EditorFrameSchedule, TheRealTimeModeRendersWholeFullSizeFramesWithoutTiles) {
+TEST(EditorFrameSchedule, TheRealtimeModeRendersWholeFullSizeFramesWithoutTiles) {
     FrameSchedule schedule(progressive_options());
     FrameInputs inputs;
-    inputs.settings = view_settings(64, 48, RenderMode::kRealTime);
+    inputs.settings = view_settings(64, 48, RenderMode::kRealtime);
     inputs.moved = true;
     EXPECT_FALSE(schedule.tiled(inputs.settings));
     const Frame frame = run_frame(schedule, inputs);

@@ -12,7 +12,7 @@
 
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/script_runner.h"
-#include "editor_client/render/image_io.h"
+#include "editor_client/render/output/image_io.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/headless_window.h"
@@ -34,7 +34,7 @@ std::unique_ptr<EditorSession> room_in_realtime(const std::filesystem::path& dir
     return session;
 }
 
-TEST(EditorRealTime, CutIsAValidatedViewControl) {
+TEST(EditorRealtime, CutIsAValidatedViewControl) {
     EditorSession session(test::lit_room(3));
     EXPECT_TRUE(session.set_realtime_cut(8).ok());
     EXPECT_EQ(session.view().realtime_cut, 8u);
@@ -47,11 +47,11 @@ TEST(EditorRealTime, CutIsAValidatedViewControl) {
     Result<std::optional<EditorCommand>> parsed = parse_editor_command("realtime-cut 12");
     ASSERT_TRUE(parsed.ok()) << parsed.error();
     ASSERT_TRUE(parsed->has_value());
-    EXPECT_EQ(std::get<cmd::RealTimeCut>(**parsed).nodes, 12u);
+    EXPECT_EQ(std::get<cmd::RealtimeCut>(**parsed).nodes, 12u);
     EXPECT_FALSE(parse_editor_command("realtime-cut").ok());
 }
 
-TEST(EditorRealTime, ShadowRayBudgetIsAValidatedViewControl) {
+TEST(EditorRealtime, ShadowRayBudgetIsAValidatedViewControl) {
     EditorSession session(test::lit_room(3));
     EXPECT_EQ(session.view().realtime_rays, kDefaultRealtimeRays);
     EXPECT_TRUE(session.set_realtime_rays(0).ok()) << "0: one ray per cut node";
@@ -64,14 +64,14 @@ TEST(EditorRealTime, ShadowRayBudgetIsAValidatedViewControl) {
     Result<std::optional<EditorCommand>> parsed = parse_editor_command("realtime-rays 1");
     ASSERT_TRUE(parsed.ok()) << parsed.error();
     ASSERT_TRUE(parsed->has_value());
-    EXPECT_EQ(std::get<cmd::RealTimeRays>(**parsed).rays, 1u);
+    EXPECT_EQ(std::get<cmd::RealtimeRays>(**parsed).rays, 1u);
     EXPECT_FALSE(parse_editor_command("realtime-rays").ok());
     EXPECT_EQ(realtime_ray_budget(16, 0), 16u);
     EXPECT_EQ(realtime_ray_budget(16, 4), 4u);
     EXPECT_EQ(realtime_ray_budget(2, 4), 2u) << "a cut smaller than the budget traces a ray per node";
 }
 
-TEST(EditorRealTime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {
+TEST(EditorRealtime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {
     std::unique_ptr<vk::Context> context;
     LC_REQUIRE_VULKAN(context);
     const std::filesystem::path dir = test::make_temp_dir("editor-realtime");
@@ -89,7 +89,7 @@ TEST(EditorRealTime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {
     Result<EditorLoopSummary> summary = run_editor_loop(window, *context, *session, options);
     ASSERT_TRUE(summary.ok()) << summary.error();
     EXPECT_EQ(script.state(), ScriptState::kQuit) << script.error();
-    EXPECT_EQ(summary->last_mode, RenderMode::kRealTime);
+    EXPECT_EQ(summary->last_mode, RenderMode::kRealtime);
     EXPECT_TRUE(summary->refinement_events.empty()) << "no tiles in the real-time mode";
     // 16 frames of history before the view counts as refined, one frame a tick.
     EXPECT_GE(summary->frames, 16u);
@@ -105,7 +105,7 @@ TEST(EditorRealTime, HeadlessLoopAccumulatesWholeFramesUntilRefined) {
     std::filesystem::remove_all(dir);
 }
 
-TEST(EditorRealTime, XvfbViewSwitchesBetweenRealTimeAndLightcuts) {
+TEST(EditorRealtime, XvfbViewSwitchesBetweenRealtimeAndLightcuts) {
     if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) GTEST_SKIP() << "xvfb-run is not installed";
     std::unique_ptr<vk::Context> probe;
     LC_REQUIRE_VULKAN(probe);

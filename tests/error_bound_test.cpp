@@ -12,7 +12,7 @@
 
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/material_model.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {

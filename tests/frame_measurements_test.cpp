@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "editor_client/render/frame_measurements.h"
+#include "editor_client/render/gpu/frame_measurements.h"
 
 namespace lc::client {
 namespace {

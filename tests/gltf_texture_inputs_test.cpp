@@ -12,7 +12,7 @@
 #include <numbers>
 #include <vector>
 
-#include "editor_client/render/scene_effects.h"
+#include "editor_client/render/analysis/scene_effects.h"
 #include "editor_client/scene/gltf_loader.h"
 #include "editor_client/scene/texture_coordinates.h"
 #include "test_paths.h"

@@ -1,4 +1,4 @@
-// Index ranges of a sampler's work (lightmass_server/index_range.h): the
+// Index ranges of a sampler's work (lightmass_server/builders/index_range.h): the
 // shares of area-light samples, environment strata and VPL paths, made apart
 // and concatenated in order, are the whole run's bytes.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
-#include "lightmass_server/index_range.h"
+#include "lightmass_server/builders/index_range.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"

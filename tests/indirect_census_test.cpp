@@ -1,7 +1,7 @@
-// The render's census line for bounced light (editor_client/render/indirect_census.h).
+// The render's census line for bounced light (editor_client/render/analysis/indirect_census.h).
 #include <gtest/gtest.h>
 
-#include "editor_client/render/indirect_census.h"
+#include "editor_client/render/analysis/indirect_census.h"
 
 namespace lc::client {
 namespace {

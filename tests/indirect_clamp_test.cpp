@@ -20,7 +20,7 @@
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/device/indirect_clamp.glsl.h"
 #include "lightcuts/exact_indirect_clamp.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "render_test_support.h"
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
 
 namespace lc {

@@ -12,7 +12,7 @@
 #include <fstream>
 #include <iterator>
 
-#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/builders/cluster_attributes.h"
 #include "lightmass_server/mpi/lbvh_top.h"
 #include "lightmass_server/mpi/lbvh_units.h"
 #include "multi_rank_fixtures.h"

@@ -10,10 +10,10 @@
 #include <random>
 #include <vector>
 
-#include "lightmass_server/approximate_pairing.h"
-#include "lightmass_server/min_weight_matching.h"
-#include "lightmass_server/point_kd_tree.h"
-#include "lightmass_server/sparse_exact_pairing.h"
+#include "lightmass_server/builders/approximate_pairing.h"
+#include "lightmass_server/builders/min_weight_matching.h"
+#include "lightmass_server/builders/point_kd_tree.h"
+#include "lightmass_server/builders/sparse_exact_pairing.h"
 
 namespace lc::bake {
 namespace {

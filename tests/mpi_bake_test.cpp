@@ -16,8 +16,8 @@
 #include <fstream>
 #include <memory>
 
-#include "lightmass_server/bake_pipeline.h"
-#include "lightmass_server/result_channel_file.h"
+#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/bake/result_channel_file.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"
 

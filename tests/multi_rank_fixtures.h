@@ -8,7 +8,7 @@
 
 #include "indirect_scenes.h"
 #include "lightcuts/seeded_mixer.h"
-#include "lightmass_server/bake_pipeline.h"
+#include "lightmass_server/bake/bake_pipeline.h"
 
 namespace lc::test {
 

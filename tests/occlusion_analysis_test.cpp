@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "editor_client/render/occlusion_analysis.h"
-#include "editor_client/render/scene_effects.h"
+#include "editor_client/render/analysis/occlusion_analysis.h"
+#include "editor_client/render/analysis/scene_effects.h"
 #include "lightcuts/shadow_bvh.h"
 #include "lightcuts/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"

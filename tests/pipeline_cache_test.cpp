@@ -6,8 +6,8 @@
 
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
-#include "editor_client/render/frame_set_layout.h"
-#include "editor_client/render/pipeline_cache.h"
+#include "editor_client/render/gpu/frame_set_layout.h"
+#include "editor_client/render/gpu/pipeline_cache.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/vk/pipeline_layout.h"
 #include "lightcuts/gpu_layout.h"

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "editor_client/render/primary_geometry.h"
+#include "editor_client/render/gpu/primary_geometry.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "render_test_support.h"
@@ -68,7 +68,7 @@ TEST_F(PrimaryRays, TheGBufferByRaysIsTheRasterisedOne) {
     EXPECT_GE(double(same_surface), 0.98 * double(geometry));
 }
 
-TEST_F(PrimaryRays, TheRealTimeModeLightsAGBufferCastAsRays) {
+TEST_F(PrimaryRays, TheRealtimeModeLightsAGBufferCastAsRays) {
     Scene scene = client::make_furnished_room_scene();
     scene.lights = test::room_lights(64, 4, client::LightTypeChoice::kPoint, 2.0f);
     const LightTree tree = test::agglomerative_tree(scene.lights);
@@ -76,7 +76,7 @@ TEST_F(PrimaryRays, TheRealTimeModeLightsAGBufferCastAsRays) {
     settings.width = 48;
     settings.height = 32;
     settings.camera = test::furnished_room_camera();
-    settings.mode = client::RenderMode::kRealTime;
+    settings.mode = client::RenderMode::kRealtime;
     std::vector<float> images[2];
     for (PrimaryChoice primary : {PrimaryChoice::kRaster, PrimaryChoice::kRays}) {
         RendererOptions options;

@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "editor_client/render/error_stats.h"
+#include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 
 namespace lc::client {

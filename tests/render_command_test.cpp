@@ -11,11 +11,11 @@
 #include <sstream>
 #include <string>
 
-#include "editor_client/render/image_io.h"
+#include "editor_client/render/output/image_io.h"
 #include "lightcuts/tone_mapping.h"
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/dump.h"

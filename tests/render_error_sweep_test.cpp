@@ -1,5 +1,5 @@
 // `render --sweep-error`: the price of accuracy on one scene, measured against
-// one reference frame (editor_client/render/error_sweep.h).
+// one reference frame (editor_client/render/sweeps/error_sweep.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/error_sweep.h"
+#include "editor_client/render/sweeps/error_sweep.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 
 namespace lc::client {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "editor_client/render/error_stats.h"
+#include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/render/scene_effects.h"
+#include "editor_client/render/analysis/scene_effects.h"
 #include "editor_client/scene/scene_generator.h"
 #include "render_test_support.h"
 

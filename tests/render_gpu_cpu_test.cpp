@@ -23,7 +23,7 @@
 #include "lightcuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/tone_mapping.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 
 namespace lc::client {

@@ -1,6 +1,6 @@
 // `render --mode realtime --sweep-realtime`: the real-time mode's price of
 // accuracy on one scene, each cut size's accumulated frames measured against
-// one reference frame (editor_client/render/realtime_sweep.h).
+// one reference frame (editor_client/render/sweeps/realtime_sweep.h).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/realtime_sweep.h"
+#include "editor_client/render/sweeps/realtime_sweep.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "render_test_support.h"
@@ -30,9 +30,9 @@ TEST(CountList, ParsesAscendingCountsAndNamesTheBadOne) {
     }
 }
 
-using RealTimeSweepRender = test::VulkanTest;
+using RealtimeSweepRender = test::VulkanTest;
 
-TEST_F(RealTimeSweepRender, MoreFramesErrLessAndTheBudgetHolds) {
+TEST_F(RealtimeSweepRender, MoreFramesErrLessAndTheBudgetHolds) {
     Scene scene = make_furnished_room_scene();
     scene.lights = test::room_lights(1500, 5, LightTypeChoice::kPoint, 0.8f);
     const LightTree tree = test::agglomerative_tree(scene.lights);
@@ -44,18 +44,18 @@ TEST_F(RealTimeSweepRender, MoreFramesErrLessAndTheBudgetHolds) {
     settings.width = settings.height = 40;
     settings.camera = test::furnished_room_camera();
     settings.realtime_rays = 2;
-    Result<RealTimeSweep> sweep = run_realtime_sweep(**renderer, settings, {4, 8}, {2, 8, 32});
+    Result<RealtimeSweep> sweep = run_realtime_sweep(**renderer, settings, {4, 8}, {2, 8, 32});
     ASSERT_TRUE(sweep.ok()) << sweep.error();
     print_realtime_sweep(stdout, *sweep);
     ASSERT_EQ(sweep->rows.size(), 6u);
     EXPECT_GT(sweep->reference_ms, 0.0);
     RenderSettings next = settings;
-    next.mode = RenderMode::kRealTime;
+    next.mode = RenderMode::kRealtime;
     next.realtime_cut = 8;  // the sweep's last
     ASSERT_TRUE((*renderer)->render(next).ok());
-    EXPECT_EQ((*renderer)->real_time_frames(), 1u) << "the sweep's history is not the caller's";
+    EXPECT_EQ((*renderer)->realtime_frames(), 1u) << "the sweep's history is not the caller's";
     for (size_t i = 0; i < sweep->rows.size(); ++i) {
-        const RealTimeSweepRow& r = sweep->rows[i];
+        const RealtimeSweepRow& r = sweep->rows[i];
         EXPECT_EQ(r.cut, i < 3 ? 4u : 8u);
         EXPECT_EQ(r.frames, (std::vector<uint32_t>{2, 8, 32})[i % 3]);
         EXPECT_LE(r.shadow_rays_per_pixel, 2.0) << "at most the budget's rays a lit pixel";

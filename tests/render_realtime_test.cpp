@@ -1,4 +1,4 @@
-// The real-time mode (RenderMode::kRealTime, RealTimePass): stochastic
+// The real-time mode (RenderMode::kRealtime, RealtimePass): stochastic
 // lightcuts with at most K shadow rays per pixel and frame, accumulated over
 // frames. On the furnished room with shadows: the ray budget holds; the
 // accumulated image converges to the reference as 1 / frames with
@@ -49,7 +49,7 @@ double relative_mean_difference(const std::vector<float>& a, const std::vector<f
     return total > 0.0 ? difference / total : 0.0;
 }
 
-class RealTime : public test::VulkanTest {
+class Realtime : public test::VulkanTest {
 protected:
     void SetUp() override {
         VulkanTest::SetUp();
@@ -62,7 +62,7 @@ protected:
         settings_.camera = test::furnished_room_camera();
         settings_.mode = RenderMode::kReference;
         reference_ = render(*renderer_, settings_);
-        settings_.mode = RenderMode::kRealTime;
+        settings_.mode = RenderMode::kRealtime;
         settings_.realtime_cut = 8;
         settings_.realtime_rays = 0;
     }
@@ -97,7 +97,7 @@ protected:
     RenderStats last_stats_;
 };
 
-TEST_F(RealTime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
+TEST_F(Realtime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
     for (uint32_t cut : {1u, 8u, 32u}) {
         SCOPED_TRACE(testing::Message() << "cut " << cut);
         settings_.realtime_cut = cut;
@@ -119,7 +119,7 @@ TEST_F(RealTime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
     }
 }
 
-TEST_F(RealTime, ShadowRayBudgetTracesAtMostItsRaysPerPixel) {
+TEST_F(Realtime, ShadowRayBudgetTracesAtMostItsRaysPerPixel) {
     settings_.realtime_cut = 16;
     for (uint32_t rays : {1u, 4u}) {
         SCOPED_TRACE(testing::Message() << "rays " << rays);
@@ -135,7 +135,7 @@ TEST_F(RealTime, ShadowRayBudgetTracesAtMostItsRaysPerPixel) {
 }
 
 // A budget of at least the cut traces one ray per cut node, as no budget does.
-TEST_F(RealTime, BudgetAsLargeAsTheCutChangesNothing) {
+TEST_F(Realtime, BudgetAsLargeAsTheCutChangesNothing) {
     std::unique_ptr<Renderer> unbudgeted = make_renderer(16);
     std::unique_ptr<Renderer> budgeted = make_renderer(16);
     ASSERT_TRUE(unbudgeted && budgeted);
@@ -156,7 +156,7 @@ TEST_F(RealTime, BudgetAsLargeAsTheCutChangesNothing) {
 // or drawn independently. The mean error, not the MSE: a few rare large
 // estimates (a light drawn with a small probability) decide the MSE of a
 // 48x48 image, and whether one lands in frames 17 to 64 or later is chance.
-std::vector<double> RealTime::errors_after(const RenderSettings& settings, std::vector<uint32_t> counts,
+std::vector<double> Realtime::errors_after(const RenderSettings& settings, std::vector<uint32_t> counts,
                                            bool spread) {
     std::unique_ptr<Renderer> plain = make_renderer(0, spread);
     EXPECT_TRUE(plain);
@@ -167,7 +167,7 @@ std::vector<double> RealTime::errors_after(const RenderSettings& settings, std::
         for (; plain && frames < target; ++frames) image = render(*plain, settings);
         EXPECT_FALSE(image.empty());
         if (image.empty()) return {};
-        EXPECT_EQ(plain->real_time_frames(), target);
+        EXPECT_EQ(plain->realtime_frames(), target);
         errors.push_back(relative_mean_difference(image, reference_, reference_));
         std::printf("  %u rays (0: a ray per node), %s frames, %3u of them: mean error %.4f, relative MSE %.3g\n",
                     settings.realtime_rays, spread ? "spread" : "independent", target, errors.back(),
@@ -197,19 +197,19 @@ void expect_no_floor(const std::vector<double>& errors) {
 
 // The picks are unbiased: their accumulated image converges to the reference
 // as 1 / frames, like the full cut's.
-TEST_F(RealTime, BudgetedImageConvergesToTheReference) {
+TEST_F(Realtime, BudgetedImageConvergesToTheReference) {
     settings_.realtime_rays = 1;
     expect_one_over_frames(errors_after(settings_, {4, 16, 64}, false));
 }
 
-TEST_F(RealTime, AccumulatedImageConvergesToTheReferenceAsOneOverFrames) {
+TEST_F(Realtime, AccumulatedImageConvergesToTheReferenceAsOneOverFrames) {
     expect_one_over_frames(errors_after(settings_, {4, 16, 64}, false));
 }
 
 // The default: frames spread their draws evenly, so 64 of them come closer to
 // the reference than 64 independent ones, and the mean still converges to it
 // (with a budget too: the picks' sequence is apart from the draws').
-TEST_F(RealTime, SpreadFramesConvergeSoonerWithoutBias) {
+TEST_F(Realtime, SpreadFramesConvergeSoonerWithoutBias) {
     const std::vector<double> spread = errors_after(settings_, {4, 16, 64, 256}, true);
     const std::vector<double> independent = errors_after(settings_, {64}, false);
     ASSERT_EQ(spread.size(), 4u);
@@ -220,7 +220,7 @@ TEST_F(RealTime, SpreadFramesConvergeSoonerWithoutBias) {
     expect_no_floor(errors_after(settings_, {4, 16, 64, 256}, true));
 }
 
-TEST_F(RealTime, StillViewChangesNoMoreThanItsNoisePredicts) {
+TEST_F(Realtime, StillViewChangesNoMoreThanItsNoisePredicts) {
     std::unique_ptr<Renderer> plain = make_renderer(0);
     ASSERT_TRUE(plain);
     const std::vector<float> first = render(*plain, settings_);
@@ -239,7 +239,7 @@ TEST_F(RealTime, StillViewChangesNoMoreThanItsNoisePredicts) {
     }
 }
 
-TEST_F(RealTime, MovedCameraKeepsItsReprojectedHistory) {
+TEST_F(Realtime, MovedCameraKeepsItsReprojectedHistory) {
     std::unique_ptr<Renderer> plain = make_renderer(0);
     ASSERT_TRUE(plain);
     for (int f = 0; f < 32; ++f) ASSERT_FALSE(render(*plain, settings_).empty());
@@ -247,9 +247,9 @@ TEST_F(RealTime, MovedCameraKeepsItsReprojectedHistory) {
     moved.camera.eye += glm::vec3(0.05f, 0.0f, 0.0f);
     moved.mode = RenderMode::kReference;
     const std::vector<float> moved_reference = render(*renderer_, moved);
-    moved.mode = RenderMode::kRealTime;
+    moved.mode = RenderMode::kRealtime;
     const std::vector<float> with_history = render(*plain, moved);
-    EXPECT_EQ(plain->real_time_frames(), 1u) << "a moved view counts its frames anew";
+    EXPECT_EQ(plain->realtime_frames(), 1u) << "a moved view counts its frames anew";
     std::unique_ptr<Renderer> fresh = make_renderer(0);
     ASSERT_TRUE(fresh);
     const std::vector<float> without_history = render(*fresh, moved);
@@ -259,23 +259,23 @@ TEST_F(RealTime, MovedCameraKeepsItsReprojectedHistory) {
     EXPECT_LT(kept, 0.5 * alone);
 }
 
-TEST_F(RealTime, ANewSettingStartsANewHistory) {
+TEST_F(Realtime, ANewSettingStartsANewHistory) {
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     ASSERT_FALSE(render(*renderer_, settings_).empty());
-    EXPECT_EQ(renderer_->real_time_frames(), 2u);
+    EXPECT_EQ(renderer_->realtime_frames(), 2u);
     EXPECT_EQ(last_stats_.realtime_frames, 2u);
     settings_.exposure *= 2.0f;  // tone mapping only: the history stays
     ASSERT_FALSE(render(*renderer_, settings_).empty());
-    EXPECT_EQ(renderer_->real_time_frames(), 3u);
+    EXPECT_EQ(renderer_->realtime_frames(), 3u);
     settings_.realtime_cut = 16;
     ASSERT_FALSE(render(*renderer_, settings_).empty());
-    EXPECT_EQ(renderer_->real_time_frames(), 1u);
+    EXPECT_EQ(renderer_->realtime_frames(), 1u);
     ASSERT_TRUE(test::set_tree(*renderer_, &tree_).ok());
     ASSERT_FALSE(render(*renderer_, settings_).empty());
-    EXPECT_EQ(renderer_->real_time_frames(), 1u);
+    EXPECT_EQ(renderer_->realtime_frames(), 1u);
 }
 
-TEST_F(RealTime, SameFramesGiveTheSameBytes) {
+TEST_F(Realtime, SameFramesGiveTheSameBytes) {
     std::vector<float> a, b;
     std::unique_ptr<Renderer> first = make_renderer(16);
     std::unique_ptr<Renderer> second = make_renderer(16);

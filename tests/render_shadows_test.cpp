@@ -19,7 +19,7 @@
 #include "editor_client/render/renderer.h"
 #include "lightcuts/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 
 namespace lc::client {

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "editor_client/render/error_stats.h"
+#include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "render_test_support.h"
 

@@ -9,7 +9,7 @@
 
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf_loader.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 

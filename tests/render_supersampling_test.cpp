@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "editor_client/render/error_stats.h"
+#include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/supersampled_render.h"
 #include "render_test_support.h"
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/gbuffer_surface.h"
-#include "editor_client/render/image_io.h"
+#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/output/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/vk/context.h"
@@ -26,7 +26,7 @@
 #include "lightcuts/light_tree.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/scene.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/dump.h"

@@ -8,8 +8,8 @@
 #include <fstream>
 
 #include "editor_client/bake/tree_store.h"
-#include "lightmass_server/bake_pipeline.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/dump.h"

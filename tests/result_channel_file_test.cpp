@@ -2,7 +2,7 @@
 // as a bake over MPI ranks leaves it: adopted only when every record and the
 // structure check out, streamed to the client as the very frames an
 // in-memory tree gives, and removed once its last owner lets it go.
-#include "lightmass_server/result_channel_file.h"
+#include "lightmass_server/bake/result_channel_file.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <fstream>
 #include <random>
 
-#include "lightmass_server/result_stream.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/net/result_stream.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"

@@ -15,7 +15,7 @@
 #include "editor_client/scene/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/cpu_evaluator.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "test_paths.h"
 #include "tree_fixtures.h"
 

@@ -4,8 +4,8 @@
 
 #include <vector>
 
-#include "lightmass_server/bake_footprint.h"
-#include "lightmass_server/server_session.h"
+#include "lightmass_server/bake/bake_footprint.h"
+#include "lightmass_server/net/server_session.h"
 #include "protocol/bake_limits.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"

@@ -2,7 +2,7 @@
 // splits a range into the same two sets as std::nth_element, with the same
 // element at nth, on sorted, reversed and random input around its direct
 // size; a stop ends it early, and a null stop never does.
-#include "lightmass_server/stoppable_select.h"
+#include "lightmass_server/builders/stoppable_select.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The tree builder's stoppable sort (issue 27): the order std::sort gives, and
 // a stop seen within one merge stride even in the widest merge.
-#include "lightmass_server/stoppable_sort.h"
+#include "lightmass_server/builders/stoppable_sort.h"
 
 #include <gtest/gtest.h>
 

@@ -11,7 +11,7 @@
 
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/bake/server_process.h"
-#include "lightmass_server/server.h"
+#include "lightmass_server/net/server.h"
 #include "protocol/channel_records.h"
 #include "raw_client.h"
 #include "test_paths.h"

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "lightmass_server/agglomerative_builder.h"
-#include "lightmass_server/cluster_attributes.h"
-#include "lightmass_server/lbvh_builder.h"
-#include "lightmass_server/optimal_pair_builder.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/agglomerative_builder.h"
+#include "lightmass_server/builders/cluster_attributes.h"
+#include "lightmass_server/builders/lbvh_builder.h"
+#include "lightmass_server/builders/optimal_pair_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "lightcuts/tree_export.h"
 #include "protocol/channel_records.h"
 #include "tree_invariants.h"

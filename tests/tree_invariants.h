@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "lightcuts/build_tree.h"
-#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/builders/cluster_attributes.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/scene_light.h"
 

@@ -9,11 +9,11 @@
 #include <functional>
 #include <vector>
 
-#include "editor_client/render/indirect_census.h"
+#include "editor_client/render/analysis/indirect_census.h"
 #include "indirect_scenes.h"
 #include "lightmass_server/indirect/indirect_stage.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
 
 namespace lc {

@@ -1,6 +1,6 @@
 // Regions dispatched as one lattice of workgroups (workgroup_lattice.h): the
 // tile-strided reference's tiles are one; anything else is not.
-#include "editor_client/render/workgroup_lattice.h"
+#include "editor_client/render/gpu/workgroup_lattice.h"
 
 #include <gtest/gtest.h>
 

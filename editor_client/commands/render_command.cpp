@@ -21,7 +21,7 @@
 // every K-th 8x8 tile instead (strided_tiles), its pixels' neighbours those
 // of the full frame, gathered into an image of the same size. --mode realtime
 // is stochastic lightcuts with at most --realtime-cut shadow rays per pixel,
-// its image the mean of --frames frames of the still view (real_time_frames.h).
+// its image the mean of --frames frames of the still view (realtime_frames.h).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -37,18 +37,18 @@
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/commands/gltf_load_flags.h"
-#include "editor_client/render/environment_census.h"
-#include "editor_client/render/error_stats.h"
-#include "editor_client/render/error_sweep.h"
-#include "editor_client/render/realtime_sweep.h"
-#include "editor_client/render/image_io.h"
-#include "editor_client/render/indirect_census.h"
+#include "editor_client/render/analysis/environment_census.h"
+#include "editor_client/render/analysis/error_stats.h"
+#include "editor_client/render/sweeps/error_sweep.h"
+#include "editor_client/render/sweeps/realtime_sweep.h"
+#include "editor_client/render/output/image_io.h"
+#include "editor_client/render/analysis/indirect_census.h"
 #include "editor_client/render/pixel_stride.h"
-#include "editor_client/render/real_time_frames.h"
+#include "editor_client/render/realtime_frames.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/render_settings.h"
 #include "lightcuts/device/limits.h"
-#include "editor_client/render/render_stats.h"
+#include "editor_client/render/output/render_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/supersampled_render.h"
 #include "editor_client/report/progress_display.h"
@@ -121,11 +121,11 @@ struct RenderedFrame {
 };
 
 // The real-time mode's frames of a still view; their mean is the image.
-RenderedFrame render_real_time(Renderer& renderer, const RenderSettings& settings,
+RenderedFrame render_realtime(Renderer& renderer, const RenderSettings& settings,
                                uint32_t frames) {
     if (Status warm = renderer.warm_up(settings); !warm) fail(warm.error());
     RenderedFrame out;
-    out.stats = or_fail(render_real_time_frames(renderer, settings, frames));
+    out.stats = or_fail(render_realtime_frames(renderer, settings, frames));
     out.display = or_fail(renderer.read_display());
     out.hdr = or_fail(renderer.read_hdr());
     return out;
@@ -249,7 +249,7 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.realtime_cut;
     settings.realtime_rays = options.realtime_rays;
-    if (options.frames != 1 && settings.mode != RenderMode::kRealTime)
+    if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
     const auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
@@ -270,7 +270,7 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
         if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
     }
     if (!options.sweep_realtime.empty()) {
-        if (mode != RenderMode::kRealTime) fail("--sweep-realtime needs --mode realtime and a tree source");
+        if (mode != RenderMode::kRealtime) fail("--sweep-realtime needs --mode realtime and a tree source");
         request.sweep_cuts = or_fail(parse_count_list(options.sweep_realtime, "--sweep-realtime", 1, kMaxStochasticCut));
         request.sweep_frames = or_fail(parse_count_list(options.sweep_frames, "--sweep-frames", 1, 4096));
     }
@@ -278,7 +278,7 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
         fail("--sweep-csv needs --sweep-error or --sweep-realtime");
     if (request.compare && !mode_needs_tree(mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or error)");
-    if (!request.sweep_ratios.empty() && mode == RenderMode::kRealTime)
+    if (!request.sweep_ratios.empty() && mode == RenderMode::kRealtime)
         fail("--sweep-error sweeps the deterministic lightcuts modes, not realtime");
     if (options.pixel_stride > 1 || options.tile_stride > 1) {
         if (mode != RenderMode::kReference || options.spp > 1 || options.spp_method != "gpu")
@@ -367,7 +367,7 @@ void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderR
 
 // --sweep-realtime: the real-time mode's price of accuracy, printed (and written as CSV).
 void print_realtime_sweep_of(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
-    RealTimeSweep sweep =
+    RealtimeSweep sweep =
         or_fail(run_realtime_sweep(renderer, request.settings, request.sweep_cuts, request.sweep_frames));
     const uint32_t rays = request.settings.realtime_rays;
     const std::string budget = rays == 0 ? "a shadow ray per cut node" : std::to_string(rays) + " shadow rays a pixel";
@@ -407,8 +407,8 @@ RenderedFrame render_image(Renderer& renderer, const RenderOptions& options, con
                            std::span<const SceneLight> classic) {
     const RenderSettings& settings = request.settings;
     RenderedFrame rendered =
-        settings.mode == RenderMode::kRealTime
-            ? render_real_time(renderer, settings, options.frames)
+        settings.mode == RenderMode::kRealtime
+            ? render_realtime(renderer, settings, options.frames)
             : render_frame(renderer, settings, spp, tree, classic, request.tiles, options.tile_stride);
     RenderStats& stats = rendered.stats;
     stats.pixel_stride = std::max(options.pixel_stride, options.tile_stride);

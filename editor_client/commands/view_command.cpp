@@ -216,7 +216,7 @@ void run_view(const ViewCommandOptions& options) {
     EditorLoopSummary summary = or_fail(run_editor_loop(*window, context, *session, loop));
     print_summary(summary, options, context, *session);
     // The real-time mode refines by accumulating whole frames, not in tiles.
-    if (loop.progressive && summary.last_mode != RenderMode::kRealTime) print_refinement(summary);
+    if (loop.progressive && summary.last_mode != RenderMode::kRealtime) print_refinement(summary);
     if (script && script->state() == ScriptState::kFailed) fail(script->error());
 }
 

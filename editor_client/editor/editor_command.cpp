@@ -184,13 +184,13 @@ Result<std::optional<EditorCommand>> parse_view_setting(std::string_view name, c
         if (Status ok = args.expect(1, 1, "K"); !ok) return make_error(ok.error());
         LC_TRY(nodes, args.integer(0, "K"));
         if (nodes > UINT32_MAX) return make_error("realtime-cut: K is too large");
-        return R(cmd::RealTimeCut{static_cast<uint32_t>(nodes)});
+        return R(cmd::RealtimeCut{static_cast<uint32_t>(nodes)});
     }
     if (name == "realtime-rays") {
         if (Status ok = args.expect(1, 1, "S"); !ok) return make_error(ok.error());
         LC_TRY(rays, args.integer(0, "S"));
         if (rays > UINT32_MAX) return make_error("realtime-rays: S is too large");
-        return R(cmd::RealTimeRays{static_cast<uint32_t>(rays)});
+        return R(cmd::RealtimeRays{static_cast<uint32_t>(rays)});
     }
     // exposure
     if (Status ok = args.expect(1, 1, "E"); !ok) return make_error(ok.error());

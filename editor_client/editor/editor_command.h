@@ -64,10 +64,10 @@ struct ErrorRatio {
 struct MaxCut {
     uint32_t max_cut = 0;
 };
-struct RealTimeCut {
+struct RealtimeCut {
     uint32_t nodes = 16;
 };
-struct RealTimeRays {
+struct RealtimeRays {
     uint32_t rays = 0;
 };
 struct RepresentativesChoice {
@@ -98,7 +98,7 @@ struct SaveView {
 using EditorCommand =
     std::variant<cmd::AddLight, cmd::AddLights, cmd::RemoveLight, cmd::MoveLight, cmd::Select, cmd::Undo,
                  cmd::Redo, cmd::Bake, cmd::CancelBake, cmd::Mode, cmd::Criterion, cmd::ErrorRatio,
-                 cmd::MaxCut, cmd::RealTimeCut, cmd::RealTimeRays, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
+                 cmd::MaxCut, cmd::RealtimeCut, cmd::RealtimeRays, cmd::RepresentativesChoice, cmd::Exposure, cmd::Camera, cmd::Screenshot,
                  cmd::Save, cmd::Quit, cmd::WaitFrames, cmd::WaitRefined, cmd::SaveView>;
 
 // One line without its comment; the error names the command and argument.

@@ -51,7 +51,7 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
     int max_cut = int(view.max_cut);
     if (ImGui::SliderInt("max cut", &max_cut, 1, 4096, "%d", ImGuiSliderFlags_Logarithmic))
         report(state, session.set_max_cut(uint32_t(std::max(max_cut, 1))), "max cut set");
-    if (view.mode == RenderMode::kRealTime) {
+    if (view.mode == RenderMode::kRealtime) {
         // Shadow rays per pixel and frame: the real-time mode's whole budget.
         int nodes = int(view.realtime_cut);
         if (ImGui::SliderInt("real-time cut", &nodes, 1, int(kMaxStochasticCut)))

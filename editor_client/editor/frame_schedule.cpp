@@ -34,13 +34,13 @@ FrameSchedule::FrameSchedule(const FrameScheduleOptions& options)
 bool FrameSchedule::tiled(const RenderSettings& settings) const {
     // The real-time mode shows whole frames at the full size: its history
     // refines the view, not tiles or a coarser size.
-    return refinement_ && settings.mode != RenderMode::kRealTime;
+    return refinement_ && settings.mode != RenderMode::kRealtime;
 }
 
 FramePlan FrameSchedule::plan(const FrameInputs& inputs) {
     FramePlan plan;
     plan.settings = inputs.settings;
-    plan.realtime = inputs.settings.mode == RenderMode::kRealTime;
+    plan.realtime = inputs.settings.mode == RenderMode::kRealtime;
     plan.tiled = tiled(inputs.settings);
     if (plan.tiled) {
         restart_if_changed(inputs);

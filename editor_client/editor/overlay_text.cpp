@@ -31,7 +31,7 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
             lines.push_back(format("refining: pass %u of %u (full size), %.0f%% of its tiles", r->pass + 1,
                                    r->passes, r->percent));
     }
-    if (view.mode == RenderMode::kRealTime)
+    if (view.mode == RenderMode::kRealtime)
         lines.push_back(format("mode %s, cut of %u, at most %u shadow rays per pixel and frame",
                                render_mode_name(view.mode), view.realtime_cut,
                                realtime_ray_budget(view.realtime_cut, view.realtime_rays)));

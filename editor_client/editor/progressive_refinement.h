@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "editor_client/render/pixel_region.h"
+#include "editor_client/render/gpu/pixel_region.h"
 
 namespace lc::client {
 

@@ -72,9 +72,9 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
                 return session.set_error_ratio(c.ratio);
             } else if constexpr (std::is_same_v<T, cmd::MaxCut>) {
                 return session.set_max_cut(c.max_cut);
-            } else if constexpr (std::is_same_v<T, cmd::RealTimeCut>) {
+            } else if constexpr (std::is_same_v<T, cmd::RealtimeCut>) {
                 return session.set_realtime_cut(c.nodes);
-            } else if constexpr (std::is_same_v<T, cmd::RealTimeRays>) {
+            } else if constexpr (std::is_same_v<T, cmd::RealtimeRays>) {
                 return session.set_realtime_rays(c.rays);
             } else if constexpr (std::is_same_v<T, cmd::RepresentativesChoice>) {
                 return session.set_representatives(c.name);

@@ -18,7 +18,7 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/pixel_region.h"
+#include "editor_client/render/gpu/pixel_region.h"
 #include "editor_client/render/render_settings.h"
 #include "lightcuts/result.h"
 

@@ -62,7 +62,7 @@ const char* render_mode_name(RenderMode mode) {
             return "cuts";
         case RenderMode::kCutSize:
             return "cutsize";
-        case RenderMode::kRealTime:
+        case RenderMode::kRealtime:
             return "realtime";
     }
     return "unknown";

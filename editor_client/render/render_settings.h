@@ -31,8 +31,8 @@ enum class RenderMode : uint8_t {
     kCuts = 2,       // each distinct cut a stable colour
     kCutSize = 3,    // heatmap of cut nodes per pixel with a colour scale bar
     // Stochastic lightcuts with a fixed shadow-ray budget, accumulated over
-    // frames (RealTimePass): noise that converges instead of a bias.
-    kRealTime = 4,
+    // frames (RealtimePass): noise that converges instead of a bias.
+    kRealtime = 4,
 };
 inline constexpr int kRenderModeCount = 5;
 
@@ -43,12 +43,12 @@ inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kRefer
 // Modes that search a cut per pixel with a criterion (the real-time mode
 // refines one per block its own way, and draws its representatives).
 inline bool mode_searches_cuts(RenderMode mode) {
-    return mode_needs_tree(mode) && mode != RenderMode::kRealTime;
+    return mode_needs_tree(mode) && mode != RenderMode::kRealtime;
 }
 // Modes whose display is tone-mapped radiance (the others visualise cuts).
 inline bool mode_is_shaded(RenderMode mode) {
     return mode == RenderMode::kReference || mode == RenderMode::kLightcuts ||
-           mode == RenderMode::kRealTime;
+           mode == RenderMode::kRealtime;
 }
 
 const char* criterion_name(CutCriterion criterion);
@@ -113,7 +113,7 @@ struct RenderSettings {
     // The frame's pixels are the corners of the pixels of a (width - 1) x
     // (height - 1) image seen by the same camera (reconstruction cuts' samples).
     bool corner_grid = false;
-    // The real-time mode (RenderMode::kRealTime): nodes in each 8x8 block's
+    // The real-time mode (RenderMode::kRealtime): nodes in each 8x8 block's
     // cut, so at most this many shadow rays per pixel and frame.
     uint32_t realtime_cut = 16;
     // Its shadow rays per pixel and frame, picked among the cut's drawn lights

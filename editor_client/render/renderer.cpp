@@ -53,7 +53,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, c
         context, renderer->descriptors_.layout(), renderer->gpu_scene_, scene, options.primary);
     if (!passes) return make_error(passes.error());
     renderer->passes_.emplace(std::move(passes).value());
-    renderer->passes_->real_time().set_policy(options.realtime);
+    renderer->passes_->realtime().set_policy(options.realtime);
     LC_RETURN_IF_ERROR(renderer->set_tree(tree));
     return renderer;
 }
@@ -73,7 +73,7 @@ Status Renderer::set_tree(const WalkTree* tree) {
     if (!uploaded) return uploaded;
     const std::span<const GpuTreeNode> nodes =
         tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
-    LC_RETURN_IF_ERROR(passes_->real_time().set_tree_nodes(context_.command_pool(), nodes));
+    LC_RETURN_IF_ERROR(passes_->realtime().set_tree_nodes(context_.command_pool(), nodes));
     SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most
     // light edits leave them as they were, and the BVH stays.
@@ -90,7 +90,7 @@ Status Renderer::set_tree(const WalkTree* tree) {
                       d.reason);
     // The pipelines are keyed by the effects' specialization constants: a
     // frame after a change finds (or builds) the ones that match.
-    passes_->real_time().drop_history();
+    passes_->realtime().drop_history();
     return Ok{};
 }
 
@@ -98,7 +98,7 @@ Status Renderer::set_environment(std::shared_ptr<const Environment> environment)
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     descriptors_.mark_dirty();
     LC_RETURN_IF_ERROR(background_.set_environment(context_, std::move(environment)));
-    passes_->real_time().drop_history();
+    passes_->realtime().drop_history();
     return Ok{};
 }
 
@@ -271,7 +271,7 @@ void Renderer::record_prepared(VkCommandBuffer cmd, const PreparedFrame& prepare
         if (!skipped) pass->record(cmd, frame);
         measurements_.end_pass(cmd, pass->last_stage(), ++pass_number);
     }
-    if (settings.mode == RenderMode::kRealTime) passes_->real_time().advance();
+    if (settings.mode == RenderMode::kRealtime) passes_->realtime().advance();
 
     // Results become readable by copies (read-backs, blits) and by the host (counters).
     vk::memory_barrier(cmd, kComputeStage, kStorageWrite,
@@ -367,7 +367,7 @@ RenderStats Renderer::frame_stats(const RenderSettings& settings, const Submitte
     RenderStats stats;
     stats.mode = render_mode_name(settings.mode);
     stats.criterion = mode_searches_cuts(settings.mode) ? criterion_name(settings.criterion)
-                      : settings.mode == RenderMode::kRealTime ? "stochastic"
+                      : settings.mode == RenderMode::kRealtime ? "stochastic"
                                                                : "none";
     stats.device = context_.physical().name();
     stats.width = settings.width;
@@ -412,10 +412,10 @@ void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& s
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(lights_.leaf_count(), 1u) + chunk - 1) / chunk;
     }
-    if (settings.mode == RenderMode::kRealTime) {
+    if (settings.mode == RenderMode::kRealtime) {
         stats.realtime_cut = settings.realtime_cut;
         stats.realtime_rays = settings.realtime_rays;
-        stats.realtime_frames = passes_->real_time().frames_accumulated();
+        stats.realtime_frames = passes_->realtime().frames_accumulated();
     }
     if (mode_searches_cuts(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;

@@ -17,21 +17,21 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/background_buffers.h"
-#include "editor_client/render/frame_descriptors.h"
-#include "editor_client/render/frame_measurements.h"
-#include "editor_client/render/gpu_lights.h"
-#include "editor_client/render/gpu_occluders.h"
-#include "editor_client/render/gpu_scene.h"
-#include "editor_client/render/loop_budget.h"
+#include "editor_client/render/gpu/background_buffers.h"
+#include "editor_client/render/gpu/frame_descriptors.h"
+#include "editor_client/render/gpu/frame_measurements.h"
+#include "editor_client/render/gpu/gpu_lights.h"
+#include "editor_client/render/gpu/gpu_occluders.h"
+#include "editor_client/render/gpu/gpu_scene.h"
+#include "editor_client/render/gpu/loop_budget.h"
 #include "editor_client/render/passes/frame_passes.h"
-#include "editor_client/render/pipeline_cache.h"
-#include "editor_client/render/pixel_region.h"
+#include "editor_client/render/gpu/pipeline_cache.h"
+#include "editor_client/render/gpu/pixel_region.h"
 #include "editor_client/render/render_settings.h"
-#include "editor_client/render/render_stats.h"
-#include "editor_client/render/render_targets.h"
-#include "editor_client/render/scene_effects.h"
-#include "editor_client/render/vpl_visibility.h"
+#include "editor_client/render/output/render_stats.h"
+#include "editor_client/render/gpu/render_targets.h"
+#include "editor_client/render/analysis/scene_effects.h"
+#include "editor_client/render/gpu/vpl_visibility.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/gpu_layout.h"
@@ -161,9 +161,9 @@ public:
     const ShadowBvh& shadow_bvh() const { return occluders_.bvh(); }
     float shadow_bias() const { return occluders_.bias(); }
     // The real-time mode: frames in its history after the last frame (its mean is the image).
-    uint32_t real_time_frames() const { return passes_->real_time().frames_accumulated(); }
+    uint32_t realtime_frames() const { return passes_->realtime().frames_accumulated(); }
     // The next real-time frame starts a history of its own, whatever the last one was.
-    void restart_real_time() { passes_->real_time().drop_history(); }
+    void restart_realtime() { passes_->realtime().drop_history(); }
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
     // the device's loop budget (all of them in one on devices without one).
     uint32_t reference_chunk() const;

@@ -12,7 +12,7 @@
 #include <imgui.h>
 
 #include "editor_client/editor/editor_panels.h"
-#include "editor_client/render/image_io.h"
+#include "editor_client/render/output/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/window/editor_loop_host.h"
 #include "editor_client/window/frame_presenter.h"
@@ -250,7 +250,7 @@ Status EditorLoop::account(FramePlan& plan, Clock::time_point frame_start) {
     else
         frame.gpu_ms = 0.0;
     frame.realtime_frames.reset();
-    if (plan.realtime) frame.realtime_frames = renderer_->real_time_frames();
+    if (plan.realtime) frame.realtime_frames = renderer_->realtime_frames();
     summary_.last_mode = plan.settings.mode;
     if (steady_since_) ++summary_.steady_frames;
     const std::vector<std::string> lines = overlay_lines(session_, frame);

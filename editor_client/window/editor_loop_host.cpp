@@ -3,7 +3,7 @@
 #include <system_error>
 #include <vector>
 
-#include "editor_client/render/image_io.h"
+#include "editor_client/render/output/image_io.h"
 #include "editor_client/render/passes/temporal_history.h"
 #include "lightcuts/status_macros.h"
 
@@ -48,8 +48,8 @@ Status EditorLoopHost::save_view(const std::filesystem::path& path) {
 
 bool EditorLoopHost::view_refined() const {
     const RenderSettings settings = sync_.settings(width_, height_);
-    if (settings.mode == RenderMode::kRealTime)
-        return sync_.in_step() && renderer_.real_time_frames() >= kRealTimeRefinedFrames;
+    if (settings.mode == RenderMode::kRealtime)
+        return sync_.in_step() && renderer_.realtime_frames() >= kRealtimeRefinedFrames;
     if (!schedule_.progressive()) return true;
     return sync_.in_step() && schedule_.refined_for(settings, sync_.updates());
 }

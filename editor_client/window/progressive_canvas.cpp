@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "editor_client/render/render_targets.h"
+#include "editor_client/render/gpu/render_targets.h"
 #include "editor_client/vk/barriers.h"
 
 namespace lc::client {

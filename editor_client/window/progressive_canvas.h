@@ -7,7 +7,7 @@
 
 #include <span>
 
-#include "editor_client/render/pixel_region.h"
+#include "editor_client/render/gpu/pixel_region.h"
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/image.h"
 #include "lightcuts/result.h"

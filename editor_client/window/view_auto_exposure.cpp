@@ -3,7 +3,7 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/error_stats.h"
+#include "editor_client/render/analysis/error_stats.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {

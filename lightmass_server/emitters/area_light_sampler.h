@@ -12,8 +12,8 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake_stop.h"
-#include "lightmass_server/index_range.h"
+#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/builders/index_range.h"
 
 namespace lc::bake {
 

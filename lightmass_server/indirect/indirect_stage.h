@@ -14,7 +14,7 @@
 #include "lightmass_server/indirect/radiosity_solver.h"
 #include "lightmass_server/indirect/vpl_tracer.h"
 #include "lightmass_server/raycast/ray_caster.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace lc::bake {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "lightcuts/result.h"
-#include "lightmass_server/index_range.h"
+#include "lightmass_server/builders/index_range.h"
 
 namespace lc::bake {
 

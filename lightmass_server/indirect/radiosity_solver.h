@@ -16,12 +16,12 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake_stop.h"
+#include "lightmass_server/bake/bake_stop.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/indirect/patch_mesh.h"
 #include "lightmass_server/indirect/radiosity_parts.h"
 #include "lightmass_server/raycast/ray_caster.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace lc::bake {
 

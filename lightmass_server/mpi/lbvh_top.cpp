@@ -7,7 +7,7 @@
 
 #include "lightcuts/status_macros.h"
 #include "lightcuts/tree_export.h"
-#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/builders/cluster_attributes.h"
 #include "protocol/channel_records.h"
 
 namespace lc::bake {

@@ -15,7 +15,7 @@
 #include "lightcuts/build_tree.h"
 #include "lightcuts/result.h"
 #include "lightmass_server/mpi/lbvh_units.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace lc::bake {
 

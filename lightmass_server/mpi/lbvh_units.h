@@ -15,8 +15,8 @@
 #include "lightcuts/build_tree.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"
-#include "lightmass_server/lbvh_builder.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/lbvh_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace lc::bake {
 

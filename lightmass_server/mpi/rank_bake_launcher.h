@@ -9,7 +9,7 @@
 // job's exit status and log, and the server goes on. Cancelling (the progress
 // callback returns false) signals the whole process group, so every rank stops.
 #include "lightcuts/result.h"
-#include "lightmass_server/bake_pipeline.h"
+#include "lightmass_server/bake/bake_pipeline.h"
 
 namespace lc::bake {
 

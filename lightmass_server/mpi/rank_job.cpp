@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "lightcuts/status_macros.h"
-#include "lightmass_server/result_channel_file.h"
+#include "lightmass_server/bake/result_channel_file.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
 #include "protocol/environment_records.h"

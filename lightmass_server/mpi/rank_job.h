@@ -18,7 +18,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake_pipeline.h"
+#include "lightmass_server/bake/bake_pipeline.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "lightmass_server/emitters/area_light_sampler.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "lightcuts/seeded_mixer.h"
 #include "lightmass_server/emitters/environment_sampler.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace {
 

@@ -17,7 +17,7 @@
 
 #include <glm/common.hpp>
 
-#include "lightmass_server/result_stream.h"
+#include "lightmass_server/net/result_stream.h"
 #include "protocol/asio.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"

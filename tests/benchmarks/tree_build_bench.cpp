@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace {
 

@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <span>
 
-#include "editor_client/render/pipeline_cache.h"
-#include "editor_client/render/pixel_region.h"
+#include "editor_client/render/gpu/pipeline_cache.h"
+#include "editor_client/render/gpu/pixel_region.h"
 #include "editor_client/render/render_settings.h"
-#include "editor_client/render/render_targets.h"
-#include "editor_client/render/scene_effects.h"
+#include "editor_client/render/gpu/render_targets.h"
+#include "editor_client/render/analysis/scene_effects.h"
 #include "lightcuts/gpu_layout.h"
 #include "lightcuts/result.h"
 

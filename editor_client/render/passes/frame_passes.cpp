@@ -13,8 +13,8 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     Result<std::unique_ptr<GBufferPass>> gbuffer =
         GBufferPass::create(device.handle(), gpu_scene, scene);
     if (!gbuffer) return make_error(gbuffer.error());
-    Result<std::unique_ptr<RealTimePass>> real_time = RealTimePass::create(device, frame_layout);
-    if (!real_time) return make_error(real_time.error());
+    Result<std::unique_ptr<RealtimePass>> realtime = RealtimePass::create(device, frame_layout);
+    if (!realtime) return make_error(realtime.error());
     Result<std::unique_ptr<PrimaryRaysPass>> primary_rays =
         PrimaryRaysPass::create(context, frame_layout, gpu_scene, scene);
     if (!primary_rays) return make_error(primary_rays.error());
@@ -27,14 +27,14 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
                           : PrimaryVisibility::kRaster;
     passes.may_fall_back_ = primary == PrimaryChoice::kAuto;
     passes.gbuffer_ = std::move(gbuffer).value();
-    passes.real_time_ = std::move(real_time).value();
+    passes.realtime_ = std::move(realtime).value();
     return passes;
 }
 
 std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settings) {
     FramePass* lighting = &reference_;
-    if (settings.mode == RenderMode::kRealTime) {
-        lighting = real_time_.get();
+    if (settings.mode == RenderMode::kRealtime) {
+        lighting = realtime_.get();
     } else if (mode_needs_tree(settings.mode)) {
         if (settings.criterion == CutCriterion::kRadius)
             lighting = &radius_walk_;

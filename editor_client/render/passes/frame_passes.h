@@ -10,7 +10,7 @@
 #include "editor_client/render/passes/gbuffer_pass.h"
 #include "editor_client/render/passes/primary_rays_pass.h"
 #include "editor_client/render/passes/radius_walk_pass.h"
-#include "editor_client/render/passes/real_time_pass.h"
+#include "editor_client/render/passes/realtime_pass.h"
 #include "editor_client/render/passes/reference_pass.h"
 #include "editor_client/render/passes/tone_map_pass.h"
 
@@ -34,8 +34,8 @@ public:
     FramePass& gbuffer();
     // How the G-buffer is made (PrimaryChoice's rule, the same for every mode).
     PrimaryVisibility primary() const { return primary_; }
-    RealTimePass& real_time() { return *real_time_; }
-    const RealTimePass& real_time() const { return *real_time_; }
+    RealtimePass& realtime() { return *realtime_; }
+    const RealtimePass& realtime() const { return *realtime_; }
     const BoundHeapPass& bound_heap() const { return bound_heap_; }
 
 private:
@@ -47,7 +47,7 @@ private:
     RadiusWalkPass radius_walk_;
     BoundWalkPass bound_walk_;
     BoundHeapPass bound_heap_;
-    std::unique_ptr<RealTimePass> real_time_;
+    std::unique_ptr<RealtimePass> realtime_;
     ToneMapPass tone_map_;
     CutViewPass cut_view_;
 };

@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "editor_client/render/gpu_scene.h"
+#include "editor_client/render/gpu/gpu_scene.h"
 #include "editor_client/render/passes/frame_pass.h"
 #include "editor_client/vk/pipeline_layout.h"
 #include "lightcuts/scene.h"

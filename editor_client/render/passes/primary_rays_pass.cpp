@@ -7,7 +7,7 @@
 
 #include "editor_client/render/passes/compute_pass.h"
 #include "editor_client/render/passes/gbuffer_pass.h"
-#include "editor_client/render/primary_geometry.h"
+#include "editor_client/render/gpu/primary_geometry.h"
 #include "editor_client/vk/barriers.h"
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"

@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "editor_client/render/gpu_scene.h"
+#include "editor_client/render/gpu/gpu_scene.h"
 #include "editor_client/render/passes/frame_pass.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/context.h"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "editor_client/render/workgroup_lattice.h"
+#include "editor_client/render/gpu/workgroup_lattice.h"
 #include "editor_client/vk/barriers.h"
 #include "reference_comp.spv.h"
 

@@ -25,13 +25,13 @@ namespace lc::client {
 
 // Frames after which a resting real-time view counts as refined (the spatial
 // filter is gone: the image is the accumulated mean itself).
-inline constexpr uint32_t kRealTimeRefinedFrames = 16;
+inline constexpr uint32_t kRealtimeRefinedFrames = 16;
 
 // How much history the temporal pass keeps (GpuTemporalParams).
 struct TemporalPolicy {
     uint32_t still_history_cap = 1u << 20;  // a resting view: the mean of every frame
     uint32_t moving_history_cap = 12;       // a moving one: MegaLights keeps at most 12
-    uint32_t filter_frames = kRealTimeRefinedFrames;  // the spatial filter fades out over these
+    uint32_t filter_frames = kRealtimeRefinedFrames;  // the spatial filter fades out over these
     float position_tolerance = 0.02f;       // reprojection, x the eye distance
     // The frames' draws step along Weyl sequences (frame_strata.glsl); false
     // draws every frame independently (what render_realtime_test compares).

@@ -7,7 +7,7 @@
 #include <limits>
 #include <string>
 
-#include "lightmass_server/cluster_attributes.h"
+#include "lightmass_server/builders/cluster_attributes.h"
 
 namespace lc::bake {
 namespace {

@@ -6,7 +6,7 @@
 #include "lightcuts/status_macros.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
-#include "lightmass_server/index_range.h"
+#include "lightmass_server/builders/index_range.h"
 #include "lightmass_server/indirect/radiosity_parts.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "lightmass_server/mpi/rank/split_lbvh.h"

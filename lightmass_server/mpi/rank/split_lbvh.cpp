@@ -12,7 +12,7 @@
 #include <string>
 
 #include "lightcuts/status_macros.h"
-#include "lightmass_server/build_phase_timer.h"
+#include "lightmass_server/builders/build_phase_timer.h"
 #include "lightmass_server/mpi/lbvh_top.h"
 #include "lightmass_server/mpi/lbvh_units.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"

@@ -17,7 +17,7 @@
 #include "lightcuts/result.h"
 #include "lightmass_server/mpi/rank/morton_partition.h"
 #include "lightmass_server/mpi/rank/rank_bake.h"
-#include "lightmass_server/tree_builder.h"
+#include "lightmass_server/builders/tree_builder.h"
 
 namespace lc::bake {
 

@@ -1,0 +1,55 @@
+#pragma once
+// The bake server: accepts TCP connections (TLS when given a certificate) on
+// one I/O thread, runs bakes on a worker pool, stops cleanly on stop() (which
+// SIGINT/SIGTERM call in main).
+#include <tbb/global_control.h>
+
+#include <memory>
+#include <vector>
+
+#include "lightcuts/result.h"
+#include "lightmass_server/net/bake_lanes.h"
+#include "lightmass_server/net/connection.h"
+#include "lightmass_server/net/memory_budget.h"
+#include "lightmass_server/server_options.h"
+#include "protocol/asio.h"
+#include "protocol/channel_recorder.h"
+#include "protocol/transport.h"
+
+namespace lc::bake {
+
+class Server {
+public:
+    explicit Server(ServerOptions options);
+    ~Server();
+
+    // Loads the TLS certificate and key, binds and listens. Refuses a
+    // non-loopback address without both a token and TLS.
+    Result<tcp::endpoint> listen();
+    // Serves until stop(); call from one thread.
+    void run();
+    // Thread-safe: closes the acceptor and every connection, cancels bakes.
+    void stop();
+
+    asio::io_context& io() { return io_; }
+
+private:
+    awaitable<void> accept_loop();
+
+    ServerOptions options_;
+    // The builders' TBB loops share the bake threads' budget: --threads 1 is one
+    // thread in all (TBB would otherwise add a worker per core).
+    tbb::global_control bake_parallelism_;
+    // Declared before io_: connections still queued on io_ at destruction use it.
+    std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
+    // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.
+    MemoryBudget memory_budget_;
+    asio::io_context io_;
+    BakeLanes workers_;
+    tcp::acceptor acceptor_;
+    ChannelRecorder recorder_;
+    std::vector<std::weak_ptr<Connection>> connections_;
+    uint64_t next_connection_id_ = 1;
+};
+
+}  // namespace lc::bake
