@@ -4,7 +4,7 @@
 # into out/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
+bash scripts/install_deps.sh
 bash scripts/build.sh default lightmass_server editor_client
 
 bin=build/bin
@@ -110,7 +110,7 @@ done
 # server samples the sun's disc and the sky into 3,000 directional lights of the tree (the census
 # says so in the bake's progress, the log and the stats); the ground and the boxes cast the sun's
 # shadows, and the sky is the background above the horizon.
-/usr/bin/python3 scripts/make_sky_scene.py "$out/yard.gltf"
+/usr/bin/python3 scripts/tools/make_sky_scene.py "$out/yard.gltf"
 "$bin/editor_client" bake "$out/yard.gltf" --server "$server" -o "$out/yard.lcut" > /dev/null
 "$bin/editor_client" render "$out/yard.gltf" --tree "$out/yard.lcut" --size 256x256 \
     --camera 12,2.5,12,0,2,0,55 -o "$out/yard_sky.png" --stats "$out/yard_sky.json"
@@ -169,7 +169,7 @@ if command -v mpirun > /dev/null && [ -x "$bin/lightmass_rank" ]; then
       || { echo "demo: the tree baked over 3 MPI ranks differs from the one-process tree"; exit 1; }
   echo "demo: 3 MPI ranks baked the same tree, byte for byte"
 else
-  echo "demo: mpirun or lightmass_rank missing: the bake over MPI ranks is left out (scripts/install-deps.sh)"
+  echo "demo: mpirun or lightmass_rank missing: the bake over MPI ranks is left out (scripts/install_deps.sh)"
 fi
 /usr/bin/python3 - "$out" <<'PY'
 import json, sys

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 preset=default
 if [ "${1:-}" = "--asan" ]; then preset=asan; fi
 
-bash scripts/install-deps.sh
+bash scripts/install_deps.sh
 bash scripts/build.sh "$preset"
 # Vulkan validation layers are enabled for every test (tests/CMakeLists.txt).
 ctest --preset "$preset" -j 2 --timeout 600

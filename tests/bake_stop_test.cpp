@@ -2,7 +2,7 @@
 // VPL tracer (and its cap on the lights it deposits), radiosity with point
 // lights and patches shooting, area-light and environment sampling, and the
 // whole pipeline. A cancel gives kCancelled; a deadline an error naming it.
-// Stop latencies are measured by scripts/fault-test.sh hostile-bake, not here.
+// Stop latencies are measured by scripts/fault_test.sh hostile-bake, not here.
 #include "lightmass_server/bake/bake_stop.h"
 
 #include <gtest/gtest.h>

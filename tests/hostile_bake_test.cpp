@@ -2,7 +2,7 @@
 // channel open, a bake past --max-bake-seconds, SIGTERM during a radiosity
 // bake's point-light pass, and a small bake sent while a 10^9-path one runs.
 // Bounds here are generous (seconds, where the old server never ended);
-// latencies are measured by scripts/fault-test.sh hostile-bake.
+// latencies are measured by scripts/fault_test.sh hostile-bake.
 #include <gtest/gtest.h>
 
 #include <atomic>

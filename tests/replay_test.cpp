@@ -1,4 +1,4 @@
-// Replays channel dumps recorded by the real programs (scripts/record-replay-data.sh):
+// Replays channel dumps recorded by the real programs (scripts/tools/record_replay_data.sh):
 // the recorded scene channel, baked again, must give the recorded result channel
 // byte for byte; the client's and the server's recordings must agree; the
 // client must import the recorded result.
@@ -80,7 +80,7 @@ TEST(Replay, SceneChannelBakesToTheRecordedResultByteForByte) {
         std::vector<uint8_t> replayed = encode_result_channel(built->tree);
         EXPECT_EQ(replayed.size(), result_dump->payload.size());
         EXPECT_TRUE(replayed == result_dump->payload) << "the builder no longer reproduces the recorded tree; "
-                                                         "if the change is deliberate, run scripts/record-replay-data.sh";
+                                                         "if the change is deliberate, run scripts/tools/record_replay_data.sh";
     }
 }
 

@@ -301,7 +301,7 @@ json reflect(const LcShaderModule& module) {
     std::filesystem::remove_all(dir);
     if (status != 0)
         ADD_FAILURE() << "spirv-cross failed on " << module.name
-                      << " (installed by scripts/install-deps.sh?)";
+                      << " (installed by scripts/install_deps.sh?)";
     return reflection;
 }
 

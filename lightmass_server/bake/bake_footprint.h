@@ -5,7 +5,7 @@
 // of finding out as the process grows. The per-item costs are the structures'
 // sizes times the copies the stages keep alive at once, calibrated against
 // the server's measured peak (VmHWM) for every stage at several sizes
-// (scripts/fault-test.sh footprint, docs/bench/bake_footprint.csv,
+// (scripts/fault_test.sh footprint, docs/bench/bake_footprint.csv,
 // docs/RELIABILITY.md): an upper bound, by 7-16 % from a million lights up.
 // The stored channels are not counted here: their reservations hold them.
 #include <cstdint>

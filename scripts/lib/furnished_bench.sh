@@ -1,4 +1,4 @@
-# Shared by scripts/bench-speedup.sh and scripts/bench-supersampling.sh (sourced, not run).
+# Shared by scripts/bench/speedup.sh and scripts/bench/supersampling.sh (sourced, not run).
 
 # build_bench_client BUILD_DIR: configures BUILD_DIR when it has no cache yet,
 # builds the client and the server, and sets LC_CLIENT to the client.

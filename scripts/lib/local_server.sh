@@ -1,4 +1,4 @@
-# Shared by scripts/load-test.sh and scripts/fault-test.sh (sourced, not run).
+# Shared by scripts/load_test.sh and scripts/fault_test.sh (sourced, not run).
 
 # start_local_server BIN DIR [SERVER ARGS...]: starts BIN on 127.0.0.1 (any
 # free port) and waits up to 20 s for its port file. Sets LC_SERVER_PID and

@@ -1,4 +1,4 @@
-"""Peers that stall a lightmass_server connection (scripts/fault-test.sh).
+"""Peers that stall a lightmass_server connection (scripts/fault_test.sh).
 
   slow:   announces a 64-byte frame, then sends one byte every --interval s
   silent: connects and sends nothing

@@ -1,6 +1,6 @@
 // Area lights: sampling emissive triangles into oriented lights, then the
 // tree build over them, for 10^4, 10^5 and 10^6 samples (scripts/
-// bench-area-lights.sh writes docs/bench/area_lights_build.csv).
+// bench/area_lights.sh writes docs/bench/area_lights_build.csv).
 #include <benchmark/benchmark.h>
 
 #include <chrono>

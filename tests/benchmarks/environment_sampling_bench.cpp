@@ -1,6 +1,6 @@
 // Environment sampling plus tree build for 10^4, 10^5 and 10^6 directional
 // lights, from a Preetham sun and sky and from a 2048 x 1024 HDR map. Prints
-// CSV (scripts/bench-environment.sh writes it to docs/bench/environment_sampling.csv).
+// CSV (scripts/bench/environment.sh writes it to docs/bench/environment_sampling.csv).
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // Issue 27's hostile client against a running lightmass_server (scripts/
-// fault-test.sh hostile starts the server, samples its memory and reads these
+// fault_test.sh hostile starts the server, samples its memory and reads these
 // lines). One scenario per run:
 //   vpl-deep       1,000 paths of 65,535 bounces in a white furnace
 //   radiosity      about 2 million patches and 1,000 point lights
@@ -12,7 +12,7 @@
 //   vpl-fit        100,000 paths of 3 bounces in a white furnace, to the end
 //   silent-channel opens a 200 MB channel, sends 2 bytes, goes silent
 //   points         --size point lights, no geometry, to the end (a tree
-//                  builder's peak: scripts/fault-test.sh footprint)
+//                  builder's peak: scripts/fault_test.sh footprint)
 // --size N scales a scenario for the footprint calibration: area and
 // area-fit's samples, vpl-fit's paths, radiosity's point lights (with
 // --patch-size), the environment map's width (height half of it), points'

@@ -1,7 +1,7 @@
 // Indirect light on the Cornell box lit by its ceiling panel: bake time and
 // error against a path-traced reference for VPL counts and radiosity patch
 // sizes, and the radiosity convergence curve. Writes two CSVs (the paths are
-// the arguments); scripts/bench-indirect.sh runs it and plots them.
+// the arguments); scripts/bench/indirect.sh runs it and plots them.
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // Reference-mode throughput on the GPU: light evaluations per second of the
 // renderer's lighting pass at 512x512 with 1,024 and 16,384 point lights,
 // next to a minimal kernel that runs only the light loop (same light layout,
-// same workgroup size) in the same process. scripts/bench-render.sh runs it
+// same workgroup size) in the same process. scripts/bench/render.sh runs it
 // and writes docs/bench/render_throughput.csv.
 //
 // The scene is the generated room written to glTF and read back through the

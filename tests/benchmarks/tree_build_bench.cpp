@@ -1,5 +1,5 @@
 // Light-tree build time and memory per builder and light count. Run one case
-// per process (scripts/bench-build.sh does) so peak RSS belongs to that case.
+// per process (scripts/bench/build.sh does) so peak RSS belongs to that case.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 

@@ -4,7 +4,7 @@
 // cancel() to return. At 32,768 lights (the default limit) every level pairs
 // exactly; above it the first levels pair approximately.
 //   tree_cancel_bench [LIGHTS=32768, even] [CANCELS=8] [DELAYS_MS=a,b,...]
-//   (scripts/fault-test.sh tree-cancel); with DELAYS_MS, cancelled at those
+//   (scripts/fault_test.sh tree-cancel); with DELAYS_MS, cancelled at those
 //   delays only, the full builds skipped (their column reads 0).
 //   tree_cancel_bench LIGHTS hash: the built tree's bytes hashed (no cancel).
 // Prints CSV: lights,cancel_after_ms,outcome,latency_ms,full_build_ms, the

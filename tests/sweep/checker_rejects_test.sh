@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/check_sweep.py accepts a real quick-sweep output (fixtures/good_*) and
+# scripts/tools/check_sweep.py accepts a real quick-sweep output (fixtures/good_*) and
 # rejects each broken variant, naming the check that caught it:
 #   bad_nan_renders.csv       a NaN error value                  -> [finite]
 #   bad_monotone_renders.csv  E=0.005 worse than E=0.02          -> [monotone-error]
@@ -8,7 +8,7 @@
 # Usage: bash tests/sweep/checker_rejects_test.sh
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-checker="$here/../../scripts/check_sweep.py"
+checker="$here/../../scripts/tools/check_sweep.py"
 fixtures="$here/fixtures"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
