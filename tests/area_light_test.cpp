@@ -12,7 +12,7 @@
 #include <numbers>
 
 #include "lightcuts/cpu_evaluator.h"
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "protocol/channel_records.h"
 #include "rectangle_form_factor.h"

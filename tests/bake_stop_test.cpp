@@ -3,7 +3,7 @@
 // lights and patches shooting, area-light and environment sampling, and the
 // whole pipeline. A cancel gives kCancelled; a deadline an error naming it.
 // Stop latencies are measured by scripts/fault_test.sh hostile-bake, not here.
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -12,7 +12,7 @@
 
 #include "indirect_scenes.h"
 #include "lightmass_server/builders/approximate_pairing.h"
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/radiosity_solver.h"

@@ -8,7 +8,7 @@
 
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/scene/surface_geometry.h"
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 
 namespace lc::client {
 namespace {

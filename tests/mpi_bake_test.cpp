@@ -16,7 +16,7 @@
 #include <fstream>
 #include <memory>
 
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/bake/result_channel_file.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"

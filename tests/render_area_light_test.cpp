@@ -12,7 +12,7 @@
 #include "editor_client/render/renderer.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "editor_client/scene/surface_geometry.h"
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "rectangle_form_factor.h"
 #include "render_test_support.h"
 

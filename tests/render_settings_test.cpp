@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 
 namespace lc::client {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/output/image_io.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"

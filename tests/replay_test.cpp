@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "editor_client/bake/tree_store.h"
-#include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"
 #include "protocol/channel_records.h"

@@ -46,7 +46,7 @@
 #include "editor_client/render/pixel_stride.h"
 #include "editor_client/render/realtime_frames.h"
 #include "editor_client/render/render_inputs.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/device/limits.h"
 #include "editor_client/render/output/render_stats.h"
 #include "editor_client/render/renderer.h"

@@ -19,7 +19,7 @@
 #include <variant>
 #include <vector>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"

@@ -12,7 +12,7 @@
 #include "editor_client/editor/adaptive_resolution.h"
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/progressive_refinement.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 
 namespace lc::client {
 

@@ -7,7 +7,7 @@
 #include <glm/vec3.hpp>
 #include <optional>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/scene.h"
 
 namespace lc::client {

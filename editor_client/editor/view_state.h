@@ -2,7 +2,7 @@
 // What the editor shows: mode, cut criterion and its controls, camera and
 // exposure. Edited through EditorSession so every change is validated.
 #include "lightcuts/cpu_evaluator.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 
 namespace lc::client {
 

@@ -38,13 +38,6 @@ void set_eye_rays(GpuBackground& out, const glm::mat4& view_proj, uint32_t width
 
 }  // namespace
 
-std::vector<GpuEnvironmentTexel> environment_texels(const Environment* environment) {
-    if (environment == nullptr || !environment->has_map()) return {GpuEnvironmentTexel{}};
-    std::vector<GpuEnvironmentTexel> texels(environment->map.texels.size());
-    for (size_t i = 0; i < texels.size(); ++i) texels[i].radiance = environment->map.texels[i];
-    return texels;
-}
-
 glm::dvec3 background_eye_ray(const GpuBackground& background, double x, double y) {
     return glm::normalize(glm::dvec3(background.ray_at_origin) + x * glm::dvec3(background.ray_step_x) +
                           y * glm::dvec3(background.ray_step_y));

@@ -7,15 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/environment.h"
 
 namespace lc::client {
-
-// The map's texels (one black texel for a sky or no environment, so that the
-// binding always holds a buffer).
-std::vector<GpuEnvironmentTexel> environment_texels(const Environment* environment);
 
 // The frame's background: the environment's parameters (null: black) and the
 // eye rays of a width x height frame rendered with `settings` over the scene

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "editor_client/render/gpu/pixel_region.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/result.h"
 
 namespace lc::client {

@@ -5,7 +5,7 @@
 // with each timing averaged over the frames.
 #include <cstdint>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/output/render_stats.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/result.h"

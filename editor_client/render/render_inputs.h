@@ -7,7 +7,7 @@
 #include <string>
 
 #include "editor_client/bake/bake_client.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/light_tree.h"
 #include "lightcuts/result.h"

@@ -27,7 +27,7 @@
 #include "editor_client/render/passes/frame_passes.h"
 #include "editor_client/render/gpu/pipeline_cache.h"
 #include "editor_client/render/gpu/pixel_region.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/output/render_stats.h"
 #include "editor_client/render/gpu/render_targets.h"
 #include "editor_client/render/analysis/scene_effects.h"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "editor_client/render/background.h"
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {

@@ -6,7 +6,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 
 namespace lc::client {
 

@@ -8,7 +8,6 @@
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/radiosity_ply.h"
-#include "lightmass_server/mpi/rank_bake_launcher.h"
 #include "lightmass_server/raycast/ray_caster.h"
 
 namespace lc::bake {
@@ -106,8 +105,12 @@ Result<std::vector<SceneLight>> join_lights(const std::vector<SceneLight>& scene
 
 }  // namespace
 
-Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress) {
-    if (inputs.ranks > 0) return run_bake_on_ranks(inputs, progress);
+Result<BuildResult> run_bake_in_process(const BakeInputs& inputs, const ProgressFn& progress) {
+    if (inputs.ranks > 0) {
+        return make_error("a bake over " + std::to_string(inputs.ranks) +
+                              " ranks runs through run_bake (mpi/bake_dispatch.h), not in process",
+                          ErrorKind::kFailed);
+    }
     const BakeStop* stop = inputs.stop.get();
     auto report = [&](const std::string& stage, double percent) {
         return !stop_requested(stop) && (!progress || progress(stage, percent));

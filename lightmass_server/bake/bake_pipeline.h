@@ -14,9 +14,9 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/indirect/indirect_stage.h"
-#include "lightmass_server/mpi/mpi_launch_options.h"
+#include "lightmass_server/bake/mpi_launch_options.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "protocol/messages.h"
 
@@ -35,7 +35,7 @@ struct BakeInputs {
     IndirectOptions indirect;  // bounced light, added to the tree as oriented lights
     std::string radiosity_out;  // a radiosity bake writes its patches here (PLY); empty: not
     int raycast_threads = 1;  // Embree's build threads (results do not depend on it)
-    // 0: baked in this process; N: over N MPI ranks (mpi/rank_bake_launcher.h).
+    // 0: baked in this process; N: over N MPI ranks (run_bake in mpi/bake_dispatch.h).
     uint32_t ranks = 0;
     MpiLaunchOptions mpi;
     // Cancel and deadline, polled inside every stage's loops; null: never stops.
@@ -45,6 +45,6 @@ struct BakeInputs {
 // A cancelled bake returns an error of kind ErrorKind::kCancelled (a bake
 // past its deadline, an error naming the deadline). The
 // report's effects hold the census (area lights simulated or skipped, why).
-Result<BuildResult> run_bake(const BakeInputs& inputs, const ProgressFn& progress);
+Result<BuildResult> run_bake_in_process(const BakeInputs& inputs, const ProgressFn& progress);
 
 }  // namespace lc::bake

@@ -6,7 +6,7 @@
 
 #include <span>
 
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/builders/level_pairing.h"
 
 namespace lc::bake {

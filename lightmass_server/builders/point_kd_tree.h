@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "lightcuts/build_tree.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {
 

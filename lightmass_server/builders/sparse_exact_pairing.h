@@ -9,7 +9,7 @@
 
 #include <span>
 
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/builders/level_pairing.h"
 #include "lightcuts/result.h"
 

@@ -9,7 +9,7 @@
 #include <cstddef>
 #include <utility>
 
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {
 

@@ -12,7 +12,7 @@
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {
 

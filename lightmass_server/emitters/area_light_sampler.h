@@ -12,7 +12,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/builders/index_range.h"
 
 namespace lc::bake {

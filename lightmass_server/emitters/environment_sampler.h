@@ -20,7 +20,7 @@
 #include "lightcuts/environment.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/builders/index_range.h"
 
 namespace lc::bake {

@@ -8,7 +8,7 @@
 
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {
 

@@ -16,7 +16,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_geometry.h"
 #include "lightcuts/scene_light.h"
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 #include "lightmass_server/indirect/indirect_light.h"
 #include "lightmass_server/indirect/patch_mesh.h"
 #include "lightmass_server/indirect/radiosity_parts.h"

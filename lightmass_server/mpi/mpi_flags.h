@@ -2,7 +2,7 @@
 // lightmass_server's --mpi-* flags: how a bake asking for ranks is launched.
 #include <CLI/CLI.hpp>
 
-#include "lightmass_server/mpi/mpi_launch_options.h"
+#include "lightmass_server/bake/mpi_launch_options.h"
 
 namespace lc::bake {
 

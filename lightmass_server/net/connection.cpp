@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "protocol/codec.h"
 
 namespace lc::bake {

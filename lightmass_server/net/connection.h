@@ -16,7 +16,7 @@
 
 #include "lightmass_server/net/bake_lanes.h"
 #include "lightmass_server/net/result_stream.h"
-#include "lightmass_server/server_options.h"
+#include "lightmass_server/net/server_options.h"
 #include "lightmass_server/net/server_session.h"
 #include "protocol/asio.h"
 #include "protocol/channel_recorder.h"

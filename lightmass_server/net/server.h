@@ -11,7 +11,7 @@
 #include "lightmass_server/net/bake_lanes.h"
 #include "lightmass_server/net/connection.h"
 #include "lightmass_server/net/memory_budget.h"
-#include "lightmass_server/server_options.h"
+#include "lightmass_server/net/server_options.h"
 #include "protocol/asio.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/transport.h"

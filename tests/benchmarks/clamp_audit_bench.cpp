@@ -18,7 +18,7 @@
 #include <functional>
 #include <vector>
 
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "lightcuts/exact_indirect_clamp.h"
 #include "tests/benchmarks/gbuffer_diagnostic.h"

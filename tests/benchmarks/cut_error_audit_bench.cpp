@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/pixel_stride.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/renderer.h"

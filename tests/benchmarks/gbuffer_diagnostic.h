@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf_loader.h"

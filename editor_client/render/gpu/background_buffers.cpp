@@ -3,11 +3,23 @@
 #include <span>
 #include <vector>
 
-#include "editor_client/render/background.h"
 #include "editor_client/render/gpu/storage_upload.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
+
+namespace {
+
+// The map's texels (one black texel for a sky or no environment, so that the
+// binding always holds a buffer).
+std::vector<GpuEnvironmentTexel> environment_texels(const Environment* environment) {
+    if (environment == nullptr || !environment->has_map()) return {GpuEnvironmentTexel{}};
+    std::vector<GpuEnvironmentTexel> texels(environment->map.texels.size());
+    for (size_t i = 0; i < texels.size(); ++i) texels[i].radiance = environment->map.texels[i];
+    return texels;
+}
+
+}  // namespace
 
 Status BackgroundBuffers::create(const vk::Context& context) {
     Result<vk::Buffer> frame =

@@ -9,7 +9,7 @@
 // rendered truncated. Devices without a limit accept everything.
 #include <cstdint>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/vk/device_quirks.h"
 #include "lightcuts/result.h"
 #include "lightcuts/shadow_bvh.h"

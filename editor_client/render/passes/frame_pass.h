@@ -10,7 +10,7 @@
 
 #include "editor_client/render/gpu/pipeline_cache.h"
 #include "editor_client/render/gpu/pixel_region.h"
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/gpu/render_targets.h"
 #include "editor_client/render/analysis/scene_effects.h"
 #include "lightcuts/gpu_layout.h"

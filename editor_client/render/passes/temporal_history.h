@@ -13,7 +13,7 @@
 #include <cstdint>
 #include <optional>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/descriptor_set.h"
 #include "editor_client/vk/device.h"

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/result.h"
 

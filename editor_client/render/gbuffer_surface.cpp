@@ -1,4 +1,4 @@
-#include "editor_client/render/analysis/gbuffer_surface.h"
+#include "editor_client/render/gbuffer_surface.h"
 
 #include "lightcuts/material_model.h"
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "lightmass_server/mpi/mpi_launch_options.h"
+#include "lightmass_server/bake/mpi_launch_options.h"
 #include "protocol/frame_decoder.h"
 #include "lightcuts/result.h"
 

@@ -1,4 +1,4 @@
-#include "editor_client/render/render_settings.h"
+#include "editor_client/render/settings/render_settings.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

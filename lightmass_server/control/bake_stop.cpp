@@ -1,4 +1,4 @@
-#include "lightmass_server/bake/bake_stop.h"
+#include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {
 

@@ -1,4 +1,4 @@
-#include "lightmass_server/server_options.h"
+#include "lightmass_server/net/server_options.h"
 
 #include "protocol/asio.h"
 
