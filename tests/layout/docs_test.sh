@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The docs stay readable and true (scripts/tools/check_docs.py): the checker
 # rejects a planted long line and a missing path; the architecture map is short
-# with short lines; every path the README, the docs and the folder READMEs name exists.
+# with short lines, the benchmarks under 500 lines; every path the README, the docs and the folder READMEs name exists.
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 checker="$repo/scripts/tools/check_docs.py"
@@ -17,4 +17,5 @@ for doc in missing long; do
 done
 cd "$repo"
 /usr/bin/python3 "$checker" --max-lines 250 docs/ARCHITECTURE.md
+/usr/bin/python3 "$checker" --max-lines 500 docs/BENCHMARKS.md
 /usr/bin/python3 "$checker" --max-width 0 README.md docs/*.md $(git ls-files '*/README.md' 2>/dev/null || ls */README.md)
