@@ -11,8 +11,10 @@
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
+#include "protocol/endpoint.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/tls_context.h"
+#include "protocol/token_file.h"
 #include "protocol/transport.h"
 
 namespace lc::client {
@@ -32,29 +34,6 @@ std::string seconds_text(double seconds) {
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-bool split_host_port(const std::string& text, std::string& host, std::string& port) {
-    size_t colon = text.rfind(':');
-    if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) return false;
-    host = text.substr(0, colon);
-    port = text.substr(colon + 1);
-    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-    return port.find_first_not_of("0123456789") == std::string::npos;
-}
-
-Result<std::string> read_token(const std::filesystem::path& path) {
-    if (path.empty()) return std::string();
-    std::FILE* f = std::fopen(path.c_str(), "r");
-    if (!f) return make_error("cannot read token file '" + path.string() + "'");
-    char buffer[1024] = {};
-    size_t n = std::fread(buffer, 1, sizeof buffer - 1, f);
-    std::fclose(f);
-    std::string token(buffer, n);
-    token = token.substr(0, token.find_first_of("\r\n"));
-    while (!token.empty() && (token.back() == ' ' || token.back() == '\t')) token.pop_back();
-    if (token.empty()) return make_error("token file '" + path.string() + "' is empty");
-    return token;
 }
 
 // The I/O of one bake: connects, moves frames between the socket and the
@@ -307,9 +286,12 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
         spawned = std::move(process.value());
         address = spawned->address();
     }
-    std::string host, port;
-    if (!split_host_port(address, host, port)) return make_error("server address must be HOST:PORT, got '" + address + "'");
-    Result<std::string> token = read_token(options.token_file);
+    Result<Endpoint> endpoint = parse_endpoint(address);
+    if (!endpoint) return make_error("server " + endpoint.error());
+    const std::string host = endpoint.value().host;
+    const std::string port = std::to_string(endpoint.value().port);
+    Result<std::string> token = options.token_file.empty() ? Result<std::string>(std::string())
+                                                           : read_token_file(options.token_file);
     if (!token) return make_error(token.error());
     std::shared_ptr<asio::ssl::context> tls;
     if (options.tls) {
