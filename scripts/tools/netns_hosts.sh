@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Test hosts on one machine: each "host" is a Linux network namespace with its
+# own loopback, its own address on a shared bridge and, when entered through
+# this script, its own host name, so Open MPI sees N machines that reach each
+# other only over TCP. Root only (ip netns). Everything it makes is named by
+# the prefix and removed by `down`.
+#   netns_hosts.sh up N            hosts PREFIX1..PREFIXN at SUBNET.1..N/24 on the bridge
+#                                  in namespace PREFIXnet (the root namespace is untouched)
+#   netns_hosts.sh down N          kill what still runs in them, remove them (idempotent)
+#   netns_hosts.sh exec HOST CMD.. run CMD in HOST (its hostname is HOST)
+#   netns_hosts.sh link HOST up|down   plug or pull HOST's cable (its bridge port)
+# The rsh agent that lets mpirun start its daemons "remotely" is netns_rsh.sh.
+# env: LC_NETNS_PREFIX (default lchost), LC_NETNS_SUBNET (first three octets, default 10.213.7)
+set -euo pipefail
+prefix="${LC_NETNS_PREFIX:-lchost}"
+subnet="${LC_NETNS_SUBNET:-10.213.7}"
+net="${prefix}net"
+
+usage() { sed -n '2,13p' "$0" >&2; exit 2; }
+
+# The bridge port that carries HOST's cable (names stay within IFNAMSIZ).
+port_of() { local name="p-$1"; echo "${name:0:15}"; }
+
+host_up() {
+    local i="$1" host="$prefix$1" port
+    port="$(port_of "$host")"
+    ip netns add "$host"
+    ip -n "$net" link add "$port" type veth peer name eth0 netns "$host"
+    ip -n "$net" link set "$port" master br0 up
+    ip -n "$host" link set lo up
+    ip -n "$host" addr add "$subnet.$i/24" dev eth0
+    ip -n "$host" link set eth0 up
+    # `ip netns exec` bind-mounts /etc/netns/HOST/* over /etc: every host resolves the others' names.
+    mkdir -p "/etc/netns/$host"
+    { echo "127.0.0.1 localhost"; for j in $(seq "$2"); do echo "$subnet.$j $prefix$j"; done; } \
+        > "/etc/netns/$host/hosts"
+}
+
+up() {
+    local count="$1"
+    [[ "$count" =~ ^[1-9][0-9]?$ && "$count" -le 250 ]] || { echo "netns_hosts: N must be 1..250, not '$count'" >&2; exit 2; }
+    ip netns add "$net"
+    ip -n "$net" link add br0 type bridge
+    ip -n "$net" link set br0 up
+    for i in $(seq "$count"); do host_up "$i" "$count"; done
+}
+
+# Ends what is left in a namespace (a test's server, mpirun, orted, ranks), then removes it.
+remove_namespace() {
+    local ns="$1" pids
+    ip netns list | grep -q "^$ns\b" || return 0
+    for signal in TERM KILL; do
+        pids="$(ip netns pids "$ns" || true)"
+        [[ -z "$pids" ]] && break
+        kill "-$signal" $pids 2>/dev/null || true
+        for _ in $(seq 20); do [[ -z "$(ip netns pids "$ns" || true)" ]] && break; sleep 0.1; done
+    done
+    ip netns delete "$ns"
+}
+
+down() {
+    local count="$1"
+    for i in $(seq "$count"); do
+        remove_namespace "$prefix$i"
+        rm -rf "/etc/netns/$prefix$i"
+    done
+    remove_namespace "$net"
+    rmdir /etc/netns 2>/dev/null || true
+}
+
+# The host's own hostname (a UTS namespace) inside its network namespace:
+# Open MPI names nodes by gethostname().
+run_in() {
+    local host="$1"; shift
+    exec ip netns exec "$host" unshare --uts sh -c 'hostname "$0" && exec "$@"' "$host" "$@"
+}
+
+link() {
+    local host="$1" state="$2"
+    [[ "$state" == up || "$state" == down ]] || usage
+    ip -n "$net" link set "$(port_of "$host")" "$state"
+}
+
+case "${1:-}" in
+    up) [[ $# -eq 2 ]] || usage; up "$2" ;;
+    down) [[ $# -eq 2 ]] || usage; down "$2" ;;
+    exec) [[ $# -ge 3 ]] || usage; shift; run_in "$@" ;;
+    link) [[ $# -eq 3 ]] || usage; link "$2" "$3" ;;
+    *) usage ;;
+esac
