@@ -8,7 +8,8 @@
 namespace lc::bake {
 namespace {
 
-constexpr const char* kLostDaemon = R"(--------------------------------------------------------------------------
+constexpr const char* kLostDaemon =
+    R"(--------------------------------------------------------------------------
 ORTE has lost communication with a remote daemon.
 
   HNP daemon   : [[10184,0],0] on node lcx1
@@ -21,7 +22,8 @@ therefore will terminate the job.
 --------------------------------------------------------------------------
 )";
 
-constexpr const char* kRankKilled = R"(--------------------------------------------------------------------------
+constexpr const char* kRankKilled =
+    R"(--------------------------------------------------------------------------
 Primary job  terminated normally, but 1 process returned
 a non-zero exit code. Per user-direction, the job has been aborted.
 --------------------------------------------------------------------------
@@ -90,7 +92,8 @@ TEST(JobLogFaults, TheHostsLossComesBeforeTheRanksThatDiedWithIt) {
 
 TEST(JobLogFaults, ALogWithoutAHostFaultGivesNothing) {
     EXPECT_FALSE(host_fault_in_log("").has_value());
-    EXPECT_FALSE(host_fault_in_log("MPI_ABORT was invoked on rank 0 in communicator MPI_COMM_WORLD\n").has_value());
+    EXPECT_FALSE(
+        host_fault_in_log("MPI_ABORT was invoked on rank 0 in communicator MPI_COMM_WORLD\n").has_value());
     EXPECT_FALSE(host_fault_in_log("ORTE has lost communication with a remote daemon.\n").has_value());
 }
 

@@ -16,8 +16,8 @@
 #include <fstream>
 #include <memory>
 
-#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/bake/result_channel_file.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/mpi/host_roster.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"
@@ -307,7 +307,8 @@ fs::path fake_cluster(const std::string& name, const std::string& body) {
     fs::create_directories(dir);
     std::ofstream(dir / "hosts.txt") << "nodeA slots=1\nnodeB slots=1\n";
     std::ofstream(dir / "mpirun.sh") << "#!/bin/sh\nwhile [ $# -gt 0 ]; do [ \"$1\" = --hostfile ] && "
-                                     << "{ cat \"$2\"; echo ---; } >> " << (dir / "hostfiles.txt") << "; shift; done\n"
+                                     << "{ cat \"$2\"; echo ---; } >> " << (dir / "hostfiles.txt")
+                                     << "; shift; done\n"
                                      << body;
     fs::permissions(dir / "mpirun.sh", fs::perms::owner_all);
     return dir;
@@ -352,7 +353,8 @@ TEST(MpiBake, AHostLostMidBakeIsNamedAndLeftOutOfTheNextBake) {
     inputs.mpi.lost_hosts = std::make_shared<HostRoster>();
     Result<BuildResult> lost = run_bake(inputs, {});
     ASSERT_FALSE(lost.ok());
-    EXPECT_NE(lost.error().find("MPI bake over 2 ranks failed: host nodeB stopped answering"), std::string::npos)
+    EXPECT_NE(lost.error().find("MPI bake over 2 ranks failed: host nodeB stopped answering"),
+              std::string::npos)
         << lost.error();
     EXPECT_EQ(lost.error().find('\n'), std::string::npos) << lost.error();
     EXPECT_FALSE(run_bake(inputs, {}).ok());

@@ -39,8 +39,9 @@ std::optional<HostFault> lost_daemon(std::string_view log) {
     const std::string host = word_after(log.substr(remote), "on node");
     if (host.empty()) return {};
     return HostFault{host,
-                     "host " + host + " stopped answering: Open MPI lost contact with its daemon there "
-                     "(its network or the machine went down)",
+                     "host " + host +
+                         " stopped answering: Open MPI lost contact with its daemon there "
+                         "(its network or the machine went down)",
                      true};
 }
 
@@ -62,7 +63,9 @@ std::optional<HostFault> ssh_failed(std::string_view log) {
     for (std::string_view label : {"ssh: connect to host ", "ssh: Could not resolve hostname "}) {
         const std::string host = without_colon(word_after(log, label));
         if (host.empty()) continue;
-        return HostFault{host, "host " + host + " did not answer ssh: " + line_after(log, label), true};
+        std::string reason = line_after(log, label).substr(host.size());
+        reason.erase(0, reason.find_first_not_of(": "));
+        return HostFault{host, "host " + host + " did not answer ssh: " + reason, true};
     }
     return {};
 }

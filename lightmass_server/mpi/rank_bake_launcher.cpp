@@ -142,28 +142,32 @@ std::string exit_text(int status) {
     return "ended abnormally";
 }
 
-std::string over_ranks(uint32_t ranks) { return "MPI bake over " + std::to_string(ranks) + " ranks"; }
+std::string over_ranks(uint32_t ranks) {
+    return "MPI bake over " + std::to_string(ranks) + " ranks";
+}
 
-// A host that mpirun's log says was lost: one line naming it, and the host
-// left out of this server's next bakes.
-Error lost_host_error(const MpiLaunchOptions& mpi, uint32_t ranks, const HostFault& fault) {
+// A fault that mpirun's log pins on a host: one line naming it; a host that
+// stopped answering is left out of this server's next bakes.
+Error host_fault_error(const MpiLaunchOptions& mpi, uint32_t ranks, const HostFault& fault) {
     std::string text = over_ranks(ranks) + " failed: " + fault.text;
     if (fault.host_lost && mpi.lost_hosts) {
         mpi.lost_hosts->mark_lost(fault.host);
         const auto minutes = std::chrono::duration_cast<std::chrono::minutes>(mpi.lost_hosts->pause());
-        text += "; the next bakes leave it out for " + std::to_string(minutes.count()) + " minutes";
+        text += "; this server leaves it out of its bakes for the next " + std::to_string(minutes.count()) +
+                " minutes";
     }
     return make_error(text);
 }
 
 // Why a job that ended without a tree failed: a lost host first (its ranks
 // died with it), then rank 0's own error, then a rank killed on a host, then the log.
-Error job_failure(const MpiLaunchOptions& mpi, uint32_t ranks, const std::vector<std::string>& argv, int status,
-                  const fs::path& dir) {
+Error job_failure(const MpiLaunchOptions& mpi, uint32_t ranks, const std::vector<std::string>& argv,
+                  int status, const fs::path& dir) {
     const std::optional<HostFault> fault = host_fault_in_log(text_of(dir / "mpirun.log"));
-    if (fault && fault->host_lost) return lost_host_error(mpi, ranks, *fault);
-    if (fs::exists(dir / "error.txt")) return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
-    if (fault) return lost_host_error(mpi, ranks, *fault);
+    if (fault && fault->host_lost) return host_fault_error(mpi, ranks, *fault);
+    if (fs::exists(dir / "error.txt"))
+        return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
+    if (fault) return host_fault_error(mpi, ranks, *fault);
     const std::string code =
         WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
     return make_error(over_ranks(ranks) + " failed: " + argv[0] + " " + exit_text(status) + code +
@@ -171,24 +175,27 @@ Error job_failure(const MpiLaunchOptions& mpi, uint32_t ranks, const std::vector
 }
 
 // No rank started within --mpi-launch-seconds: a host never answered.
-Error launch_timeout(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& hostfile, const fs::path& dir) {
+Error launch_timeout(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& hostfile,
+                     const fs::path& dir) {
     const std::optional<HostFault> fault = host_fault_in_log(text_of(dir / "mpirun.log"));
-    if (fault) return lost_host_error(mpi, ranks, *fault);
-    return make_error(over_ranks(ranks) + " failed: its ranks had not all started after " +
-                      std::to_string(mpi.launch_seconds) +
-                      " s (--mpi-launch-seconds): a host did not answer; the job's hosts: " +
-                      hosts_named_in(hostfile));
+    if (fault) return host_fault_error(mpi, ranks, *fault);
+    return make_error(
+        over_ranks(ranks) + " failed: its ranks had not all started after " +
+        std::to_string(mpi.launch_seconds) +
+        " s (--mpi-launch-seconds): a host did not answer; the job's hosts: " + hosts_named_in(hostfile));
 }
 
 Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const ProgressFn& progress) {
     Status written = write_rank_job(dir, encode_rank_job(inputs, inputs.ranks));
     if (!written) return make_error("MPI job: " + written.error());
     Result<fs::path> hostfile = job_hostfile(inputs.mpi, dir);
-    if (!hostfile) return make_error(over_ranks(inputs.ranks) + " refused: " + hostfile.error(), ErrorKind::kRefused);
+    if (!hostfile)
+        return make_error(over_ranks(inputs.ranks) + " refused: " + hostfile.error(), ErrorKind::kRefused);
     const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, *hostfile, dir);
     Result<pid_t> pid = spawn_group(argv, dir / "mpirun.log");
     if (!pid) return pid.failure();
-    const auto launch_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(inputs.mpi.launch_seconds);
+    const auto launch_deadline =
+        std::chrono::steady_clock::now() + std::chrono::seconds(inputs.mpi.launch_seconds);
     bool started = false;
     std::string last_progress;
     int status = 0;

@@ -9,6 +9,7 @@
 #   netns_hosts.sh down N          kill what still runs in them, remove them (idempotent)
 #   netns_hosts.sh exec HOST CMD.. run CMD in HOST (its hostname is HOST)
 #   netns_hosts.sh link HOST up|down   plug or pull HOST's cable (its bridge port)
+#   netns_hosts.sh mpi-args        mpirun's arguments for these hosts, one a line
 # The rsh agent that lets mpirun start its daemons "remotely" is netns_rsh.sh.
 # env: LC_NETNS_PREFIX (default lchost), LC_NETNS_SUBNET (first three octets, default 10.213.7)
 set -euo pipefail
@@ -16,7 +17,7 @@ prefix="${LC_NETNS_PREFIX:-lchost}"
 subnet="${LC_NETNS_SUBNET:-10.213.7}"
 net="${prefix}net"
 
-usage() { sed -n '2,13p' "$0" >&2; exit 2; }
+usage() { sed -n '2,14p' "$0" >&2; exit 2; }
 
 # The bridge port that carries HOST's cable (names stay within IFNAMSIZ).
 port_of() { local name="p-$1"; echo "${name:0:15}"; }
@@ -81,10 +82,24 @@ link() {
     ip -n "$net" link set "$(port_of "$host")" "$state"
 }
 
+# What mpirun needs to run over these hosts: daemons started through the rsh
+# agent (directly, not from daemon to daemon), kept attached so their errors
+# reach mpirun's log, MPI's and Open MPI's own traffic on the bridge's subnet
+# only, TCP keepalives that notice a silent host within about 5 s (the
+# default is 8 minutes), and more ranks than slots where a host is lost.
+mpi_args() {
+    printf '%s\n' --mca plm_rsh_agent "$(cd "$(dirname "$0")" && pwd)/netns_rsh.sh" \
+        --mca plm_rsh_no_tree_spawn 1 --leave-session-attached \
+        --mca btl self,tcp --mca btl_tcp_if_include "$subnet.0/24" --mca oob_tcp_if_include "$subnet.0/24" \
+        --mca oob_tcp_keepalive_time 2 --mca oob_tcp_keepalive_intvl 1 --mca oob_tcp_keepalive_probes 3 \
+        --oversubscribe --bind-to none
+}
+
 case "${1:-}" in
     up) [[ $# -eq 2 ]] || usage; up "$2" ;;
     down) [[ $# -eq 2 ]] || usage; down "$2" ;;
     exec) [[ $# -ge 3 ]] || usage; shift; run_in "$@" ;;
     link) [[ $# -eq 3 ]] || usage; link "$2" "$3" ;;
+    mpi-args) [[ $# -eq 1 ]] || usage; mpi_args ;;
     *) usage ;;
 esac

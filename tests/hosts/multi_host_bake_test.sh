@@ -20,7 +20,6 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 bin="$(cd "${1:?usage: multi_host_bake_test.sh BUILD_DIR}" && pwd)/bin"
 hosts_tool="$root/scripts/tools/netns_hosts.sh"
-agent="$root/scripts/tools/netns_rsh.sh"
 export LC_NETNS_PREFIX="lcmh" LC_NETNS_SUBNET="10.213.42"
 h1="${LC_NETNS_PREFIX}1" h2="${LC_NETNS_PREFIX}2" h3="${LC_NETNS_PREFIX}3"
 fault_limit_s=10
@@ -51,12 +50,8 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 mkdir -m 0770 "$tmp/jobs"
 printf '%s slots=1\n%s slots=1\n' "$h2" "$h3" > "$tmp/hosts.txt"
-# mpirun's arguments, each given to the server as --mpi-arg=...
-mpi_args=(--mca plm_rsh_agent "$agent" --mca plm_rsh_no_tree_spawn 1 --leave-session-attached
-          --mca btl self,tcp --mca btl_tcp_if_include "$LC_NETNS_SUBNET.0/24"
-          --mca oob_tcp_if_include "$LC_NETNS_SUBNET.0/24"
-          --mca oob_tcp_keepalive_time 2 --mca oob_tcp_keepalive_intvl 1 --mca oob_tcp_keepalive_probes 3
-          --oversubscribe --bind-to none)
+# mpirun's arguments for these hosts (rsh agent, interfaces, keepalives), each given as --mpi-arg=...
+mapfile -t mpi_args < <("$hosts_tool" mpi-args)
 server_args=(--quiet --mpi-hostfile "$tmp/hosts.txt" --mpi-work-dir "$tmp/jobs"
              --mpi-launch-seconds "$launch_seconds" "${mpi_args[@]/#/--mpi-arg=}")
 
