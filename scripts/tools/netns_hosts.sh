@@ -9,6 +9,8 @@
 #   netns_hosts.sh down N          kill what still runs in them, remove them (idempotent)
 #   netns_hosts.sh exec HOST CMD.. run CMD in HOST (its hostname is HOST)
 #   netns_hosts.sh link HOST up|down   plug or pull HOST's cable (its bridge port)
+#   netns_hosts.sh link HOST silent    pull it so that HOST's packets vanish instead of failing
+#                                  at once (its neighbours pinned): a host behind a dropping firewall
 #   netns_hosts.sh mpi-args        mpirun's arguments for these hosts, one a line
 # The rsh agent that lets mpirun start its daemons "remotely" is netns_rsh.sh.
 # env: LC_NETNS_PREFIX (default lchost), LC_NETNS_SUBNET (first three octets, default 10.213.7)
@@ -17,7 +19,7 @@ prefix="${LC_NETNS_PREFIX:-lchost}"
 subnet="${LC_NETNS_SUBNET:-10.213.7}"
 net="${prefix}net"
 
-usage() { sed -n '2,14p' "$0" >&2; exit 2; }
+usage() { sed -n '2,16p' "$0" >&2; exit 2; }
 
 # The bridge port that carries HOST's cable (names stay within IFNAMSIZ).
 port_of() { local name="p-$1"; echo "${name:0:15}"; }
@@ -76,9 +78,26 @@ run_in() {
     exec ip netns exec "$host" unshare --uts sh -c 'hostname "$0" && exec "$@"' "$host" "$@"
 }
 
+# Without an answer to ARP, a pulled cable fails new connections within
+# seconds; pinned neighbour entries make them wait for TCP's own timeouts.
+pin_neighbours() {
+    local host="$1" other mac
+    for other in $(ip netns list | awk '{print $1}' | grep -x "$prefix[0-9]*"); do
+        [[ "$other" == "$host" ]] && continue
+        mac="$(ip -n "$other" -br link show eth0 | awk '{print $3}')"
+        ip -n "$host" neigh replace "$(ip -n "$other" -4 -br addr show eth0 | awk '{print $3}' | cut -d/ -f1)" \
+            lladdr "$mac" dev eth0 nud permanent
+    done
+}
+
 link() {
     local host="$1" state="$2"
-    [[ "$state" == up || "$state" == down ]] || usage
+    case "$state" in
+        up) ip -n "$host" neigh flush dev eth0 nud permanent ;;
+        down) ;;
+        silent) pin_neighbours "$host"; state=down ;;
+        *) usage ;;
+    esac
     ip -n "$net" link set "$(port_of "$host")" "$state"
 }
 

@@ -10,8 +10,10 @@
 #      10 s, the server stays up, the job folder is empty, the next bake passes;
 #   3. host 2's cable pulled mid-bake: the same, naming host 2, and the next bake
 #      runs on host 3 alone (the server leaves the lost host out) and passes;
-#   4. a host that never answers at start: a fresh server's bake is refused within
-#      its launch deadline (--mpi-launch-seconds), naming host 2.
+#   4. a host that never answers at start (its cable still pulled): a fresh server's
+#      bake is refused within its launch deadline (--mpi-launch-seconds), naming host 2;
+#   5. a host whose packets vanish (a dropping firewall: Open MPI itself would wait
+#      minutes): a fresh server's bake is refused at its launch deadline, naming the job's hosts.
 # Skips (exit 77, one line saying why) without root, ip, unshare, mpirun or
 # lightmass_rank, or where `ip netns add` is not permitted. The namespaces are
 # removed on every exit (trap), passed or failed.
@@ -23,7 +25,8 @@ hosts_tool="$root/scripts/tools/netns_hosts.sh"
 export LC_NETNS_PREFIX="lcmh" LC_NETNS_SUBNET="10.213.42"
 h1="${LC_NETNS_PREFIX}1" h2="${LC_NETNS_PREFIX}2" h3="${LC_NETNS_PREFIX}3"
 fault_limit_s=10
-launch_seconds=10
+launch_seconds=10   # the first servers'; the last one's is short, it always runs to its deadline
+silent_launch_seconds=4
 
 skip() { echo "SKIP: $*"; exit 77; }
 [[ "$(id -u)" == 0 ]] || skip "not root: network namespaces (ip netns add) need root"
@@ -52,13 +55,12 @@ mkdir -m 0770 "$tmp/jobs"
 printf '%s slots=1\n%s slots=1\n' "$h2" "$h3" > "$tmp/hosts.txt"
 # mpirun's arguments for these hosts (rsh agent, interfaces, keepalives), each given as --mpi-arg=...
 mapfile -t mpi_args < <("$hosts_tool" mpi-args)
-server_args=(--quiet --mpi-hostfile "$tmp/hosts.txt" --mpi-work-dir "$tmp/jobs"
-             --mpi-launch-seconds "$launch_seconds" "${mpi_args[@]/#/--mpi-arg=}")
+server_args=(--quiet --mpi-hostfile "$tmp/hosts.txt" --mpi-work-dir "$tmp/jobs" "${mpi_args[@]/#/--mpi-arg=}")
 
-start_server() {  # NAME: a server in host 1; its pid in server_pid, its port in port
+start_server() {  # NAME LAUNCH_SECONDS: a server in host 1; its pid in server_pid, its port in port
     rm -f "$tmp/$1.port"
     "$hosts_tool" exec "$h1" "$bin/lightmass_server" --port-file "$tmp/$1.port" "${server_args[@]}" \
-        >> "$tmp/server.log" 2>&1 &
+        --mpi-launch-seconds "$2" >> "$tmp/server.log" 2>&1 &
     server_pid=$!
     for _ in $(seq 100); do [[ -s "$tmp/$1.port" ]] && break; sleep 0.1; done
     [[ -s "$tmp/$1.port" ]] || fail "the server in $h1 wrote no port"
@@ -116,7 +118,7 @@ kill_rank_on() {  # HOST: SIGKILL to one lightmass_rank running in HOST
 
 "$bin/editor_client" make-scene furnished-room -o "$tmp/room.gltf" >/dev/null
 "$bin/editor_client" add-lights "$tmp/room.gltf" --count 64 --layout random -o "$tmp/lit.gltf" >/dev/null
-start_server first
+start_server first "$launch_seconds"
 bake reference 0 3000 || fail "the in-process bake failed: $(cat "$tmp/reference.err")"
 expect_same_tree "over-two-hosts"
 
@@ -130,12 +132,25 @@ expect_same_tree "on-the-remaining-host"
 
 # A fresh server knows nothing of host 2's loss: its bake must be refused at start, in time.
 kill -TERM "$server_pid"; wait "$server_pid" || true
-start_server second
+start_server second "$launch_seconds"
 start_ns=$(date +%s%N)
 if bake never-answers 2 3000; then fail "never-answers: the bake passed without host $h2"; fi
 fault_ms=$(( ($(date +%s%N) - start_ns) / 1000000 ))
 (( fault_ms <= launch_seconds * 1000 + 2000 )) || fail "never-answers: refused after $fault_ms ms"
 expect_error_naming never-answers "host $h2"
 expect_empty_jobs never-answers
+kill -TERM "$server_pid"; wait "$server_pid" || true
+
+# Host 2 plugged in again but silent: its daemon's connection back to mpirun hangs. The
+# server stops the job at its deadline (mpirun gets 5 s to stop before SIGKILL).
+"$hosts_tool" link "$h2" up
+"$hosts_tool" link "$h2" silent
+start_server third "$silent_launch_seconds"
+start_ns=$(date +%s%N)
+if bake silent 2 3000; then fail "silent: the bake passed without host $h2"; fi
+fault_ms=$(( ($(date +%s%N) - start_ns) / 1000000 ))
+(( fault_ms <= silent_launch_seconds * 1000 + 7000 )) || fail "silent: refused after $fault_ms ms"
+expect_error_naming silent "(--mpi-launch-seconds): a host did not answer; the job's hosts: $h2, $h3"
+expect_empty_jobs silent
 kill -TERM "$server_pid"; wait "$server_pid" || true
 echo "PASS"
