@@ -18,7 +18,7 @@ host_count="${HOSTS:-3}"
 per_host="${RANKS_PER_HOST:-2}"
 out="${OUT:-docs/bench/hosts.csv}"
 hosts_tool="$PWD/scripts/tools/netns_hosts.sh"
-export LC_NETNS_PREFIX="lcbh" LC_NETNS_SUBNET="10.213.43"
+export LC_NETNS_PREFIX="lc$$b" LC_NETNS_SUBNET="10.213.43"  # names of this run alone
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 tmp="$(mktemp -d)"
 trap '"$hosts_tool" down "$host_count"; rm -rf "$tmp"' EXIT

@@ -21,8 +21,9 @@ net="${prefix}net"
 
 usage() { sed -n '2,16p' "$0" >&2; exit 2; }
 
-# The bridge port that carries HOST's cable (names stay within IFNAMSIZ).
-port_of() { local name="p-$1"; echo "${name:0:15}"; }
+# The bridge port that carries HOST's cable: "p-" + the host's name fits IFNAMSIZ (15).
+port_of() { echo "p-$1"; }
+[[ "$prefix" =~ ^[a-z][a-z0-9]{0,9}$ ]] || { echo "netns_hosts: LC_NETNS_PREFIX must be 1-10 of a-z0-9" >&2; exit 2; }
 
 host_up() {
     local i="$1" host="$prefix$1" port

@@ -22,7 +22,8 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 bin="$(cd "${1:?usage: multi_host_bake_test.sh BUILD_DIR}" && pwd)/bin"
 hosts_tool="$root/scripts/tools/netns_hosts.sh"
-export LC_NETNS_PREFIX="lcmh" LC_NETNS_SUBNET="10.213.42"
+# Names of this run alone (runs from several worktrees may overlap); the subnet lives in its own bridge.
+export LC_NETNS_PREFIX="lc$$h" LC_NETNS_SUBNET="10.213.42"
 h1="${LC_NETNS_PREFIX}1" h2="${LC_NETNS_PREFIX}2" h3="${LC_NETNS_PREFIX}3"
 fault_limit_s=10
 launch_seconds=10   # the first servers'; the last one's is short, it always runs to its deadline
