@@ -343,6 +343,24 @@ TEST(MpiBake, RanksThatNeverStartFailTheBakeAtTheLaunchDeadline) {
     fs::remove_all(dir);
 }
 
+// mpirun's environment shortens Open MPI's keepalives (a silent host noticed
+// in seconds), unless the server's own environment sets them.
+TEST(MpiBake, TheLauncherGetsShortKeepalivesUnlessTheUserSetsThem) {
+    const fs::path dir = fake_cluster("mpi-keepalive-test", "");
+    std::ofstream(dir / "mpirun.sh", std::ios::app)
+        << "env | grep OMPI_MCA_oob_tcp_keepalive | sort > " << (dir / "env.txt") << "\nexit 1\n";
+    BakeInputs inputs = on_fake_cluster(dir);
+    EXPECT_FALSE(run_bake(inputs, {}).ok());
+    EXPECT_EQ(text_of(dir / "env.txt"),
+              "OMPI_MCA_oob_tcp_keepalive_intvl=1\nOMPI_MCA_oob_tcp_keepalive_probes=3\n"
+              "OMPI_MCA_oob_tcp_keepalive_time=2\n");
+    setenv("OMPI_MCA_oob_tcp_keepalive_time", "30", 1);
+    EXPECT_FALSE(run_bake(inputs, {}).ok());
+    unsetenv("OMPI_MCA_oob_tcp_keepalive_time");
+    EXPECT_NE(text_of(dir / "env.txt").find("OMPI_MCA_oob_tcp_keepalive_time=30\n"), std::string::npos);
+    fs::remove_all(dir);
+}
+
 // mpirun says it lost a host's daemon: the bake fails in one line naming the
 // host, and the server's next bake gets a host file without it.
 TEST(MpiBake, AHostLostMidBakeIsNamedAndLeftOutOfTheNextBake) {

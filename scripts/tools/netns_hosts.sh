@@ -105,13 +105,12 @@ link() {
 # What mpirun needs to run over these hosts: daemons started through the rsh
 # agent (directly, not from daemon to daemon), kept attached so their errors
 # reach mpirun's log, MPI's and Open MPI's own traffic on the bridge's subnet
-# only, TCP keepalives that notice a silent host within about 5 s (the
-# default is 8 minutes), and more ranks than slots where a host is lost.
+# only, and more ranks than slots where a host is lost. (lightmass_server
+# shortens Open MPI's TCP keepalives itself: rank_bake_launcher.cpp.)
 mpi_args() {
     printf '%s\n' --mca plm_rsh_agent "$(cd "$(dirname "$0")" && pwd)/netns_rsh.sh" \
         --mca plm_rsh_no_tree_spawn 1 --leave-session-attached \
         --mca btl self,tcp --mca btl_tcp_if_include "$subnet.0/24" --mca oob_tcp_if_include "$subnet.0/24" \
-        --mca oob_tcp_keepalive_time 2 --mca oob_tcp_keepalive_intvl 1 --mca oob_tcp_keepalive_probes 3 \
         --oversubscribe --bind-to none
 }
 
