@@ -344,16 +344,18 @@ TEST(MpiBake, RanksThatNeverStartFailTheBakeAtTheLaunchDeadline) {
 }
 
 // mpirun's environment shortens Open MPI's keepalives (a silent host noticed
-// in seconds), unless the server's own environment sets them.
+// in seconds) and keeps the daemons attached, unless the server's own
+// environment sets them.
 TEST(MpiBake, TheLauncherGetsShortKeepalivesUnlessTheUserSetsThem) {
     const fs::path dir = fake_cluster("mpi-keepalive-test", "");
     std::ofstream(dir / "mpirun.sh", std::ios::app)
-        << "env | grep OMPI_MCA_oob_tcp_keepalive | sort > " << (dir / "env.txt") << "\nexit 1\n";
+        << "env | grep -E 'OMPI_MCA_(oob_tcp_keepalive|orte_leave)' | sort > " << (dir / "env.txt")
+        << "\nexit 1\n";
     BakeInputs inputs = on_fake_cluster(dir);
     EXPECT_FALSE(run_bake(inputs, {}).ok());
     EXPECT_EQ(text_of(dir / "env.txt"),
               "OMPI_MCA_oob_tcp_keepalive_intvl=1\nOMPI_MCA_oob_tcp_keepalive_probes=3\n"
-              "OMPI_MCA_oob_tcp_keepalive_time=2\n");
+              "OMPI_MCA_oob_tcp_keepalive_time=2\nOMPI_MCA_orte_leave_session_attached=1\n");
     setenv("OMPI_MCA_oob_tcp_keepalive_time", "30", 1);
     EXPECT_FALSE(run_bake(inputs, {}).ok());
     unsetenv("OMPI_MCA_oob_tcp_keepalive_time");

@@ -77,19 +77,22 @@ std::string hosts_named_in(const fs::path& hostfile) {
     return hosts;
 }
 
-// The server's environment for the launcher, with Open MPI's TCP keepalives
-// between mpirun and its daemons shortened where the user set none: a host
-// whose network goes silent mid-bake is noticed in about 5 s, not the
-// default's 8 minutes (300 s idle, then 9 probes 20 s apart). An
-// `--mpi-arg=--mca` of the same name still wins over these.
+// The server's environment for the launcher, plus the Open MPI settings that
+// make a bake over several machines fail fast and clearly, where the user set
+// none: TCP keepalives between mpirun and its daemons that notice a silent
+// host in about 5 s (the default's take 8 minutes: 300 s idle, then 9 probes
+// 20 s apart), and daemons left attached to their remote shell, so that a
+// daemon's own error (it cannot connect back) reaches mpirun's log instead of
+// leaving mpirun waiting. An `--mpi-arg=--mca` of the same name still wins.
 std::vector<std::string> launcher_environment() {
     std::vector<std::string> env;
     for (char** entry = environ; *entry != nullptr; ++entry) env.emplace_back(*entry);
-    constexpr std::pair<const char*, const char*> kKeepalives[] = {
+    constexpr std::pair<const char*, const char*> kDefaults[] = {
         {"OMPI_MCA_oob_tcp_keepalive_time", "2"},
         {"OMPI_MCA_oob_tcp_keepalive_intvl", "1"},
-        {"OMPI_MCA_oob_tcp_keepalive_probes", "3"}};
-    for (const auto& [name, value] : kKeepalives)
+        {"OMPI_MCA_oob_tcp_keepalive_probes", "3"},
+        {"OMPI_MCA_orte_leave_session_attached", "1"}};
+    for (const auto& [name, value] : kDefaults)
         if (std::getenv(name) == nullptr) env.push_back(std::string(name) + "=" + value);
     return env;
 }

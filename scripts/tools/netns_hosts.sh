@@ -11,6 +11,7 @@
 #   netns_hosts.sh link HOST up|down   plug or pull HOST's cable (its bridge port)
 #   netns_hosts.sh link HOST silent    pull it so that HOST's packets vanish instead of failing
 #                                  at once (its neighbours pinned): a host behind a dropping firewall
+#   netns_hosts.sh cable HOST      prints the state of HOST's cable: up, down or silent
 #   netns_hosts.sh mpi-args        mpirun's arguments for these hosts, one a line
 # The rsh agent that lets mpirun start its daemons "remotely" is netns_rsh.sh.
 # env: LC_NETNS_PREFIX (default lchost), LC_NETNS_SUBNET (first three octets, default 10.213.7)
@@ -19,7 +20,7 @@ prefix="${LC_NETNS_PREFIX:-lchost}"
 subnet="${LC_NETNS_SUBNET:-10.213.7}"
 net="${prefix}net"
 
-usage() { sed -n '2,16p' "$0" >&2; exit 2; }
+usage() { sed -n '2,17p' "$0" >&2; exit 2; }
 
 # The bridge port that carries HOST's cable: "p-" + the host's name fits IFNAMSIZ (15).
 port_of() { echo "p-$1"; }
@@ -102,14 +103,24 @@ link() {
     ip -n "$net" link set "$(port_of "$host")" "$state"
 }
 
+cable() {
+    if ip -n "$net" -br link show "$(port_of "$1")" | grep -qw UP; then
+        echo up
+    elif ip -n "$1" neigh show nud permanent | grep -q .; then
+        echo silent
+    else
+        echo down
+    fi
+}
+
 # What mpirun needs to run over these hosts: daemons started through the rsh
-# agent (directly, not from daemon to daemon), kept attached so their errors
-# reach mpirun's log, MPI's and Open MPI's own traffic on the bridge's subnet
-# only, and more ranks than slots where a host is lost. (lightmass_server
-# shortens Open MPI's TCP keepalives itself: rank_bake_launcher.cpp.)
+# agent (directly, not from daemon to daemon), MPI's and Open MPI's own
+# traffic on the bridge's subnet only, and more ranks than slots where a host
+# is lost. (lightmass_server itself shortens Open MPI's TCP keepalives and
+# keeps the daemons attached: rank_bake_launcher.cpp.)
 mpi_args() {
     printf '%s\n' --mca plm_rsh_agent "$(cd "$(dirname "$0")" && pwd)/netns_rsh.sh" \
-        --mca plm_rsh_no_tree_spawn 1 --leave-session-attached \
+        --mca plm_rsh_no_tree_spawn 1 \
         --mca btl self,tcp --mca btl_tcp_if_include "$subnet.0/24" --mca oob_tcp_if_include "$subnet.0/24" \
         --oversubscribe --bind-to none
 }
@@ -119,6 +130,7 @@ case "${1:-}" in
     down) [[ $# -eq 2 ]] || usage; down "$2" ;;
     exec) [[ $# -ge 3 ]] || usage; shift; run_in "$@" ;;
     link) [[ $# -eq 3 ]] || usage; link "$2" "$3" ;;
+    cable) [[ $# -eq 2 ]] || usage; cable "$2" ;;
     mpi-args) [[ $# -eq 1 ]] || usage; mpi_args ;;
     *) usage ;;
 esac

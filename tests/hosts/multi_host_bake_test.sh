@@ -10,8 +10,9 @@
 #      10 s, the server stays up, the job folder is empty, the next bake passes;
 #   3. host 2's cable pulled mid-bake: the same, naming host 2, and the next bake
 #      runs on host 3 alone (the server leaves the lost host out) and passes;
-#   4. a host that never answers at start (its cable still pulled): a fresh server's
-#      bake is refused within its launch deadline (--mpi-launch-seconds), naming host 2;
+#   4. a host that never answers at start (its cable still pulled: the rsh agent fails
+#      as ssh would): a fresh server's bake is refused, naming host 2, well within its
+#      launch deadline (--mpi-launch-seconds);
 #   5. a host whose packets vanish (a dropping firewall: Open MPI itself would wait
 #      minutes): a fresh server's bake is refused at its launch deadline, naming the job's hosts.
 # Skips (exit 77, one line saying why) without root, ip, unshare, mpirun or
