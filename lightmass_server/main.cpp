@@ -14,11 +14,12 @@
 #include <variant>
 
 #include "protocol/asio.h"
-#include "protocol/endpoint.h"
-#include "protocol/token_file.h"
+#include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
 #include "lightmass_server/net/server.h"
+#include "protocol/endpoint.h"
+#include "protocol/token_file.h"
 
 namespace {
 
@@ -131,6 +132,7 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     options.tls_certificate = flags.tls_cert;
     options.tls_private_key = flags.tls_key;
     options.mpi = flags.mpi;
+    options.mpi.lost_hosts = std::make_shared<lc::bake::HostRoster>();  // one memory for every bake
     if (!flags.token_file.empty()) {
         auto token = lc::read_token_file(flags.token_file);
         if (!token) {

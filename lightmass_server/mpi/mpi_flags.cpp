@@ -18,6 +18,10 @@ void add_mpi_flags(CLI::App& app, MpiLaunchOptions& mpi) {
     app.add_option(
         "--mpi-work-dir", mpi.work_dir,
         "Folder for the bakes' job files; every rank's machine must see it (default: the temp folder)");
+    app.add_option("--mpi-launch-seconds", mpi.launch_seconds,
+                   "A multi-rank bake fails unless every rank has started within this many seconds")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 86400u));
     app.add_flag("--mpi-keep-jobs", mpi.keep_job_dirs, "Leave each multi-rank bake's job folder behind");
 }
 
