@@ -54,6 +54,13 @@ std::vector<uint32_t> triangle_list(const std::vector<uint32_t>& indices, int mo
     return list;
 }
 
+// A mirroring transform flips the winding; swap two corners to keep front
+// faces front-facing.
+void keep_front_faces(const glm::dmat3& linear, std::vector<uint32_t>& indices) {
+    if (!(glm::determinant(linear) < 0.0)) return;
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) std::swap(indices[t + 1], indices[t + 2]);
+}
+
 bool is_triangles(int mode) {
     return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
            mode == TINYGLTF_MODE_TRIANGLE_FAN;
@@ -106,12 +113,8 @@ Status GltfMeshReader::add_primitive(int mesh_index, int primitive_index, const 
     Mesh mesh;
     mesh.material = prim.material;
     LC_RETURN_IF_ERROR(place_positions(*positions, world, what, mesh));
-    // A mirroring transform flips the winding; swap two corners to keep
-    // front faces front-facing.
     const glm::dmat3 linear(world);
-    if (glm::determinant(linear) < 0.0) {
-        for (size_t t = 0; t + 2 < indices->size(); t += 3) std::swap((*indices)[t + 1], (*indices)[t + 2]);
-    }
+    keep_front_faces(linear, *indices);
     mesh.indices = std::move(*indices);
     LC_RETURN_IF_ERROR(read_normals(prim, what, linear, mesh));
     LC_RETURN_IF_ERROR(read_uvs(prim, what, mesh));
