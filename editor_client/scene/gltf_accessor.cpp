@@ -237,8 +237,14 @@ Result<GltfAccessorView> view_gltf_accessor(const tg::Model& model, int index, c
     Result<size_t> stride = checked_stride(acc, **view, name);
     if (!stride) return stride.failure();
     LC_RETURN_IF_ERROR(check_elements_fit(acc, **view, *stride, name));
-    return GltfAccessorView{view_bytes + acc.byteOffset, *stride,  acc.count,
-                            acc.componentType,           acc.type, acc.normalized};
+    GltfAccessorView out;
+    out.base = view_bytes + acc.byteOffset;
+    out.stride = *stride;
+    out.count = acc.count;
+    out.component_type = acc.componentType;
+    out.type = acc.type;
+    out.normalized = acc.normalized;
+    return out;
 }
 
 float normalized_component(const GltfAccessorView& view, size_t i, int c) {

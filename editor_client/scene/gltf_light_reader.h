@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "editor_client/scene/gltf_diagnostics.h"
 #include "editor_client/scene/gltf_node_table.h"
