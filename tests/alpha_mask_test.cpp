@@ -18,7 +18,7 @@
 
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/analysis/scene_effects.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/alpha_mask.h"
 #include "lightcuts/shadow_bvh.h"

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "render_test_support.h"
 
 namespace lc {

@@ -7,7 +7,7 @@
 
 #include "editor_client/editor/editor_command.h"
 #include "editor_client/editor/script_runner.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
 #include "test_paths.h"
 

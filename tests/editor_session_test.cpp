@@ -9,8 +9,8 @@
 #include <limits>
 #include <set>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "test_paths.h"
 

@@ -9,7 +9,7 @@
 
 #include <sys/stat.h>
 
-#include "editor_client/scene/environment_image.h"
+#include "editor_client/scene/inputs/environment_image.h"
 #include "test_paths.h"
 
 namespace lc::client {

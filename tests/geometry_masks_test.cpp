@@ -12,7 +12,7 @@
 #include <limits>
 #include <random>
 
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "indirect_scenes.h"
 #include "lightmass_server/raycast/ray_caster.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_accessor.h"
+#include "editor_client/scene/gltf/gltf_accessor.h"
 
 namespace lc::client {
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 
 namespace lc::test {
 

@@ -2,7 +2,7 @@
 // elements and the remainder for tinygltf (gltf_json_sections.h): runs hold
 // whole elements whatever their size, strings and escapes never end an
 // element early, and every document it cannot split so is refused.
-#include "editor_client/scene/gltf_json_sections.h"
+#include "editor_client/scene/gltf/gltf_json_sections.h"
 
 #include <gtest/gtest.h>
 

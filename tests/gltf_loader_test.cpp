@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "gltf_import_equivalence.h"
 #include "test_paths.h"
 

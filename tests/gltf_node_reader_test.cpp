@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_node_reader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_node_reader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "gltf_import_equivalence.h"
 #include "test_paths.h"

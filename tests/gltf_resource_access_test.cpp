@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_buffer_sizes.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_buffer_sizes.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "test_paths.h"
 
 namespace lc::client {

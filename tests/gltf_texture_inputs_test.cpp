@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "editor_client/render/analysis/scene_effects.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/texture_coordinates.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/inputs/texture_coordinates.h"
 #include "test_paths.h"
 
 namespace lc::client {

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "test_paths.h"
 
 namespace lc::client {

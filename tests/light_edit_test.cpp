@@ -11,10 +11,10 @@
 #include <sstream>
 #include <string>
 
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/scene_generator.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "test_paths.h"
 
 namespace lc::client {

@@ -1,7 +1,7 @@
 // A scene file mapped read-only (mapped_file.h): its bytes as on disk, still
 // readable after their pages are released, and the same refusals as the
 // loader's reads (a directory, a FIFO, a missing file).
-#include "editor_client/scene/mapped_file.h"
+#include "editor_client/scene/inputs/mapped_file.h"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/tangent_frames.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/inputs/tangent_frames.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"
 #include "test_paths.h"

@@ -11,8 +11,8 @@
 #include <numbers>
 #include <set>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/cpu_evaluator.h"
 #include "lightmass_server/builders/tree_builder.h"

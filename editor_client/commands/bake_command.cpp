@@ -12,8 +12,8 @@
 #include "editor_client/commands/commands.h"
 #include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/report/progress_display.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "editor_client/scene/surface_geometry.h"
 
 namespace lc::client {

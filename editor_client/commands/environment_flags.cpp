@@ -1,6 +1,6 @@
 #include "editor_client/commands/environment_flags.h"
 
-#include "editor_client/scene/environment_image.h"
+#include "editor_client/scene/inputs/environment_image.h"
 #include "lightcuts/status_macros.h"
 #include "protocol/environment_records.h"
 

@@ -2,7 +2,7 @@
 // --allow-external-resources, on every command that loads a glTF scene.
 #include <CLI/CLI.hpp>
 
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 
 namespace lc::client {
 

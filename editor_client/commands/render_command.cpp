@@ -52,7 +52,7 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/supersampled_render.h"
 #include "editor_client/report/progress_display.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/gpu_layout.h"

@@ -32,7 +32,7 @@
 #include "editor_client/editor/script_runner.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/report/progress_display.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/glfw_window.h"

@@ -6,11 +6,11 @@
 #include <utility>
 
 #include "editor_client/render/render_inputs.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/surface_geometry.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "protocol/channel_records.h"
 
 namespace lc::client {

@@ -7,9 +7,9 @@
 #include <numbers>
 #include <string>
 
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 
 namespace lc::client {
 

@@ -5,8 +5,8 @@
 #include <set>
 #include <string>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "protocol/channel_records.h"
 
 namespace lc::client {

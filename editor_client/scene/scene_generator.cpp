@@ -10,8 +10,8 @@
 #include <limits>
 #include <numbers>
 
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/scene_guid.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/inputs/scene_guid.h"
 #include "lightcuts/alpha_mask.h"
 #include "lightcuts/seeded_mixer.h"
 #include "protocol/channel_records.h"

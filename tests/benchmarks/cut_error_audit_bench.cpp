@@ -29,7 +29,7 @@
 #include "editor_client/render/pixel_stride.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/bound_walk.h"
 #include "lightcuts/cpu_evaluator.h"

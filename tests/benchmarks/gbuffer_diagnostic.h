@@ -16,7 +16,7 @@
 #include "editor_client/render/gbuffer_surface.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/gpu_layout.h"
 

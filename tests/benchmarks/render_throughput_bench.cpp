@@ -22,8 +22,8 @@
 
 #include "lightcuts/gpu_layout.h"
 #include "editor_client/render/renderer.h"
-#include "editor_client/scene/gltf_loader.h"
-#include "editor_client/scene/gltf_writer.h"
+#include "editor_client/scene/gltf/gltf_loader.h"
+#include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/buffer.h"
