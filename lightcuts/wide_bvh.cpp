@@ -56,7 +56,9 @@ uint32_t octant_order(const GpuWideBvhNode& node, uint32_t used, uint32_t octant
                            sz * (double(node.lo_z[k]) + double(node.hi_z[k]));
         keyed[s] = {key, s};
     }
-    std::sort(keyed.begin(), keyed.begin() + used);
+    // Insertion sort of the used slots (std::sort's bounds confuse GCC's -Warray-bounds here).
+    for (uint32_t i = 1; i < used; ++i)
+        for (uint32_t j = i; j > 0 && keyed[j] < keyed[j - 1]; --j) std::swap(keyed[j], keyed[j - 1]);
     uint32_t order = 0;
     for (uint32_t k = 0; k < kBvhWidth; ++k) order |= keyed[k].second << (2 * k);
     return order;

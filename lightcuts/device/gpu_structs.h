@@ -327,7 +327,8 @@ LC_CONST uint kBvhLeafCountBits = 3u;
 LC_CONST uint kBvhLeafCountMask = (1u << kBvhLeafCountBits) - 1u;
 LC_CONST uint kBvhMaxLeafSize = 4u;  // <= kBvhLeafCountMask
 
-// One node of the occluders' BVH (shadow_bvh.h), pre-order with escapes.
+// One node of the binary BVH (shadow_bvh.h), pre-order with escapes: primary
+// rays walk it for the closest hit (shadow rays walk GpuWideBvhNode).
 struct LC_ALIGN16 GpuBvhNode {
     vec3 bbox_min LC_DEFAULT(vec3(0.0f));
     int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
