@@ -97,6 +97,24 @@ uint walk_octant(vec3 direction, bool searching) {
            uint(subgroupAny(searching && direction.z < 0.0)) << 2u;
 }
 
+// Pushes a node's slot when any searching lane's ray hits its box, with
+// whether this lane's does (ray_occluded's locals; a macro because GLSL
+// passes arrays to functions by copy).
+#define SHADOW_PUSH_SLOT(slot_expr)                           \
+    {                                                         \
+        uint slot = (slot_expr);                              \
+        bool lane_hit = slot_hits[slot] != 0u;                \
+        if (subgroupAny(lane_hit)) {                          \
+            if (size < kBvhStackSize) {                       \
+                stack[size] = node.children[slot];            \
+                stack_entered[size] = lane_hit;               \
+                ++size;                                       \
+            } else {                                          \
+                g_shadow_walk_cut_short = true;               \
+            }                                                 \
+        }                                                     \
+    }
+
 // The subgroup's shared walk: every lane reads the same entry (uniform
 // reads, where llvmpipe loads once instead of gathering per lane). An inner
 // node pushes each slot that any searching lane's ray hits, farthest first,
@@ -128,20 +146,12 @@ bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
             uvec4 used = uvec4(notEqual(node.children, uvec4(kBvhEmptyChild)));
             uvec4 slot_hits = uvec4(ray_hits_slots(origin, inv_direction, t_max, node)) * used * uint(testing);
             uint order = (node.order[octant >> 2u] >> (8u * (octant & 3u))) & 0xffu;
-            // A constant trip count, so the compiler unrolls it (no loop budget spent).
-            for (uint k = kBvhWidth; k > 0u; --k) {
-                uint slot = (order >> (2u * (k - 1u))) & 3u;
-                bool lane_hit = slot_hits[slot] != 0u;
-                if (subgroupAny(lane_hit)) {
-                    if (size < kBvhStackSize) {
-                        stack[size] = node.children[slot];
-                        stack_entered[size] = lane_hit;
-                        ++size;
-                    } else {
-                        g_shadow_walk_cut_short = true;
-                    }
-                }
-            }
+            // Written out, not a loop: llvmpipe's loop limiter would count a
+            // loop's back edges even where the trip count is constant.
+            SHADOW_PUSH_SLOT(order >> 6u);
+            SHADOW_PUSH_SLOT((order >> 4u) & 3u);
+            SHADOW_PUSH_SLOT((order >> 2u) & 3u);
+            SHADOW_PUSH_SLOT(order & 3u);
         } else {
             for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
                 if (k < count) {
