@@ -1,8 +1,10 @@
-// The occluder BVH: binned SAH built top-down from an explicit work list (no
-// recursion), emitted in pre-order with escapes, walked without a stack.
+// The occluder BVH: binned SAH built top-down, large ranges' two sides in
+// parallel and small ones from an explicit work list, emitted in pre-order
+// with escapes, then collapsed 4-wide for the any-hit walk.
 #include "lightcuts/shadow_bvh.h"
 
 #include <glm/geometric.hpp>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -10,17 +12,26 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
+
+#include "lightcuts/wide_bvh.h"
 
 namespace lc {
 namespace {
 
 // Binned SAH: this many bins per axis, on all three axes of the centroid bounds.
 constexpr uint32_t kSahBins = 16;
-// Past this depth every split is an object median. SAH alone may peel a few
+// Past a depth every split is an object median. SAH alone may peel a few
 // triangles off per level (a geometric chain does), so the depth could grow
-// like the count; the medians bound it by kMaxSahDepth + log2(count).
-constexpr uint32_t kMaxSahDepth = 48;
+// like the count; the medians bound it by that depth + log2(count). The first
+// depth whose wide walk fits kBvhStackSize is kept: with medians alone a wide
+// level spans two binary ones, and 2^29 triangles need 43 entries at most.
+constexpr std::array<uint32_t, 4> kMaxSahDepths{48, 24, 12, 0};
+// Ranges at least this large build their two sides as parallel tasks; smaller
+// ones build serially (the same nodes either way).
+constexpr uint32_t kParallelGrain = 4096;
 // A leaf's word keeps kBvhLeafCountBits for the count, the rest for the first index.
 constexpr size_t kMaxTriangles = (size_t{1} << (32 - kBvhLeafCountBits)) - 1;
 
@@ -197,28 +208,33 @@ uint32_t saturate_u32(size_t n) {
     return static_cast<uint32_t>(std::min<size_t>(n, std::numeric_limits<uint32_t>::max()));
 }
 
-// Does origin + t * direction, 0 <= t <= t_max, touch the node's box? A zero
+// Does origin + t * direction, 0 <= t <= t_max, touch the box [lo, hi]? A zero
 // direction component is a containment test (its slab would give 0 * inf =
 // NaN on a face); the comparisons are written so a NaN from an overflowing
 // 1 / (denormal) leaves the interval unchanged, never a false miss.
 bool segment_touches_box(const glm::dvec3& origin, const glm::dvec3& direction,
-                         const glm::dvec3& inv_direction, double t_max, const GpuBvhNode& node) {
+                         const glm::dvec3& inv_direction, double t_max, const glm::dvec3& lo,
+                         const glm::dvec3& hi) {
     double t_enter = 0.0;
     double t_exit = t_max;
     for (int a = 0; a < 3; ++a) {
-        const double lo = node.bbox_min[a];
-        const double hi = node.bbox_max[a];
         if (direction[a] == 0.0) {
-            if (origin[a] < lo || origin[a] > hi) return false;
+            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
             continue;
         }
-        double t_near = (lo - origin[a]) * inv_direction[a];
-        double t_far = (hi - origin[a]) * inv_direction[a];
+        double t_near = (lo[a] - origin[a]) * inv_direction[a];
+        double t_far = (hi[a] - origin[a]) * inv_direction[a];
         if (inv_direction[a] < 0.0) std::swap(t_near, t_far);
         if (t_near > t_enter) t_enter = t_near;
         if (t_far < t_exit) t_exit = t_far;
     }
     return t_enter <= t_exit * kSlabExitScale;
+}
+
+// A wide node's slot box, in double (exact: the floats convert exactly).
+void slot_box(const GpuWideBvhNode& node, int slot, glm::dvec3& lo, glm::dvec3& hi) {
+    lo = glm::dvec3(node.lo_x[slot], node.lo_y[slot], node.lo_z[slot]);
+    hi = glm::dvec3(node.hi_x[slot], node.hi_y[slot], node.hi_z[slot]);
 }
 
 // Moller-Trumbore, both faces: a hit strictly inside (0, t_max). The barycentric
@@ -285,40 +301,76 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices) {
 
 namespace {
 
-// Top-down, with an explicit LIFO of ranges: the left range is popped (and so
-// emitted) right after its parent, and all of its subtree before the right
-// range: the nodes come out in pre-order. Returns the depth.
-uint32_t build_nodes(std::vector<BuildTriangle>& tris, std::vector<GpuBvhNode>& nodes) {
-    const uint32_t count = static_cast<uint32_t>(tris.size());
-    nodes.reserve(2 * static_cast<size_t>(count));  // leaves <= count, inner = leaves - 1
+// A range's subtree in pre-order, and its depth below the range's own node.
+struct Subtree {
+    std::vector<GpuBvhNode> nodes;
     uint32_t depth = 0;
-    std::vector<BuildTask> work{{0, count, 0}};
+};
+
+// The node of a range: its widened bounds, a leaf when small enough. Splits
+// the range (reordering its triangles) otherwise and returns where.
+std::optional<uint32_t> make_node(std::vector<BuildTriangle>& tris, const BuildTask& task,
+                                  uint32_t max_sah_depth, GpuBvhNode& node) {
+    FloatBox bounds;
+    FloatBox centroid_bounds;
+    for (uint32_t i = task.begin; i < task.end; ++i) {
+        bounds.grow(tris[i].lo, tris[i].hi);
+        centroid_bounds.grow(tris[i].centroid, tris[i].centroid);
+    }
+    store_widened_bounds(bounds, node);
+    const uint32_t n = task.end - task.begin;
+    if (n <= kBvhMaxLeafSize) {
+        node.triangles = (task.begin << kBvhLeafCountBits) | n;
+        return std::nullopt;
+    }
+    node.triangles = 0;  // inner: first child next
+    std::optional<uint32_t> mid;
+    if (task.depth < max_sah_depth) mid = sah_split(tris, task.begin, task.end, centroid_bounds);
+    if (!mid) mid = median_split(tris, task.begin, task.end, centroid_bounds);
+    return mid;
+}
+
+// Serially, with an explicit LIFO of ranges: the left range is popped (and so
+// emitted) right after its parent, and all of its subtree before the right
+// range: the nodes come out in pre-order.
+void build_serial(std::vector<BuildTriangle>& tris, const BuildTask& root, uint32_t max_sah_depth,
+                  Subtree& out) {
+    std::vector<BuildTask> work{root};
     while (!work.empty()) {
         const BuildTask task = work.back();
         work.pop_back();
-        FloatBox bounds;
-        FloatBox centroid_bounds;
-        for (uint32_t i = task.begin; i < task.end; ++i) {
-            bounds.grow(tris[i].lo, tris[i].hi);
-            centroid_bounds.grow(tris[i].centroid, tris[i].centroid);
-        }
+        out.depth = std::max(out.depth, task.depth - root.depth);
         GpuBvhNode node;
-        store_widened_bounds(bounds, node);
-        depth = std::max(depth, task.depth);
-        const uint32_t n = task.end - task.begin;
-        if (n <= kBvhMaxLeafSize) {
-            node.triangles = (task.begin << kBvhLeafCountBits) | n;
-            nodes.push_back(node);
-            continue;
-        }
-        nodes.push_back(node);  // inner: triangles = 0, first child next
-        std::optional<uint32_t> mid;
-        if (task.depth < kMaxSahDepth) mid = sah_split(tris, task.begin, task.end, centroid_bounds);
-        if (!mid) mid = median_split(tris, task.begin, task.end, centroid_bounds);
+        const std::optional<uint32_t> mid = make_node(tris, task, max_sah_depth, node);
+        out.nodes.push_back(node);
+        if (!mid) continue;
         work.push_back({*mid, task.end, task.depth + 1});
         work.push_back({task.begin, *mid, task.depth + 1});
     }
-    return depth;
+}
+
+// A large range splits, then its sides build as two tasks on disjoint
+// triangles and are joined in order: the nodes do not depend on the threads.
+Subtree build_subtree(std::vector<BuildTriangle>& tris, const BuildTask& task, uint32_t max_sah_depth) {
+    Subtree out;
+    if (task.end - task.begin < kParallelGrain) {
+        build_serial(tris, task, max_sah_depth, out);
+        return out;
+    }
+    GpuBvhNode node;
+    const std::optional<uint32_t> mid = make_node(tris, task, max_sah_depth, node);
+    out.nodes.push_back(node);
+    if (!mid) return out;
+    Subtree left;
+    Subtree right;
+    tbb::parallel_invoke(
+        [&] { left = build_subtree(tris, {task.begin, *mid, task.depth + 1}, max_sah_depth); },
+        [&] { right = build_subtree(tris, {*mid, task.end, task.depth + 1}, max_sah_depth); });
+    out.nodes.reserve(1 + left.nodes.size() + right.nodes.size());
+    out.nodes.insert(out.nodes.end(), left.nodes.begin(), left.nodes.end());
+    out.nodes.insert(out.nodes.end(), right.nodes.begin(), right.nodes.end());
+    out.depth = 1 + std::max(left.depth, right.depth);
+    return out;
 }
 
 // Escapes from subtree sizes, children after parents: size(i) = 1 for a leaf,
@@ -336,6 +388,31 @@ void link_escapes(std::vector<GpuBvhNode>& nodes) {
         const size_t escape = i + subtree_size[i];
         nodes[i].escape = escape == node_count ? kEndOfWalk : static_cast<int32_t>(escape);
     }
+}
+
+struct Layouts {
+    std::vector<GpuBvhNode> binary;
+    uint32_t binary_depth = 0;
+    WideBvh wide;
+    uint32_t max_sah_depth = 0;
+};
+
+// The binary and wide layouts, with the deepest SAH whose wide walk fits the
+// shaders' stack (lightcuts/device/gpu_structs.h). Leaves `tris` in leaf order.
+Layouts build_layouts(std::vector<BuildTriangle>& tris) {
+    const std::vector<BuildTriangle> input = tris;
+    for (uint32_t max_sah_depth : kMaxSahDepths) {
+        tris = input;
+        Subtree tree = build_subtree(tris, {0, uint32_t(tris.size()), 0}, max_sah_depth);
+        link_escapes(tree.nodes);
+        WideBvh wide = collapse_to_wide(tree.nodes);
+        if (wide.stack_need > kBvhStackSize) continue;
+        return {std::move(tree.nodes), tree.depth, std::move(wide), max_sah_depth};
+    }
+    // Unreachable below kMaxTriangles: medians alone need at most 43 entries.
+    throw std::length_error("shadow BVH: even an object-median tree over " + std::to_string(tris.size()) +
+                            " triangles needs more than " + std::to_string(kBvhStackSize) +
+                            " stack entries to walk");
 }
 
 }  // namespace
@@ -374,8 +451,15 @@ ShadowBvh ShadowBvh::build(std::span<const glm::vec3> triangle_vertices, const O
     if (tris.empty()) return bvh;
 
     const uint32_t count = static_cast<uint32_t>(tris.size());
-    bvh.stats_.depth = build_nodes(tris, bvh.nodes_);
-    link_escapes(bvh.nodes_);
+    Layouts layouts = build_layouts(tris);
+    bvh.nodes_ = std::move(layouts.binary);
+    bvh.wide_nodes_ = std::move(layouts.wide.nodes);
+    bvh.stats_.depth = layouts.binary_depth;
+    bvh.stats_.wide_nodes = static_cast<uint32_t>(bvh.wide_nodes_.size());
+    bvh.stats_.wide_leaves = layouts.wide.leaves;
+    bvh.stats_.wide_depth = layouts.wide.depth;
+    bvh.stats_.stack_need = layouts.wide.stack_need;
+    bvh.stats_.max_sah_depth = layouts.max_sah_depth;
     const size_t node_count = bvh.nodes_.size();
 
     // The triangles in leaf order: floats (vertex and edges) for the shaders,
@@ -454,34 +538,41 @@ bool ShadowBvh::blocks(size_t leaf_triangle, double u, double w) const {
 }
 
 bool ShadowBvh::occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const {
-    if (nodes_.empty() || !(t_max > 0.0)) return false;
+    if (wide_nodes_.empty() || !(t_max > 0.0)) return false;
     if (!is_finite(origin) || !is_finite(direction)) return false;
     const glm::dvec3 inv_direction = 1.0 / direction;  // +-inf on zero components
-    int32_t i = 0;
-    // Every step moves forward (to i + 1 or to an escape past the subtree), so the
-    // walk visits each node at most once.
-    while (i != kEndOfWalk) {
-        const GpuBvhNode& node = nodes_[static_cast<size_t>(i)];
-        if (!segment_touches_box(origin, direction, inv_direction, t_max, node)) {
-            i = node.escape;
-            continue;
+    const uint32_t octant = direction_octant(direction.x < 0.0, direction.y < 0.0, direction.z < 0.0);
+    // The build keeps stack_need <= kBvhStackSize, so the pushes never overflow.
+    std::array<uint32_t, kBvhStackSize> stack;
+    size_t size = 0;
+    uint32_t entry = 0;  // the root, an inner entry (count 0)
+    for (;;) {
+        const uint32_t count = entry & kBvhLeafCountMask;
+        const uint32_t index = entry >> kBvhLeafCountBits;
+        if (count != 0) {
+            for (uint32_t k = 0; k < count; ++k) {
+                const glm::dvec3* v = &vertices_[3 * (static_cast<size_t>(index) + k)];
+                double u = 0.0, w = 0.0;
+                if (segment_hits_triangle(origin, direction, t_max, v, u, w) &&
+                    blocks(static_cast<size_t>(index) + k, u, w))
+                    return true;
+            }
+        } else {
+            // The hit slots, farthest pushed first so the nearest pops next.
+            const GpuWideBvhNode& node = wide_nodes_[index];
+            const uint32_t order = slot_order(node, octant);
+            for (uint32_t k = kBvhWidth; k-- > 0;) {
+                const int slot = int((order >> (2 * k)) & 3u);
+                const uint32_t child = node.children[slot];
+                if (child == kBvhEmptyChild) continue;
+                glm::dvec3 lo, hi;
+                slot_box(node, slot, lo, hi);
+                if (segment_touches_box(origin, direction, inv_direction, t_max, lo, hi)) stack[size++] = child;
+            }
         }
-        if (node.triangles == 0) {
-            ++i;
-            continue;
-        }
-        const uint32_t first = node.triangles >> kBvhLeafCountBits;
-        const uint32_t n = node.triangles & ((1u << kBvhLeafCountBits) - 1);
-        for (uint32_t k = 0; k < n; ++k) {
-            const glm::dvec3* v = &vertices_[3 * (static_cast<size_t>(first) + k)];
-            double u = 0.0, w = 0.0;
-            if (segment_hits_triangle(origin, direction, t_max, v, u, w) &&
-                blocks(static_cast<size_t>(first) + k, u, w))
-                return true;
-        }
-        i = node.escape;
+        if (size == 0) return false;
+        entry = stack[--size];
     }
-    return false;
 }
 
 }  // namespace lc

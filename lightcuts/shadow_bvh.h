@@ -1,12 +1,13 @@
 #pragma once
 // The occluders for shadow rays: the scene's shadow-casting triangles in a
 // bounding volume hierarchy, answered on the CPU in double precision and
-// uploaded for the shaders in a stackless layout (pre-order nodes, each with
-// its escape: the next node in pre-order after its subtree), so an any-hit
-// traversal needs no stack at all: hit an inner node -> go to index + 1 (its
-// first child), hit a leaf -> test its triangles then go to escape, miss ->
-// go to escape; the walk ends at kEndOfWalk. GpuBvhNode and GpuShadowTriangle
-// are in lightcuts/device/gpu_structs.h, shared with the shaders.
+// uploaded for the shaders. The build is binned SAH (in parallel, the same
+// nodes at any thread count) into a binary tree, kept in a stackless
+// pre-order layout with escapes (primary rays walk it for the closest hit),
+// and collapsed into a 4-wide tree (wide_bvh.h) that shadow rays walk any-hit,
+// children nearest-first by the ray's direction, on a stack of at most
+// kBvhStackSize entries. GpuBvhNode, GpuWideBvhNode and GpuShadowTriangle are
+// in lightcuts/device/gpu_structs.h, shared with the shaders.
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -25,8 +26,13 @@ struct ShadowBvhStats {
     uint32_t skipped_degenerate = 0;   // zero-area or non-finite triangles dropped
     uint32_t skipped_non_casting = 0;  // triangles of materials that cast no shadow
     uint32_t masked = 0;               // kept triangles a ray may pass through (alpha masks)
-    uint32_t nodes = 0;
+    uint32_t nodes = 0;  // binary
     uint32_t depth = 0;  // longest root-to-leaf path, in edges
+    uint32_t wide_nodes = 0;
+    uint32_t wide_leaves = 0;
+    uint32_t wide_depth = 0;
+    uint32_t stack_need = 0;     // most entries the any-hit walk's stack holds (<= kBvhStackSize)
+    uint32_t max_sah_depth = 0;  // past it, object medians (lowered until stack_need fits)
 };
 
 class ShadowBvh {
@@ -48,8 +54,12 @@ public:
     // occlude; an alpha-masked triangle only where its mask keeps it.
     bool occluded(const glm::dvec3& origin, const glm::dvec3& direction, double t_max) const;
 
-    // The stackless layout the shaders traverse (node 0 is the root).
+    // The binary stackless layout (node 0 is the root), for closest-hit walks.
     const std::vector<GpuBvhNode>& gpu_nodes() const { return nodes_; }
+    // The 4-wide layout the shadow rays walk (node 0 is the root).
+    const std::vector<GpuWideBvhNode>& gpu_wide_nodes() const { return wide_nodes_; }
+    // Most loop steps of one shadow ray's walk: every wide node and every leaf once.
+    uint32_t walk_steps() const { return stats_.wide_nodes + stats_.wide_leaves; }
     const std::vector<GpuShadowTriangle>& gpu_triangles() const { return triangles_; }
     // The alpha-masked triangles (GpuShadowTriangle::masked - 1 indexes them),
     // their masks and the masks' texels; empty when every triangle is opaque.
@@ -65,6 +75,7 @@ private:
     bool blocks(size_t leaf_triangle, double u, double w) const;
 
     std::vector<GpuBvhNode> nodes_;
+    std::vector<GpuWideBvhNode> wide_nodes_;
     std::vector<GpuShadowTriangle> triangles_;  // in leaf order
     std::vector<glm::dvec3> vertices_;          // 3 per triangle, in leaf order, for the CPU test
     std::vector<uint32_t> sources_;             // input triangle of each, in leaf order

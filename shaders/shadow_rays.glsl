@@ -1,13 +1,14 @@
 // Shadow rays: is a light visible from a shading point? Mirrors
-// lightcuts/shadow_ray.h (the ray) and ShadowBvh::occluded (the
-// stackless any-hit walk over the pre-order BVH: hit an inner node -> next
-// index, its first child; hit a leaf -> its triangles, then its escape; miss
-// -> escape). kShadows is false when the scene analysis finds that nothing can
+// lightcuts/shadow_ray.h (the ray) and ShadowBvh::occluded (the any-hit walk
+// over the 4-wide BVH: an inner node pushes the children whose boxes the ray
+// hits, the nearest on top for the direction's octant; a leaf tests its
+// triangles; the walk ends at the first occluder or an empty stack). kShadows is false when the scene analysis finds that nothing can
 // hide a light (scene_effects.cpp); the rays then compile away.
 #ifndef LC_SHADOW_RAYS_GLSL
 #define LC_SHADOW_RAYS_GLSL
 
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
 
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
@@ -29,17 +30,20 @@ uint g_shadow_rays = 0u;
 // tend to meet the same occluder. -1: none yet.
 int g_last_occluder = -1;
 
-// Slab test in the ray's parameter. A zero direction component was replaced
-// by a tiny one (no 0 * inf); the far distance is widened by a few ulps so a
-// flat box (a wall) is never missed through rounding.
-bool ray_hits_box(vec3 origin, vec3 inv_direction, float t_max, vec3 lo, vec3 hi) {
-    vec3 t0 = (lo - origin) * inv_direction;
-    vec3 t1 = (hi - origin) * inv_direction;
-    vec3 near = min(t0, t1);
-    vec3 far = max(t0, t1);
-    float enter = max(max(near.x, near.y), max(near.z, 0.0));
-    float leave = min(min(far.x, far.y), min(far.z, t_max)) * 1.000001;
-    return enter <= leave;
+// Slab test of a wide node's four child boxes in the ray's parameter. A zero
+// direction component was replaced by a tiny one (no 0 * inf); the far
+// distance is widened by a few ulps so a flat box (a wall) is never missed
+// through rounding.
+bvec4 ray_hits_slots(vec3 origin, vec3 inv_direction, float t_max, GpuWideBvhNode node) {
+    vec4 x0 = (node.lo_x - origin.x) * inv_direction.x;
+    vec4 x1 = (node.hi_x - origin.x) * inv_direction.x;
+    vec4 y0 = (node.lo_y - origin.y) * inv_direction.y;
+    vec4 y1 = (node.hi_y - origin.y) * inv_direction.y;
+    vec4 z0 = (node.lo_z - origin.z) * inv_direction.z;
+    vec4 z1 = (node.hi_z - origin.z) * inv_direction.z;
+    vec4 enter = max(max(min(x0, x1), min(y0, y1)), max(min(z0, z1), vec4(0.0)));
+    vec4 leave = min(min(max(x0, x1), max(y0, y1)), min(max(z0, z1), vec4(t_max))) * 1.000001;
+    return lessThanEqual(enter, leave);
 }
 
 // Moller-Trumbore, both faces; a hit strictly between the ends of the ray.
@@ -85,50 +89,89 @@ bool ray_blocked_by(vec3 origin, vec3 direction, float t_max, GpuShadowTriangle 
     return ray_hits_triangle(origin, direction, t_max, tri, bary) && triangle_blocks(tri, bary);
 }
 
-// One step of the subgroup's shared walk: every lane reads the same node (a
-// uniform read, where llvmpipe loads once instead of gathering per lane), the
-// subgroup enters an inner node when any lane's ray that is still searching
-// hits its box, and a leaf's triangles are tested by every such lane.
-void shadow_walk_step(inout int i, inout bool hit, vec3 origin, vec3 direction,
-                      vec3 inv_direction, float t_max) {
-    if (i == kEndOfWalk) return;
-    GpuBvhNode node = bvh_nodes[i];
-    bool enter = !hit && ray_hits_box(origin, inv_direction, t_max, node.bbox_min, node.bbox_max);
-    uint count = node.triangles & kBvhLeafCountMask;
-    if (count == 0u) {
-        i = subgroupAny(enter) ? i + 1 : node.escape;
-        return;
-    }
-    uint first = node.triangles >> kBvhLeafCountBits;
-    // A constant trip count, so the compiler unrolls it: a loop here would
-    // spend llvmpipe's loop budget (Renderer::reference_chunk counts node
-    // visits only).
-    for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
-        if (k < count) {
-            GpuShadowTriangle tri = shadow_triangles[first + k];
-            if (enter && ray_blocked_by(origin, direction, t_max, tri)) {
-                hit = true;
-                g_last_occluder = int(first + k);
-            }
-        }
-    }
-    i = node.escape;
+// The direction's octant as GpuWideBvhNode::order indexes it, one for the
+// subgroup (its walk is shared): negative on an axis where any lane's is.
+uint walk_octant(vec3 direction, bool searching) {
+    return uint(subgroupAny(searching && direction.x < 0.0)) |
+           uint(subgroupAny(searching && direction.y < 0.0)) << 1u |
+           uint(subgroupAny(searching && direction.z < 0.0)) << 2u;
 }
 
-// `searching` false: this lane needs no ray (it still walks with the others).
+// Pushes a node's slot when any searching lane's ray hits its box, with
+// whether this lane's does (ray_occluded's locals; a macro because GLSL
+// passes arrays to functions by copy).
+#define SHADOW_PUSH_SLOT(slot_expr)                           \
+    {                                                         \
+        uint slot = (slot_expr);                              \
+        bool lane_hit = slot_hits[slot] != 0u;                \
+        if (subgroupAny(lane_hit)) {                          \
+            if (size < kBvhStackSize) {                       \
+                stack[size] = node.children[slot];            \
+                stack_entered[size] = lane_hit;               \
+                ++size;                                       \
+            } else {                                          \
+                g_shadow_walk_cut_short = true;               \
+            }                                                 \
+        }                                                     \
+    }
+
+// The subgroup's shared walk: every lane reads the same entry (uniform
+// reads, where llvmpipe loads once instead of gathering per lane). An inner
+// node pushes each slot that any searching lane's ray hits, farthest first,
+// so the nearest pops next; each lane keeps whether its own ray hit the
+// slot, and tests a leaf's triangles only then. The build bounds the stack
+// (ShadowBvhStats::stack_need <= kBvhStackSize); the size check only guards
+// a corrupt upload. `searching` false: this lane needs no ray (it still walks
+// with the others).
 bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
     vec3 safe = mix(direction, vec3(1e-30), equal(direction, vec3(0.0)));
     vec3 inv_direction = 1.0 / safe;
-    int i = 0;
     bool hit = !searching;
     if (searching && g_last_occluder >= 0)
         hit = ray_blocked_by(origin, direction, t_max, shadow_triangles[g_last_occluder]);
-    // Every node is visited at most once; the bound only guards a corrupt upload.
-    for (uint step = 0u; i != kEndOfWalk && subgroupAny(!hit) && step < frame.bvh_node_count;
-         step += kShadowUnroll) {
-        shadow_walk_step(i, hit, origin, direction, inv_direction, t_max);
+    uint octant = walk_octant(direction, !hit);
+    uint stack[kBvhStackSize];
+    bool stack_entered[kBvhStackSize];
+    uint size = 0u;
+    uint entry = 0u;  // the root, an inner entry (count 0)
+    bool entered = true;
+    bool done = false;
+    // Each entry is popped once at most: frame.bvh_node_count bounds the steps.
+    for (uint step = 0u; !done && subgroupAny(!hit) && step < frame.bvh_node_count; step += kShadowUnroll) {
+        uint count = entry & kBvhLeafCountMask;
+        uint index = entry >> kBvhLeafCountBits;
+        bool testing = entered && !hit;
+        if (count == 0u) {
+            GpuWideBvhNode node = bvh_nodes[index];
+            uvec4 used = uvec4(notEqual(node.children, uvec4(kBvhEmptyChild)));
+            uvec4 slot_hits = uvec4(ray_hits_slots(origin, inv_direction, t_max, node)) * used * uint(testing);
+            uint order = (node.order[octant >> 2u] >> (8u * (octant & 3u))) & 0xffu;
+            // Written out, not a loop: llvmpipe's loop limiter would count a
+            // loop's back edges even where the trip count is constant.
+            SHADOW_PUSH_SLOT(order >> 6u);
+            SHADOW_PUSH_SLOT((order >> 4u) & 3u);
+            SHADOW_PUSH_SLOT((order >> 2u) & 3u);
+            SHADOW_PUSH_SLOT(order & 3u);
+        } else {
+            for (uint k = 0u; k < kBvhMaxLeafSize; ++k) {
+                if (k < count) {
+                    GpuShadowTriangle tri = shadow_triangles[index + k];
+                    if (testing && ray_blocked_by(origin, direction, t_max, tri)) {
+                        hit = true;
+                        g_last_occluder = int(index + k);
+                    }
+                }
+            }
+        }
+        if (size == 0u) {
+            done = true;
+        } else {
+            --size;
+            entry = subgroupBroadcastFirst(stack[size]);
+            entered = stack_entered[size];
+        }
     }
-    if (!hit && i != kEndOfWalk) g_shadow_walk_cut_short = true;
+    if (!hit && !done) g_shadow_walk_cut_short = true;
     return searching && hit;
 }
 

@@ -1,12 +1,15 @@
 // The shadow-ray BVH (lightcuts/shadow_bvh.h): any-hit answers equal
 // a brute-force loop over every triangle, the stackless layout is a valid
-// pre-order tree with conservative float boxes, and the hard cases (empty,
-// identical, chained, far-away, axis-parallel, degenerate) stay correct.
+// pre-order tree with conservative float boxes, its 4-wide collapse holds
+// the same leaves with nearest-first orders and a bounded stack, the build
+// is the same at any thread count, and the hard cases (empty, identical,
+// chained, far-away, axis-parallel, degenerate) stay correct.
 #include "lightcuts/shadow_bvh.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -17,9 +20,12 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <random>
 #include <utility>
 #include <vector>
+
+#include "lightcuts/wide_bvh.h"
 
 namespace lc::client {
 namespace {
@@ -284,6 +290,106 @@ bool inside(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
     return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y && p.z <= hi.z;
 }
 
+bool slot_inside(const GpuWideBvhNode& inner, int t, const GpuWideBvhNode& outer, int s) {
+    const glm::vec3 lo(inner.lo_x[t], inner.lo_y[t], inner.lo_z[t]);
+    const glm::vec3 hi(inner.hi_x[t], inner.hi_y[t], inner.hi_z[t]);
+    const glm::vec3 outer_lo(outer.lo_x[s], outer.lo_y[s], outer.lo_z[s]);
+    const glm::vec3 outer_hi(outer.hi_x[s], outer.hi_y[s], outer.hi_z[s]);
+    return inside(lo, outer_lo, outer_hi) && inside(hi, outer_lo, outer_hi);
+}
+
+// The stack a walk that hits every box needs, slots in their stored order:
+// one order of the many the bound in the stats must cover.
+uint32_t simulated_stack(const std::vector<GpuWideBvhNode>& wide) {
+    std::vector<uint32_t> stack;
+    size_t most = 0;
+    uint32_t entry = 0;
+    for (;;) {
+        if ((entry & kBvhLeafCountMask) == 0) {
+            const GpuWideBvhNode& node = wide[entry >> kBvhLeafCountBits];
+            for (int s = int(kBvhWidth); s-- > 0;)
+                if (node.children[s] != kBvhEmptyChild) stack.push_back(node.children[s]);
+            most = std::max(most, stack.size());
+        }
+        if (stack.empty()) return static_cast<uint32_t>(most);
+        entry = stack.back();
+        stack.pop_back();
+    }
+}
+
+// Checks the 4-wide layout against the binary one: each binary leaf is one
+// wide leaf slot with the same word and box, inner slots name later nodes
+// (each once) whose slots lie inside them, used slots come first, each
+// octant's order is a permutation with the used slots first, and the stack
+// bound and counts hold.
+void expect_valid_wide_layout(const ShadowBvh& bvh) {
+    const std::vector<GpuWideBvhNode>& wide = bvh.gpu_wide_nodes();
+    const std::vector<GpuBvhNode>& binary = bvh.gpu_nodes();
+    ASSERT_EQ(bvh.stats().wide_nodes, wide.size());
+    if (binary.empty()) {
+        EXPECT_TRUE(wide.empty());
+        return;
+    }
+    ASSERT_FALSE(wide.empty());
+    std::map<uint32_t, const GpuBvhNode*> binary_leaves;
+    for (const GpuBvhNode& n : binary)
+        if (n.triangles != 0) binary_leaves[n.triangles] = &n;
+    std::vector<uint8_t> reached(wide.size(), 0);
+    reached[0] = 1;
+    size_t leaves = 0;
+    for (size_t i = 0; i < wide.size(); ++i) {
+        ASSERT_TRUE(reached[i]) << "wide node " << i << " is no one's child";
+        const GpuWideBvhNode& node = wide[i];
+        uint32_t used = 0;
+        for (int s = 0; s < int(kBvhWidth); ++s) {
+            const uint32_t child = node.children[s];
+            if (child == kBvhEmptyChild) continue;
+            ASSERT_EQ(uint32_t(s), used) << "node " << i << ": used slots come first";
+            ++used;
+            if ((child & kBvhLeafCountMask) != 0) {
+                ++leaves;
+                const auto found = binary_leaves.find(child);
+                ASSERT_TRUE(found != binary_leaves.end()) << "node " << i << " slot " << s << ": no such leaf";
+                const GpuBvhNode& leaf = *found->second;
+                EXPECT_TRUE(node.lo_x[s] == leaf.bbox_min.x && node.lo_y[s] == leaf.bbox_min.y &&
+                            node.lo_z[s] == leaf.bbox_min.z && node.hi_x[s] == leaf.bbox_max.x &&
+                            node.hi_y[s] == leaf.bbox_max.y && node.hi_z[s] == leaf.bbox_max.z);
+                binary_leaves.erase(found);
+                continue;
+            }
+            const size_t c = child >> kBvhLeafCountBits;
+            ASSERT_GT(c, i);
+            ASSERT_LT(c, wide.size());
+            ASSERT_FALSE(reached[c]) << "wide node " << c << " has two parents";
+            reached[c] = 1;
+            for (int t = 0; t < int(kBvhWidth); ++t) {
+                if (wide[c].children[t] != kBvhEmptyChild) {
+                    EXPECT_TRUE(slot_inside(wide[c], t, node, s)) << "node " << c << " sticks out of " << i;
+                }
+            }
+        }
+        ASSERT_GE(used, 1u);
+        for (uint32_t octant = 0; octant < 8; ++octant) {
+            const uint32_t order = slot_order(node, octant);
+            uint32_t seen = 0;
+            for (uint32_t k = 0; k < kBvhWidth; ++k) {
+                const uint32_t slot = (order >> (2 * k)) & 3u;
+                seen |= 1u << slot;
+                if (k < used) {
+                    EXPECT_LT(slot, used) << "node " << i << ": an unused slot before a used one";
+                }
+            }
+            EXPECT_EQ(seen, 0xfu) << "node " << i << " octant " << octant << ": not a permutation";
+        }
+    }
+    EXPECT_TRUE(binary_leaves.empty()) << binary_leaves.size() << " binary leaves missing from the wide tree";
+    EXPECT_EQ(bvh.stats().wide_leaves, leaves);
+    EXPECT_EQ(bvh.walk_steps(), wide.size() + leaves);
+    EXPECT_LE(bvh.stats().stack_need, kBvhStackSize);
+    EXPECT_LE(simulated_stack(wide), bvh.stats().stack_need);
+    EXPECT_LE(bvh.stats().wide_depth, (bvh.stats().depth + 2) / 2);
+}
+
 // Checks the stackless layout against `kept` (the triangles that must be in it,
 // 3 vertices each): pre-order with escapes, root escape -1, children inside
 // parents, leaf counts 1..4, every triangle in exactly one leaf with its float
@@ -386,6 +492,7 @@ void expect_valid_layout(const ShadowBvh& bvh, const Triangles& kept) {
     EXPECT_EQ(std::count(triangle_seen.begin(), triangle_seen.end(), 1),
               static_cast<std::ptrdiff_t>(kept_count));
     EXPECT_EQ(bvh.stats().depth, max_depth);
+    expect_valid_wide_layout(bvh);
 }
 
 uint32_t log2_ceil(size_t n) {
@@ -695,6 +802,79 @@ TEST(ShadowBvhTest, ChainsAlongALineKeepAReasonableDepth) {
     expect_geometric_chain_ok(82, 0x1p124, 0.125, 0.25, 48 + log2_ceil(82) + 1);
 }
 
+// The 82-triangle chain peels one triangle per level: with SAH to depth 48
+// its wide walk would need more than kBvhStackSize entries, so the build
+// lowers the SAH depth until it fits.
+TEST(ShadowBvhTest, DeepChainsLowerTheSahDepthToFitTheStack) {
+    Triangles tris;
+    double x = 0x1p124;
+    for (size_t i = 0; i < 82; ++i, x *= 0.125) {
+        const float s = static_cast<float>(0.25 * x);
+        const float xf = static_cast<float>(x);
+        tris.insert(tris.end(), {{xf, -s, -s}, {xf, s, -s}, {xf, 0.0f, s}});
+    }
+    const ShadowBvh bvh = ShadowBvh::build(tris);
+    expect_valid_layout(bvh, tris);
+    EXPECT_LT(bvh.stats().max_sah_depth, 48u);
+    EXPECT_LE(bvh.stats().stack_need, kBvhStackSize);
+    std::printf("[ chain 82 ] SAH to depth %u: depth %u, wide depth %u, stack %u\n", bvh.stats().max_sah_depth,
+                bvh.stats().depth, bvh.stats().wide_depth, bvh.stats().stack_need);
+}
+
+// Four squares in a row along x, 2 apart: the root has them as its four
+// slots, ordered by x for +x rays and backwards for -x rays.
+TEST(ShadowBvhTest, WideNodesOrderTheirChildrenNearestFirst) {
+    Triangles tris;
+    for (int k = 0; k < 4; ++k) {
+        const float x0 = 2.0f * float(k);
+        add_square_xy(tris, x0, x0 + 1.0f, 0.0f, 1.0f, 0.0f);
+        add_square_xy(tris, x0, x0 + 1.0f, 0.0f, 1.0f, 0.5f);
+    }
+    const ShadowBvh bvh = ShadowBvh::build(tris);
+    expect_valid_layout(bvh, tris);
+    ASSERT_EQ(bvh.gpu_wide_nodes().size(), 1u);
+    const GpuWideBvhNode& root = bvh.gpu_wide_nodes()[0];
+    auto slot_x = [&](uint32_t order, uint32_t k) { return root.lo_x[int((order >> (2 * k)) & 3u)]; };
+    for (uint32_t octant = 0; octant < 8; ++octant) {
+        const uint32_t order = slot_order(root, octant);
+        for (uint32_t k = 0; k + 1 < kBvhWidth; ++k) {
+            if (octant & 1u) {
+                EXPECT_GT(slot_x(order, k), slot_x(order, k + 1)) << "octant " << octant;
+            } else {
+                EXPECT_LT(slot_x(order, k), slot_x(order, k + 1)) << "octant " << octant;
+            }
+        }
+    }
+    EXPECT_TRUE(bvh.occluded({-1, 0.5, 0.25}, {1, 0, 0}, kInf) == false);
+    EXPECT_TRUE(bvh.occluded({0.5, 0.5, -1}, {0, 0, 1}, kInf));
+    EXPECT_TRUE(bvh.occluded({6.5, 0.5, 1}, {0, 0, -1}, 0.6));
+    EXPECT_FALSE(bvh.occluded({6.5, 0.5, 1}, {0, 0, -1}, 0.4));
+}
+
+// The parallel build's nodes, triangles and sources, byte for byte, on one
+// thread and on all (ranges past the parallel grain split into tasks).
+TEST(ShadowBvhTest, BuildIsTheSameAtAnyThreadCount) {
+    const Triangles tris = random_soup(60000, 77, glm::dvec3(0.0), 1.0, 0.05);
+    // All the threads TBB offers (two on a two-core box) against one.
+    auto build_on = [&](int threads) {
+        tbb::task_arena arena(threads);
+        ShadowBvh bvh;
+        arena.execute([&] { bvh = ShadowBvh::build(tris); });
+        return bvh;
+    };
+    const ShadowBvh one = build_on(1);
+    const ShadowBvh all = build_on(std::max(2, tbb::info::default_concurrency()));
+    expect_valid_layout(one, tris);
+    auto same_bytes = [](const auto& a, const auto& b) {
+        return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0;
+    };
+    EXPECT_TRUE(same_bytes(one.gpu_nodes(), all.gpu_nodes()));
+    EXPECT_TRUE(same_bytes(one.gpu_wide_nodes(), all.gpu_wide_nodes()));
+    EXPECT_TRUE(same_bytes(one.gpu_triangles(), all.gpu_triangles()));
+    EXPECT_TRUE(same_bytes(one.leaf_sources(), all.leaf_sources()));
+    EXPECT_GT(one.stats().wide_nodes, 60000u / 16);
+}
+
 // Two clusters, 30 triangles at x in [0, 1] and 70 at x in [9, 10]: the SAH
 // root split separates them (an object median would put 20 of the 70 on the
 // left).
@@ -904,37 +1084,53 @@ bool float_ray_hits_triangle(const glm::vec3& origin, const glm::vec3& direction
     return u >= 0.0f && v >= 0.0f && u + v <= 1.0f && t > 0.0f && t < t_max;
 }
 
+// The shaders' slab test of one wide slot, in float.
+bool float_ray_hits_slot(const glm::vec3& origin, const glm::vec3& inv, float t_max, const GpuWideBvhNode& node,
+                         int slot) {
+    const glm::vec3 lo(node.lo_x[slot], node.lo_y[slot], node.lo_z[slot]);
+    const glm::vec3 hi(node.hi_x[slot], node.hi_y[slot], node.hi_z[slot]);
+    const glm::vec3 t0 = (lo - origin) * inv;
+    const glm::vec3 t1 = (hi - origin) * inv;
+    const glm::vec3 near = glm::min(t0, t1);
+    const glm::vec3 far = glm::max(t0, t1);
+    const float enter = std::max(std::max(near.x, near.y), std::max(near.z, 0.0f));
+    const float leave = std::min(std::min(far.x, far.y), std::min(far.z, t_max)) * 1.000001f;
+    return enter <= leave;
+}
+
+// The 4-wide walk with its stack of kBvhStackSize entries, nearest-first.
 bool float_walk(const ShadowBvh& bvh, const glm::vec3& origin, const glm::vec3& direction, float t_max) {
     glm::vec3 safe = direction;
     for (int a = 0; a < 3; ++a)
         if (safe[a] == 0.0f) safe[a] = 1e-30f;
     const glm::vec3 inv = 1.0f / safe;
-    const auto& nodes = bvh.gpu_nodes();
-    int32_t i = nodes.empty() ? kEndOfWalk : 0;
-    while (i != kEndOfWalk) {
-        const GpuBvhNode& node = nodes[static_cast<size_t>(i)];
-        const glm::vec3 t0 = (node.bbox_min - origin) * inv;
-        const glm::vec3 t1 = (node.bbox_max - origin) * inv;
-        const glm::vec3 near = glm::min(t0, t1);
-        const glm::vec3 far = glm::max(t0, t1);
-        const float enter = std::max(std::max(near.x, near.y), std::max(near.z, 0.0f));
-        const float leave = std::min(std::min(far.x, far.y), std::min(far.z, t_max)) * 1.000001f;
-        if (!(enter <= leave)) {
-            i = node.escape;
-            continue;
-        }
-        const uint32_t count = node.triangles & ((1u << kBvhLeafCountBits) - 1);
+    const auto& nodes = bvh.gpu_wide_nodes();
+    if (nodes.empty()) return false;
+    const uint32_t octant = direction_octant(direction.x < 0.0f, direction.y < 0.0f, direction.z < 0.0f);
+    std::array<uint32_t, kBvhStackSize> stack{};
+    size_t size = 0;
+    uint32_t entry = 0;
+    for (;;) {
+        const uint32_t count = entry & kBvhLeafCountMask;
+        const uint32_t index = entry >> kBvhLeafCountBits;
         if (count == 0) {
-            ++i;
-            continue;
+            const GpuWideBvhNode& node = nodes[index];
+            const uint32_t order = slot_order(node, octant);
+            for (uint32_t k = kBvhWidth; k-- > 0;) {
+                const int slot = int((order >> (2 * k)) & 3u);
+                if (node.children[slot] == kBvhEmptyChild) continue;
+                if (!float_ray_hits_slot(origin, inv, t_max, node, slot)) continue;
+                EXPECT_LT(size, kBvhStackSize);
+                if (size == kBvhStackSize) return false;
+                stack[size++] = node.children[slot];
+            }
+        } else {
+            for (uint32_t k = 0; k < count; ++k)
+                if (float_ray_hits_triangle(origin, direction, t_max, bvh.gpu_triangles()[index + k])) return true;
         }
-        const uint32_t first = node.triangles >> kBvhLeafCountBits;
-        for (uint32_t k = 0; k < count; ++k)
-            if (float_ray_hits_triangle(origin, direction, t_max, bvh.gpu_triangles()[first + k]))
-                return true;
-        i = node.escape;
+        if (size == 0) return false;
+        entry = stack[--size];
     }
-    return false;
 }
 
 TEST(ShadowBvhTest, FloatWalkOverTheUploadedBuffersLosesNoHit) {

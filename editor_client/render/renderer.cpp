@@ -194,7 +194,7 @@ Frame Renderer::make_frame(const RenderSettings& settings) const {
     constants.scale_bar_rows =
         settings.mode == RenderMode::kCutSize ? std::min(kScaleBarRows, targets_.height / 4) : 0u;
     constants.shadow_bias = frame.shadows ? occluders_.bias() : 0.0f;
-    constants.bvh_node_count = frame.shadows ? uint32_t(occluders_.bvh().gpu_nodes().size()) : 0u;
+    constants.bvh_node_count = frame.shadows ? occluders_.bvh().walk_steps() : 0u;
     constants.light_begin = 0;
     constants.light_end = lights_.leaf_count();
     constants.eye = settings.camera.eye;

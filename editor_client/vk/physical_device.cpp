@@ -49,7 +49,8 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     features.pNext = &features13;
     vkGetPhysicalDeviceFeatures2(device, &features);
     if (!features13.dynamicRendering) return "dynamicRendering is not supported";
-    // The lightcuts walk votes across a subgroup (shaders/lightcuts_*.comp).
+    // The lightcuts walk votes across a subgroup (shaders/lightcuts_*.comp);
+    // the shadow rays' shared walk broadcasts its stack entries (shadow_rays.glsl).
     VkPhysicalDeviceSubgroupProperties subgroup{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -62,6 +63,8 @@ std::string check_device(VkPhysicalDevice device, VkSurfaceKHR surface, Physical
     if ((subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) == 0 ||
         (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_VOTE_BIT) == 0)
         return "subgroup vote operations in compute shaders are not supported";
+    if ((subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT) == 0)
+        return "subgroup ballot operations in compute shaders are not supported";
     out.subgroup_size = subgroup.subgroupSize;
     if (!features13.synchronization2) return "synchronization2 is not supported";
     if (surface != VK_NULL_HANDLE && !has_device_extension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))

@@ -154,7 +154,7 @@ struct LC_ALIGN16 GpuFrameConstants {
     // classic lights and emission, the last one stores the pixel.
     uint light_begin LC_DEFAULT(0u);
     uint light_end LC_DEFAULT(0u);
-    uint bvh_node_count LC_DEFAULT(0u);  // shadow BVH nodes (0: nothing occludes)
+    uint bvh_node_count LC_DEFAULT(0u);  // a shadow walk's steps at most: ShadowBvh::walk_steps (0: nothing occludes)
     uint walk_dispatch LC_DEFAULT(0u);   // the bound criterion's walk search: this dispatch's number
     vec3 eye LC_DEFAULT(vec3(0.0f));     // camera position: the glossy lobe's view direction
     // Reference mode's exact clamp: this dispatch's pass over the leaves (0:
@@ -327,7 +327,8 @@ LC_CONST uint kBvhLeafCountBits = 3u;
 LC_CONST uint kBvhLeafCountMask = (1u << kBvhLeafCountBits) - 1u;
 LC_CONST uint kBvhMaxLeafSize = 4u;  // <= kBvhLeafCountMask
 
-// One node of the occluders' BVH (shadow_bvh.h), pre-order with escapes.
+// One node of the binary BVH (shadow_bvh.h), pre-order with escapes: primary
+// rays walk it for the closest hit (shadow rays walk GpuWideBvhNode).
 struct LC_ALIGN16 GpuBvhNode {
     vec3 bbox_min LC_DEFAULT(vec3(0.0f));
     int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
@@ -335,6 +336,34 @@ struct LC_ALIGN16 GpuBvhNode {
     // Leaves: first triangle << kBvhLeafCountBits | triangle count (1..kBvhMaxLeafSize);
     // inner nodes: 0 (a count of 0 means "inner": its first child is the next node).
     uint triangles LC_DEFAULT(0u);
+};
+
+// The shadow rays' walk (shaders/shadow_rays.glsl, ShadowBvh::occluded): a
+// 4-wide BVH whose children are visited nearest-first, pending ones on a stack
+// of kBvhStackSize entries; the build guarantees the walk never needs more
+// (ShadowBvhStats::stack_need).
+LC_CONST uint kBvhWidth = 4u;
+LC_CONST uint kBvhStackSize = 48u;
+// GpuWideBvhNode::children of an unused slot.
+LC_CONST uint kBvhEmptyChild = 0xffffffffu;
+
+// One node of the 4-wide occluder BVH: its children's boxes side by side (a
+// slab test of all four in vector form), what each child is, and the order to
+// visit them for each sign of the ray's direction.
+struct LC_ALIGN16 GpuWideBvhNode {
+    vec4 lo_x LC_DEFAULT(vec4(0.0f));
+    vec4 hi_x LC_DEFAULT(vec4(0.0f));
+    vec4 lo_y LC_DEFAULT(vec4(0.0f));
+    vec4 hi_y LC_DEFAULT(vec4(0.0f));
+    vec4 lo_z LC_DEFAULT(vec4(0.0f));
+    vec4 hi_z LC_DEFAULT(vec4(0.0f));
+    // Per slot: a leaf (first triangle << kBvhLeafCountBits | count 1..kBvhMaxLeafSize),
+    // an inner child (its node index << kBvhLeafCountBits, count 0) or kBvhEmptyChild.
+    uvec4 children LC_DEFAULT(uvec4(kBvhEmptyChild));
+    // The slots nearest-first for the direction's octant o (bit 0: x < 0, bit 1:
+    // y < 0, bit 2: z < 0): byte o % 4 of order[o / 4], 2 bits a slot, the
+    // first in the lowest bits. Unused slots come last.
+    uvec4 order LC_DEFAULT(uvec4(0u));
 };
 
 // One triangle as the shaders test it (Moller-Trumbore: a vertex and two edges).

@@ -41,10 +41,11 @@ size_t scene_triangles(const lc::Scene& scene) {
     return n;
 }
 
-// Bytes the BVH holds per kept triangle beyond the mesh: its nodes, the
-// shaders' triangles and the CPU's double vertices.
+// Bytes the BVH holds per kept triangle beyond the mesh: its binary and
+// 4-wide nodes, the shaders' triangles and the CPU's double vertices.
 double bvh_bytes_per_triangle(const lc::ShadowBvh& bvh) {
     const double bytes = double(bvh.gpu_nodes().size() * sizeof(lc::GpuBvhNode)) +
+                         double(bvh.gpu_wide_nodes().size() * sizeof(lc::GpuWideBvhNode)) +
                          double(bvh.gpu_triangles().size() * sizeof(lc::GpuShadowTriangle)) +
                          double(bvh.stats().triangles) * 3.0 * sizeof(glm::dvec3);
     return bytes / double(bvh.stats().triangles);

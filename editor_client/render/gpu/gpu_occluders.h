@@ -32,7 +32,7 @@ public:
 private:
     ShadowBvh bvh_;
     float bias_ = 0.0f;
-    vk::Buffer nodes_;             // GpuBvhNode, pre-order
+    vk::Buffer nodes_;             // GpuWideBvhNode, root first
     vk::Buffer triangles_;         // GpuShadowTriangle, in leaf order
     vk::Buffer masked_triangles_;  // GpuMaskedTriangle (alpha-masked occluders)
     vk::Buffer alpha_masks_;       // GpuAlphaMask

@@ -8,10 +8,10 @@
 namespace lc::client {
 namespace {
 
-// Worst-case loop iterations of one shadow ray: every BVH node once.
+// Worst-case loop iterations of one shadow ray: every wide node and leaf once.
 uint64_t shadow_ray_iterations(const LoopWork& work) {
     if (work.shadow_bvh == nullptr || work.shadow_bvh->empty()) return 0;
-    return (uint64_t(work.shadow_bvh->gpu_nodes().size()) + kShadowUnroll - 1) / kShadowUnroll + 1;
+    return (uint64_t(work.shadow_bvh->walk_steps()) + kShadowUnroll - 1) / kShadowUnroll + 1;
 }
 
 // The classic lights' loop, with a ray per light (`ray` iterations each).
