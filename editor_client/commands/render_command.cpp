@@ -1,6 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
+//   [--reconstruction BLOCK [--reconstruction-cap N]]
 //   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
@@ -100,6 +101,8 @@ struct RenderOptions {
     uint32_t tile_stride = 1;
     uint32_t realtime_cut = 16;
     uint32_t realtime_rays = kDefaultRealtimeRays;
+    uint32_t reconstruction_block = 0;
+    uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;
 };
@@ -184,6 +187,20 @@ std::string realtime_summary(const RenderStats& stats) {
     return text;
 }
 
+// GPU reconstruction cuts' part of the summary line: rays, fallbacks, storage.
+std::string reconstruction_summary(const RenderStats& stats) {
+    if (stats.reconstruction_block == 0) return "";
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  ", reconstruction cuts in %ux%u blocks: %.2f shadow rays a pixel, %llu pixels fell back, "
+                  "%.1f MiB of records",
+                  stats.reconstruction_block, stats.reconstruction_block,
+                  double(stats.shadow_rays) / double(std::max<uint64_t>(stats.geometry_pixels, 1)),
+                  (unsigned long long)stats.reconstruction_fallbacks,
+                  double(stats.reconstruction_bytes) / (1024.0 * 1024.0));
+    return text;
+}
+
 // Pixels the device's loop limit cut short, said in the summary line too.
 std::string loop_limit_summary(const RenderStats& stats) {
     if (stats.loop_limit_stops == 0) return "";
@@ -249,6 +266,8 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.realtime_cut;
     settings.realtime_rays = options.realtime_rays;
+    settings.reconstruction_block = options.reconstruction_block;
+    settings.reconstruction_cap = options.reconstruction_cap;
     if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
     const auto [width, height] = or_fail(parse_size(options.size));
@@ -539,7 +558,7 @@ void print_report(const RenderStats& stats, const RenderOptions& options, const 
         stats.device.c_str(), stats.mode.c_str(), request.width, request.height,
         (unsigned long long)stats.lights, (unsigned long long)stats.tree_lights,
         (unsigned long long)stats.classic_lights, (unsigned long long)stats.nodes, stats.render_ms,
-        stats.render_clock.c_str(), realtime_summary(stats).c_str(), stats.wall_ms, command_ms, stats.avg_cut,
+        stats.render_clock.c_str(), (realtime_summary(stats) + reconstruction_summary(stats)).c_str(), stats.wall_ms, command_ms, stats.avg_cut,
         stats.max_cut, (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
         stats.validation_messages, options.output.c_str());
 }
@@ -709,6 +728,17 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "Real-time mode: shadow rays per pixel and frame, picked among the cut's "
                     "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
         ->check(CLI::Range(0u, kMaxStochasticRays))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction", options->reconstruction_block,
+                    "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
+                    "BLOCKxBLOCK pixel blocks, the pixels between shaded from them with shadow rays "
+                    "only where their visibility disagrees (0: a lightcut per pixel)")
+        ->check(CLI::Range(0u, kMaxReconstructionBlock))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction-cap", options->reconstruction_cap,
+                    "Reconstruction cuts: cut nodes a sample records at most (4 bytes each); a "
+                    "sample over it makes its blocks' pixels run lightcuts of their own")
+        ->check(CLI::Range(1u, kMaxGpuCut))
         ->capture_default_str();
     cmd->add_option("--frames", options->frames,
                     "Real-time mode: frames of the still view whose mean is the image")

@@ -60,7 +60,7 @@ Status ReconstructionPass::prepare(PipelineCache& pipelines, const Frame& frame)
     const std::array<std::span<const uint32_t>, kStageCount> modules{
         spirv_words(lightcuts_reconstruction_samples_comp_spv),
         spirv_words(lightcuts_reconstruction_pixels_comp_spv)};
-    const vk::Specialization spec = specialization(frame);
+    vk::Specialization spec = specialization(frame);
     for (int stage = 0; stage < kStageCount; ++stage) {
         Result<VkPipeline> pipeline = pipelines.compute(layout_.handle(), modules[stage], spec);
         if (!pipeline) return make_error("reconstruction pipeline: " + pipeline.error());

@@ -1,0 +1,169 @@
+// Reconstruction cuts on the GPU (RenderSettings::reconstruction_block,
+// ReconstructionPass): full lightcuts at the corners of 4x4 blocks, the other
+// pixels shaded along their corners' cuts with shadow rays only where the
+// corners' visibility disagrees. On the furnished room with shadows and glossy
+// surfaces: its error against the reference stays near the per-pixel
+// lightcut's with far fewer shadow rays, pixels whose corners lie on other
+// surfaces (or whose samples overflow their records) run the per-pixel
+// lightcut instead, and the frame is deterministic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "editor_client/render/analysis/error_stats.h"
+#include "editor_client/render/passes/reconstruction_records.h"
+#include "editor_client/render/renderer.h"
+#include "render_test_support.h"
+
+namespace lc::client {
+namespace {
+
+constexpr uint32_t kSize = 48;
+
+struct Frame {
+    RenderStats stats;
+    std::vector<float> hdr;
+    std::vector<uint32_t> cuts;  // (size, hash) per pixel
+};
+
+class ReconstructionCuts : public test::VulkanTest {
+protected:
+    void SetUp() override {
+        VulkanTest::SetUp();
+        if (!context_) return;
+        scene_ = make_furnished_room_scene();
+        scene_.lights = test::room_lights(1500, 23, LightTypeChoice::kPoint, 0.8f);
+        tree_ = test::agglomerative_tree(scene_.lights);
+        Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
+        ASSERT_TRUE(renderer.ok()) << renderer.error();
+        renderer_ = std::move(renderer).value();
+        ASSERT_TRUE(renderer_->effects().shadows);
+        settings_.width = settings_.height = kSize;
+        settings_.camera = test::furnished_room_camera();
+        settings_.criterion = CutCriterion::kBound;
+        settings_.bound_search = BoundSearch::kWalk;
+        settings_.mode = RenderMode::kLightcuts;
+    }
+    Frame render(const RenderSettings& settings) {
+        Frame f;
+        Result<RenderStats> stats = renderer_->render(settings);
+        EXPECT_TRUE(stats.ok()) << stats.error();
+        if (!stats.ok()) return f;
+        f.stats = *stats;
+        f.hdr = renderer_->read_hdr().value();
+        f.cuts = renderer_->read_cuts().value();
+        return f;
+    }
+    Scene scene_;
+    LightTree tree_;
+    std::unique_ptr<Renderer> renderer_;
+    RenderSettings settings_;
+};
+
+bool all_finite(const std::vector<float>& hdr) {
+    for (float v : hdr)
+        if (!std::isfinite(v)) return false;
+    return true;
+}
+
+TEST_F(ReconstructionCuts, NearTheLightcutsErrorWithFarFewerShadowRays) {
+    settings_.mode = RenderMode::kReference;
+    const Frame reference = render(settings_);
+    ASSERT_FALSE(reference.hdr.empty());
+    settings_.mode = RenderMode::kLightcuts;
+    for (float error : {0.02f, 0.005f}) {
+        SCOPED_TRACE(testing::Message() << "E " << error);
+        settings_.error_ratio = error;
+        settings_.reconstruction_block = 0;
+        const Frame own = render(settings_);
+        settings_.reconstruction_block = 4;
+        const Frame rebuilt = render(settings_);
+        ASSERT_FALSE(own.hdr.empty());
+        ASSERT_FALSE(rebuilt.hdr.empty());
+        Result<ErrorStats> own_errors = compute_error_stats(own.hdr, reference.hdr, kSize, kSize, 0.02);
+        Result<ErrorStats> errors = compute_error_stats(rebuilt.hdr, reference.hdr, kSize, kSize, 0.02);
+        ASSERT_TRUE(own_errors.ok() && errors.ok());
+        std::printf("  E %.3f: per pixel mean %.4f, %.4f over 2%%, %llu rays; reconstruction mean %.4f, "
+                    "%.4f over 2%%, %llu rays, %llu of %llu pixels fell back\n",
+                    error, own_errors->rel_err_mean, own_errors->frac_over_error,
+                    (unsigned long long)own.stats.shadow_rays, errors->rel_err_mean, errors->frac_over_error,
+                    (unsigned long long)rebuilt.stats.shadow_rays,
+                    (unsigned long long)rebuilt.stats.reconstruction_fallbacks,
+                    (unsigned long long)rebuilt.stats.geometry_pixels);
+        EXPECT_EQ(rebuilt.stats.nonfinite_pixels, 0u);
+        EXPECT_TRUE(all_finite(rebuilt.hdr));
+        EXPECT_EQ(rebuilt.stats.loop_limit_stops, 0u);
+        EXPECT_EQ(rebuilt.stats.geometry_pixels, own.stats.geometry_pixels);
+        EXPECT_GT(errors->measured_pixels, kSize * kSize / 2);
+        // The bound's guarantee for a pixel's own cut (render_bound_test),
+        // and within a small margin of the per-pixel lightcut's error.
+        EXPECT_LT(errors->rel_err_mean, 1.5 * error);
+        EXPECT_LT(errors->rel_err_mean, own_errors->rel_err_mean + 0.25 * error);
+        EXPECT_LT(errors->frac_over_error, own_errors->frac_over_error + 0.02);
+        // At most half the rays, though a 48x48 frame of a furnished room has
+        // many silhouettes (each a fallback to the per-pixel lightcut).
+        EXPECT_LT(2 * rebuilt.stats.shadow_rays, own.stats.shadow_rays);
+        EXPECT_GT(rebuilt.stats.reconstruction_fallbacks, 0u);
+        EXPECT_LT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels / 2);
+    }
+}
+
+// Blocks as large as the frame: its four corners see the walls, the floor and
+// the ceiling, so every other pixel disagrees with some corner (a silhouette
+// or a crease between them) and runs the per-pixel lightcut: the same image.
+TEST_F(ReconstructionCuts, PixelsWhoseCornersLieOnOtherSurfacesFallBack) {
+    settings_.reconstruction_block = 0;
+    const Frame own = render(settings_);
+    settings_.reconstruction_block = kSize;
+    const Frame rebuilt = render(settings_);
+    ASSERT_FALSE(own.hdr.empty());
+    ASSERT_FALSE(rebuilt.hdr.empty());
+    EXPECT_EQ(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - 4);
+    EXPECT_EQ(rebuilt.cuts, own.cuts);
+    for (size_t i = 0; i < own.hdr.size(); ++i)
+        ASSERT_NEAR(rebuilt.hdr[i], own.hdr[i], 1e-5f * std::max(1.0f, std::abs(own.hdr[i]))) << "value " << i;
+}
+
+// A sample whose cut exceeds its records makes its blocks fall back.
+TEST_F(ReconstructionCuts, SamplesOverTheirRecordCapFallBack) {
+    settings_.reconstruction_block = 4;
+    settings_.reconstruction_cap = 1;
+    const Frame rebuilt = render(settings_);
+    ASSERT_FALSE(rebuilt.hdr.empty());
+    const uint64_t lattice = uint64_t(reconstruction_lattice_side(kSize, 4)) * reconstruction_lattice_side(kSize, 4);
+    EXPECT_EQ(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - lattice);
+    EXPECT_EQ(rebuilt.stats.reconstruction_bytes, lattice * (32 + 4));
+    EXPECT_EQ(reconstruction_bytes(1920, 1080, 4, 1024), uint64_t(481 * 271) * (32 + 4 * 1024));
+}
+
+TEST_F(ReconstructionCuts, SameBytesEveryTime) {
+    settings_.reconstruction_block = 4;
+    const Frame first = render(settings_);
+    const Frame second = render(settings_);
+    ASSERT_FALSE(first.hdr.empty());
+    EXPECT_EQ(first.hdr, second.hdr);
+    EXPECT_EQ(first.cuts, second.cuts);
+    EXPECT_EQ(first.stats.shadow_rays, second.stats.shadow_rays);
+    EXPECT_EQ(first.stats.reconstruction_fallbacks, second.stats.reconstruction_fallbacks);
+}
+
+TEST_F(ReconstructionCuts, OnlyWithTheWalkSearchAndBlocksOfTwoOrMore) {
+    settings_.reconstruction_block = 4;
+    EXPECT_TRUE(renderer_->validate(settings_).ok());
+    settings_.bound_search = BoundSearch::kHeap;
+    EXPECT_FALSE(renderer_->validate(settings_).ok());
+    settings_.bound_search = BoundSearch::kWalk;
+    settings_.share_cuts = true;
+    EXPECT_FALSE(renderer_->validate(settings_).ok());
+    settings_.share_cuts = false;
+    settings_.reconstruction_block = 1;
+    EXPECT_FALSE(renderer_->validate(settings_).ok());
+    settings_.reconstruction_block = 4;
+    settings_.reconstruction_cap = 0;
+    EXPECT_FALSE(renderer_->validate(settings_).ok());
+}
+
+}  // namespace
+}  // namespace lc::client
