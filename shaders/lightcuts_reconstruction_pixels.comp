@@ -3,11 +3,13 @@
 // (lightcuts_reconstruction_samples.comp stored those) is shaded from the
 // four samples at its block's corners by reconstruction_walk.glsl, tracing
 // shadow rays only where the samples' visibility of a cluster disagrees.
-// Where the corners differ from the pixel in normal, depth or material (a
-// silhouette, a crease, a thin feature) or a corner sample is not usable,
-// the pixel runs the bound walk search of its own (bound_walk.glsl) over the
-// same dispatches as lightcuts_bound_walk.comp; so does a pixel whose
-// reconstruction the loop limit cut short, from the next dispatch on.
+// Only the corners on the pixel's surface take part: a corner that differs
+// from the pixel in normal, depth or material (across a silhouette, a crease,
+// a thin feature) or whose sample is not usable is left out, its weight
+// shared among the others. Where no corner is left, the pixel runs the bound
+// walk search of its own (bound_walk.glsl) over the same dispatches as
+// lightcuts_bound_walk.comp; so does a pixel whose reconstruction the loop
+// limit cut short or pushed over max-cut, from the next dispatch on.
 #extension GL_GOOGLE_include_directive : require
 
 #include "bound_walk.glsl"
@@ -67,14 +69,31 @@ bool reconstruct_pixel(ivec2 pixel) {
     }
     BlockCorners c = block_corners(pixel);
     float eye_distance = length(p.position - frame.eye);
+    // The agreeing corners; a left-out one is replaced by an agreeing one of
+    // weight 0 (the same sample twice changes no rule).
+    int first_agreeing = -1;
+    float weight_sum = 0.0;
+    bool agrees[4];
+    for (uint k = 0u; k < 4u; ++k) {
+        agrees[k] = corner_agrees(c.pixel[k], c.sample_index[k], pixel, eye_distance);
+        if (agrees[k] && first_agreeing < 0) first_agreeing = int(k);
+        if (agrees[k]) weight_sum += c.weight[k];
+    }
+    if (first_agreeing < 0) {
+        atomicAdd(counters.reconstruction_fallbacks, 1u);
+        return false;
+    }
     vec3 total = vec3(0.0);
     for (uint k = 0u; k < 4u; ++k) {
-        if (!corner_agrees(c.pixel[k], c.sample_index[k], pixel, eye_distance)) {
-            atomicAdd(counters.reconstruction_fallbacks, 1u);
-            return false;
-        }
-        total += c.weight[k] * samples[c.sample_index[k]].radiance;
-        begin_sample_cursor(k, c.sample_index[k]);
+        uint sample_index = agrees[k] ? c.sample_index[k] : c.sample_index[first_agreeing];
+        // All agreeing corners of weight 0 (the pixel on a lattice line): equal shares.
+        float weight = weight_sum > 0.0 ? (agrees[k] ? c.weight[k] / weight_sum : 0.0) : (agrees[k] ? 1.0 : 0.0);
+        total += weight * samples[sample_index].radiance;
+        begin_sample_cursor(k, sample_index);
+    }
+    if (!(weight_sum > 0.0)) {
+        uint count = uint(agrees[0]) + uint(agrees[1]) + uint(agrees[2]) + uint(agrees[3]);
+        total /= float(count);
     }
     ReconstructionCut cut;
     if (!reconstruction_walk(kErrorRatio * max(max_channel(total), 0.0), p, cut)) {

@@ -18,7 +18,8 @@
 uint g_sample = 0u;  // this invocation's sample, row-major over the lattice
 
 void record_cut_node(uint position, uint node, uint seen) {
-    if (position < kRecordCap) records[g_sample * kRecordCap + position].node_seen = (node << kSeenBits) | seen;
+    uint slot = first_record_of(g_sample) + position;
+    if (position < kRecordCap) records[slot >> 2u].words[slot & 3u] = (node << kSeenBits) | seen;
 }
 
 void finish_sample(vec3 radiance, uint record_count, bool complete) {

@@ -14,7 +14,11 @@ layout(constant_id = kSpecReconstructionCap) const uint kRecordCap = 512u;
 layout(std430, set = 1, binding = kBindReconstructionSamples) buffer ReconstructionSamples {
     GpuReconstructionSample samples[];
 };
-layout(std430, set = 1, binding = kBindReconstructionRecords) buffer CutRecords { GpuCutRecord records[]; };
+layout(std430, set = 1, binding = kBindReconstructionRecords) buffer CutRecords { GpuCutRecords records[]; };
+
+// Where sample s's records start, counted in records.
+uint first_record_of(uint s) { return s * ((kRecordCap + 3u) / 4u) * 4u; }
+uint read_record(uint slot) { return records[slot >> 2u].words[slot & 3u]; }
 
 // Samples along each axis: 0, kBlock, 2 kBlock, ... and the last pixel.
 uvec2 sample_lattice_size() {

@@ -41,7 +41,7 @@ struct ReconstructionCut {
 };
 
 void begin_sample_cursor(uint k, uint sample_index) {
-    g_next_record[k] = sample_index * kRecordCap;
+    g_next_record[k] = first_record_of(sample_index);
     g_end_record[k] = g_next_record[k] + min(samples[sample_index].record_count, kRecordCap);
     g_inside_until[k] = kNotInside;
     g_inside_seen[k] = kSeenDark;
@@ -53,7 +53,7 @@ void begin_sample_cursor(uint k, uint sample_index) {
 uint sample_view(uint k, int i, int escape, inout bool below) {
     if (g_inside_until[k] != kNotInside) return g_inside_seen[k];
     if (g_next_record[k] < g_end_record[k]) {
-        uint record = records[g_next_record[k]].node_seen;
+        uint record = read_record(g_next_record[k]);
         if ((record >> kSeenBits) == uint(i)) {
             ++g_next_record[k];
             g_inside_until[k] = escape;

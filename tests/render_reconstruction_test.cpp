@@ -8,6 +8,7 @@
 // lightcut instead, and the frame is deterministic.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -110,31 +111,39 @@ TEST_F(ReconstructionCuts, NearTheLightcutsErrorWithFarFewerShadowRays) {
     }
 }
 
-// Blocks as large as the frame: its four corners see the walls, the floor and
-// the ceiling, so every other pixel disagrees with some corner (a silhouette
-// or a crease between them) and runs the per-pixel lightcut: the same image.
-TEST_F(ReconstructionCuts, PixelsWhoseCornersLieOnOtherSurfacesFallBack) {
-    settings_.reconstruction_block = 0;
-    const Frame own = render(settings_);
+// Blocks as large as the frame: its four corner samples lie on the walls, the
+// floor and the ceiling; the furniture between them agrees with none of them
+// (other normals, off their planes) and must run the per-pixel lightcut,
+// while a pixel of a wall reuses the corners on that wall.
+TEST_F(ReconstructionCuts, PixelsAcrossASilhouetteFromEveryCornerFallBack) {
     settings_.reconstruction_block = kSize;
     const Frame rebuilt = render(settings_);
-    ASSERT_FALSE(own.hdr.empty());
     ASSERT_FALSE(rebuilt.hdr.empty());
-    EXPECT_EQ(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - 4);
-    EXPECT_EQ(rebuilt.cuts, own.cuts);
-    for (size_t i = 0; i < own.hdr.size(); ++i)
-        ASSERT_NEAR(rebuilt.hdr[i], own.hdr[i], 1e-5f * std::max(1.0f, std::abs(own.hdr[i]))) << "value " << i;
+    std::printf("  %llu of %llu pixels fell back\n", (unsigned long long)rebuilt.stats.reconstruction_fallbacks,
+                (unsigned long long)rebuilt.stats.geometry_pixels);
+    EXPECT_GT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels / 10);
+    EXPECT_LT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - 4);
+    EXPECT_EQ(rebuilt.stats.nonfinite_pixels, 0u);
+    EXPECT_TRUE(all_finite(rebuilt.hdr));
 }
 
-// A sample whose cut exceeds its records makes its blocks fall back.
+// A sample whose cut exceeds its records is not used: with room for one
+// record, every pixel runs the per-pixel lightcut and the image is its image.
 TEST_F(ReconstructionCuts, SamplesOverTheirRecordCapFallBack) {
+    settings_.reconstruction_block = 0;
+    const Frame own = render(settings_);
     settings_.reconstruction_block = 4;
     settings_.reconstruction_cap = 1;
     const Frame rebuilt = render(settings_);
+    ASSERT_FALSE(own.hdr.empty());
     ASSERT_FALSE(rebuilt.hdr.empty());
     const uint64_t lattice = uint64_t(reconstruction_lattice_side(kSize, 4)) * reconstruction_lattice_side(kSize, 4);
     EXPECT_EQ(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - lattice);
-    EXPECT_EQ(rebuilt.stats.reconstruction_bytes, lattice * (32 + 4));
+    EXPECT_EQ(rebuilt.stats.shadow_rays, own.stats.shadow_rays);
+    EXPECT_EQ(rebuilt.cuts, own.cuts);
+    for (size_t i = 0; i < own.hdr.size(); ++i)
+        ASSERT_NEAR(rebuilt.hdr[i], own.hdr[i], 1e-5f * std::max(1.0f, std::abs(own.hdr[i]))) << "value " << i;
+    EXPECT_EQ(rebuilt.stats.reconstruction_bytes, lattice * (32 + 16));  // one record rounds up to four
     EXPECT_EQ(reconstruction_bytes(1920, 1080, 4, 1024), uint64_t(481 * 271) * (32 + 4 * 1024));
 }
 

@@ -106,7 +106,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuReconstructionSample, radiance), LC_FIELD(GpuReconstructionSample, record_count),
            LC_FIELD(GpuReconstructionSample, flags), LC_FIELD(GpuReconstructionSample, pad0),
            LC_FIELD(GpuReconstructionSample, pad1), LC_FIELD(GpuReconstructionSample, pad2)}}},
-        {"GpuCutRecord", {sizeof(GpuCutRecord), {LC_FIELD(GpuCutRecord, node_seen)}}},
+        {"GpuCutRecords", {sizeof(GpuCutRecords), {LC_FIELD(GpuCutRecords, words)}}},
         {"GpuDrawPair",
          {sizeof(GpuDrawPair),
           {LC_FIELD(GpuDrawPair, centre0), LC_FIELD(GpuDrawPair, radius0), LC_FIELD(GpuDrawPair, centre1),
@@ -217,7 +217,7 @@ const std::map<std::string, Block>& known_blocks() {
         {"PrimaryParams", {kBindPrimaryParams, "GpuPrimaryParams", kPrimarySet, "primary"}},
         {"ReconstructionSamples",
          {kBindReconstructionSamples, "GpuReconstructionSample", kReconstructionSet, "reconstruction"}},
-        {"CutRecords", {kBindReconstructionRecords, "GpuCutRecord", kReconstructionSet, "reconstruction"}},
+        {"CutRecords", {kBindReconstructionRecords, "GpuCutRecords", kReconstructionSet, "reconstruction"}},
     };
     return blocks;
 }

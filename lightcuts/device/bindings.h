@@ -53,7 +53,7 @@ LC_CONST uint kBindDrawPairs = 0u;
 // shaders/reconstruction_bindings.glsl): per sample its header and its cut's records.
 LC_CONST uint kReconstructionSet = 1u;
 LC_CONST uint kBindReconstructionSamples = 0u;  // GpuReconstructionSample
-LC_CONST uint kBindReconstructionRecords = 1u;  // GpuCutRecord, record_cap per sample
+LC_CONST uint kBindReconstructionRecords = 1u;  // GpuCutRecords, record_cap per sample (rounded up to 4)
 LC_CONST uint kReconstructionBindingCount = 2u;
 
 // Primary visibility by rays (set 1 of PrimaryRaysPass's layout,

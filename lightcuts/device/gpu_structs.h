@@ -206,9 +206,10 @@ struct LC_ALIGN16 GpuReconstructionSample {
     uint pad2 LC_DEFAULT(0u);
 };
 
-// One cut node of a sample: node index << kSeenBits | kSeen*.
-struct GpuCutRecord {
-    uint node_seen LC_DEFAULT(0u);
+// Four cut nodes of a sample, each node index << kSeenBits | kSeen*; a
+// sample's records start on a word boundary (its cap rounded up to 4).
+struct LC_ALIGN16 GpuCutRecords {
+    uvec4 words LC_DEFAULT(uvec4(0u));
 };
 
 // 128 bits of kept visibility: bit (leaf & 127) of the pixel's word leaf / 128

@@ -10,6 +10,13 @@
 
 namespace lc::client {
 
+namespace {
+
+// GpuCutRecords per sample: four records each, the cap rounded up.
+uint64_t record_words(uint32_t cap) { return (uint64_t(cap) + 3) / 4; }
+
+}  // namespace
+
 uint32_t reconstruction_lattice_side(uint32_t side, uint32_t block) {
     return (side + block - 2) / block + 1;
 }
@@ -17,7 +24,7 @@ uint32_t reconstruction_lattice_side(uint32_t side, uint32_t block) {
 uint64_t reconstruction_bytes(uint32_t width, uint32_t height, uint32_t block, uint32_t cap) {
     const uint64_t samples =
         uint64_t(reconstruction_lattice_side(width, block)) * reconstruction_lattice_side(height, block);
-    return samples * (sizeof(GpuReconstructionSample) + uint64_t(cap) * sizeof(GpuCutRecord));
+    return samples * (sizeof(GpuReconstructionSample) + record_words(cap) * sizeof(GpuCutRecords));
 }
 
 Result<ReconstructionRecords> ReconstructionRecords::create(const vk::Device& device) {
@@ -44,7 +51,7 @@ Status ReconstructionRecords::reserve(uint32_t width, uint32_t height, uint32_t 
     const uint64_t samples =
         uint64_t(reconstruction_lattice_side(width, block)) * reconstruction_lattice_side(height, block);
     const VkDeviceSize header_bytes = samples * sizeof(GpuReconstructionSample);
-    const VkDeviceSize record_bytes = samples * cap * sizeof(GpuCutRecord);
+    const VkDeviceSize record_bytes = samples * record_words(cap) * sizeof(GpuCutRecords);
     if (samples_ && records_ && samples_.size() >= header_bytes && records_.size() >= record_bytes)
         return Ok{};
     for (auto [buffer, bytes, what] : {std::tuple{&samples_, header_bytes, "samples"},
