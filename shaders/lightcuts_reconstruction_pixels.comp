@@ -6,7 +6,8 @@
 // Only the corners on the pixel's surface take part: a corner that differs
 // from the pixel in normal, depth or material (across a silhouette, a crease,
 // a thin feature) or whose sample is not usable is left out, its weight
-// shared among the others. Where no corner is left, the pixel runs the bound
+// shared among the others. Where fewer than two are left (one sample alone
+// would stretch its shadows over the block), the pixel runs the bound
 // walk search of its own (bound_walk.glsl) over the same dispatches as
 // lightcuts_bound_walk.comp; so does a pixel whose reconstruction the loop
 // limit cut short or pushed over max-cut, from the next dispatch on.
@@ -21,6 +22,7 @@
 const float kNormalAgreement = 0.95;
 const float kPlaneTolerance = 0.01;
 const float kMaterialTolerance = 0.02;
+const uint kMinAgreeingCorners = 2u;
 
 struct BlockCorners {
     uint sample_index[4];
@@ -73,13 +75,15 @@ bool reconstruct_pixel(ivec2 pixel) {
     // weight 0 (the same sample twice changes no rule).
     int first_agreeing = -1;
     float weight_sum = 0.0;
+    uint count = 0u;
     bool agrees[4];
     for (uint k = 0u; k < 4u; ++k) {
         agrees[k] = corner_agrees(c.pixel[k], c.sample_index[k], pixel, eye_distance);
         if (agrees[k] && first_agreeing < 0) first_agreeing = int(k);
         if (agrees[k]) weight_sum += c.weight[k];
+        if (agrees[k]) ++count;
     }
-    if (first_agreeing < 0) {
+    if (count < kMinAgreeingCorners) {
         atomicAdd(counters.reconstruction_fallbacks, 1u);
         return false;
     }
@@ -91,10 +95,7 @@ bool reconstruct_pixel(ivec2 pixel) {
         total += weight * samples[sample_index].radiance;
         begin_sample_cursor(k, sample_index);
     }
-    if (!(weight_sum > 0.0)) {
-        uint count = uint(agrees[0]) + uint(agrees[1]) + uint(agrees[2]) + uint(agrees[3]);
-        total /= float(count);
-    }
+    if (!(weight_sum > 0.0)) total /= float(count);
     ReconstructionCut cut;
     if (!reconstruction_walk(kErrorRatio * max(max_channel(total), 0.0), p, cut)) {
         // The lightcut starts in the next dispatch, with a fresh loop budget.

@@ -5,7 +5,8 @@
 // recorded an ancestor of it (its visibility stands for the node's), or cut
 // below it. The rules, in order:
 //  - refine where some sample cut below the node (its cut is finer there);
-//  - discard a node every sample saw blocked (no ray, nothing added);
+//  - discard a node that no sample saw lit and some saw blocked (the others
+//    saw it add nothing: behind their surface, outside a spot's cone);
 //  - refine where the node's error bound at this pixel exceeds the error
 //    ratio times the samples' interpolated total (a light close to this
 //    pixel, the paper's "much brighter" case);
@@ -95,13 +96,15 @@ void reconstruction_step(inout int i, inout bool waiting, inout int resume, inou
         bool leaf = node.first_child == kEndOfWalk;
         bool below = false;
         bool all_visible = true;
-        bool all_blocked = true;
+        bool any_visible = false;
+        bool any_blocked = false;
         for (uint k = 0u; k < 4u; ++k) {
             uint seen = sample_view(k, i, node.escape, below);
             all_visible = all_visible && seen == kSeenVisible;
-            all_blocked = all_blocked && seen == kSeenBlocked;
+            any_visible = any_visible || seen == kSeenVisible;
+            any_blocked = any_blocked || seen == kSeenBlocked;
         }
-        bool discard_node = all_blocked && !below;
+        bool discard_node = any_blocked && !any_visible && !below;
         bool mixed = (node.flags & kNodeMixedTypes) != 0u;
         if (!leaf && (below || mixed)) {
             refine = true;

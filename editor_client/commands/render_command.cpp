@@ -6,7 +6,7 @@
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
-//   [--sweep-error E1,E2,... | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
+//   [--sweep-error E1,E2,... [--sweep-blocks B1,B2,...] | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
 //   [--sweep-csv OUT.csv]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 //   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
@@ -83,6 +83,7 @@ struct RenderOptions {
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
     std::string sweep_realtime;             // "8,16,32": the real-time mode's table per cut size
+    std::string sweep_blocks;               // "4,8": --sweep-error's reconstruction-cut rows
     std::string sweep_frames = "1,4,16,64";  // measured after these many frames
     bool compare_reference = false;
     std::string size = "512x512";
@@ -233,6 +234,7 @@ struct RenderRequest {
     bool compare = false;     // also render the reference and measure the error
     std::vector<float> sweep_ratios;
     std::vector<uint32_t> sweep_cuts;  // --sweep-realtime
+    std::vector<uint32_t> sweep_blocks;  // --sweep-blocks
     std::vector<uint32_t> sweep_frames;
     uint32_t width = 0;  // the written image's size (a stride's is smaller than the frame's)
     uint32_t height = 0;
@@ -287,6 +289,11 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
     if (!options.sweep_error.empty()) {
         request.sweep_ratios = or_fail(parse_error_list(options.sweep_error));
         if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
+    }
+    if (!options.sweep_blocks.empty()) {
+        if (options.sweep_error.empty()) fail("--sweep-blocks needs --sweep-error");
+        request.sweep_blocks =
+            or_fail(parse_count_list(options.sweep_blocks, "--sweep-blocks", 2, kMaxReconstructionBlock));
     }
     if (!options.sweep_realtime.empty()) {
         if (mode != RenderMode::kRealtime) fail("--sweep-realtime needs --mode realtime and a tree source");
@@ -372,7 +379,7 @@ std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const Rend
 // --sweep-error: the price of accuracy, printed (and written as CSV).
 void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
     const RenderSettings& settings = request.settings;
-    ErrorSweep sweep = or_fail(run_error_sweep(renderer, settings, request.sweep_ratios));
+    ErrorSweep sweep = or_fail(run_error_sweep(renderer, settings, request.sweep_ratios, request.sweep_blocks));
     std::string how = criterion_name(settings.criterion) + std::string(" criterion");
     if (settings.criterion == CutCriterion::kBound)
         how += std::string(", ") + bound_search_name(settings.bound_search) + " search";
@@ -662,6 +669,9 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
                     "GPU time, speedup, cut sizes and measured error");
+    cmd->add_option("--sweep-blocks", options->sweep_blocks,
+                    "With --sweep-error: after each ratio's lightcut per pixel, reconstruction cuts "
+                    "(--reconstruction) with each block side of the list (e.g. 4,8)");
     cmd->add_option("--sweep-realtime", options->sweep_realtime,
                     "With --mode realtime: print the real-time mode's price of accuracy on this "
                     "scene and camera: for each cut size of the list (e.g. 8,16,32) the still "

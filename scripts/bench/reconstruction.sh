@@ -7,9 +7,10 @@
 # points, spots and directional lights) through the volume (0.3 m from every
 # surface, 819.2 cd in total), agglomerative tree, bound criterion, walk
 # search, max cut 1000.
-# Per light count and block side, one sweep: the reference frame, then at each
-# error ratio the per-pixel lightcut (reconstruction_block 0) and the
-# reconstruction cuts; every frame after a warm-up, GPU timestamps. Writes
+# Per light count, one sweep (render --sweep-error --sweep-blocks): the
+# reference frame, then at each error ratio the per-pixel lightcut
+# (reconstruction_block 0) and the reconstruction cuts with each block side;
+# every frame after a warm-up, GPU timestamps. Writes
 # docs/bench/reconstruction.csv (error_sweep.cpp's columns with the light
 # count in front; shadow_rays_per_pixel and reconstruction_fallbacks per row).
 # Usage: scripts/bench/reconstruction.sh [build-dir] [light counts] [size] [blocks] [ratios] [type]
@@ -41,17 +42,15 @@ for lights in ${counts//,/ }; do
     --box -4.7,0.3,-4.7,4.7,2.7,4.7 --intensity "$intensity" --range 0 -o "$base/scene.gltf" >/dev/null
   "$client" bake "$base/scene.gltf" --spawn-server --builder agglomerative -o "$base/tree.lcut" \
     >/dev/null 2>&1
-  for block in ${blocks//,/ }; do
-    # Validation would slow the GPU work down; the benchmark measures the renderer alone.
-    LC_VALIDATION=0 "$client" render "$base/scene.gltf" --tree "$base/tree.lcut" --size "$size" \
-      --criterion bound --mode lightcuts --sweep-error "$ratios" --reconstruction "$block" \
-      --sweep-csv "$base/sweep_$block.csv" -o "$base/last_$block.png" | tee "$base/sweep_$block.log"
-    if [[ $header_written == 0 ]]; then
-      echo "light_type,lights_asked,$(head -n 1 "$base/sweep_$block.csv")" >>"$out.tmp"
-      header_written=1
-    fi
-    tail -n +2 "$base/sweep_$block.csv" | sed "s/^/$type,$lights,/" >>"$out.tmp"
-  done
+  # Validation would slow the GPU work down; the benchmark measures the renderer alone.
+  LC_VALIDATION=0 "$client" render "$base/scene.gltf" --tree "$base/tree.lcut" --size "$size" \
+    --criterion bound --mode lightcuts --sweep-error "$ratios" --sweep-blocks "$blocks" \
+    --sweep-csv "$base/sweep.csv" -o "$base/last.png" | tee "$base/sweep.log"
+  if [[ $header_written == 0 ]]; then
+    echo "light_type,lights_asked,$(head -n 1 "$base/sweep.csv")" >>"$out.tmp"
+    header_written=1
+  fi
+  tail -n +2 "$base/sweep.csv" | sed "s/^/$type,$lights,/" >>"$out.tmp"
 done
 mv "$out.tmp" "$out"
 cat "$out"

@@ -85,7 +85,8 @@ Result<ErrorSweepRow> measure_lightcuts(Renderer& renderer, const RenderSettings
 }  // namespace
 
 Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
-                                   const std::vector<float>& error_ratios) {
+                                   const std::vector<float>& error_ratios,
+                                   const std::vector<uint32_t>& blocks) {
     ErrorSweep sweep;
     Result<ReferenceFrame> frame = render_reference_frame(renderer, settings);
     if (!frame) return make_error(frame.error());
@@ -98,11 +99,12 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
 
     RenderSettings lightcuts = settings;
     lightcuts.mode = RenderMode::kLightcuts;
-    std::vector<uint32_t> blocks{0};
-    if (settings.reconstruction_block > 0) blocks.push_back(settings.reconstruction_block);
+    std::vector<uint32_t> rows{0};
+    rows.insert(rows.end(), blocks.begin(), blocks.end());
+    if (blocks.empty() && settings.reconstruction_block > 0) rows.push_back(settings.reconstruction_block);
     for (float ratio : error_ratios) {
         lightcuts.error_ratio = ratio;
-        for (uint32_t block : blocks) {
+        for (uint32_t block : rows) {
             lightcuts.reconstruction_block = block;
             Result<ErrorSweepRow> row = measure_lightcuts(renderer, lightcuts, *reference);
             if (!row) return make_error(row.error());

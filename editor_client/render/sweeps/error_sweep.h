@@ -59,11 +59,12 @@ Result<std::vector<float>> parse_error_list(std::string_view text);
 std::vector<std::string_view> split_sweep_list(std::string_view text);
 
 // Renders the reference once, then lightcuts (settings' criterion, max cut and
-// search) at each ratio; with settings.reconstruction_block, each ratio twice:
-// a lightcut per pixel, then reconstruction cuts. Leaves the renderer holding
-// the last lightcuts frame.
+// search) at each ratio: a lightcut per pixel, then reconstruction cuts with
+// each block side of `blocks` (empty: settings.reconstruction_block where it
+// is not 0). Leaves the renderer holding the last lightcuts frame.
 Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
-                                   const std::vector<float>& error_ratios);
+                                   const std::vector<float>& error_ratios,
+                                   const std::vector<uint32_t>& blocks = {});
 
 // The table a user reads: one row per ratio, the reference time on top.
 // One row per ratio, with the reference's figures repeated (columns named in
