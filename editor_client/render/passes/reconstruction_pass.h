@@ -9,6 +9,7 @@
 // (lightcuts_reconstruction_pixels.comp). Owns its records' set and pipelines.
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <memory>
 
 #include "editor_client/render/passes/frame_pass.h"
