@@ -32,6 +32,17 @@ vec3 light_radiance(GpuLight light, SurfacePoint p) {
     return brdf_toward(p, l) * e;
 }
 
+// light_radiance, and what its shadow ray said (kSeen*, gpu_structs.h):
+// reconstruction cuts reuse a sample's visibility between the samples.
+vec3 light_radiance_seen(GpuLight light, SurfacePoint p, out uint seen) {
+    vec3 l;
+    vec3 e = light_irradiance(light, p.position, p.normal, l);
+    bool lit = max(e.x, max(e.y, e.z)) > 0.0;
+    float v = kShadows ? light_visibility(light, p.position, p.normal, lit) : 1.0;
+    seen = !lit ? kSeenDark : (v > 0.0 ? kSeenVisible : kSeenBlocked);
+    return brdf_toward(p, l) * (e * v);
+}
+
 vec3 classic_radiance(SurfacePoint p) {
     vec3 radiance = vec3(0.0);
     if (kClassicLights) {

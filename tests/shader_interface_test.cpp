@@ -58,7 +58,8 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuFrameCounters, max_cut), LC_FIELD(GpuFrameCounters, nonfinite_pixels),
            LC_FIELD(GpuFrameCounters, geometry_pixels), LC_FIELD(GpuFrameCounters, max_cut_hits),
            LC_FIELD(GpuFrameCounters, loop_limit_stops), LC_FIELD(GpuFrameCounters, shadow_rays),
-           LC_FIELD(GpuFrameCounters, shadow_rays_high), LC_FIELD(GpuFrameCounters, pad)}}},
+           LC_FIELD(GpuFrameCounters, shadow_rays_high),
+           LC_FIELD(GpuFrameCounters, reconstruction_fallbacks)}}},
         {"GpuWalkState",
          {sizeof(GpuWalkState),
           {LC_FIELD(GpuWalkState, radiance),
@@ -100,6 +101,12 @@ const std::map<std::string, CppStruct>& cpp_structs() {
            LC_FIELD(GpuFrameConstants, lattice_origin_x), LC_FIELD(GpuFrameConstants, lattice_origin_y),
            LC_FIELD(GpuFrameConstants, frame_seed), LC_FIELD(GpuFrameConstants, vpl_visibility_stride),
            LC_FIELD(GpuFrameConstants, frame_number), LC_FIELD(GpuFrameConstants, draw_seed)}}},
+        {"GpuReconstructionSample",
+         {sizeof(GpuReconstructionSample),
+          {LC_FIELD(GpuReconstructionSample, radiance), LC_FIELD(GpuReconstructionSample, record_count),
+           LC_FIELD(GpuReconstructionSample, flags), LC_FIELD(GpuReconstructionSample, pad0),
+           LC_FIELD(GpuReconstructionSample, pad1), LC_FIELD(GpuReconstructionSample, pad2)}}},
+        {"GpuCutRecords", {sizeof(GpuCutRecords), {LC_FIELD(GpuCutRecords, words)}}},
         {"GpuDrawPair",
          {sizeof(GpuDrawPair),
           {LC_FIELD(GpuDrawPair, centre0), LC_FIELD(GpuDrawPair, radius0), LC_FIELD(GpuDrawPair, centre1),
@@ -213,6 +220,9 @@ const std::map<std::string, Block>& known_blocks() {
         {"SceneVertices", {kBindSceneVertices, "GpuSceneVertex", kPrimarySet, "primary"}},
         {"SurfaceMaterials", {kBindSurfaceMaterials, "GpuSurfaceMaterial", kPrimarySet, "primary"}},
         {"PrimaryParams", {kBindPrimaryParams, "GpuPrimaryParams", kPrimarySet, "primary"}},
+        {"ReconstructionSamples",
+         {kBindReconstructionSamples, "GpuReconstructionSample", kReconstructionSet, "reconstruction"}},
+        {"CutRecords", {kBindReconstructionRecords, "GpuCutRecords", kReconstructionSet, "reconstruction"}},
     };
     return blocks;
 }
@@ -274,6 +284,8 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kRepresentativeSeed", kSpecRepresentativeSeed},
         {"kStochasticCut", kSpecStochasticCut},
         {"kStochasticRays", kSpecStochasticRays},
+        {"kBlock", kSpecReconstructionBlock},
+        {"kRecordCap", kSpecReconstructionCap},
     };
     return ids;
 }

@@ -1,11 +1,12 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
+//   [--reconstruction BLOCK [--reconstruction-cap N]]
 //   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
-//   [--sweep-error E1,E2,... | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
+//   [--sweep-error E1,E2,... [--sweep-blocks B1,B2,...] | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
 //   [--sweep-csv OUT.csv]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 //   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
@@ -82,6 +83,7 @@ struct RenderOptions {
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
     std::string sweep_realtime;             // "8,16,32": the real-time mode's table per cut size
+    std::string sweep_blocks;               // "4,8": --sweep-error's reconstruction-cut rows
     std::string sweep_frames = "1,4,16,64";  // measured after these many frames
     bool compare_reference = false;
     std::string size = "512x512";
@@ -100,6 +102,8 @@ struct RenderOptions {
     uint32_t tile_stride = 1;
     uint32_t realtime_cut = 16;
     uint32_t realtime_rays = kDefaultRealtimeRays;
+    uint32_t reconstruction_block = 0;
+    uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;
 };
@@ -184,6 +188,20 @@ std::string realtime_summary(const RenderStats& stats) {
     return text;
 }
 
+// GPU reconstruction cuts' part of the summary line: rays, fallbacks, storage.
+std::string reconstruction_summary(const RenderStats& stats) {
+    if (stats.reconstruction_block == 0) return "";
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  ", reconstruction cuts in %ux%u blocks: %.2f shadow rays a pixel, %llu pixels fell back, "
+                  "%.1f MiB of records",
+                  stats.reconstruction_block, stats.reconstruction_block,
+                  double(stats.shadow_rays) / double(std::max<uint64_t>(stats.geometry_pixels, 1)),
+                  (unsigned long long)stats.reconstruction_fallbacks,
+                  double(stats.reconstruction_bytes) / (1024.0 * 1024.0));
+    return text;
+}
+
 // Pixels the device's loop limit cut short, said in the summary line too.
 std::string loop_limit_summary(const RenderStats& stats) {
     if (stats.loop_limit_stops == 0) return "";
@@ -216,6 +234,7 @@ struct RenderRequest {
     bool compare = false;     // also render the reference and measure the error
     std::vector<float> sweep_ratios;
     std::vector<uint32_t> sweep_cuts;  // --sweep-realtime
+    std::vector<uint32_t> sweep_blocks;  // --sweep-blocks
     std::vector<uint32_t> sweep_frames;
     uint32_t width = 0;  // the written image's size (a stride's is smaller than the frame's)
     uint32_t height = 0;
@@ -249,6 +268,8 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.realtime_cut;
     settings.realtime_rays = options.realtime_rays;
+    settings.reconstruction_block = options.reconstruction_block;
+    settings.reconstruction_cap = options.reconstruction_cap;
     if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
     const auto [width, height] = or_fail(parse_size(options.size));
@@ -268,6 +289,11 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
     if (!options.sweep_error.empty()) {
         request.sweep_ratios = or_fail(parse_error_list(options.sweep_error));
         if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
+    }
+    if (!options.sweep_blocks.empty()) {
+        if (options.sweep_error.empty()) fail("--sweep-blocks needs --sweep-error");
+        request.sweep_blocks =
+            or_fail(parse_count_list(options.sweep_blocks, "--sweep-blocks", 2, kMaxReconstructionBlock));
     }
     if (!options.sweep_realtime.empty()) {
         if (mode != RenderMode::kRealtime) fail("--sweep-realtime needs --mode realtime and a tree source");
@@ -353,7 +379,7 @@ std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const Rend
 // --sweep-error: the price of accuracy, printed (and written as CSV).
 void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
     const RenderSettings& settings = request.settings;
-    ErrorSweep sweep = or_fail(run_error_sweep(renderer, settings, request.sweep_ratios));
+    ErrorSweep sweep = or_fail(run_error_sweep(renderer, settings, request.sweep_ratios, request.sweep_blocks));
     std::string how = criterion_name(settings.criterion) + std::string(" criterion");
     if (settings.criterion == CutCriterion::kBound)
         how += std::string(", ") + bound_search_name(settings.bound_search) + " search";
@@ -539,7 +565,7 @@ void print_report(const RenderStats& stats, const RenderOptions& options, const 
         stats.device.c_str(), stats.mode.c_str(), request.width, request.height,
         (unsigned long long)stats.lights, (unsigned long long)stats.tree_lights,
         (unsigned long long)stats.classic_lights, (unsigned long long)stats.nodes, stats.render_ms,
-        stats.render_clock.c_str(), realtime_summary(stats).c_str(), stats.wall_ms, command_ms, stats.avg_cut,
+        stats.render_clock.c_str(), (realtime_summary(stats) + reconstruction_summary(stats)).c_str(), stats.wall_ms, command_ms, stats.avg_cut,
         stats.max_cut, (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
         stats.validation_messages, options.output.c_str());
 }
@@ -643,6 +669,9 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
                     "Print the price of accuracy on this scene and camera: lightcuts at each "
                     "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
                     "GPU time, speedup, cut sizes and measured error");
+    cmd->add_option("--sweep-blocks", options->sweep_blocks,
+                    "With --sweep-error: after each ratio's lightcut per pixel, reconstruction cuts "
+                    "(--reconstruction) with each block side of the list (e.g. 4,8)");
     cmd->add_option("--sweep-realtime", options->sweep_realtime,
                     "With --mode realtime: print the real-time mode's price of accuracy on this "
                     "scene and camera: for each cut size of the list (e.g. 8,16,32) the still "
@@ -709,6 +738,17 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "Real-time mode: shadow rays per pixel and frame, picked among the cut's "
                     "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
         ->check(CLI::Range(0u, kMaxStochasticRays))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction", options->reconstruction_block,
+                    "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
+                    "BLOCKxBLOCK pixel blocks, the pixels between shaded from them with shadow rays "
+                    "only where their visibility disagrees (0: a lightcut per pixel)")
+        ->check(CLI::Range(0u, kMaxReconstructionBlock))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction-cap", options->reconstruction_cap,
+                    "Reconstruction cuts: cut nodes a sample records at most (4 bytes each); a "
+                    "sample over it makes its blocks' pixels run lightcuts of their own")
+        ->check(CLI::Range(1u, kMaxGpuCut))
         ->capture_default_str();
     cmd->add_option("--frames", options->frames,
                     "Real-time mode: frames of the still view whose mean is the image")

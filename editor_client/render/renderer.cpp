@@ -8,6 +8,7 @@
 
 #include "lightcuts/device/indirect_clamp.glsl.h"
 #include "editor_client/render/background.h"
+#include "editor_client/render/passes/reconstruction_records.h"
 #include "editor_client/render/passes/reference_pass.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/vk_result.h"
@@ -392,6 +393,7 @@ RenderStats Renderer::frame_stats(const RenderSettings& settings, const Submitte
     stats.nonfinite_pixels = counters.nonfinite_pixels;
     stats.max_cut_hits = counters.max_cut_hits;
     stats.loop_limit_stops = counters.loop_limit_stops;
+    stats.reconstruction_fallbacks = counters.reconstruction_fallbacks;
     stats.shadows = traces_shadows();
     stats.shadow_rays = (uint64_t(counters.shadow_rays_high) << 32) | counters.shadow_rays;
     stats.shadow_triangles = occluders_.bvh().stats().triangles;
@@ -424,6 +426,13 @@ void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& s
         if (settings.bound_search == BoundSearch::kHeap) stats.heap_capacity = passes_->bound_heap().capacity();
         stats.representatives = representatives_name(settings.representatives);
         stats.representative_seed = settings.representative_seed;
+        if (settings.reconstruction_block > 0) {
+            stats.reconstruction_block = settings.reconstruction_block;
+            stats.reconstruction_cap = settings.reconstruction_cap;
+            stats.reconstruction_bytes = reconstruction_bytes(settings.width, settings.height,
+                                                              settings.reconstruction_block,
+                                                              settings.reconstruction_cap);
+        }
     }
 }
 

@@ -49,6 +49,13 @@ LC_CONST uint kTemporalBindingCount = 5u;
 LC_CONST uint kDrawPairSet = 2u;
 LC_CONST uint kBindDrawPairs = 0u;
 
+// Reconstruction cuts' own set (set 1 of ReconstructionPass's layout,
+// shaders/reconstruction_bindings.glsl): per sample its header and its cut's records.
+LC_CONST uint kReconstructionSet = 1u;
+LC_CONST uint kBindReconstructionSamples = 0u;  // GpuReconstructionSample
+LC_CONST uint kBindReconstructionRecords = 1u;  // GpuCutRecords, record_cap per sample (rounded up to 4)
+LC_CONST uint kReconstructionBindingCount = 2u;
+
 // Primary visibility by rays (set 1 of PrimaryRaysPass's layout,
 // shaders/primary_rays.comp): a BVH over every triangle, each triangle's
 // vertices and draw, the scene's vertices, the draws' materials, the eye rays.

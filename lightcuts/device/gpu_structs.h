@@ -84,7 +84,9 @@ struct LC_ALIGN16 GpuFrameCounters {
     // Shadow rays the lighting pass traced: a 64-bit count in two words.
     uint shadow_rays LC_DEFAULT(0u);
     uint shadow_rays_high LC_DEFAULT(0u);
-    uint pad LC_DEFAULT(0u);
+    // Reconstruction cuts: pixels between the samples that ran a full
+    // lightcut of their own (a silhouette, a sample over its record cap).
+    uint reconstruction_fallbacks LC_DEFAULT(0u);
 };
 
 // GpuWalkState::flags; bits kWalkBisectionsShift and up: the bisection passes left.
@@ -94,6 +96,9 @@ LC_CONST uint kWalkBisecting = 4u;
 LC_CONST uint kWalkLoopStop = 8u;
 LC_CONST uint kWalkStorePending = 16u;  // done where the loop limit fired: stored next dispatch
 LC_CONST uint kWalkAlone = 32u;  // shared cuts: the lane left the subgroup's vote (over max-cut through it)
+// Reconstruction samples: a shaded pass went over max-cut after the kept cut
+// had written its records, so they no longer describe it.
+LC_CONST uint kWalkRecordsStale = 64u;
 LC_CONST uint kWalkBisectionsShift = 8u;
 
 // One pixel's walk search between dispatches (shaders/lightcuts_bound_walk.comp):
@@ -179,6 +184,32 @@ struct LC_ALIGN16 GpuFrameConstants {
     // still view's frames spread its draws evenly (frame_strata.glsl).
     uint frame_number LC_DEFAULT(0u);
     uint draw_seed LC_DEFAULT(0u);
+};
+
+// Reconstruction cuts (shaders/lightcuts_reconstruction_*.comp): what a
+// sample's shadow ray said of a cut node, in the low bits of its record.
+LC_CONST uint kSeenDark = 0u;     // the node adds nothing at the sample: no ray was traced
+LC_CONST uint kSeenVisible = 1u;  // its representative's ray was clear
+LC_CONST uint kSeenBlocked = 2u;  // its ray was blocked
+LC_CONST uint kSeenBits = 2u;     // the node index sits above these bits
+// GpuReconstructionSample::flags
+LC_CONST uint kSampleUsable = 1u;  // its records hold its whole cut (else its blocks fall back)
+
+// One reconstruction sample (a corner of the blocks): its lightcut's tree
+// radiance and how many records (one a cut node, in pre-order) it wrote.
+struct LC_ALIGN16 GpuReconstructionSample {
+    vec3 radiance LC_DEFAULT(vec3(0.0f));  // tree lights, f_r and clamp applied
+    uint record_count LC_DEFAULT(0u);
+    uint flags LC_DEFAULT(0u);             // kSample*
+    uint pad0 LC_DEFAULT(0u);
+    uint pad1 LC_DEFAULT(0u);
+    uint pad2 LC_DEFAULT(0u);
+};
+
+// Four cut nodes of a sample, each node index << kSeenBits | kSeen*; a
+// sample's records start on a word boundary (its cap rounded up to 4).
+struct LC_ALIGN16 GpuCutRecords {
+    uvec4 words LC_DEFAULT(uvec4(0u));
 };
 
 // 128 bits of kept visibility: bit (leaf & 127) of the pixel's word leaf / 128

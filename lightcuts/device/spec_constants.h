@@ -58,6 +58,10 @@ LC_CONST uint kSpecStochasticCut = 28u;
 // Its shadow rays per pixel, picked among the cut's drawn lights (0: one per
 // cut node; shaders/shadow_ray_budget.glsl).
 LC_CONST uint kSpecStochasticRays = 30u;
+// Reconstruction cuts (lightcuts_reconstruction_*.comp): the side of the
+// blocks whose corners are samples, and the records one sample keeps at most.
+LC_CONST uint kSpecReconstructionBlock = 31u;
+LC_CONST uint kSpecReconstructionCap = 32u;
 
 LC_DEVICE_END
 

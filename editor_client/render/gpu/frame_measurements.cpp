@@ -18,6 +18,7 @@ void add_counters(GpuFrameCounters& sum, const GpuFrameCounters& part) {
     sum.geometry_pixels += part.geometry_pixels;
     sum.max_cut_hits += part.max_cut_hits;
     sum.loop_limit_stops += part.loop_limit_stops;
+    sum.reconstruction_fallbacks += part.reconstruction_fallbacks;
     const uint64_t rays = ((uint64_t(sum.shadow_rays_high) << 32) | sum.shadow_rays) +
                           ((uint64_t(part.shadow_rays_high) << 32) | part.shadow_rays);
     sum.shadow_rays = uint32_t(rays);

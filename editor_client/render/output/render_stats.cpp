@@ -92,6 +92,12 @@ void add_cut_settings(const RenderStats& s, nlohmann::json& j) {
         j["realtime_rays"] = s.realtime_rays;
         j["realtime_frames"] = s.realtime_frames;
     }
+    if (s.reconstruction_block > 0) {
+        j["reconstruction_block"] = s.reconstruction_block;
+        j["reconstruction_cap"] = s.reconstruction_cap;
+        j["reconstruction_bytes"] = s.reconstruction_bytes;
+        j["reconstruction_fallbacks"] = s.reconstruction_fallbacks;
+    }
 }
 
 // Against the reference, and the supersampled frame's shading.

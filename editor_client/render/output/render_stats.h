@@ -57,6 +57,13 @@ struct RenderStats {
     uint32_t realtime_cut = 0;
     uint32_t realtime_rays = 0;  // the shadow-ray budget asked for (0: one per cut node)
     uint32_t realtime_frames = 0;
+    // GPU reconstruction cuts (render --reconstruction): the block side (0:
+    // off), records per sample at most, the samples' storage, and the pixels
+    // between samples that ran a lightcut of their own.
+    uint32_t reconstruction_block = 0;
+    uint32_t reconstruction_cap = 0;
+    uint64_t reconstruction_bytes = 0;
+    uint64_t reconstruction_fallbacks = 0;
     uint64_t loop_limit_stops = 0;  // pixels whose walk or shadow ray the device's loop limit cut short
     // Shadows: simulated or not (effects), rays traced, the occluders' size.
     bool shadows = false;

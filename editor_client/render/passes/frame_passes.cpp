@@ -15,6 +15,8 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     if (!gbuffer) return make_error(gbuffer.error());
     Result<std::unique_ptr<RealtimePass>> realtime = RealtimePass::create(device, frame_layout);
     if (!realtime) return make_error(realtime.error());
+    Result<std::unique_ptr<ReconstructionPass>> reconstruction = ReconstructionPass::create(device, frame_layout);
+    if (!reconstruction) return make_error(reconstruction.error());
     Result<std::unique_ptr<PrimaryRaysPass>> primary_rays =
         PrimaryRaysPass::create(context, frame_layout, gpu_scene, scene);
     if (!primary_rays) return make_error(primary_rays.error());
@@ -28,6 +30,7 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     passes.may_fall_back_ = primary == PrimaryChoice::kAuto;
     passes.gbuffer_ = std::move(gbuffer).value();
     passes.realtime_ = std::move(realtime).value();
+    passes.reconstruction_ = std::move(reconstruction).value();
     return passes;
 }
 
@@ -38,6 +41,8 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
     } else if (mode_needs_tree(settings.mode)) {
         if (settings.criterion == CutCriterion::kRadius)
             lighting = &radius_walk_;
+        else if (settings.reconstruction_block > 0 && mode_searches_cuts(settings.mode))
+            lighting = reconstruction_.get();
         else if (settings.bound_search == BoundSearch::kWalk)
             lighting = &bound_walk_;
         else

@@ -11,6 +11,7 @@
 #include "editor_client/render/passes/primary_rays_pass.h"
 #include "editor_client/render/passes/radius_walk_pass.h"
 #include "editor_client/render/passes/realtime_pass.h"
+#include "editor_client/render/passes/reconstruction_pass.h"
 #include "editor_client/render/passes/reference_pass.h"
 #include "editor_client/render/passes/tone_map_pass.h"
 
@@ -48,6 +49,7 @@ private:
     BoundWalkPass bound_walk_;
     BoundHeapPass bound_heap_;
     std::unique_ptr<RealtimePass> realtime_;
+    std::unique_ptr<ReconstructionPass> reconstruction_;
     ToneMapPass tone_map_;
     CutViewPass cut_view_;
 };

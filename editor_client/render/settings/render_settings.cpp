@@ -225,6 +225,17 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
         return make_error("real-time shadow rays " + std::to_string(settings.realtime_rays) +
                           " is outside 0 .. " + std::to_string(kMaxStochasticRays) +
                           " (0: one per cut node)");
+    if (settings.reconstruction_block == 1 || settings.reconstruction_block > kMaxReconstructionBlock)
+        return make_error("reconstruction block " + std::to_string(settings.reconstruction_block) +
+                          " is outside 2 .. " + std::to_string(kMaxReconstructionBlock) + " (0: off)");
+    if (settings.reconstruction_cap < 1 || settings.reconstruction_cap > kMaxGpuCut)
+        return make_error("reconstruction cap " + std::to_string(settings.reconstruction_cap) +
+                          " is outside 1 .. " + std::to_string(kMaxGpuCut));
+    if (settings.reconstruction_block > 0 && mode_searches_cuts(settings.mode)) {
+        if (settings.criterion != CutCriterion::kBound || settings.bound_search != BoundSearch::kWalk)
+            return make_error("reconstruction cuts need the bound criterion's walk search");
+        if (settings.share_cuts) return make_error("reconstruction cuts and shared cuts exclude each other");
+    }
     const RenderCamera& c = settings.camera;
     if (!finite(c.eye) || !finite(c.target) || !finite(c.up))
         return make_error("the camera has a non-finite coordinate");

@@ -86,6 +86,12 @@ inline uint32_t realtime_ray_budget(uint32_t cut, uint32_t rays) {
     return rays == 0 || rays > cut ? cut : rays;
 }
 
+// Cut nodes a reconstruction sample records unless asked otherwise (render
+// --reconstruction-cap): 4 bytes each.
+inline constexpr uint32_t kDefaultReconstructionCap = 1024;
+// The largest block side of reconstruction cuts.
+inline constexpr uint32_t kMaxReconstructionBlock = 64;
+
 struct RenderSettings {
     RenderMode mode = RenderMode::kReference;
     CutCriterion criterion = CutCriterion::kRadius;
@@ -120,6 +126,14 @@ struct RenderSettings {
     // by their unshadowed radiance (shaders/shadow_ray_budget.glsl); 0 traces
     // one per cut node.
     uint32_t realtime_rays = kDefaultRealtimeRays;
+    // Reconstruction cuts on the GPU (ReconstructionPass): full lightcuts at
+    // the corners of blocks of this many pixels a side, the other pixels
+    // reconstructed from them; 0 lightcuts every pixel. Each sample keeps at
+    // most reconstruction_cap cut nodes (over it, its blocks' pixels run
+    // lightcuts of their own), so the records take at most
+    // reconstruction_bytes() (passes/reconstruction_records.h).
+    uint32_t reconstruction_block = 0;
+    uint32_t reconstruction_cap = kDefaultReconstructionCap;
 
     bool operator==(const RenderSettings&) const = default;
 };

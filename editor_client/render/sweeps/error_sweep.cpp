@@ -48,8 +48,45 @@ Result<ReferenceFrame> render_reference_frame(Renderer& renderer, const RenderSe
     return ReferenceFrame{std::move(stats).value(), std::move(image).value()};
 }
 
+namespace {
+
+// One lightcuts frame of `settings` measured against the reference image.
+Result<ErrorSweepRow> measure_lightcuts(Renderer& renderer, const RenderSettings& settings,
+                                        const std::vector<float>& reference) {
+    const float ratio = settings.error_ratio;
+    LC_RETURN_IF_ERROR(renderer.warm_up(settings));
+    Result<RenderStats> stats = renderer.render(settings);
+    if (!stats) return make_error("error ratio " + std::to_string(ratio) + ": " + stats.error());
+    Result<std::vector<float>> hdr = renderer.read_hdr();
+    if (!hdr) return make_error(hdr.error());
+    Result<ErrorStats> errors = compute_error_stats(*hdr, reference, settings.width, settings.height, ratio);
+    if (!errors) return make_error(errors.error());
+    ErrorSweepRow row;
+    row.error_ratio = ratio;
+    row.render_ms = stats->render_ms;
+    row.wall_ms = stats->wall_ms;
+    row.avg_cut = stats->avg_cut;
+    row.cut_p99 = stats->cut_p99;
+    row.max_cut_hits = stats->max_cut_hits;
+    row.rel_err_mean = errors->rel_err_mean;
+    row.rel_err_p99 = errors->rel_err_p99;
+    row.frac_over_error = errors->frac_over_error;
+    row.frac_over_2pct = fraction_over(*errors, 0.02);
+    row.max_err = errors->max_err;
+    row.shadow_rays = stats->shadow_rays;
+    row.loop_limit_stops = stats->loop_limit_stops;
+    row.reconstruction_block = settings.reconstruction_block;
+    row.shadow_rays_per_pixel =
+        stats->geometry_pixels > 0 ? double(stats->shadow_rays) / double(stats->geometry_pixels) : 0.0;
+    row.reconstruction_fallbacks = stats->reconstruction_fallbacks;
+    return row;
+}
+
+}  // namespace
+
 Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
-                                   const std::vector<float>& error_ratios) {
+                                   const std::vector<float>& error_ratios,
+                                   const std::vector<uint32_t>& blocks) {
     ErrorSweep sweep;
     Result<ReferenceFrame> frame = render_reference_frame(renderer, settings);
     if (!frame) return make_error(frame.error());
@@ -62,31 +99,17 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
 
     RenderSettings lightcuts = settings;
     lightcuts.mode = RenderMode::kLightcuts;
+    std::vector<uint32_t> rows{0};
+    rows.insert(rows.end(), blocks.begin(), blocks.end());
+    if (blocks.empty() && settings.reconstruction_block > 0) rows.push_back(settings.reconstruction_block);
     for (float ratio : error_ratios) {
         lightcuts.error_ratio = ratio;
-        LC_RETURN_IF_ERROR(renderer.warm_up(lightcuts));
-        Result<RenderStats> stats = renderer.render(lightcuts);
-        if (!stats) return make_error("error ratio " + std::to_string(ratio) + ": " + stats.error());
-        Result<std::vector<float>> hdr = renderer.read_hdr();
-        if (!hdr) return make_error(hdr.error());
-        Result<ErrorStats> errors =
-            compute_error_stats(*hdr, *reference, settings.width, settings.height, ratio);
-        if (!errors) return make_error(errors.error());
-        ErrorSweepRow row;
-        row.error_ratio = ratio;
-        row.render_ms = stats->render_ms;
-        row.wall_ms = stats->wall_ms;
-        row.avg_cut = stats->avg_cut;
-        row.cut_p99 = stats->cut_p99;
-        row.max_cut_hits = stats->max_cut_hits;
-        row.rel_err_mean = errors->rel_err_mean;
-        row.rel_err_p99 = errors->rel_err_p99;
-        row.frac_over_error = errors->frac_over_error;
-        row.frac_over_2pct = fraction_over(*errors, 0.02);
-        row.max_err = errors->max_err;
-        row.shadow_rays = stats->shadow_rays;
-        row.loop_limit_stops = stats->loop_limit_stops;
-        sweep.rows.push_back(row);
+        for (uint32_t block : rows) {
+            lightcuts.reconstruction_block = block;
+            Result<ErrorSweepRow> row = measure_lightcuts(renderer, lightcuts, *reference);
+            if (!row) return make_error(row.error());
+            sweep.rows.push_back(*row);
+        }
     }
     return sweep;
 }
@@ -95,16 +118,18 @@ void print_error_sweep(std::FILE* out, const ErrorSweep& sweep) {
     std::fprintf(out, "reference: %llu lights, %.1f ms GPU, %.1f ms wall%s\n",
                  (unsigned long long)sweep.lights, sweep.reference_ms, sweep.reference_wall_ms,
                  sweep.shadows ? ", with shadow rays" : "");
-    std::fprintf(out, "%8s %10s %10s %8s %8s %7s %9s %9s %9s %9s %9s %8s\n", "error", "GPU ms",
+    std::fprintf(out, "%8s %10s %10s %8s %8s %7s %9s %9s %9s %9s %9s %8s %6s %8s\n", "error", "GPU ms",
                  "wall ms", "speedup", "avg cut", "p99 cut", "err mean", "err p99", "over E",
-                 "over 2%", "err max", "max-cut");
+                 "over 2%", "err max", "max-cut", "recon", "rays/px");
     for (const ErrorSweepRow& r : sweep.rows) {
         const double speedup = r.render_ms > 0.0 ? sweep.reference_ms / r.render_ms : 0.0;
         std::fprintf(out,
-                     "%8.4g %10.1f %10.1f %7.2fx %8.1f %7u %9.4f %9.4f %8.2f%% %8.2f%% %9.4f %8llu\n",
+                     "%8.4g %10.1f %10.1f %7.2fx %8.1f %7u %9.4f %9.4f %8.2f%% %8.2f%% %9.4f %8llu %6s %8.1f\n",
                      r.error_ratio, r.render_ms, r.wall_ms, speedup, r.avg_cut, r.cut_p99,
                      r.rel_err_mean, r.rel_err_p99, 100.0 * r.frac_over_error,
-                     100.0 * r.frac_over_2pct, r.max_err, (unsigned long long)r.max_cut_hits);
+                     100.0 * r.frac_over_2pct, r.max_err, (unsigned long long)r.max_cut_hits,
+                     r.reconstruction_block > 0 ? std::to_string(r.reconstruction_block).c_str() : "-",
+                     r.shadow_rays_per_pixel);
     }
 }
 
@@ -114,16 +139,21 @@ Status write_error_sweep_csv(const std::filesystem::path& path, const ErrorSweep
     std::fprintf(out,
                  "lights,shadows,reference_ms,error_ratio,lightcuts_ms,speedup,avg_cut,cut_p99,"
                  "max_cut_hits,rel_err_mean,rel_err_p99,frac_over_error,frac_over_2pct,max_err,"
-                 "reference_shadow_rays,shadow_rays,loop_limit_stops\n");
+                 "reference_shadow_rays,shadow_rays,loop_limit_stops,reconstruction_block,"
+                 "shadow_rays_per_pixel,reconstruction_fallbacks\n");
     for (const ErrorSweepRow& r : sweep.rows) {
         const double speedup = r.render_ms > 0.0 ? sweep.reference_ms / r.render_ms : 0.0;
-        std::fprintf(out, "%llu,%d,%.1f,%g,%.1f,%.2f,%.1f,%u,%llu,%.5f,%.5f,%.5f,%.5f,%.4f,%llu,%llu,%llu\n",
+        std::fprintf(out,
+                     "%llu,%d,%.1f,%g,%.1f,%.2f,%.1f,%u,%llu,%.5f,%.5f,%.5f,%.5f,%.4f,%llu,%llu,%llu,%u,%.2f,"
+                     "%llu\n",
                      (unsigned long long)sweep.lights, sweep.shadows ? 1 : 0, sweep.reference_ms,
                      r.error_ratio, r.render_ms, speedup, r.avg_cut, r.cut_p99,
                      (unsigned long long)r.max_cut_hits, r.rel_err_mean, r.rel_err_p99,
                      r.frac_over_error, r.frac_over_2pct, r.max_err,
                      (unsigned long long)sweep.reference_shadow_rays,
-                     (unsigned long long)r.shadow_rays, (unsigned long long)r.loop_limit_stops);
+                     (unsigned long long)r.shadow_rays, (unsigned long long)r.loop_limit_stops,
+                     r.reconstruction_block, r.shadow_rays_per_pixel,
+                     (unsigned long long)r.reconstruction_fallbacks);
     }
     const bool ok = std::fclose(out) == 0;
     if (!ok) return make_error("cannot write the error sweep to " + path.string());

@@ -27,6 +27,11 @@ struct ErrorSweepRow {
     double max_err = 0.0;
     uint64_t shadow_rays = 0;
     uint64_t loop_limit_stops = 0;
+    // GPU reconstruction cuts' block side (0: a lightcut per pixel), the
+    // frame's shadow rays per pixel with geometry and the pixels that fell back.
+    uint32_t reconstruction_block = 0;
+    double shadow_rays_per_pixel = 0.0;
+    uint64_t reconstruction_fallbacks = 0;
 };
 
 struct ErrorSweep {
@@ -54,9 +59,12 @@ Result<std::vector<float>> parse_error_list(std::string_view text);
 std::vector<std::string_view> split_sweep_list(std::string_view text);
 
 // Renders the reference once, then lightcuts (settings' criterion, max cut and
-// search) at each ratio. Leaves the renderer holding the last lightcuts frame.
+// search) at each ratio: a lightcut per pixel, then reconstruction cuts with
+// each block side of `blocks` (empty: settings.reconstruction_block where it
+// is not 0). Leaves the renderer holding the last lightcuts frame.
 Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& settings,
-                                   const std::vector<float>& error_ratios);
+                                   const std::vector<float>& error_ratios,
+                                   const std::vector<uint32_t>& blocks = {});
 
 // The table a user reads: one row per ratio, the reference time on top.
 // One row per ratio, with the reference's figures repeated (columns named in
