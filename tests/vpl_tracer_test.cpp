@@ -149,19 +149,20 @@ TEST(VplTracer, SameLightsAtAnyThreadCount) {
 // times its whole power 4 pi I; a directional light's disc power lands on the
 // floor of an open box when it shines straight down.
 TEST(VplTracer, PunctualAndDirectionalLightsShootTheirPower) {
-    SceneGeometry box = test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)});
+    SceneGeometry box = test::closed_box(test::reflecting(0.5f, 0.0f));
     SceneLight point;
     point.type = LightType::kPoint;
     point.position = {0.5f, 0.5f, 0.5f};
     point.intensity = 2.0f;
     VplOptions options;
     options.particle_count = 4000;
+    options.bounces = 1;
     auto r = trace(box, std::span<const SceneLight>(&point, 1), options);
     ASSERT_TRUE(r.ok());
     EXPECT_NEAR(total_power(r->lights).x, 0.5 * 4.0 * std::numbers::pi * 2.0, 1e-3);
 
     SceneGeometry floor;
-    floor.materials.push_back({glm::vec3(0.5f), glm::vec3(0.0f)});
+    floor.materials.push_back(test::reflecting(0.5f, 0.0f));
     test::add_quad(floor, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0);
     SceneLight sun;
     sun.type = LightType::kDirectional;
