@@ -14,7 +14,7 @@
 namespace lc {
 
 struct SurfaceMaterial {
-    glm::vec3 base_color{1.0f};  // linear RGB, diffuse albedo for the solvers
+    glm::vec3 base_color{1.0f};  // linear RGB; the solvers reflect bake::bounce_albedo of it
     // Emitted radiance, linear RGB: glTF emissiveFactor times
     // KHR_materials_emissive_strength (times the texture's reduction).
     glm::vec3 emission{0.0f};

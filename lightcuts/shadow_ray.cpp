@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lightcuts/device/shadow_segment.glsl.h"
+
 namespace lc {
 
 Result<ShadowMode> parse_shadow_mode(std::string_view text) {
@@ -40,13 +42,10 @@ double light_visibility(const ShadowBvh& occluders, double bias, LightType type,
                         const glm::dvec3& position, const glm::dvec3& direction,
                         const glm::dvec3& x, const glm::dvec3& n) {
     if (occluders.empty()) return 1.0;
-    const glm::dvec3 origin = x + n * bias;
-    if (type == LightType::kDirectional)
-        return occluders.occluded(origin, -direction, kShadowRayFar) ? 0.0 : 1.0;
-    const glm::dvec3 to_light = position - origin;
-    const double distance = glm::length(to_light);
-    if (!(distance > bias)) return 1.0;
-    return occluders.occluded(origin, to_light, 1.0 - bias / distance) ? 0.0 : 1.0;
+    const shading::ShadowSegment s =
+        shading::shadow_segment(x, n, type == LightType::kDirectional, position, direction, bias, kShadowRayFar);
+    if (!s.traced) return 1.0;
+    return occluders.occluded(s.origin, s.direction, s.t_max) ? 0.0 : 1.0;
 }
 
 }  // namespace lc

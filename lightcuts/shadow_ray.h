@@ -1,10 +1,11 @@
 #pragma once
 // The shadow ray from a shading point towards a light, built the same way on
-// the CPU (here, in double) and on the GPU (shaders/shadow_rays.glsl, float):
-// it starts `bias` along the unit normal, so it does not hit the surface it
-// leaves, and ends `bias` short of a positional light (a light on a surface
-// is not hidden by that surface); towards a directional light it runs to
-// kShadowRayFar.
+// the CPU (here, in double) and on the GPU (shaders/shadow_rays.glsl, float)
+// by device/shadow_segment.glsl.h: it starts `bias` along the unit normal and
+// `bias` along itself, so it hits neither the surface it leaves nor one it
+// meets in a crease, and ends `bias` short of a positional light (a light on a
+// surface is not hidden by that surface); towards a directional light it runs
+// to kShadowRayFar.
 #include <glm/vec3.hpp>
 
 #include <cstdint>

@@ -1,5 +1,6 @@
 #include "protocol/bake_limits.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -40,6 +41,13 @@ std::string readable_number(double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", value);
     return text;
+}
+
+uint64_t vpl_light_reservation(uint64_t paths, uint32_t bounces, double max_albedo) {
+    const double survival = std::clamp(max_albedo, 0.0, kVplMaxSurvival);
+    const double per_path = std::min(double(bounces), std::ceil(2.0 / (1.0 - survival)));
+    const double lights = double(paths) * per_path;
+    return lights >= double(kMaxIndirectLights) ? kMaxIndirectLights : uint64_t(lights);
 }
 
 Status validate_bake_settings(const BakeRequestMsg& request) {

@@ -18,6 +18,16 @@ namespace lc {
 inline constexpr uint64_t kMaxVplPaths = uint64_t{1} << 30;  // 1,073,741,824
 // Diffuse bounces per path: as deep as SceneLight::bounce records.
 inline constexpr uint32_t kMaxBakeBounces = kMaxRecordedBounce;
+static_assert(IndirectRequest{}.bounces == kMaxBakeBounces, "VPL paths default to every bounce");
+// A VPL path goes on after a bounce with the probability of its surface's
+// largest albedo channel (Russian roulette), at most this: a path through
+// white surfaces ends after 20 bounces on average, its weight grows instead.
+inline constexpr double kVplMaxSurvival = 0.95;
+// Lights to reserve for `paths` VPL paths of at most `bounces` bounces
+// through surfaces whose largest albedo channel is at most `max_albedo`:
+// twice the expected 1 / (1 - survival) per path (the roulette's mean), never
+// more than one per bounce, at most kMaxIndirectLights.
+uint64_t vpl_light_reservation(uint64_t paths, uint32_t bounces, double max_albedo);
 // Indirect lights (VPLs) one bake may deposit; the tracer stops with "too
 // large" when the paths leave more.
 inline constexpr uint64_t kMaxIndirectLights = uint64_t{1} << 22;  // 4,194,304

@@ -22,7 +22,9 @@ enum class IndirectMethod : uint8_t { kOff = 0, kVpl = 1, kRadiosity = 2 };
 // The bounced light a bake adds to the tree, and its solver's settings.
 struct IndirectRequest {
     IndirectMethod method = IndirectMethod::kOff;
-    uint32_t bounces = 1;
+    // vpl: a cap on each path's bounces; the default, every bounce a light
+    // can record (kMaxBakeBounces): Russian roulette ends the paths.
+    uint32_t bounces = 65535;
     uint64_t vpl_count = 100000;
     float patch_size = 0.25f;
     float tolerance = 0.01f;

@@ -12,6 +12,7 @@
 
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
+#include "lightcuts/device/shadow_segment.glsl.h"
 
 layout(constant_id = kSpecShadows) const bool kShadows = false;
 // Some occluder is alpha-masked: a hit on it fetches a mask texel.
@@ -177,24 +178,18 @@ bool ray_occluded(vec3 origin, vec3 direction, float t_max, bool searching) {
 
 // V in {0, 1} of `light` (or a cluster's representative) from point x with
 // unit normal n; call it only where the light's contribution is non-zero.
-// The ray starts shadow_bias along the normal and stops shadow_bias short of
-// a positional light.
+// The ray's segment: lightcuts/device/shadow_segment.glsl.h (shadow_bias
+// along the normal and along the ray, shadow_bias short of a positional light).
 // Call it in uniform control flow (every lane of the subgroup): the lanes
 // walk the BVH together; `needed` false (a zero contribution) traces nothing.
 float light_visibility(GpuLight light, vec3 x, vec3 n, bool needed) {
     if (!kShadows || frame.bvh_node_count == 0u) return 1.0;
-    vec3 origin = x + n * frame.shadow_bias;
-    vec3 direction = -light.direction;
-    float t_max = kShadowRayFar;
-    if (light.type != kLightDirectional) {
-        direction = light.position - origin;
-        float distance = length(direction);
-        needed = needed && distance > frame.shadow_bias;
-        t_max = 1.0 - frame.shadow_bias / max(distance, frame.shadow_bias);
-    }
+    ShadowSegment s = shadow_segment(x, n, light.type == kLightDirectional, light.position, light.direction,
+                                     frame.shadow_bias, kShadowRayFar);
+    needed = needed && s.traced;
     if (needed) ++g_shadow_rays;
     if (!subgroupAny(needed)) return 1.0;
-    return ray_occluded(origin, direction, t_max, needed) ? 0.0 : 1.0;
+    return ray_occluded(s.origin, s.direction, s.t_max, needed) ? 0.0 : 1.0;
 }
 
 // Adds this invocation's rays to the frame's counter, which is 64-bit: the

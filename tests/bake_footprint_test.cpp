@@ -99,7 +99,9 @@ TEST(BakeFootprint, AreaLightSamplesCountOnlyWhenATriangleEmits) {
     EXPECT_LT(footprint.bytes, 2290 * kMiB * 5 / 4);
 }
 
-TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {
+// Russian roulette ends a path after 1 / (1 - survival) lights on average,
+// survival the brightest albedo (at most kVplMaxSurvival): twice that is reserved.
+TEST(BakeFootprint, VplsAreBoundedByTheRoulettesPathLengthBouncesAndTheCap) {
     BakeInputs inputs = with_lights(4);
     inputs.geometry =
         std::make_shared<const SceneGeometry>(test::closed_box({glm::vec3(1.0f), glm::vec3(0.0f)}));
@@ -107,8 +109,12 @@ TEST(BakeFootprint, VplsAreBoundedByPathsTimesBouncesAndTheCap) {
     inputs.indirect.vpl.particle_count = 1000;
     inputs.indirect.vpl.bounces = 3;
     EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, 3000u);
-    inputs.indirect.vpl.bounces = 65535;  // 65.5 million: capped
-    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, kMaxIndirectLights);
+    inputs.indirect.vpl.bounces = 65535;  // white walls: survival 0.95, 2 x 20 lights a path
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, 40000u);
+    inputs.geometry = std::make_shared<const SceneGeometry>(test::closed_box(test::reflecting(0.5f, 0.0f)));
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, 4000u);  // 2 x 2 lights a path
+    inputs.indirect.vpl.particle_count = 2000000;
+    EXPECT_EQ(estimate_bake_footprint(inputs, false).max_vpls, kMaxIndirectLights);  // 8 million: capped
     inputs.indirect.vpl.particle_count = uint64_t{1} << 30;
     inputs.indirect.vpl.bounces = 1;
     const BakeFootprint huge = estimate_bake_footprint(inputs, false);

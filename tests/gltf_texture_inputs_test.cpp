@@ -42,8 +42,9 @@ constexpr const char* kWhitePng =
     "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGP4//8/AwAI/AL+"
     "XJ/PchAAAABJRU5ErkJggg==";
 
-// One quad in z = 0 with two uv sets and vertex colours; `material` is its material.
-json quad_document(const json& material) {
+// One quad in z = 0 with two uv sets and vertex colours; `material` is its
+// material; `tangents`: with NORMAL and TANGENT attributes too.
+json quad_document(const json& material, bool tangents = false) {
     const std::vector<float> positions = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
     const std::vector<float> uv0 = {0, 1, 1, 1, 1, 0, 0, 0};
     const std::vector<float> uv1 = {0.5f, 0.5f, 0.75f, 0.5f, 0.75f, 0.25f, 0.5f, 0.25f};
@@ -70,6 +71,13 @@ json quad_document(const json& material) {
                              {"TEXCOORD_0", add(uv0.data(), 32, 5126, 4, "VEC2")},
                              {"TEXCOORD_1", add(uv1.data(), 32, 5126, 4, "VEC2")},
                              {"COLOR_0", add(colors.data(), 64, 5126, 4, "VEC4")}};
+    json with = attributes;
+    if (tangents) {
+        const std::vector<float> normals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+        const std::vector<float> along_x = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1};
+        with["NORMAL"] = add(normals.data(), 48, 5126, 4, "VEC3");
+        with["TANGENT"] = add(along_x.data(), 64, 5126, 4, "VEC4");
+    }
     const int index_accessor = add(indices.data(), 12, 5123, 6, "SCALAR");
     json doc = {
         {"asset", {{"version", "2.0"}}},
@@ -77,7 +85,7 @@ json quad_document(const json& material) {
         {"scenes", {{{"nodes", {0}}}}},
         {"nodes", {{{"mesh", 0}}}},
         {"meshes",
-         {{{"primitives", {{{"attributes", attributes}, {"indices", index_accessor}, {"material", 0}}}}}}},
+         {{{"primitives", {{{"attributes", with}, {"indices", index_accessor}, {"material", 0}}}}}}},
         {"materials", {material}},
         {"images", {{{"uri", kWhitePng}}}},
         {"textures", {{{"source", 0}}}},
@@ -165,6 +173,35 @@ TEST(TextureInputs, TexCoordOneTransformAndVertexColoursAreRead) {
         }
     }
     EXPECT_EQ(named, 4);
+}
+
+// A material whose only texture is its normal map turns textures on (the
+// G-buffer samples normal maps only with them), with the file's TANGENT or
+// generated ones, and the report names the normal texture.
+TEST(TextureInputs, ANormalTextureAloneTurnsNormalMappingOn) {
+    const json material = {{"normalTexture", {{"index", 0}}}};
+    for (bool tangents : {false, true}) {
+        std::vector<std::string> warnings;
+        const Scene scene = load(quad_document(material, tangents), warnings);
+        ASSERT_EQ(scene.meshes.size(), 1u);
+        ASSERT_EQ(scene.meshes[0].tangents.size(), 4u) << "TANGENT " << tangents;
+        const SceneEffects effects = analyse_scene_effects(scene, nullptr);
+        EXPECT_TRUE(effects.textures) << "TANGENT " << tangents;
+        bool reported = false;
+        for (const EffectDecision& d : effects.decisions) {
+            if (d.name.find("normal textures") == std::string::npos) continue;
+            reported = true;
+            EXPECT_TRUE(d.simulated);
+            EXPECT_EQ(d.reason, "drawn materials sample normal textures");
+        }
+        EXPECT_TRUE(reported);
+    }
+    // Without texture coordinates nothing can be sampled.
+    json bare = quad_document(material);
+    bare["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_0");
+    bare["meshes"][0]["primitives"][0]["attributes"].erase("TEXCOORD_1");
+    std::vector<std::string> warnings;
+    EXPECT_FALSE(analyse_scene_effects(load(bare, warnings), nullptr).textures);
 }
 
 TEST(TextureInputs, TexCoordOverrideAndBadTransformsAreHandled) {

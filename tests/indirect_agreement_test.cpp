@@ -3,7 +3,9 @@
 // wall's mean reflected radiosity, and the red wall's colour on its neighbour.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 
 #include "indirect_scenes.h"
 #include "lightmass_server/indirect/radiosity_solver.h"
@@ -72,6 +74,39 @@ TEST_F(CornellAgreement, VplsRadiosityAndPathTracingAgreeOnEveryWall) {
     expect_close(vpl, patches, 0.05, "vpl against radiosity");
     expect_close(vpl, reference, 0.05, "vpl against the path-traced reference");
     expect_close(patches, reference, 0.05, "radiosity against the path-traced reference");
+}
+
+// At their defaults (VPL paths followed until Russian roulette ends them,
+// radiosity to 1% unshot) the two solvers bounce the same light, and it is
+// the path tracer's; the same seed gives the same VPLs.
+TEST_F(CornellAgreement, VplAndRadiosityAgreeAtTheirDefaults) {
+    VplOptions defaults;
+    defaults.seed = 11;
+    auto traced = trace_vpls(box_->geometry, *caster_, {}, defaults, {});
+    ASSERT_TRUE(traced.ok()) << traced.error();
+    uint32_t deepest = 0;
+    for (const IndirectLight& l : traced->lights) deepest = std::max(deepest, l.bounce);
+    EXPECT_GT(deepest, 8u);  // no one-bounce default
+    EXPECT_LT(traced->lights.size(), 10u * defaults.particle_count);
+    auto again = trace_vpls(box_->geometry, *caster_, {}, defaults, {});
+    ASSERT_TRUE(again.ok());
+    ASSERT_EQ(again->lights.size(), traced->lights.size());
+    EXPECT_EQ(std::memcmp(again->lights.data(), traced->lights.data(),
+                          traced->lights.size() * sizeof(IndirectLight)),
+              0);
+
+    auto radiosity = solve_radiosity(box_->geometry, *caster_, {}, RadiosityOptions{}, {});
+    ASSERT_TRUE(radiosity.ok()) << radiosity.error();
+    std::vector<glm::dvec3> vpl = test::wall_means(*box_, traced->lights, *caster_);
+    std::vector<glm::dvec3> patches = test::wall_means(*box_, radiosity->lights, *caster_);
+    std::vector<glm::dvec3> reference = test::path_traced_wall_means(*box_, *caster_, 40000, 5);
+    for (int w = 0; w < test::kWallCount; ++w) {
+        std::printf("defaults: %-8s vpl %.4f radiosity %.4f path traced %.4f (green channel), %u VPL bounces\n",
+                    kWallNames[w], vpl[w].y, patches[w].y, reference[w].y, deepest);
+    }
+    expect_close(vpl, patches, 0.05, "default vpl against default radiosity");
+    expect_close(vpl, reference, 0.05, "default vpl against the path-traced reference");
+    expect_close(patches, reference, 0.05, "default radiosity against the path-traced reference");
 }
 
 // On the back wall's half next to the red wall: one bounce (the panel's

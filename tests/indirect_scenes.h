@@ -35,6 +35,12 @@ inline void add_quad(SceneGeometry& g, glm::vec3 origin, glm::vec3 u, glm::vec3 
     g.triangles.push_back(flat_triangle(origin, origin + u + v, origin + v, material));
 }
 
+// A rough dielectric whose bounces reflect `rho` (bake::bounce_albedo:
+// 0.96 base + 0.04), emitting radiance `radiance`.
+inline SurfaceMaterial reflecting(float rho, float radiance) {
+    return {glm::vec3((rho - 0.04f) / 0.96f), glm::vec3(radiance)};
+}
+
 // The box [0, size]^3 with its six faces facing inwards, all of `material`.
 inline SceneGeometry closed_box(SurfaceMaterial material, float size = 1.0f) {
     SceneGeometry g;
@@ -187,14 +193,14 @@ inline std::vector<glm::dvec3> path_traced_wall_means(const CornellBox& box, con
                 const SurfaceTriangle& t = g.triangles[hit->triangle];
                 glm::vec3 hn = bake::front_normal(t);
                 if (glm::dot(hn, d) >= 0.0f) break;
-                glm::dvec3 albedo(bake::diffuse_albedo(g.materials[t.material]));
+                glm::dvec3 albedo(bake::bounce_albedo(g.materials[t.material]));
                 double survive = std::max({albedo.x, albedo.y, albedo.z});
                 if (!(rng.uniform() < survive)) break;
                 throughput *= albedo / survive;
                 x = x + d * hit->distance;
                 n = hn;
             }
-            sum += glm::dvec3(bake::diffuse_albedo(g.materials[start.material])) * irradiance;
+            sum += glm::dvec3(bake::bounce_albedo(g.materials[start.material])) * irradiance;
         }
         means[w] = sum / double(paths_per_wall);
     }

@@ -250,6 +250,14 @@ TEST_F(LightEditCommands, MakeSceneWritesEveryNamedScene) {
     }
 }
 
+TEST_F(LightEditCommands, MakeScenesHelpListsEveryName) {
+    CommandRun r = run_client("make-scene --help", dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    for (const std::string& name : named_scene_names()) EXPECT_THAT(r.output, HasSubstr(name));
+    EXPECT_THAT(r.output, HasSubstr("cornell-emissive"));
+    EXPECT_THAT(r.output, HasSubstr("heavy-room"));
+}
+
 TEST_F(LightEditCommands, ErrorsNameTheProblem) {
     ASSERT_EQ(run_client("make-scene room -o " + path("room.gltf"), dir_).exit_code, 0);
     struct Case {

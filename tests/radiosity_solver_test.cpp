@@ -14,7 +14,7 @@ namespace {
 
 // A closed box whose every surface emits E = pi L_e with reflectance rho.
 SceneGeometry furnace(float rho, float radiance) {
-    return test::closed_box({glm::vec3(rho), glm::vec3(radiance)}, 1.0f);
+    return test::closed_box(test::reflecting(rho, radiance), 1.0f);
 }
 
 Result<RadiosityResult> solve(const SceneGeometry& g, const RadiosityOptions& options,

@@ -565,7 +565,8 @@ TEST(ServerSession, VplBakesCarryTheirLightCapAndSmallBakesTheSmallLane) {
     const StartBake* start = first_of<StartBake>(deep);
     ASSERT_NE(start, nullptr);
     EXPECT_FALSE(start->small);
-    EXPECT_EQ(start->inputs.indirect.vpl.max_lights, kMaxIndirectLights);  // not 65,535,000
+    // The roulette's paths at albedo 1 (vpl_light_reservation): 40 lights each, not 65,535.
+    EXPECT_EQ(start->inputs.indirect.vpl.max_lights, 40000u);
     session.on_bake_finished(2, make_error("cancelled", ErrorKind::kCancelled));
 
     request.bake_id = 3;

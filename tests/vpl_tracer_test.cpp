@@ -32,7 +32,7 @@ Result<VplResult> trace(const SceneGeometry& g, std::span<const SceneLight> ligh
 // particles and this seed is within 2% (its standard error is about 0.5%).
 TEST(VplTracer, FurnaceReflectsTheGeometricSeriesOfItsEmission) {
     const double rho = 0.5, radiance = 1.0, area = 6.0;
-    SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(float(radiance))});
+    SceneGeometry g = test::closed_box(test::reflecting(float(rho), float(radiance)));
     for (uint32_t bounces : {1u, 3u, 64u}) {
         VplOptions options;
         options.particle_count = 20000;
@@ -63,7 +63,7 @@ TEST(VplTracer, FurnaceReflectsTheGeometricSeriesOfItsEmission) {
 // no duplicate surface may create power.
 TEST(VplTracer, HardGeometryAndANearlyWhiteRoomStayFiniteAndBounded) {
     for (double rho : {0.3, 0.99}) for (bool hard : {false, true}) {
-        SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(1.0f)});
+        SceneGeometry g = test::closed_box(test::reflecting(float(rho), 1.0f));
         if (hard) test::add_hard_cases(g);
         VplOptions options;
         options.particle_count = 20000;
@@ -89,8 +89,8 @@ TEST(VplTracer, HardGeometryAndANearlyWhiteRoomStayFiniteAndBounded) {
 // the tiles' backs and is absorbed; the rest reflects as in the furnace.
 TEST(VplTracer, AMillionTrianglesStayFiniteAndBounded) {
     const double rho = 0.5;
-    SceneGeometry g = test::closed_box({glm::vec3(float(rho)), glm::vec3(1.0f)});
-    g.materials.push_back({glm::vec3(float(rho)), glm::vec3(0.0f)});
+    SceneGeometry g = test::closed_box(test::reflecting(float(rho), 1.0f));
+    g.materials.push_back(test::reflecting(float(rho), 0.0f));
     const uint32_t tile_material = uint32_t(g.materials.size() - 1);
     const size_t walls = g.triangles.size();
     const int n = 708;  // 2 n^2 ~ 10^6
@@ -149,19 +149,20 @@ TEST(VplTracer, SameLightsAtAnyThreadCount) {
 // times its whole power 4 pi I; a directional light's disc power lands on the
 // floor of an open box when it shines straight down.
 TEST(VplTracer, PunctualAndDirectionalLightsShootTheirPower) {
-    SceneGeometry box = test::closed_box({glm::vec3(0.5f), glm::vec3(0.0f)});
+    SceneGeometry box = test::closed_box(test::reflecting(0.5f, 0.0f));
     SceneLight point;
     point.type = LightType::kPoint;
     point.position = {0.5f, 0.5f, 0.5f};
     point.intensity = 2.0f;
     VplOptions options;
     options.particle_count = 4000;
+    options.bounces = 1;
     auto r = trace(box, std::span<const SceneLight>(&point, 1), options);
     ASSERT_TRUE(r.ok());
     EXPECT_NEAR(total_power(r->lights).x, 0.5 * 4.0 * std::numbers::pi * 2.0, 1e-3);
 
     SceneGeometry floor;
-    floor.materials.push_back({glm::vec3(0.5f), glm::vec3(0.0f)});
+    floor.materials.push_back(test::reflecting(0.5f, 0.0f));
     test::add_quad(floor, {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0);
     SceneLight sun;
     sun.type = LightType::kDirectional;

@@ -1,9 +1,11 @@
 #include "editor_client/commands/bake_options.h"
 
+#include <algorithm>
 #include <glm/glm.hpp>
 #include <map>
 
 #include "editor_client/commands/command_errors.h"
+#include "lightcuts/material_model.h"
 #include "protocol/bake_limits.h"
 
 namespace lc::client {
@@ -67,7 +69,8 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
             ->check(CLI::IsMember({"off", "vpl", "radiosity"}))
             ->capture_default_str();
     }
-    cmd.add_option("--bounces", indirect_request.bounces, "vpl: diffuse bounces that leave a light")
+    cmd.add_option("--bounces", indirect_request.bounces, "vpl: a cap on the diffuse bounces that leave a light (default: all, until Russian roulette ends "
+                   "each path)")
         ->capture_default_str()
         ->check(CLI::Range(1u, kMaxBakeBounces));
     cmd.add_option("--vpl-count", indirect_request.vpl_count,
@@ -117,6 +120,17 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
 // Whether some material emits: the server then samples the emissive
 // triangles into --area-lights lights. (A material no drawn triangle uses
 // still counts: the estimate errs by area_lights at most.)
+// The largest albedo channel a bounce can meet (a texture only darkens its factor).
+static double largest_bounce_albedo(const Scene& scene) {
+    double largest = 0.0;
+    for (const Material& m : scene.materials) {
+        const glm::dvec3 a = shading::bounce_albedo(glm::clamp(glm::dvec3(m.base_color_factor), 0.0, 1.0),
+                                                     double(m.metallic), double(m.roughness));
+        largest = std::max({largest, a.x, a.y, a.z});
+    }
+    return scene.materials.empty() ? 1.0 : largest;
+}
+
 static bool some_material_emits(const Scene& scene) {
     for (const Material& m : scene.materials)
         if (glm::any(glm::greaterThan(m.emissive_factor, glm::vec3(0.0f)))) return true;
@@ -130,11 +144,10 @@ size_t BakeFlags::expected_tree_lights(const Scene& scene) const {
     if (environment.requested() || scene.environment)
         lights += environment.lights.value_or(kDefaultEnvironmentLights);
     if (indirect == "vpl" && indirect_request.bounces > 0) {
-        // Every path leaves at most one light per bounce, and the server keeps
-        // at most kMaxIndirectLights.
-        const uint64_t paths = indirect_request.vpl_count;
-        const uint64_t bounces = indirect_request.bounces;
-        lights += size_t(paths > kMaxIndirectLights / bounces ? kMaxIndirectLights : paths * bounces);
+        // What the server reserves: the roulette's path length at the
+        // brightest material, at most one light per bounce.
+        lights += size_t(
+            vpl_light_reservation(indirect_request.vpl_count, indirect_request.bounces, largest_bounce_albedo(scene)));
     }
     return lights;
 }

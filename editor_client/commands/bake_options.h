@@ -47,8 +47,8 @@ struct BakeFlags {
     BakeClientOptions to_options(const Scene& scene) const;
     // The tree lights a bake of `scene` with these flags is expected to hold:
     // the scene's (not classic), and what the server makes: --area-lights where
-    // a material emits, the environment's lights, up to --vpl-count x
-    // --bounces VPLs (radiosity patches are not counted: they depend on the
+    // a material emits, the environment's lights, the VPLs the server
+    // reserves for --vpl-count paths (vpl_light_reservation) (radiosity patches are not counted: they depend on the
     // meshes' area).
     size_t expected_tree_lights(const Scene& scene) const;
     // The builder a bake of `scene` uses: --builder, or for auto the one its

@@ -82,6 +82,28 @@ LC_INLINE SurfaceMaterial surface_material(real3 base_color, real metallic, real
     return s;
 }
 
+// The share of light the lobe reflects under uniform illumination, averaged
+// over the directions it leaves in (cosine-weighted): 1 at n = 0 (Lambert),
+// falling to 2/3 as the lobe narrows (a narrow lobe reflects cos(theta) of the
+// light arriving at angle theta, and the cosine-weighted mean of cos is 2/3).
+// A rational fit to the double integral of lobe x cos x cos, within 0.07% of
+// it at every n (material_model_test integrates it).
+LC_INLINE real lobe_hemispherical_albedo(real exponent) {
+    real n = max(exponent, 0.0);
+    real beyond_mean = (1.0 + 0.01504 * n) / (1.0 + 0.5842 * n + 0.10863 * n * n);
+    return (2.0 + beyond_mean) / 3.0;
+}
+
+// The albedo a Lambertian bounce of the bake reflects: the energy this model
+// reflects under diffuse light, so the server's VPLs and radiosity patches
+// carry what the shader integrates. At roughness 1: 0.96 (1 - metallic) base
+// + mix(0.04, base, metallic).
+LC_INLINE real3 bounce_albedo(real3 base_color, real metallic, real roughness) {
+    SurfaceMaterial s = surface_material(base_color, metallic, roughness);
+    real3 glossy = s.specular * lobe_hemispherical_albedo(s.exponent);
+    return clamp(s.diffuse + glossy, real3(0.0), real3(1.0));
+}
+
 // Direction of perfect reflection of the view: the lobe's axis. The eye sits
 // on the normal's side (the G-buffer flips normals towards the camera).
 LC_INLINE real3 mirror_direction(real3 normal, real3 position, real3 eye) {

@@ -4,6 +4,7 @@
 
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/indirect/patch_mesh.h"
+#include "lightmass_server/indirect/surface_sampling.h"
 #include "protocol/bake_limits.h"
 
 namespace lc::bake {
@@ -44,15 +45,23 @@ void add_environment(const BakeInputs& inputs, BakeFootprint& out, uint64_t& lar
     out.tree_lights += inputs.environment_lights != 0 ? inputs.environment_lights : kDefaultEnvironmentLights;
 }
 
+// The largest albedo channel a bounce meets: how long the roulette keeps paths.
+double largest_bounce_albedo(const SceneGeometry& geometry) {
+    double largest = 0.0;
+    for (const SurfaceMaterial& m : geometry.materials) {
+        const glm::vec3 a = bounce_albedo(m);
+        largest = std::max({largest, double(a.x), double(a.y), double(a.z)});
+    }
+    return largest;
+}
+
 // Lights the indirect stage adds, and its own structures.
 void add_indirect(const BakeInputs& inputs, BakeFootprint& out, uint64_t& largest_part) {
     const IndirectOptions& indirect = inputs.indirect;
     if (!inputs.geometry || inputs.geometry->triangles.empty()) return;
     if (indirect.method == IndirectMethod::kVpl && indirect.vpl.bounces > 0) {
-        const uint64_t paths = indirect.vpl.particle_count;
-        const uint64_t bounces = indirect.vpl.bounces;
-        // Every path leaves at most one light per bounce.
-        const uint64_t most = paths > kMaxIndirectLights / bounces ? kMaxIndirectLights : paths * bounces;
+        const uint64_t most = vpl_light_reservation(indirect.vpl.particle_count, indirect.vpl.bounces,
+                                                    largest_bounce_albedo(*inputs.geometry));
         out.max_vpls = most;
         out.tree_lights += most;
         const uint64_t part = most * (kBytesPerVpl + tree_bytes_per_light(inputs.build));

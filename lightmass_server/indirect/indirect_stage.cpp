@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "lightcuts/guid.h"
 
@@ -46,6 +47,14 @@ std::vector<SceneLight> as_tree_lights(std::span<const IndirectLight> lights, ui
     return out;
 }
 
+// "3 bounces" for a cap; for the default, every bounce, the deepest one a path reached.
+static std::string bounces_text(const VplOptions& options, const std::vector<IndirectLight>& lights) {
+    if (options.bounces < kMaxVplBounces) return std::to_string(options.bounces) + " bounces";
+    uint32_t deepest = 0;
+    for (const IndirectLight& l : lights) deepest = std::max(deepest, l.bounce);
+    return "all bounces until Russian roulette, the deepest " + std::to_string(deepest);
+}
+
 Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, const RayCaster* caster,
                                                std::span<const SceneLight> lights, const IndirectOptions& options,
                                                const ProgressFn& progress) {
@@ -65,8 +74,8 @@ Result<IndirectStageResult> run_indirect_stage(const SceneGeometry& geometry, co
         auto traced = trace_vpls(geometry, *caster, lights, options.vpl, progress);
         if (!traced.ok()) return traced.failure();
         stage.lights = std::move(traced->lights);
-        std::snprintf(text, sizeof text, "simulated (%zu VPLs from %llu particles, %u bounces)", stage.lights.size(),
-                      static_cast<unsigned long long>(traced->particles), options.vpl.bounces);
+        std::snprintf(text, sizeof text, "simulated (%zu VPLs from %llu particles, %s)", stage.lights.size(),
+                      static_cast<unsigned long long>(traced->particles), bounces_text(options.vpl, stage.lights).c_str());
         stage.census = text;
         return stage;
     }

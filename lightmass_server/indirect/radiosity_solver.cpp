@@ -127,7 +127,7 @@ public:
             const SurfaceTriangle& t = geometry.triangles[patches_[j].triangle];
             if (t.material >= geometry.materials.size()) continue;
             const SurfaceMaterial& m = geometry.materials[t.material];
-            albedo_[j] = glm::dvec3(diffuse_albedo(m));
+            albedo_[j] = glm::dvec3(bounce_albedo(m));
             // A Lambertian emitter of radiance L_e has radiosity pi L_e.
             emission_[j] = kPi * glm::dvec3(m.emission);
             radiosity_[j] = unshot_[j] = emission_[j];

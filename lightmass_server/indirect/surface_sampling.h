@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "lightcuts/material_model.h"
 #include "lightcuts/scene_geometry.h"
 
 namespace lc::bake {
@@ -76,9 +77,10 @@ glm::vec<3, Real> front_normal(const SurfaceTriangle& t) {
     return glm::dot(n, shading) < Real(0) ? -n : n;
 }
 
-// Lambertian albedo of a material: metals reflect no diffuse light.
-inline glm::vec3 diffuse_albedo(const SurfaceMaterial& m) {
-    return glm::clamp(m.base_color * (1.0f - m.metallic), glm::vec3(0.0f), glm::vec3(1.0f));
+// The albedo a bounce reflects: the renderer's material under diffuse light
+// (shading::bounce_albedo), so the bake and the shading agree on energy.
+inline glm::vec3 bounce_albedo(const SurfaceMaterial& m) {
+    return glm::vec3(shading::bounce_albedo(glm::dvec3(m.base_color), double(m.metallic), double(m.roughness)));
 }
 
 // Offset that keeps a ray leaving a surface from hitting it again, scaled to the scene.

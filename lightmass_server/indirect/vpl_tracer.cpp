@@ -13,6 +13,7 @@
 #include "lightcuts/shading_model.h"
 #include "lightmass_server/indirect/photon_emitters.h"
 #include "lightmass_server/indirect/surface_sampling.h"
+#include "protocol/bake_limits.h"
 
 namespace lc::bake {
 namespace {
@@ -51,7 +52,7 @@ bool trace_particle(const SceneGeometry& geometry, const RayCaster& caster, cons
         glm::vec3 n = front_normal(t);
         if (glm::dot(n, direction) >= 0.0f) return true;
         glm::vec3 albedo =
-            t.material < geometry.materials.size() ? diffuse_albedo(geometry.materials[t.material]) : glm::vec3(0.0f);
+            t.material < geometry.materials.size() ? bounce_albedo(geometry.materials[t.material]) : glm::vec3(0.0f);
         glm::vec3 reflected = flux * albedo;
         glm::vec3 position = origin + direction * hit->distance;
         if (reflected.x + reflected.y + reflected.z > 0.0f) {
@@ -61,8 +62,9 @@ bool trace_particle(const SceneGeometry& geometry, const RayCaster& caster, cons
             }
             out.push_back({position, n, reflected, 0.0f, bounce});
         }
-        // Russian roulette on the albedo's largest channel keeps each path's weight bounded.
-        float survive = std::min(1.0f, std::max({albedo.x, albedo.y, albedo.z}));
+        // Russian roulette on the albedo's largest channel keeps each path's
+        // weight bounded; its cap ends paths between white walls too.
+        float survive = std::min(float(kVplMaxSurvival), std::max({albedo.x, albedo.y, albedo.z}));
         if (bounce == options.bounces || !(rng.uniform() < double(survive))) return true;
         flux = reflected / survive;
         origin = position + n * epsilon;

@@ -23,7 +23,9 @@ inline constexpr uint32_t kMaxVplBounces = kMaxRecordedBounce;
 
 struct VplOptions {
     uint64_t particle_count = 100000;  // light paths; each leaves up to `bounces` lights
-    uint32_t bounces = 1;              // diffuse hits that deposit a light, <= kMaxVplBounces
+    // Diffuse hits that deposit a light, <= kMaxVplBounces; by default every
+    // one a path reaches before Russian roulette ends it.
+    uint32_t bounces = kMaxVplBounces;
     uint64_t seed = 0;
     // The paths this process traces (an MPI rank's share); the default: all.
     IndexRange particles;

@@ -137,6 +137,9 @@ ShadedLights shaded_lights(const Scene& scene, const WalkTree* tree) {
 // What the drawn materials sample and reflect.
 struct MaterialCensus {
     bool textured = false;
+    // Which kinds of texture the drawn materials sample, for the report.
+    bool base_colour_texture = false, emissive_texture = false, metallic_roughness_texture = false,
+         normal_texture = false;
     bool emissive = false;
     bool glossy_texture = false;
     size_t glossy_materials = 0;
@@ -152,20 +155,25 @@ MaterialCensus census_materials(const Scene& scene) {
         auto valid_texture = [&](int index) {
             return index >= 0 && size_t(index) < scene.textures.size() && !mesh.uvs.empty();
         };
-        if (valid_texture(m.base_color_texture)) census.textured = true;
+        census.base_colour_texture |= valid_texture(m.base_color_texture);
         bool emits = glm::any(glm::greaterThan(m.emissive_factor, glm::vec3(0.0f)));
         if (emits) census.emissive = true;
-        if (emits && valid_texture(m.emissive_texture)) census.textured = true;
+        census.emissive_texture |= emits && valid_texture(m.emissive_texture);
+        // A normal map is sampled where the mesh has tangents (read or generated).
+        census.normal_texture |= valid_texture(m.normal_texture) && !mesh.tangents.empty();
         // A lobe exists where roughness < 1 (n > 0) and F0 > 0; a texture can
         // lower the roughness anywhere.
         const bool textured_lobe = valid_texture(m.metallic_roughness_texture);
-        if (textured_lobe) census.textured = census.glossy_texture = true;
+        census.metallic_roughness_texture |= textured_lobe;
+        census.glossy_texture |= textured_lobe;
         const shading::SurfaceMaterial lobe = shading::surface_material(
             glm::dvec3(m.base_color_factor), m.metallic, m.roughness);
         if (textured_lobe || shading::has_lobe(lobe.specular, lobe.exponent))
             glossy[size_t(mesh.material)] = true;
     }
     census.glossy_materials = size_t(std::count(glossy.begin(), glossy.end(), true));
+    census.textured = census.base_colour_texture || census.emissive_texture ||
+                      census.metallic_roughness_texture || census.normal_texture;
     return census;
 }
 
@@ -191,9 +199,22 @@ void decide_light_types(const LightCensus& census, const std::string& has, Scene
                plural(census.classic, "light") + " marked classic", "no light is marked classic");
 }
 
+// "base colour and normal": the kinds of texture the drawn materials sample.
+std::string texture_kinds(const MaterialCensus& materials) {
+    std::vector<std::string> kinds;
+    if (materials.base_colour_texture) kinds.push_back("base colour");
+    if (materials.emissive_texture) kinds.push_back("emissive");
+    if (materials.metallic_roughness_texture) kinds.push_back("metallic-roughness");
+    if (materials.normal_texture) kinds.push_back("normal");
+    std::string text;
+    for (size_t i = 0; i < kinds.size(); ++i)
+        text += (i == 0 ? "" : i + 1 == kinds.size() ? " and " : ", ") + kinds[i];
+    return text;
+}
+
 void decide_material_inputs(const MaterialCensus& materials, SceneEffects& effects) {
-    effects.textures = decide(effects, "base colour, emissive and metallic-roughness textures",
-                              materials.textured, "a drawn material samples a texture",
+    effects.textures = decide(effects, "base colour, emissive, metallic-roughness and normal textures",
+                              materials.textured, "drawn materials sample " + texture_kinds(materials) + " textures",
                               "no drawn material has a texture (with texture coordinates)");
     effects.emissive = decide(effects, "emissive surfaces", materials.emissive,
                               "a drawn material has a non-zero emissive factor",
