@@ -13,6 +13,7 @@
 #include <string>
 #include <variant>
 
+#include "lightcuts/version.h"
 #include "protocol/asio.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
@@ -193,6 +194,7 @@ int main(int argc, char** argv) {
     // 262,144 lights, above the estimate the bake was admitted by (RELIABILITY.md).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
     CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
+    app.set_version_flag("--version", std::string("lightmass_server ") + lc::kVersion);
     ServerFlags flags;
     add_server_flags(app, flags);
     CLI11_PARSE(app, argc, argv);

@@ -111,8 +111,10 @@ Body encode_body(Fbb& fbb, const BakeDoneMsg& m) {
     auto channel = fbb.CreateString(m.result_channel);
     flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> effects;
     if (!m.effects.empty()) effects = fbb.CreateVectorOfStrings(m.effects);
+    const fb::TreeLightCounts lights(m.lights.punctual, m.lights.area_samples, m.lights.environment,
+                                     m.lights.vpls, m.lights.patches);
     auto table = fb::CreateBakeDone(fbb, m.bake_id, channel, m.node_count, m.leaf_count, m.build_ms,
-                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects);
+                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects, &lights);
     return {fb::Message::BakeDone, table.Union()};
 }
 
@@ -307,6 +309,9 @@ Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     m.exact = t.exact();
     if (t.effects())
         for (const flatbuffers::String* line : *t.effects()) m.effects.push_back(line->str());
+    if (const fb::TreeLightCounts* lights = t.lights())
+        m.lights = {lights->punctual(), lights->area_samples(), lights->environment(), lights->vpls(),
+                    lights->patches()};
     return Message{std::move(m)};
 }
 

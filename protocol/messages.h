@@ -113,6 +113,24 @@ struct ErrorMsg {
 struct CancelMsg {
     uint32_t bake_id = 0;
 };
+// The tree's lights by where they came from: the scene's punctual lights (the
+// classic ones stay with the client), the emissive triangles' samples, the
+// environment's lights, and the bounced light (VPLs or radiosity patches).
+struct TreeLightCounts {
+    uint64_t punctual = 0;
+    uint64_t area_samples = 0;
+    uint64_t environment = 0;
+    uint64_t vpls = 0;
+    uint64_t patches = 0;
+
+    uint64_t total() const { return punctual + area_samples + environment + vpls + patches; }
+    // `count` bounced lights of the kind `method` makes.
+    void add_bounced(IndirectMethod method, uint64_t count) {
+        (method == IndirectMethod::kRadiosity ? patches : vpls) += count;
+    }
+    bool operator==(const TreeLightCounts&) const = default;
+};
+
 struct BakeDoneMsg {
     uint32_t bake_id = 0;
     std::string result_channel;
@@ -124,6 +142,7 @@ struct BakeDoneMsg {
     bool exact = true;
     // The bake's census, one line per effect: simulated (with counts) or skipped, and why.
     std::vector<std::string> effects;
+    TreeLightCounts lights;  // all zero from a server that does not count them
 };
 
 using Message = std::variant<HelloMsg, HelloAckMsg, OpenChannelMsg, WriteChannelMsg,

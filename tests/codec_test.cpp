@@ -63,7 +63,7 @@ bool same(const BakeDoneMsg& x, const BakeDoneMsg& y) {
            x.node_count == y.node_count && x.leaf_count == y.leaf_count &&
            x.build_ms == y.build_ms && x.pairing_cost == y.pairing_cost &&
            x.pairing_lower_bound == y.pairing_lower_bound && x.exact == y.exact &&
-           x.effects == y.effects;
+           x.effects == y.effects && x.lights == y.lights;
 }
 bool same(const Message& x, const Message& y) {
     if (x.index() != y.index()) return false;
@@ -90,7 +90,8 @@ std::vector<Message> sample_messages() {
                         777};
     bake.indirect = {IndirectMethod::kRadiosity, 3, 123456789012ull, 0.125f, 0.002f};
     BakeDoneMsg done{42, "result", 9, 5, 12.5, 1234.25, 1200.0, false,
-                     {"area lights: simulated (2 emissive triangles, 777 samples)", "second"}};
+                     {"area lights: simulated (2 emissive triangles, 777 samples)", "second"},
+                     {8, 777, 203, 1054763, 5000000000ull}};
     return {
         HelloMsg{kProtocolVersion, "editor_client 0.1", "s3cret-token"},
         HelloAckMsg{kProtocolVersion, "lightmass_server 0.1"},

@@ -465,6 +465,7 @@ ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResu
     done.pairing_lower_bound = built.report.pairing_lower_bound;
     done.exact = built.report.exact;
     done.effects = built.report.effects;
+    done.lights = built.report.lights;
     spdlog::info("connection {}: bake {} built {} nodes in {:.1f} ms", options_.connection_id, bake_id,
                  done.node_count, done.build_ms);
     if (options_.record_channels) record_result(done.result_channel, tree, built.channel_file);
