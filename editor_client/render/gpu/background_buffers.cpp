@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "editor_client/render/gpu/storage_upload.h"
+#include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {
