@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     lc::client::add_render_command(app);
     lc::client::add_view_command(app);
     lc::client::add_light_edit_commands(app);
+    lc::client::add_server_status_command(app);
     CLI11_PARSE(app, argc, argv);
     return 0;
 }

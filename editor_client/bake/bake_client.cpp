@@ -5,6 +5,7 @@
 
 #include "editor_client/bake/client_outputs.h"
 #include "editor_client/bake/client_session.h"
+#include "editor_client/bake/server_address.h"
 #include "editor_client/bake/server_process.h"
 #include "protocol/asio.h"
 #include "protocol/bake_limits.h"
@@ -32,29 +33,6 @@ std::string seconds_text(double seconds) {
 
 double ms_since(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-bool split_host_port(const std::string& text, std::string& host, std::string& port) {
-    size_t colon = text.rfind(':');
-    if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) return false;
-    host = text.substr(0, colon);
-    port = text.substr(colon + 1);
-    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-    return port.find_first_not_of("0123456789") == std::string::npos;
-}
-
-Result<std::string> read_token(const std::filesystem::path& path) {
-    if (path.empty()) return std::string();
-    std::FILE* f = std::fopen(path.c_str(), "r");
-    if (!f) return make_error("cannot read token file '" + path.string() + "'");
-    char buffer[1024] = {};
-    size_t n = std::fread(buffer, 1, sizeof buffer - 1, f);
-    std::fclose(f);
-    std::string token(buffer, n);
-    token = token.substr(0, token.find_first_of("\r\n"));
-    while (!token.empty() && (token.back() == ' ' || token.back() == '\t')) token.pop_back();
-    if (token.empty()) return make_error("token file '" + path.string() + "' is empty");
-    return token;
 }
 
 // The I/O of one bake: connects, moves frames between the socket and the
@@ -302,7 +280,7 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     if (options.spawn_server && options.tls)
         return make_error("--tls is for --server: a spawned server listens on loopback without TLS");
     if (options.spawn_server) {
-        auto process = ServerProcess::spawn();
+        auto process = ServerProcess::spawn(1, spawned_server_flags(options.ranks, options.spawned_server_args));
         if (!process) return make_error(process.error());
         spawned = std::move(process.value());
         address = spawned->address();

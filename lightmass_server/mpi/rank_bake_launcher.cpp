@@ -6,6 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -13,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include "lightmass_server/mpi/local_slots.h"
+#include "lightmass_server/mpi/mpi_failure.h"
 #include "lightmass_server/mpi/rank_job.h"
 
 namespace lc::bake {
@@ -23,11 +28,16 @@ constexpr auto kPollInterval = std::chrono::milliseconds(50);
 // After SIGTERM, mpirun takes its ranks down; past this, the group gets SIGKILL.
 constexpr auto kTerminateGrace = std::chrono::seconds(5);
 
+// Beside the server (the build tree), else where the package installs it:
+// PREFIX/libexec/lightcuts/ for PREFIX/bin/lightmass_server (CMakeLists.txt install()).
 fs::path rank_program(const MpiLaunchOptions& mpi) {
     if (!mpi.rank_program.empty()) return mpi.rank_program;
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path("lightmass_rank") : self.parent_path() / "lightmass_rank";
+    if (ec) return "lightmass_rank";
+    const fs::path beside = self.parent_path() / "lightmass_rank";
+    const fs::path installed = self.parent_path().parent_path() / "libexec" / "lightcuts" / "lightmass_rank";
+    return fs::exists(beside, ec) || !fs::exists(installed, ec) ? beside : installed;
 }
 
 fs::path make_job_dir(const MpiLaunchOptions& mpi) {
@@ -37,8 +47,10 @@ fs::path make_job_dir(const MpiLaunchOptions& mpi) {
     return root / ("lightmass-bake-" + std::to_string(getpid()) + "-" + std::to_string(++counter));
 }
 
-std::vector<std::string> launch_command(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& dir) {
+std::vector<std::string> launch_command(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& dir,
+                                        const LocalLaunch& local) {
     std::vector<std::string> argv{mpi.launcher, "-n", std::to_string(ranks)};
+    argv.insert(argv.end(), local.extra_args.begin(), local.extra_args.end());
     argv.insert(argv.end(), mpi.launcher_args.begin(), mpi.launcher_args.end());
     if (!mpi.hostfile.empty()) argv.insert(argv.end(), {"--hostfile", mpi.hostfile.string()});
     argv.insert(argv.end(), {rank_program(mpi).string(), "--job", dir.string()});
@@ -111,7 +123,9 @@ std::string exit_text(int status) {
 Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const ProgressFn& progress) {
     Status written = write_rank_job(dir, encode_rank_job(inputs, inputs.ranks));
     if (!written) return make_error("MPI job: " + written.error());
-    const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, dir);
+    const LocalLaunch local = local_launch(inputs.mpi, inputs.ranks, std::max(1u, std::thread::hardware_concurrency()));
+    if (!local.note.empty()) spdlog::info("{}", local.note);
+    const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, dir, local);
     Result<pid_t> pid = spawn_group(argv, dir / "mpirun.log");
     if (!pid) return pid.failure();
     std::string last_progress;
@@ -133,6 +147,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     if (fs::exists(dir / "error.txt"))
         return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(dir / "result.lcut")) {
+        const std::string log = tail_of(dir / "mpirun.log", 4000);
+        spdlog::warn("MPI job of {} ranks failed; {} said: {}", inputs.ranks, argv[0], log);
+        if (std::string known = explain_mpi_failure(log, inputs.ranks); !known.empty()) return make_error(known);
         const std::string code =
             WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
         return make_error("MPI bake over " + std::to_string(inputs.ranks) + " ranks failed: " + argv[0] +
@@ -147,7 +164,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     else
         fs::rename(dir / "result.lcut", tree_file, ec);
     if (ec) return make_error("cannot move rank 0's tree out of " + dir.string() + ": " + ec.message());
-    return read_rank_result(dir, tree_file);
+    Result<BuildResult> result = read_rank_result(dir, tree_file);
+    if (result && !local.note.empty()) result->report.effects.push_back(local.note);
+    return result;
 }
 
 }  // namespace

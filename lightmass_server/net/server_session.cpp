@@ -44,6 +44,8 @@ ServerActions ServerSession::on_message(Message message) {
         keep = on_bake_request(*request);
     } else if (auto* cancel = std::get_if<CancelMsg>(&message)) {
         on_cancel(*cancel);
+    } else if (auto* status = std::get_if<StatusRequestMsg>(&message)) {
+        on_status_request(*status);
     } else {
         send_error(0, ErrorCode::kMalformedFrame,
                    std::string("a client may not send ") + message_name(message) + " messages");
@@ -382,7 +384,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
                  request.bake_id, start.inputs.lights->size(), start.inputs.geometry ? " and geometry" : "",
                  builder_name(build.builder), build.seed);
-    bake_ = ActiveBake{request.bake_id, false, false, std::move(reservation)};
+    bake_ = ActiveBake{request.bake_id, false, false, std::move(reservation), request.ranks, {}};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});
     actions_.push_back(std::move(start));
     return true;
@@ -433,8 +435,27 @@ void ServerSession::on_cancel(const CancelMsg& cancel) {
     actions_.push_back(CancelBake{cancel.bake_id});
 }
 
+void ServerSession::on_status_request(const StatusRequestMsg& request) {
+    StatusReplyMsg reply = options_.status ? options_.status() : StatusReplyMsg{};
+    reply.request_id = request.request_id;
+    send(std::move(reply));
+}
+
+std::optional<BakeStatusEntry> ServerSession::bake_status() const {
+    if (!bake_) return std::nullopt;
+    BakeStatusEntry entry;
+    entry.connection = options_.connection_id;
+    entry.bake_id = bake_->bake_id;
+    entry.state = bake_->streaming ? "streaming" : bake_->latest.stage.empty() ? "queued" : "running";
+    entry.stage = bake_->streaming ? "streaming" : bake_->latest.stage;
+    entry.percent = bake_->streaming ? 100.0f : bake_->latest.percent;
+    entry.ranks = bake_->ranks;
+    return entry;
+}
+
 ServerActions ServerSession::on_bake_progress(const ProgressMsg& progress) {
     if (closing_ || !bake_ || bake_->bake_id != progress.bake_id || bake_->streaming) return {};
+    bake_->latest = progress;
     send(progress);
     return take_actions();
 }
