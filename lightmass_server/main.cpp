@@ -125,7 +125,8 @@ void add_server_flags(CLI::App& app, ServerFlags& flags) {
     // A service keeps every flag in one file (packaging/lightmass_server.conf); the command line wins.
     app.set_config("--config", "", "Read flags from this file (TOML: flag = value, one a line)");
     app.add_flag("--print-config", flags.print_config,
-                  "Print every flag with its value as a --config file, and exit");
+                  "Print every flag with its value as a --config file, and exit")
+        ->configurable(false);
 }
 
 // The checked options, or the exit status of a command line that names a problem.

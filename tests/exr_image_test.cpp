@@ -59,7 +59,8 @@ TEST_F(ExrImage, HalfChannelsRoundToTheNearestHalf) {
     const auto path = dir_ / "half.exr";
     ExrWriteOptions options;
     options.pixels = ExrPixels::kHalf;
-    ASSERT_TRUE(write_exr(path, image, options).ok());
+    Status written = write_exr(path, image, options);
+    ASSERT_TRUE(written.ok()) << written.error();
     Result<FloatImage> back = read_exr(path);
     ASSERT_TRUE(back.ok()) << back.error();
     EXPECT_EQ(back->rgb[0], 1.0f);

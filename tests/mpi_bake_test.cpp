@@ -190,7 +190,9 @@ TEST(MpiBake, RadiositySplitOverRanksGivesTheInProcessTree) {
         inputs.ranks = ranks;
         Result<BuildResult> built = run_bake(inputs, {});
         EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
-        if (built) EXPECT_EQ(built->report.lights, whole->report.lights) << ranks << " ranks";
+        if (built) {
+            EXPECT_EQ(built->report.lights, whole->report.lights) << ranks << " ranks";
+        }
         // The same shots over every rank count: the census differs only by the rank count.
         EXPECT_EQ(effect_starting(built, "indirect: "),
                   census.substr(0, census.size() - 1) + ", " + std::to_string(ranks) + " ranks)");

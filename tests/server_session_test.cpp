@@ -391,8 +391,9 @@ TEST(ServerSession, StatusIsAnsweredAfterHelloOnlyAndClientsMayNotSendReplies) {
     ServerSession session(options);
     hello(session, "secret");
     ServerActions answered = session.on_message(StatusRequestMsg{3});
-    ASSERT_EQ(sent(answered).size(), 1u);
-    const auto& reply = std::get<StatusReplyMsg>(sent(answered)[0]);
+    const std::vector<Message> messages = sent(answered);
+    ASSERT_EQ(messages.size(), 1u);
+    const auto& reply = std::get<StatusReplyMsg>(messages[0]);
     EXPECT_EQ(reply.request_id, 3u);
     EXPECT_EQ(reply.version, "lightmass_server 9.9.9");
     EXPECT_EQ(reply.memory_budget_bytes, 4096u);

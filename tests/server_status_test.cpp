@@ -29,7 +29,7 @@ protected:
     void SetUp() override {
         dir_ = test::make_temp_dir("server-status");
         token_ = dir_ / "token";
-        std::ofstream(token_) << "status-secret\n";
+        std::ofstream(token_) << "status-secret-0123456789\n";
         Result<std::unique_ptr<ServerProcess>> server = ServerProcess::spawn_with(
             (test::bin_dir() / "lightmass_server").string(),
             {"--listen", "127.0.0.1:0", "--token-file", token_.string(), "--memory-budget-mb", "512",

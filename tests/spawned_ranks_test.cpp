@@ -81,15 +81,16 @@ TEST_F(SpawnedRanks, ThreeRanksBakeOneRanksBytesAndTheSummaryCountsTheTreesLight
                                 std::to_string(2 * leaves - 1) + " nodes"),
               std::string::npos)
         << three.output;
-    if (std::thread::hardware_concurrency() < 3)
+    if (std::thread::hardware_concurrency() < 3) {
         EXPECT_NE(three.output.find("mpi: 3 ranks on this machine's "), std::string::npos) << three.output;
+    }
 }
 
 TEST_F(SpawnedRanks, TooFewSlotsIsOneLineNamingTheFlag) {
     const unsigned ranks = std::max(2u, std::thread::hardware_concurrency() + 1);
     const BakeRun refused = bake("--ranks " + std::to_string(ranks) + " --server-arg=--mpi-oversubscribe=off");
     EXPECT_NE(refused.exit_code, 0) << refused.output;
-    const std::string expected = "bake failed: bake 1 failed: MPI: mpirun found fewer slots than the " +
+    const std::string expected = "bake 1 failed: MPI: mpirun found fewer slots than the " +
                                  std::to_string(ranks) + " ranks asked for: pass lightmass_server "
                                  "--mpi-oversubscribe on";
     EXPECT_NE(refused.output.find(expected), std::string::npos) << refused.output;

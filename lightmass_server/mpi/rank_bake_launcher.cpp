@@ -148,7 +148,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
         return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(dir / "result.lcut")) {
         const std::string log = tail_of(dir / "mpirun.log", 4000);
-        spdlog::warn("MPI job of {} ranks failed; {} said: {}", inputs.ranks, argv[0], log);
+        // The launcher's whole output for the operator (info: a spawned --quiet server keeps it off the
+        // user's terminal); the client gets one line.
+        spdlog::info("MPI job of {} ranks failed; {} said: {}", inputs.ranks, argv[0], log);
         if (std::string known = explain_mpi_failure(log, inputs.ranks); !known.empty()) return make_error(known);
         const std::string code =
             WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";

@@ -10,6 +10,7 @@
 #include "lightmass_server/indirect/patch_mesh.h"
 #include "lightmass_server/bake/result_channel_file.h"
 #include "protocol/bake_limits.h"
+#include "lightcuts/version.h"
 #include "protocol/channel_name.h"
 
 namespace lc::bake {
@@ -109,7 +110,7 @@ bool ServerSession::on_hello(const HelloMsg& hello) {
     }
     greeted_ = true;
     spdlog::info("connection {}: hello from '{}'", options_.connection_id, hello.peer_name);
-    send(HelloAckMsg{kProtocolVersion, "lightmass_server 0.1.0"});
+    send(HelloAckMsg{kProtocolVersion, std::string("lightmass_server ") + kVersion});
     return true;
 }
 

@@ -6,27 +6,32 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <Imath/half.h>
 
 #include <algorithm>
 #include <cctype>
 #include <exception>
 #include <system_error>
+#include <type_traits>
+#include <vector>
 
 namespace lc::client {
 namespace {
 
 constexpr const char* kChannels[3] = {"R", "G", "B"};
 
-// Slices over an interleaved RGB float buffer whose first pixel is the data window's origin.
-Imf::FrameBuffer rgb_slices(float* rgb, uint32_t width, const Imath::Box2i& window) {
-    const size_t x_stride = 3 * sizeof(float);
+// Slices over an interleaved RGB buffer of `T` (float or half) whose first pixel is the data
+// window's origin. OpenEXR writes only the pixel type of the file's channels.
+template <typename T>
+Imf::FrameBuffer rgb_slices(T* rgb, uint32_t width, const Imath::Box2i& window) {
+    const Imf::PixelType type = std::is_same_v<T, half> ? Imf::HALF : Imf::FLOAT;
+    const size_t x_stride = 3 * sizeof(T);
     const size_t y_stride = x_stride * width;
     // OpenEXR addresses pixel (x, y) as base + x * x_stride + y * y_stride, window origin included.
     char* base = reinterpret_cast<char*>(rgb) - ptrdiff_t(window.min.x) * ptrdiff_t(x_stride) -
                  ptrdiff_t(window.min.y) * ptrdiff_t(y_stride);
     Imf::FrameBuffer frame;
-    for (int c = 0; c < 3; ++c)
-        frame.insert(kChannels[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), x_stride, y_stride));
+    for (int c = 0; c < 3; ++c) frame.insert(kChannels[c], Imf::Slice(type, base + c * sizeof(T), x_stride, y_stride));
     return frame;
 }
 
@@ -52,9 +57,16 @@ Status write_exr(const std::filesystem::path& path, const FloatImage& image, con
         for (const char* channel : kChannels) header.channels().insert(channel, Imf::Channel(type));
         for (const auto& [name, text] : options.attributes) header.insert(name, Imf::StringAttribute(text));
         Imf::OutputFile out(tmp.c_str(), header);
-        // OpenEXR only reads through the slices; its API takes a mutable base pointer.
-        float* pixels = const_cast<float*>(image.rgb.data());
-        out.setFrameBuffer(rgb_slices(pixels, image.width, header.dataWindow()));
+        // Half: each value rounded to the nearest half (Imath's conversion) before it is written.
+        std::vector<half> halves;
+        if (type == Imf::HALF) {
+            halves.assign(image.rgb.begin(), image.rgb.end());
+            out.setFrameBuffer(rgb_slices(halves.data(), image.width, header.dataWindow()));
+        } else {
+            // OpenEXR only reads through the slices; its API takes a mutable base pointer.
+            float* pixels = const_cast<float*>(image.rgb.data());
+            out.setFrameBuffer(rgb_slices(pixels, image.width, header.dataWindow()));
+        }
         out.writePixels(int(image.height));
     } catch (const std::exception& e) {
         std::error_code ignored;
