@@ -25,6 +25,7 @@ set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # /etc/lightcuts is absolute: staged under DESTDIR, never written to this machine's /etc.
 set(CPACK_SET_DESTDIR ON)
+set(CPACK_INSTALL_PREFIX /usr)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # lightcuts_VERSION_ARCH.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 # The shared libraries' packages from dpkg-shlibdeps; what the programs run, not link, by hand:
