@@ -19,13 +19,15 @@ rm -f "$root.install.log"
 # Ours and nothing else: the programs, the rank program, the service, the docs.
 expected=(
   usr/bin/lightmass_server usr/bin/editor_client
-  lib/systemd/system/lightmass_server.service etc/lightcuts/lightmass_server.conf
+  usr/lib/systemd/system/lightmass_server.service etc/lightcuts/lightmass_server.conf
   usr/share/doc/lightcuts/README.md usr/share/doc/lightcuts/OPERATING.md
 )
 [ -x "$build_dir/bin/lightmass_rank" ] && expected+=(usr/libexec/lightcuts/lightmass_rank)
-for f in "${expected[@]}"; do [ -e "$root/usr/$f" ] || [ -e "$root/$f" ] || fail "not installed: /$f"; done
-unexpected=$(cd "$root" && find . -type f | sed 's|^\./||' |
-  grep -v -E '^(usr/bin/(lightmass_server|editor_client)|usr/libexec/lightcuts/lightmass_rank|usr/(lib/systemd|lib)/systemd/system/lightmass_server\.service|lib/systemd/system/lightmass_server\.service|etc/lightcuts/lightmass_server\.conf|usr/share/doc/lightcuts/.*\.(md|png))$' || true)
+for f in "${expected[@]}"; do [ -e "$root/$f" ] || fail "not installed: /$f"; done
+ours='usr/bin/(lightmass_server|editor_client)|usr/libexec/lightcuts/lightmass_rank'
+ours+='|usr/lib/systemd/system/lightmass_server\.service|etc/lightcuts/lightmass_server\.conf'
+ours+='|usr/share/doc/lightcuts/.*\.(md|png)'
+unexpected=$(cd "$root" && find . -type f | sed 's|^\./||' | grep -v -E "^($ours)\$" || true)
 [ -z "$unexpected" ] || fail "installed files outside the list: $unexpected"
 
 bin="$root/usr/bin"
