@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "lightcuts/bound_walk.h"
+#include "lightcuts/check.h"
 #include "lightcuts/compact_node.h"
 #include "lightcuts/cut_traversal.h"
 #include "lightcuts/device/cluster_bounds.glsl.h"
@@ -333,12 +334,14 @@ glm::dvec3 shade_node(const WalkTree& tree, int32_t index, const SurfacePoint& p
 glm::dvec3 shade_reference(std::span<const SceneLight> lights, const SurfacePoint& p) {
     glm::dvec3 sum(0.0);
     for (const SceneLight& light : lights) sum += shade_light(light, p);
+    LC_DCHECK(std::isfinite(sum.x) && std::isfinite(sum.y) && std::isfinite(sum.z));
     return sum;
 }
 
 glm::dvec3 shade_tree_leaves(const WalkTree& tree, const SurfacePoint& p) {
     glm::dvec3 sum(0.0);
     for (const GpuLight& light : tree.leaves) sum += shade_light(light, p);
+    LC_DCHECK(std::isfinite(sum.x) && std::isfinite(sum.y) && std::isfinite(sum.z));
     return sum;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "lightcuts/check.h"
 #include "lightcuts/compact_node.h"
 #include "lightcuts/shading_model.h"
 
@@ -140,6 +141,9 @@ Result<WalkTree> make_walk_tree(const LightTree& tree) {
             gpu.leaves.push_back(make_gpu_leaf_light(node));
         }
     }
+    // The links were checked above, so these hold unless this function is wrong.
+    LC_CHECK(gpu.leaves.size() == leaf_count);
+    LC_CHECK(n == 0 || gpu.depth < n);
     return gpu;
 }
 

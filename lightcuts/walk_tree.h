@@ -4,10 +4,12 @@
 // compact_node.h) in the tree's breadth-first order with pre-order links, and
 // the leaves' lights, through which a node is evaluated as a cluster. Made
 // from the import form (LightTree) once, by make_walk_tree (gpu_layout.h),
-// which checks the links, so a walk needs no bounds checks.
+// which checks the links, so a walk needs no bounds checks in release builds
+// (debug builds check every access: LC_DCHECK_INDEX).
 #include <cstdint>
 #include <vector>
 
+#include "lightcuts/check.h"
 #include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/scene_light.h"
 
@@ -22,9 +24,16 @@ struct WalkTree {
     uint32_t depth = 0;  // longest root-to-leaf path, in edges
 
     bool empty() const { return nodes.empty(); }
-    const GpuTreeNode& node(int32_t index) const { return nodes[size_t(index)]; }
+    const GpuTreeNode& node(int32_t index) const {
+        LC_DCHECK_INDEX(index, nodes.size());
+        return nodes[size_t(index)];
+    }
     // The light that evaluates node `index` as a cluster (a leaf's own).
-    const GpuLight& light_of(int32_t index) const { return leaves[node(index).representative]; }
+    const GpuLight& light_of(int32_t index) const {
+        const uint32_t representative = node(index).representative;
+        LC_DCHECK_INDEX(representative, leaves.size());
+        return leaves[representative];
+    }
 };
 
 inline LightType node_type(const GpuTreeNode& node) {

@@ -16,27 +16,14 @@
 #include "lightcuts/version.h"
 #include "protocol/asio.h"
 #include "lightmass_server/control/journal_log.h"
+#include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
 #include "lightmass_server/net/server.h"
+#include "protocol/endpoint.h"
+#include "protocol/token_file.h"
 
 namespace {
-
-bool split_host_port(const std::string& text, std::string& host, uint16_t& port) {
-    size_t colon = text.rfind(':');
-    if (colon == std::string::npos || colon == 0) return false;
-    host = text.substr(0, colon);
-    if (host.size() > 2 && host.front() == '[' && host.back() == ']') host = host.substr(1, host.size() - 2);
-    try {
-        size_t used = 0;
-        int value = std::stoi(text.substr(colon + 1), &used);
-        if (used != text.size() - colon - 1 || value < 0 || value > 65535) return false;
-        port = static_cast<uint16_t>(value);
-    } catch (const std::exception&) {
-        return false;
-    }
-    return true;
-}
 
 bool write_port_file(const std::filesystem::path& path, uint16_t port) {
     auto tmp = path;
@@ -132,10 +119,13 @@ void add_server_flags(CLI::App& app, ServerFlags& flags) {
 // The checked options, or the exit status of a command line that names a problem.
 std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& flags) {
     lc::bake::ServerOptions options;
-    if (!split_host_port(flags.listen, options.host, options.port)) {
-        std::cerr << "error: --listen expects HOST:PORT, got '" << flags.listen << "'\n";
+    const lc::Result<lc::Endpoint> listen = lc::parse_endpoint(flags.listen);
+    if (!listen) {
+        std::cerr << "error: --listen: " << listen.error() << "\n";
         return 2;
     }
+    options.host = listen.value().host;
+    options.port = listen.value().port;
     options.bake_threads = flags.threads;
     options.record_dir = flags.record_dir;
     options.radiosity_out = flags.radiosity_out;
@@ -150,8 +140,9 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     options.tls_certificate = flags.tls_cert;
     options.tls_private_key = flags.tls_key;
     options.mpi = flags.mpi;
+    options.mpi.lost_hosts = std::make_shared<lc::bake::HostRoster>();  // one memory for every bake
     if (!flags.token_file.empty()) {
-        auto token = lc::bake::read_token_file(flags.token_file);
+        auto token = lc::read_token_file(flags.token_file);
         if (!token) {
             std::cerr << "error: " << token.error() << "\n";
             return 2;

@@ -58,7 +58,7 @@ private:
 };
 
 // A tree node's links, apart from the node: the structure checks walk these
-// compact arrays instead of the 136-byte nodes.
+// compact arrays instead of the 140-byte nodes (LightTreeNode).
 struct NodeLinks {
     int32_t left;
     int32_t right;

@@ -340,6 +340,33 @@ TEST(BakeRoundTrip, TokenRequiredOffLoopback) {
     ASSERT_TRUE(right.ok()) << right.error();
 }
 
+TEST(BakeRoundTrip, OneTokenFileAuthenticatesOnBothSides) {
+    // White space around the token is dropped by both programs (one reader,
+    // protocol/token_file.h): the server's file and the client's file differ
+    // only in it, and the bake authenticates.
+    auto dir = test::make_temp_dir("token_space");
+    auto server_token = dir / "server_token";
+    auto client_token = dir / "client_token";
+    std::ofstream(server_token) << "correct-horse-battery-staple\n";
+    std::ofstream(client_token) << "  correct-horse-battery-staple \r\n";
+    auto server = start_server({"--token-file", server_token.string()});
+    ASSERT_TRUE(server);
+    BakeClientOptions options;
+    options.server = "127.0.0.1:" + std::to_string(test::port_of(server->address()));
+    options.token_file = client_token;
+    auto baked = client::bake_lights(random_lights(3, 1), kSceneGuid, options);
+    EXPECT_TRUE(baked.ok()) << baked.error();
+
+    // A short token is refused by the client before it connects, as the server refuses it at start.
+    auto short_token = dir / "short_token";
+    std::ofstream(short_token) << "  short\n";
+    options.token_file = short_token;
+    auto refused = client::bake_lights(random_lights(3, 1), kSceneGuid, options);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_NE(refused.error().find("too short"), std::string::npos) << refused.error();
+    EXPECT_FALSE(ServerProcess::spawn_with(server_binary(), {"--token-file", short_token.string()}).ok());
+}
+
 TEST(BakeRoundTrip, ServerStopsCleanlyOnSigterm) {
     auto server = start_server();
     ASSERT_TRUE(server);

@@ -16,8 +16,9 @@
 #include <fstream>
 #include <memory>
 
-#include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/bake/result_channel_file.h"
+#include "lightmass_server/mpi/bake_dispatch.h"
+#include "lightmass_server/mpi/host_roster.h"
 #include "multi_rank_fixtures.h"
 #include "protocol/channel_records.h"
 
@@ -313,6 +314,88 @@ TEST(MpiBake, AMissingLauncherIsNamed) {
     Result<BuildResult> failed = run_bake(inputs, {});
     ASSERT_FALSE(failed.ok());
     EXPECT_NE(failed.error().find("no-such-mpirun-for-this-test"), std::string::npos) << failed.error();
+}
+
+// A folder with a host file naming nodeA and nodeB, and a stand-in for mpirun
+// (a shell script `body`) that records each host file it is given into hostfiles.txt.
+fs::path fake_cluster(const std::string& name, const std::string& body) {
+    const fs::path dir = fs::temp_directory_path() / (name + "-" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "hosts.txt") << "nodeA slots=1\nnodeB slots=1\n";
+    std::ofstream(dir / "mpirun.sh") << "#!/bin/sh\nwhile [ $# -gt 0 ]; do [ \"$1\" = --hostfile ] && "
+                                     << "{ cat \"$2\"; echo ---; } >> " << (dir / "hostfiles.txt")
+                                     << "; shift; done\n"
+                                     << body;
+    fs::permissions(dir / "mpirun.sh", fs::perms::owner_all);
+    return dir;
+}
+
+BakeInputs on_fake_cluster(const fs::path& dir) {
+    BakeInputs inputs = cornell_inputs();
+    inputs.ranks = 2;
+    inputs.mpi.launcher = (dir / "mpirun.sh").string();
+    inputs.mpi.hostfile = dir / "hosts.txt";
+    inputs.mpi.work_dir = dir;
+    return inputs;
+}
+
+std::string text_of(const fs::path& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Ranks that never start (a host that never answers): the bake fails at
+// --mpi-launch-seconds naming the flag and the job's hosts; no launcher outlives it.
+TEST(MpiBake, RanksThatNeverStartFailTheBakeAtTheLaunchDeadline) {
+    const fs::path dir = fake_cluster("mpi-launch-test", "sleep 60\n");
+    BakeInputs inputs = on_fake_cluster(dir);
+    inputs.mpi.launch_seconds = 1;
+    Result<BuildResult> failed = run_bake(inputs, {});
+    ASSERT_FALSE(failed.ok());
+    EXPECT_NE(failed.error().find("had not all started after 1 s (--mpi-launch-seconds)"), std::string::npos)
+        << failed.error();
+    EXPECT_NE(failed.error().find("the job's hosts: nodeA, nodeB"), std::string::npos) << failed.error();
+    EXPECT_EQ(processes_naming(dir.string()), 0u) << "the launcher outlived its bake";
+    fs::remove_all(dir);
+}
+
+// mpirun's environment shortens Open MPI's keepalives (a silent host noticed
+// in seconds) and keeps the daemons attached, unless the server's own
+// environment sets them.
+TEST(MpiBake, TheLauncherGetsShortKeepalivesUnlessTheUserSetsThem) {
+    const fs::path dir = fake_cluster("mpi-keepalive-test", "");
+    std::ofstream(dir / "mpirun.sh", std::ios::app)
+        << "env | grep -E 'OMPI_MCA_(oob_tcp_keepalive|orte_leave)' | sort > " << (dir / "env.txt")
+        << "\nexit 1\n";
+    BakeInputs inputs = on_fake_cluster(dir);
+    EXPECT_FALSE(run_bake(inputs, {}).ok());
+    EXPECT_EQ(text_of(dir / "env.txt"),
+              "OMPI_MCA_oob_tcp_keepalive_intvl=1\nOMPI_MCA_oob_tcp_keepalive_probes=3\n"
+              "OMPI_MCA_oob_tcp_keepalive_time=2\nOMPI_MCA_orte_leave_session_attached=1\n");
+    setenv("OMPI_MCA_oob_tcp_keepalive_time", "30", 1);
+    EXPECT_FALSE(run_bake(inputs, {}).ok());
+    unsetenv("OMPI_MCA_oob_tcp_keepalive_time");
+    EXPECT_NE(text_of(dir / "env.txt").find("OMPI_MCA_oob_tcp_keepalive_time=30\n"), std::string::npos);
+    fs::remove_all(dir);
+}
+
+// mpirun says it lost a host's daemon: the bake fails in one line naming the
+// host, and the server's next bake gets a host file without it.
+TEST(MpiBake, AHostLostMidBakeIsNamedAndLeftOutOfTheNextBake) {
+    const fs::path dir = fake_cluster("mpi-lost-host-test",
+                                      "printf 'ORTE has lost communication with a remote daemon.\\n"
+                                      "  Remote daemon: [[9,0],2] on node nodeB\\n'\nexit 1\n");
+    BakeInputs inputs = on_fake_cluster(dir);
+    inputs.mpi.lost_hosts = std::make_shared<HostRoster>();
+    Result<BuildResult> lost = run_bake(inputs, {});
+    ASSERT_FALSE(lost.ok());
+    EXPECT_NE(lost.error().find("MPI bake over 2 ranks failed: host nodeB stopped answering"),
+              std::string::npos)
+        << lost.error();
+    EXPECT_EQ(lost.error().find('\n'), std::string::npos) << lost.error();
+    EXPECT_FALSE(run_bake(inputs, {}).ok());
+    EXPECT_EQ(text_of(dir / "hostfiles.txt"), "nodeA slots=1\nnodeB slots=1\n---\nnodeA slots=1\n---\n");
+    fs::remove_all(dir);
 }
 
 }  // namespace

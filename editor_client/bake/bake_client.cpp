@@ -5,15 +5,16 @@
 
 #include "editor_client/bake/client_outputs.h"
 #include "editor_client/bake/client_session.h"
-#include "editor_client/bake/server_address.h"
 #include "editor_client/bake/server_process.h"
 #include "protocol/asio.h"
 #include "protocol/bake_limits.h"
 #include "protocol/channel_recorder.h"
 #include "protocol/channel_records.h"
 #include "protocol/codec.h"
+#include "protocol/endpoint.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/tls_context.h"
+#include "protocol/token_file.h"
 #include "protocol/transport.h"
 
 namespace lc::client {
@@ -285,9 +286,12 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
         spawned = std::move(process.value());
         address = spawned->address();
     }
-    std::string host, port;
-    if (!split_host_port(address, host, port)) return make_error("server address must be HOST:PORT, got '" + address + "'");
-    Result<std::string> token = read_token(options.token_file);
+    Result<Endpoint> endpoint = parse_endpoint(address);
+    if (!endpoint) return make_error("server " + endpoint.error());
+    const std::string host = endpoint.value().host;
+    const std::string port = std::to_string(endpoint.value().port);
+    Result<std::string> token = options.token_file.empty() ? Result<std::string>(std::string())
+                                                           : read_token_file(options.token_file);
     if (!token) return make_error(token.error());
     std::shared_ptr<asio::ssl::context> tls;
     if (options.tls) {

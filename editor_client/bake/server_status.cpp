@@ -5,12 +5,13 @@
 #include <optional>
 #include <vector>
 
-#include "editor_client/bake/server_address.h"
 #include "lightcuts/version.h"
 #include "protocol/asio.h"
 #include "protocol/codec.h"
+#include "protocol/endpoint.h"
 #include "protocol/frame_decoder.h"
 #include "protocol/tls_context.h"
+#include "protocol/token_file.h"
 #include "protocol/transport.h"
 
 namespace lc::client {
@@ -97,10 +98,12 @@ awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, st
 }  // namespace
 
 Result<StatusReplyMsg> query_server_status(const ServerStatusQuery& query) {
-    std::string host, port;
-    if (!split_host_port(query.server, host, port))
-        return make_error("server address must be HOST:PORT, got '" + query.server + "'");
-    Result<std::string> token = read_token(query.token_file);
+    Result<Endpoint> endpoint = parse_endpoint(query.server);
+    if (!endpoint) return make_error("server " + endpoint.error());
+    const std::string host = endpoint->host;
+    const std::string port = std::to_string(endpoint->port);
+    Result<std::string> token =
+        query.token_file.empty() ? Result<std::string>(std::string()) : read_token_file(query.token_file);
     if (!token) return token.failure();
     std::shared_ptr<asio::ssl::context> tls;
     if (query.tls) {

@@ -60,7 +60,7 @@ const char* type_choice_name(LightTypeChoice choice) {
     return "unknown";
 }
 
-void add_add_lights(CLI::App& app) {
+void add_add_lights_command(CLI::App& app) {
     struct Options {
         std::string scene;
         uint32_t count = 0;
@@ -139,7 +139,7 @@ void add_add_lights(CLI::App& app) {
     });
 }
 
-void add_remove_lights(CLI::App& app) {
+void add_remove_lights_command(CLI::App& app) {
     struct Options {
         std::string scene;
         std::string indices;
@@ -179,7 +179,7 @@ void add_remove_lights(CLI::App& app) {
     });
 }
 
-void add_make_scene(CLI::App& app) {
+void add_make_scene_command(CLI::App& app) {
     struct Options {
         std::string name;
         std::string out;
@@ -210,9 +210,9 @@ void add_make_scene(CLI::App& app) {
 }  // namespace
 
 void add_light_edit_commands(CLI::App& app) {
-    add_add_lights(app);
-    add_remove_lights(app);
-    add_make_scene(app);
+    add_add_lights_command(app);
+    add_remove_lights_command(app);
+    add_make_scene_command(app);
 }
 
 }  // namespace lc::client

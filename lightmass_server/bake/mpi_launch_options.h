@@ -3,10 +3,13 @@
 // (BakeRequest.ranks): `launcher -n N [args...] [--hostfile F] rank_program --job DIR`.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace lc::bake {
+
+class HostRoster;  // mpi/host_roster.h
 
 struct MpiLaunchOptions {
     std::string launcher = "mpirun";
@@ -26,6 +29,12 @@ struct MpiLaunchOptions {
     // "auto": a launch on this machine alone (no hostfile) with more ranks than
     // its cores adds --oversubscribe, and says so; "on": always; "off": never.
     std::string oversubscribe = "auto";
+    // Every rank must have started within this many seconds, or the bake fails
+    // (a host that never answers would otherwise hold it until --max-bake-seconds).
+    unsigned launch_seconds = 60;
+    // The host file's hosts lost by earlier bakes, left out of the next ones;
+    // null: every bake gets the whole host file.
+    std::shared_ptr<HostRoster> lost_hosts;
 };
 
 }  // namespace lc::bake

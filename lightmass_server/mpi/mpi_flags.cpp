@@ -23,6 +23,10 @@ void add_mpi_flags(CLI::App& app, MpiLaunchOptions& mpi) {
                    "--oversubscribe, and says so in the log; on: always; off: never (mpirun then refuses)")
         ->check(CLI::IsMember({"auto", "on", "off"}))
         ->capture_default_str();
+    app.add_option("--mpi-launch-seconds", mpi.launch_seconds,
+                   "A multi-rank bake fails unless every rank has started within this many seconds")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, 86400u));
     app.add_flag("--mpi-keep-jobs", mpi.keep_job_dirs, "Leave each multi-rank bake's job folder behind");
 }
 

@@ -96,6 +96,8 @@ int main(int argc, char** argv) {
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    // MPI_Init returned on every rank: every host answered (the server's --mpi-launch-seconds).
+    if (rank == 0) (void)write_rank_progress(flags.job, "ranks started", 0.0);
     Result<RankJob> job = receive_job(rank, flags.job);
     if (!job) fail(rank, flags.job, "bad job: " + job.error());
     const ProgressFn progress = rank == 0 ? progress_into(flags.job) : ProgressFn{};
