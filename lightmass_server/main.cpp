@@ -13,7 +13,9 @@
 #include <string>
 #include <variant>
 
+#include "lightcuts/version.h"
 #include "protocol/asio.h"
+#include "lightmass_server/control/journal_log.h"
 #include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
@@ -54,6 +56,7 @@ struct ServerFlags {
     unsigned max_bake_seconds = 600;
     unsigned max_concurrent_bakes = 0;
     bool quiet = false;
+    bool print_config = false;
     lc::bake::MpiLaunchOptions mpi;
 };
 
@@ -106,6 +109,11 @@ void add_server_flags(CLI::App& app, ServerFlags& flags) {
         ->check(CLI::Range(0u, 256u));
     app.add_flag("--quiet", flags.quiet, "Log warnings and errors only");
     lc::bake::add_mpi_flags(app, flags.mpi);
+    // A service keeps every flag in one file (packaging/lightmass_server.conf); the command line wins.
+    app.set_config("--config", "", "Read flags from this file (TOML: flag = value, one a line)");
+    app.add_flag("--print-config", flags.print_config,
+                  "Print every flag with its value as a --config file, and exit")
+        ->configurable(false);
 }
 
 // The checked options, or the exit status of a command line that names a problem.
@@ -184,11 +192,17 @@ int main(int argc, char** argv) {
     // 262,144 lights, above the estimate the bake was admitted by (RELIABILITY.md).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
     CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
+    app.set_version_flag("--version", std::string("lightmass_server ") + lc::kVersion);
     ServerFlags flags;
     add_server_flags(app, flags);
     CLI11_PARSE(app, argc, argv);
+    if (flags.print_config) {
+        std::cout << app.config_to_str(/*default_also=*/true, /*write_description=*/true);
+        return 0;
+    }
 
     spdlog::set_default_logger(spdlog::stderr_color_mt("lightmass"));
+    if (lc::bake::stderr_is_journal()) lc::bake::use_journal_format(*spdlog::default_logger());
     spdlog::set_level(flags.quiet ? spdlog::level::warn : spdlog::level::info);
     std::variant<lc::bake::ServerOptions, int> options = server_options(flags);
     if (const int* status = std::get_if<int>(&options)) return *status;

@@ -111,9 +111,32 @@ Body encode_body(Fbb& fbb, const BakeDoneMsg& m) {
     auto channel = fbb.CreateString(m.result_channel);
     flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<flatbuffers::String>>> effects;
     if (!m.effects.empty()) effects = fbb.CreateVectorOfStrings(m.effects);
+    const fb::TreeLightCounts lights(m.lights.punctual, m.lights.area_samples, m.lights.environment,
+                                     m.lights.vpls, m.lights.patches);
     auto table = fb::CreateBakeDone(fbb, m.bake_id, channel, m.node_count, m.leaf_count, m.build_ms,
-                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects);
+                                    m.pairing_cost, m.pairing_lower_bound, m.exact, effects, &lights);
     return {fb::Message::BakeDone, table.Union()};
+}
+
+Body encode_body(Fbb& fbb, const StatusRequestMsg& m) {
+    return {fb::Message::StatusRequest, fb::CreateStatusRequest(fbb, m.request_id).Union()};
+}
+
+Body encode_body(Fbb& fbb, const StatusReplyMsg& m) {
+    std::vector<flatbuffers::Offset<fb::BakeStatus>> bakes;
+    for (const BakeStatusEntry& b : m.bakes) {
+        auto state = fbb.CreateString(b.state);
+        auto stage = fbb.CreateString(b.stage);
+        bakes.push_back(fb::CreateBakeStatus(fbb, b.connection, b.bake_id, state, stage, b.percent, b.ranks));
+    }
+    auto bake_vector = fbb.CreateVector(bakes);
+    auto version = fbb.CreateString(m.version);
+    auto launcher = fbb.CreateString(m.mpi_launcher);
+    auto table = fb::CreateStatusReply(fbb, m.request_id, version, m.uptime_seconds, bake_vector,
+                                       m.memory_budget_bytes, m.memory_held_bytes, m.connections,
+                                       m.max_connections, m.max_concurrent_bakes, m.max_bake_seconds, launcher,
+                                       m.mpi_max_ranks);
+    return {fb::Message::StatusReply, table.Union()};
 }
 
 // ---- decoding: extent of a verified buffer ---------------------------------
@@ -157,6 +180,7 @@ public:
     }
     void extend(size_t end) { end_ = std::max(end_, end); }
     size_t end() const { return end_; }
+    const uint8_t* base() const { return buf_; }
 
 private:
     size_t offset_of(const void* p) const {
@@ -307,6 +331,44 @@ Result<Message> decode_table(const fb::BakeDone& t, ExtentTracker& extent) {
     m.exact = t.exact();
     if (t.effects())
         for (const flatbuffers::String* line : *t.effects()) m.effects.push_back(line->str());
+    if (const fb::TreeLightCounts* lights = t.lights())
+        m.lights = {lights->punctual(), lights->area_samples(), lights->environment(), lights->vpls(),
+                    lights->patches()};
+    return Message{std::move(m)};
+}
+
+Result<Message> decode_table(const fb::StatusRequest& t, ExtentTracker&) {
+    return Message{StatusRequestMsg{t.request_id()}};
+}
+
+Result<Message> decode_table(const fb::StatusReply& t, ExtentTracker& extent) {
+    extent.string(t.version());
+    extent.string(t.mpi_launcher());
+    if (!std::isfinite(t.uptime_seconds())) return not_finite("StatusReply.uptime_seconds", t.uptime_seconds());
+    StatusReplyMsg m;
+    m.request_id = t.request_id();
+    m.version = to_string(t.version());
+    m.uptime_seconds = t.uptime_seconds();
+    if (const auto* bakes = t.bakes()) {
+        extent.extend(size_t(reinterpret_cast<const uint8_t*>(bakes) - extent.base()) +
+                      sizeof(flatbuffers::uoffset_t) * (1 + bakes->size()));
+        for (const fb::BakeStatus* b : *bakes) {
+            if (!extent.table(b)) return malformed("StatusReply.bakes entry extends past the end of the frame");
+            extent.string(b->state());
+            extent.string(b->stage());
+            if (!std::isfinite(b->percent())) return not_finite("StatusReply.bakes.percent", b->percent());
+            m.bakes.push_back({b->connection(), b->bake_id(), to_string(b->state()), to_string(b->stage()),
+                               b->percent(), b->ranks()});
+        }
+    }
+    m.memory_budget_bytes = t.memory_budget_bytes();
+    m.memory_held_bytes = t.memory_held_bytes();
+    m.connections = t.connections();
+    m.max_connections = t.max_connections();
+    m.max_concurrent_bakes = t.max_concurrent_bakes();
+    m.max_bake_seconds = t.max_bake_seconds();
+    m.mpi_launcher = to_string(t.mpi_launcher());
+    m.mpi_max_ranks = t.mpi_max_ranks();
     return Message{std::move(m)};
 }
 
@@ -370,6 +432,10 @@ Result<Message> decode_verified(const uint8_t* buf, size_t size) {
             return decode_union<fb::Cancel>(buf, size, *envelope, "Cancel", extent);
         case fb::Message::BakeDone:
             return decode_union<fb::BakeDone>(buf, size, *envelope, "BakeDone", extent);
+        case fb::Message::StatusRequest:
+            return decode_union<fb::StatusRequest>(buf, size, *envelope, "StatusRequest", extent);
+        case fb::Message::StatusReply:
+            return decode_union<fb::StatusReply>(buf, size, *envelope, "StatusReply", extent);
     }
     return malformed("Envelope.message has unknown union type " +
                      std::to_string(static_cast<unsigned>(type)));

@@ -12,7 +12,8 @@
 namespace lc {
 
 // The version of the message set in lightcuts.fbs. Bump on any incompatible change.
-inline constexpr Guid kProtocolVersion{0x4C435031u, 0x50726F74u, 0x6F636F6Cu, 0x00010000u};
+// 1.1: StatusRequest and StatusReply, BakeDone.lights.
+inline constexpr Guid kProtocolVersion{0x4C435031u, 0x50726F74u, 0x6F636F6Cu, 0x00010001u};
 
 enum class BuilderKind : uint8_t { kOptimalPair = 0, kAgglomerative = 1, kLbvh = 2 };
 enum class RepresentativeRule : uint8_t { kIntensity = 0, kThesisFirst = 1 };
@@ -115,6 +116,24 @@ struct ErrorMsg {
 struct CancelMsg {
     uint32_t bake_id = 0;
 };
+// The tree's lights by where they came from: the scene's punctual lights (the
+// classic ones stay with the client), the emissive triangles' samples, the
+// environment's lights, and the bounced light (VPLs or radiosity patches).
+struct TreeLightCounts {
+    uint64_t punctual = 0;
+    uint64_t area_samples = 0;
+    uint64_t environment = 0;
+    uint64_t vpls = 0;
+    uint64_t patches = 0;
+
+    uint64_t total() const { return punctual + area_samples + environment + vpls + patches; }
+    // `count` bounced lights of the kind `method` makes.
+    void add_bounced(IndirectMethod method, uint64_t count) {
+        (method == IndirectMethod::kRadiosity ? patches : vpls) += count;
+    }
+    bool operator==(const TreeLightCounts&) const = default;
+};
+
 struct BakeDoneMsg {
     uint32_t bake_id = 0;
     std::string result_channel;
@@ -126,11 +145,42 @@ struct BakeDoneMsg {
     bool exact = true;
     // The bake's census, one line per effect: simulated (with counts) or skipped, and why.
     std::vector<std::string> effects;
+    TreeLightCounts lights;  // all zero from a server that does not count them
+};
+
+// How the server is: asked after Hello (so a server with a token answers only
+// clients that presented it), answered with StatusReply.
+struct StatusRequestMsg {
+    uint32_t request_id = 0;
+};
+// One bake the server holds: "queued" (admitted, waiting for a worker),
+// "running" (with its latest progress) or "streaming" (its tree on the way out).
+struct BakeStatusEntry {
+    uint64_t connection = 0;
+    uint32_t bake_id = 0;
+    std::string state;
+    std::string stage;
+    float percent = 0.0f;
+    uint32_t ranks = 0;
+};
+struct StatusReplyMsg {
+    uint32_t request_id = 0;
+    std::string version;  // lightmass_server's --version
+    double uptime_seconds = 0.0;
+    std::vector<BakeStatusEntry> bakes;
+    uint64_t memory_budget_bytes = 0;  // --memory-budget-mb
+    uint64_t memory_held_bytes = 0;    // channels, stored scenes and bakes' estimated peaks now
+    uint32_t connections = 0;
+    uint32_t max_connections = 0;
+    uint32_t max_concurrent_bakes = 0;  // big bakes at once (the lanes' width)
+    uint32_t max_bake_seconds = 0;
+    std::string mpi_launcher;
+    uint32_t mpi_max_ranks = 0;  // 0: no bakes over ranks
 };
 
 using Message = std::variant<HelloMsg, HelloAckMsg, OpenChannelMsg, WriteChannelMsg,
                              CloseChannelMsg, BakeRequestMsg, ProgressMsg, WarningMsg, ErrorMsg,
-                             CancelMsg, BakeDoneMsg>;
+                             CancelMsg, BakeDoneMsg, StatusRequestMsg, StatusReplyMsg>;
 
 const char* message_name(const Message& message);
 

@@ -54,7 +54,9 @@ const char* message_name(const Message& message) {
             else if constexpr (std::is_same_v<T, WarningMsg>) return "Warning";
             else if constexpr (std::is_same_v<T, ErrorMsg>) return "Error";
             else if constexpr (std::is_same_v<T, CancelMsg>) return "Cancel";
-            else return "BakeDone";
+            else if constexpr (std::is_same_v<T, BakeDoneMsg>) return "BakeDone";
+            else if constexpr (std::is_same_v<T, StatusRequestMsg>) return "StatusRequest";
+            else return "StatusReply";
         },
         message);
 }

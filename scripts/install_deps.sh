@@ -14,6 +14,8 @@ PACKAGES=(
   liblemon-dev libtinygltf-dev libtbb-dev libembree-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libsimdjson-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # render -o IMAGE.exr, and exrheader for its test
+  libopenexr-dev openexr
   # bakes over MPI ranks (lightmass_rank, mpirun in the tests)
   openmpi-bin libopenmpi-dev
   # Vulkan on the CPU (lavapipe), shaders, window

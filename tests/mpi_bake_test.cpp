@@ -132,14 +132,24 @@ TEST(MpiBake, AnAgglomerativeTreeOverRanksIsTheInProcessTree) {
 TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
     SKIP_WITHOUT_MPI();
     BakeInputs inputs = cornell_inputs();
-    const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
+    const Result<BuildResult> whole = run_bake(inputs, {});
+    const std::vector<uint8_t> in_process = tree_bytes(whole);
     ASSERT_FALSE(in_process.empty());
+    // The tree's lights by kind: the 8 punctual, 301 area samples, the sky's 203, the kept VPLs.
+    const TreeLightCounts kinds = whole->report.lights;
+    EXPECT_EQ(kinds.punctual, 8u);
+    EXPECT_EQ(kinds.area_samples, 301u);
+    EXPECT_EQ(kinds.environment, 203u);
+    EXPECT_GT(kinds.vpls, 0u);
+    EXPECT_EQ(kinds.patches, 0u);
+    EXPECT_EQ(kinds.total(), whole->tree.leaf_count);
     for (uint32_t ranks : {1u, 2u, 3u, 4u}) {
         inputs.ranks = ranks;
         Result<BuildResult> built = run_bake(inputs, {});
         const std::vector<uint8_t> bytes = tree_bytes(built);
         EXPECT_EQ(bytes, in_process) << ranks << " ranks";
         if (!built) continue;
+        EXPECT_EQ(built->report.lights, kinds) << ranks << " ranks";
         expect_valid_tree(bytes, (built->channel_file->node_count() + 1) / 2, ranks);
         // One "rank R ..." line per rank: every rank took part.
         size_t rank_lines = 0;
@@ -174,10 +184,16 @@ TEST(MpiBake, RadiositySplitOverRanksGivesTheInProcessTree) {
     // "indirect: simulated (P patches, all bounces, S steps, U% unshot)"
     const std::string census = effect_starting(whole, "indirect: simulated (");
     ASSERT_NE(census.find(" patches, all bounces, "), std::string::npos) << census;
+    EXPECT_GT(whole->report.lights.patches, 0u);
+    EXPECT_EQ(whole->report.lights.vpls, 0u);
+    EXPECT_EQ(whole->report.lights.total(), whole->tree.leaf_count);
     for (uint32_t ranks : {1u, 2u, 3u, 4u}) {
         inputs.ranks = ranks;
         Result<BuildResult> built = run_bake(inputs, {});
         EXPECT_EQ(tree_bytes(built), in_process) << ranks << " ranks";
+        if (built) {
+            EXPECT_EQ(built->report.lights, whole->report.lights) << ranks << " ranks";
+        }
         // The same shots over every rank count: the census differs only by the rank count.
         EXPECT_EQ(effect_starting(built, "indirect: "),
                   census.substr(0, census.size() - 1) + ", " + std::to_string(ranks) + " ranks)");

@@ -7,10 +7,12 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "editor_client/render/output/exr_image.h"
 #include "editor_client/render/output/image_io.h"
 #include "lightcuts/tone_mapping.h"
 #include "editor_client/scene/gltf/gltf_writer.h"
@@ -159,6 +161,49 @@ TEST_F(RenderCommand, FloatImageHoldsTheLinearRadianceBottomUp) {
     raw.read(reinterpret_cast<char*>(first), sizeof(first));
     const size_t bottom_left = size_t(23) * 32;
     EXPECT_EQ(first[0], hdr->rgb[3 * bottom_left]);
+}
+
+TEST_F(RenderCommand, ExrImageIsThePfmBitForBitAndHalfWhenAsked) {
+    // -o IMAGE.exr writes the linear frame the PFM holds, to the last bit in float mode.
+    std::filesystem::path exr = dir_ / "frame.exr", pfm = dir_ / "frame.pfm", half = dir_ / "half.exr";
+    CommandRun r = run(scene_path_.string() + " --tree " + tree_path_.string() + " --size 40x30 -o " +
+                           exr.string() + " --float " + pfm.string(),
+                       dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    Result<FloatImage> from_exr = read_exr(exr);
+    Result<FloatImage> from_pfm = read_pfm(pfm);
+    ASSERT_TRUE(from_exr.ok()) << from_exr.error();
+    ASSERT_TRUE(from_pfm.ok()) << from_pfm.error();
+    ASSERT_EQ(from_exr->width, 40u);
+    ASSERT_EQ(from_exr->height, 30u);
+    ASSERT_EQ(from_exr->rgb.size(), from_pfm->rgb.size());
+    EXPECT_EQ(std::memcmp(from_exr->rgb.data(), from_pfm->rgb.data(), from_pfm->rgb.size() * sizeof(float)), 0);
+    float brightest = 0.0f;
+    for (float v : from_pfm->rgb) brightest = std::max(brightest, v);
+    EXPECT_GT(brightest, 0.0f) << "the frame is black";
+    Result<std::string> mode = read_exr_attribute(exr, "lightcuts.mode");
+    ASSERT_TRUE(mode.ok()) << mode.error();
+    EXPECT_EQ(*mode, "lightcuts");
+    if (std::system("command -v exrheader > /dev/null 2>&1") == 0) {
+        const std::string command = "exrheader " + exr.string() + " > " + (dir_ / "header.txt").string() + " 2>&1";
+        EXPECT_EQ(std::system(command.c_str()), 0) << test::read_text(dir_ / "header.txt");
+    }
+
+    r = run(scene_path_.string() + " --tree " + tree_path_.string() + " --size 40x30 --exr-half -o " + half.string(),
+            dir_);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    Result<FloatImage> from_half = read_exr(half);
+    ASSERT_TRUE(from_half.ok()) << from_half.error();
+    ASSERT_EQ(from_half->rgb.size(), from_pfm->rgb.size());
+    for (size_t i = 0; i < from_pfm->rgb.size(); ++i) {
+        const float v = from_pfm->rgb[i];
+        // Half keeps 11 significant bits: the nearest half is within half an ulp (2^-11 relative).
+        ASSERT_NEAR(from_half->rgb[i], v, std::max(std::abs(v) * 0x1p-11f, 0x1p-24f)) << "value " << i;
+    }
+
+    r = run(scene_path_.string() + " --size 8x8 --exr-half -o " + (dir_ / "x.png").string(), dir_);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.output.find("--exr-half needs an .exr image"), std::string::npos) << r.output;
 }
 
 TEST_F(RenderCommand, BakesOnASpawnedServer) {

@@ -369,6 +369,68 @@ TEST(ServerSession, ClientMayNotSendServerMessages) {
     EXPECT_TRUE(closes(actions));
 }
 
+TEST(ServerSession, StatusIsAnsweredAfterHelloOnlyAndClientsMayNotSendReplies) {
+    ServerSessionOptions options;
+    options.token = "secret";
+    options.status = [] {
+        StatusReplyMsg reply;
+        reply.version = "lightmass_server 9.9.9";
+        reply.memory_budget_bytes = 4096;
+        reply.mpi_max_ranks = 16;
+        return reply;
+    };
+    ServerSession before(options);
+    ServerActions refused = before.on_message(StatusRequestMsg{3});
+    EXPECT_EQ(error_codes(refused), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+    EXPECT_TRUE(closes(refused));
+
+    ServerSession wrong_token(options);
+    EXPECT_EQ(error_codes(hello(wrong_token, "wrong")), std::vector<ErrorCode>{ErrorCode::kAuthentication});
+    EXPECT_TRUE(wrong_token.on_message(StatusRequestMsg{3}).empty()) << "a refused client got an answer";
+
+    ServerSession session(options);
+    hello(session, "secret");
+    ServerActions answered = session.on_message(StatusRequestMsg{3});
+    const std::vector<Message> messages = sent(answered);
+    ASSERT_EQ(messages.size(), 1u);
+    const auto& reply = std::get<StatusReplyMsg>(messages[0]);
+    EXPECT_EQ(reply.request_id, 3u);
+    EXPECT_EQ(reply.version, "lightmass_server 9.9.9");
+    EXPECT_EQ(reply.memory_budget_bytes, 4096u);
+    EXPECT_FALSE(closes(answered));
+
+    ServerActions reply_from_client = session.on_message(StatusReplyMsg{});
+    EXPECT_EQ(error_codes(reply_from_client), std::vector<ErrorCode>{ErrorCode::kMalformedFrame});
+}
+
+TEST(ServerSession, TheBakesStatusIsQueuedThenRunningThenStreaming) {
+    ServerSessionOptions options;
+    options.connection_id = 12;
+    ServerSession session = session_with_scene(options);
+    EXPECT_FALSE(session.bake_status().has_value());
+    BakeRequestMsg request = bake_request();
+    request.ranks = 3;
+    session.on_message(request);
+    std::optional<BakeStatusEntry> queued = session.bake_status();
+    ASSERT_TRUE(queued.has_value());
+    EXPECT_EQ(queued->connection, 12u);
+    EXPECT_EQ(queued->bake_id, kBake);
+    EXPECT_EQ(queued->state, "queued");
+    EXPECT_EQ(queued->ranks, 3u);
+
+    session.on_bake_progress(ProgressMsg{kBake, "level 4", 37.5f});
+    std::optional<BakeStatusEntry> running = session.bake_status();
+    ASSERT_TRUE(running.has_value());
+    EXPECT_EQ(running->state, "running");
+    EXPECT_EQ(running->stage, "level 4");
+    EXPECT_EQ(running->percent, 37.5f);
+
+    session.on_bake_finished(kBake, built_tree());
+    EXPECT_EQ(session.bake_status()->state, "streaming");
+    session.on_result_delivered();
+    EXPECT_FALSE(session.bake_status().has_value());
+}
+
 TEST(ServerSession, RecordsTheSceneAndTheResultWhenAsked) {
     ServerSessionOptions options;
     options.record_channels = true;

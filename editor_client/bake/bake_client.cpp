@@ -281,7 +281,7 @@ Result<BakeOutcome> bake_lights(std::span<const SceneLight> lights, const Guid& 
     if (options.spawn_server && options.tls)
         return make_error("--tls is for --server: a spawned server listens on loopback without TLS");
     if (options.spawn_server) {
-        auto process = ServerProcess::spawn();
+        auto process = ServerProcess::spawn(1, spawned_server_flags(options.ranks, options.spawned_server_args));
         if (!process) return make_error(process.error());
         spawned = std::move(process.value());
         address = spawned->address();

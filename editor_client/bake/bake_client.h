@@ -41,6 +41,8 @@ private:
 struct BakeClientOptions {
     std::string server;            // "HOST:PORT"; ignored when spawn_server
     bool spawn_server = false;     // start build/bin/lightmass_server on loopback for this bake
+    // The spawned server's own flags (--server-arg), e.g. --mpi-oversubscribe=on.
+    std::vector<std::string> spawned_server_args;
     std::filesystem::path token_file;
     // TLS to a server started with --tls-cert: the certificate must verify
     // against tls_ca_file (PEM: a CA, or the server's self-signed certificate),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "lightcuts/version.h"
 #include "protocol/channel_name.h"
 #include "protocol/environment_records.h"
 #include "protocol/geometry_channel.h"
@@ -38,7 +39,7 @@ ClientSession::ClientSession(std::vector<SceneLight> lights, const Guid& scene_g
 void ClientSession::start() {
     if (stage_ != Stage::kConnecting) return;
     stage_ = Stage::kAwaitingHelloAck;
-    outbox_.push_back(HelloMsg{kProtocolVersion, "editor_client 0.1.0", options_.token});
+    outbox_.push_back(HelloMsg{kProtocolVersion, std::string("editor_client ") + kVersion, options_.token});
 }
 
 std::optional<Message> ClientSession::next_message() {

@@ -25,9 +25,19 @@ std::string locate_server_binary() {
     return (self.parent_path() / "lightmass_server").string();
 }
 
-Result<std::unique_ptr<ServerProcess>> ServerProcess::spawn(unsigned threads) {
-    return spawn_with(locate_server_binary(),
-                      {"--listen", "127.0.0.1:0", "--threads", std::to_string(threads), "--quiet"});
+std::vector<std::string> spawned_server_flags(uint32_t ranks, const std::vector<std::string>& server_args) {
+    std::vector<std::string> flags;
+    // The server's default allows 16 ranks; a bigger bake raises it for the server it starts.
+    if (ranks > 16) flags.push_back("--mpi-max-ranks=" + std::to_string(ranks));
+    flags.insert(flags.end(), server_args.begin(), server_args.end());
+    return flags;
+}
+
+Result<std::unique_ptr<ServerProcess>> ServerProcess::spawn(unsigned threads,
+                                                           const std::vector<std::string>& server_flags) {
+    std::vector<std::string> args{"--listen", "127.0.0.1:0", "--threads", std::to_string(threads), "--quiet"};
+    args.insert(args.end(), server_flags.begin(), server_flags.end());
+    return spawn_with(locate_server_binary(), args);
 }
 
 Result<std::unique_ptr<ServerProcess>> ServerProcess::spawn_with(const std::string& binary,

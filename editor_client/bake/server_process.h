@@ -4,6 +4,7 @@
 // port read from its first output line, and stopped with SIGTERM when done.
 #include <sys/types.h>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,7 +15,9 @@ namespace lc::client {
 
 class ServerProcess {
 public:
-    static Result<std::unique_ptr<ServerProcess>> spawn(unsigned threads = 1);
+    // `server_flags`: the server's own flags after its address and threads (spawned_server_flags).
+    static Result<std::unique_ptr<ServerProcess>> spawn(unsigned threads = 1,
+                                                        const std::vector<std::string>& server_flags = {});
     // Starts `binary` with `args` (tests use it for tokens, timeouts, recording).
     static Result<std::unique_ptr<ServerProcess>> spawn_with(const std::string& binary,
                                                               const std::vector<std::string>& args);
@@ -32,6 +35,10 @@ private:
     pid_t pid_;
     std::string address_;
 };
+
+// What a spawned server is told for a bake over `ranks` MPI ranks: enough
+// --mpi-max-ranks for them, then the user's --server-arg flags (which win).
+std::vector<std::string> spawned_server_flags(uint32_t ranks, const std::vector<std::string>& server_args);
 
 // The lightmass_server binary next to this executable, or $LC_SERVER_BIN.
 std::string locate_server_binary();

@@ -41,12 +41,29 @@ struct BakeSummary {
     size_t classic_lights = 0;
 };
 
+// "8 punctual, 1054763 VPLs": the kinds the tree holds, none when the server did not count them.
+std::string tree_light_kinds(const TreeLightCounts& lights) {
+    std::string text;
+    const std::pair<uint64_t, const char*> kinds[] = {{lights.punctual, "punctual"},
+                                                      {lights.area_samples, "area samples"},
+                                                      {lights.environment, "environment"},
+                                                      {lights.vpls, "VPLs"},
+                                                      {lights.patches, "patches"}};
+    for (const auto& [count, name] : kinds)
+        if (count > 0) text += (text.empty() ? "" : ", ") + std::to_string(count) + " " + name;
+    return text;
+}
+
 void print_bake_json(const BakeCommandOptions& options, const BakeSummary& summary) {
     const BakeDoneMsg& done = summary.outcome.done;
     nlohmann::json j;
     j["scene"] = options.scene;
     j["scene_guid"] = summary.scene.guid.to_hex();
-    j["lights"] = summary.scene.lights.size();
+    j["lights"] = summary.scene.lights.size();  // the scene's, as before (scripts read it)
+    const TreeLightCounts& lights = done.lights;
+    j["tree_lights"] = {{"total", done.leaf_count},   {"punctual", lights.punctual},
+                        {"area_samples", lights.area_samples}, {"environment", lights.environment},
+                        {"vpls", lights.vpls},         {"patches", lights.patches}};
     j["classic_lights"] = summary.classic_lights;
     j["builder"] = summary.builder;
     j["builder_choice"] = summary.auto_reason.empty() ? "flag" : summary.auto_reason;
@@ -74,9 +91,11 @@ void print_bake_text(const BakeCommandOptions& options, const BakeSummary& summa
     const BakeDoneMsg& done = summary.outcome.done;
     const std::string builder_line =
         summary.auto_reason.empty() ? summary.builder : summary.builder + " (" + summary.auto_reason + ")";
-    std::printf("baked %zu lights (%zu classic kept local) into %u nodes with %s in %.1f ms\n",
-                summary.scene.lights.size(), summary.classic_lights, done.node_count, builder_line.c_str(),
-                done.build_ms);
+    // The tree's leaves are its lights, whatever made them; the server says which kinds.
+    std::string kinds = tree_light_kinds(done.lights);
+    if (!kinds.empty()) kinds += "; ";
+    std::printf("baked %u lights (%s%zu classic kept local) into %u nodes with %s in %.1f ms\n", done.leaf_count,
+                kinds.c_str(), summary.classic_lights, done.node_count, builder_line.c_str(), done.build_ms);
     if (summary.builder == "optimal-pair")
         std::printf("pairing: %s, total distance %.6g, lower bound %.6g\n",
                     done.exact ? "exact (proven optimal)" : "approximate", done.pairing_cost,

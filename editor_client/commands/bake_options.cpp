@@ -50,6 +50,11 @@ void BakeFlags::add_to(CLI::App& cmd, bool server_required, bool renders) {
                    "Bake over N MPI ranks the server launches (0: in the server's process; "
                    "the server's --mpi-max-ranks bounds N)")
         ->capture_default_str();
+    cmd.add_option("--server-arg", server_args,
+                   "A flag for the server --spawn-server starts (repeat), e.g. --server-arg=--mpi-oversubscribe=on "
+                   "or --server-arg=--mpi-hostfile=FILE (lightmass_server --help lists them)")
+        ->needs(spawn_opt)
+        ->allow_extra_args(false);
     cmd.add_option("--record", record_dir, "Write every channel sent and received as a dump file here");
     cmd.add_option("--connect-timeout", connect_timeout, "Seconds to connect, finish TLS and get HelloAck")
         ->capture_default_str()
@@ -94,6 +99,7 @@ BakeClientOptions BakeFlags::to_options(const Scene& scene) const {
     BakeClientOptions options;
     options.server = server;
     options.spawn_server = spawn_server;
+    options.spawned_server_args = server_args;
     options.token_file = token_file;
     options.tls = tls || !tls_ca.empty();
     options.tls_ca_file = tls_ca;

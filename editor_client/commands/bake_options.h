@@ -30,6 +30,7 @@ struct BakeFlags {
     std::string indirect = "off";
     IndirectRequest indirect_request;
     uint32_t ranks = 0;  // 0: the server bakes in its own process
+    std::vector<std::string> server_args;  // --server-arg: flags for the --spawn-server server
 
     // Adds --server, --spawn-server, --token-file, --tls, --tls-ca, --builder,
     // --pairing, --representative, --exact-limit, --seed, --area-lights, --ranks, --record,

@@ -10,5 +10,6 @@ void add_inspect_command(CLI::App& app);
 void add_light_edit_commands(CLI::App& app);  // add-lights, remove-lights
 void add_render_command(CLI::App& app);
 void add_view_command(CLI::App& app);
+void add_server_status_command(CLI::App& app);
 
 }  // namespace lc::client

@@ -5,13 +5,13 @@
 //   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
-//   [--exposure E] -o OUT.png [--float OUT.pfm] [--stats OUT.json] [--validation]
+//   [--exposure E] -o OUT.png|OUT.exr [--float OUT.pfm|OUT.exr] [--exr-half] [--stats OUT.json] [--validation]
 //   [--sweep-error E1,E2,... [--sweep-blocks B1,B2,...] | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
 //   [--sweep-csv OUT.csv]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 //   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
-// Renders one frame headless on Vulkan and writes the 8-bit image, optionally
-// the linear float image and the statistics. With a tree source the default is
+// Renders one frame headless on Vulkan and writes the 8-bit image (or, to an
+// .exr, the linear one), optionally the linear float image and the statistics. With a tree source the default is
 // lightcuts with the bound criterion; without one, the reference. `error` (and
 // --compare-reference) also renders the reference and measures lightcuts
 // against it (error_stats.h). Without --exposure the exposure is automatic.
@@ -42,6 +42,7 @@
 #include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/sweeps/error_sweep.h"
 #include "editor_client/render/sweeps/realtime_sweep.h"
+#include "editor_client/render/output/exr_image.h"
 #include "editor_client/render/output/image_io.h"
 #include "editor_client/render/analysis/indirect_census.h"
 #include "editor_client/render/pixel_stride.h"
@@ -57,6 +58,7 @@
 #include "editor_client/scene/surface_geometry.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/gpu_layout.h"
+#include "lightcuts/version.h"
 
 namespace lc::client {
 namespace {
@@ -92,6 +94,7 @@ struct RenderOptions {
     std::optional<float> exposure;  // none: automatic
     std::string output;
     std::string float_output;
+    bool exr_half = false;  // .exr outputs in half, not float
     std::string stats;
     bool validation = false;
     uint32_t spp = 1;
@@ -486,20 +489,46 @@ void compare_with_reference(Renderer& renderer, const RenderRequest& request, co
     }
 }
 
-// -o and --float: the 8-bit image and the linear one (RGB of the RGBA read-back).
+// The linear image: the RGB of the RGBA read-back.
+FloatImage linear_image(const RenderRequest& request, const std::vector<float>& hdr) {
+    FloatImage image;
+    image.width = request.width;
+    image.height = request.height;
+    image.rgb.reserve(size_t(request.width) * request.height * 3);
+    for (size_t i = 0; i < hdr.size(); i += 4) image.rgb.insert(image.rgb.end(), {hdr[i], hdr[i + 1], hdr[i + 2]});
+    return image;
+}
+
+// An EXR's header says what made it: the program, the mode, the scene and the tone map's exposure.
+ExrWriteOptions exr_options(const RenderOptions& options, const RenderStats& stats) {
+    ExrWriteOptions exr;
+    exr.pixels = options.exr_half ? ExrPixels::kHalf : ExrPixels::kFloat;
+    exr.attributes = {{"software", std::string("editor_client ") + kVersion},
+                      {"lightcuts.mode", stats.mode},
+                      {"lightcuts.scene", options.scene},
+                      {"lightcuts.lights", std::to_string(stats.lights)},
+                      {"lightcuts.nodes", std::to_string(stats.nodes)},
+                      {"lightcuts.exposure", std::to_string(stats.exposure)}};
+    return exr;
+}
+
+// The linear image as the path's extension says: OpenEXR (.exr) or PFM.
+void write_linear(const std::string& path, const FloatImage& image, const RenderOptions& options,
+                  const RenderStats& stats) {
+    Status written = is_exr_path(path) ? write_exr(path, image, exr_options(options, stats)) : write_pfm(path, image);
+    if (!written) fail(written.error());
+}
+
+// -o and --float: the 8-bit image (an .exr -o: the linear one) and the linear one.
 void write_images(const RenderOptions& options, const RenderRequest& request, const RenderedFrame& image) {
-    Status png = write_png(options.output, request.width, request.height, image.display);
-    if (!png) fail(png.error());
-    if (options.float_output.empty()) return;
-    FloatImage pfm_image;
-    pfm_image.width = request.width;
-    pfm_image.height = request.height;
-    pfm_image.rgb.reserve(size_t(request.width) * request.height * 3);
-    const std::vector<float>& hdr = image.hdr;
-    for (size_t i = 0; i < hdr.size(); i += 4)
-        pfm_image.rgb.insert(pfm_image.rgb.end(), {hdr[i], hdr[i + 1], hdr[i + 2]});
-    Status pfm = write_pfm(options.float_output, pfm_image);
-    if (!pfm) fail(pfm.error());
+    if (is_exr_path(options.output)) {
+        write_linear(options.output, linear_image(request, image.hdr), options, image.stats);
+    } else {
+        Status png = write_png(options.output, request.width, request.height, image.display);
+        if (!png) fail(png.error());
+    }
+    if (!options.float_output.empty())
+        write_linear(options.float_output, linear_image(request, image.hdr), options, image.stats);
 }
 
 // The imported tree as the renderer and the CPU evaluator both walk it, and
@@ -572,6 +601,8 @@ void print_report(const RenderStats& stats, const RenderOptions& options, const 
 
 void run_render(const RenderOptions& options) {
     const auto command_start = std::chrono::steady_clock::now();
+    if (options.exr_half && !is_exr_path(options.output) && !is_exr_path(options.float_output))
+        fail("--exr-half needs an .exr image to write (-o IMAGE.exr or --float IMAGE.exr)");
     std::vector<std::string> warnings;
     Scene scene = or_fail(load_scene(options.scene, warnings, options.gltf));
     for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
@@ -697,8 +728,11 @@ void add_image_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--exposure", options->exposure,
                     "Linear exposure before the tone curve (default: automatic, the log-average "
                     "luminance of the lit pixels maps to 0.18)");
-    cmd->add_option("-o,--output", options->output, "8-bit PNG to write")->required();
-    cmd->add_option("--float", options->float_output, "Linear float PFM to write");
+    cmd->add_option("-o,--output", options->output,
+                    "Image to write: .png (8-bit, tone-mapped) or .exr (OpenEXR, linear radiance)")
+        ->required();
+    cmd->add_option("--float", options->float_output, "Linear image to write besides: .pfm or .exr");
+    cmd->add_flag("--exr-half", options->exr_half, "Write .exr images in half floats (float by default)");
     cmd->add_option("--stats", options->stats, "Statistics JSON to write");
 }
 

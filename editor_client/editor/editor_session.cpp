@@ -298,7 +298,8 @@ Status EditorSession::start_bake() {
         // One local server for the whole session, started at the first bake.
         if (!spawned_server_) {
             Result<std::unique_ptr<ServerProcess>> server =
-                ServerProcess::spawn(options_.spawned_server_threads);
+                ServerProcess::spawn(options_.spawned_server_threads,
+                                     spawned_server_flags(bake.ranks, bake.spawned_server_args));
             if (!server) return make_error("cannot start a local server: " + server.error());
             spawned_server_ = std::move(server.value());
         }

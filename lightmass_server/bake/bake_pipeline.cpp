@@ -138,6 +138,10 @@ Result<BuildResult> run_bake_in_process(const BakeInputs& inputs, const Progress
     }
     if (effects.empty()) effects.push_back("area lights: skipped: no drawn triangle emits power");
     if (!report(effects.back(), 0.0)) return stopped("area lights");
+    TreeLightCounts counts;
+    counts.punctual = inputs.lights->size();
+    // The samples come after a copy of the scene's lights.
+    counts.area_samples = added.empty() ? 0 : added.size() - inputs.lights->size();
 
     std::vector<SceneLight> environment_lights;
     if (inputs.environment) {
@@ -172,6 +176,8 @@ Result<BuildResult> run_bake_in_process(const BakeInputs& inputs, const Progress
     warnings.insert(warnings.end(), indirect->warnings.begin(), indirect->warnings.end());
     if (!report(effects.back(), 0.0)) return stopped("indirect light");
     std::vector<SceneLight> bounced = as_tree_lights(indirect->lights);
+    counts.environment = environment_lights.size();
+    counts.add_bounced(inputs.indirect.method, bounced.size());
     const std::vector<SceneLight> none;
     Result<std::vector<SceneLight>> all_lights =
         join_lights(added.empty() ? *inputs.lights : none, {&added, &environment_lights, &bounced}, stop);
@@ -180,6 +186,7 @@ Result<BuildResult> run_bake_in_process(const BakeInputs& inputs, const Progress
         build_stoppable(all_lights->empty() ? *inputs.lights : *all_lights, inputs, progress);
     if (!built) return built;
     built->report.effects = std::move(effects);
+    built->report.lights = counts;
     built->report.warnings.insert(built->report.warnings.begin(), warnings.begin(), warnings.end());
     return built;
 }

@@ -16,7 +16,9 @@ struct MpiLaunchOptions {
     // Passed to the launcher before the program, e.g. --oversubscribe, --mca btl self,tcp.
     std::vector<std::string> launcher_args;
     std::filesystem::path hostfile;      // empty: the launcher's default (this machine)
-    std::filesystem::path rank_program;  // empty: lightmass_rank beside the server's executable
+    // empty: lightmass_rank beside the server's executable, else where the package installs it
+    // (rank_program.h).
+    std::filesystem::path rank_program;
     std::vector<std::string> rank_args;  // after --job DIR (the tests' fault injection)
     // A bake asking for more ranks is refused; 0 refuses every multi-rank bake.
     uint32_t max_ranks = 16;
@@ -24,6 +26,9 @@ struct MpiLaunchOptions {
     // several machines, a shared file system); empty: the system's temp folder.
     std::filesystem::path work_dir;
     bool keep_job_dirs = false;  // for debugging: leave each bake's job folder behind
+    // "auto": a launch on this machine alone (no hostfile) with more ranks than
+    // its cores adds --oversubscribe, and says so; "on": always; "off": never.
+    std::string oversubscribe = "auto";
     // Every rank must have started within this many seconds, or the bake fails
     // (a host that never answers would otherwise hold it until --max-bake-seconds).
     unsigned launch_seconds = 60;

@@ -55,6 +55,8 @@ struct BuildReport {
     std::vector<BuildPhase> phases;
     // The bake's census (bake_pipeline.h): each effect simulated or skipped, and why.
     std::vector<std::string> effects;
+    // The tree's lights by kind, as the bake made them (the builders alone leave it zero).
+    TreeLightCounts lights;
 };
 
 class ResultChannelFile;  // result_channel_file.h

@@ -18,6 +18,11 @@ void add_mpi_flags(CLI::App& app, MpiLaunchOptions& mpi) {
     app.add_option(
         "--mpi-work-dir", mpi.work_dir,
         "Folder for the bakes' job files; every rank's machine must see it (default: the temp folder)");
+    app.add_option("--mpi-oversubscribe", mpi.oversubscribe,
+                   "auto: a launch on this machine alone (no --mpi-hostfile) with more ranks than cores adds "
+                   "--oversubscribe, and says so in the log; on: always; off: never (mpirun then refuses)")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
     app.add_option("--mpi-launch-seconds", mpi.launch_seconds,
                    "A multi-rank bake fails unless every rank has started within this many seconds")
         ->capture_default_str()

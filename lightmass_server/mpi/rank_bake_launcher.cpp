@@ -6,6 +6,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -18,6 +21,8 @@
 
 #include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/job_log_faults.h"
+#include "lightmass_server/mpi/local_slots.h"
+#include "lightmass_server/mpi/mpi_failure.h"
 #include "lightmass_server/mpi/rank_job.h"
 
 namespace lc::bake {
@@ -28,11 +33,16 @@ constexpr auto kPollInterval = std::chrono::milliseconds(50);
 // After SIGTERM, mpirun takes its ranks down; past this, the group gets SIGKILL.
 constexpr auto kTerminateGrace = std::chrono::seconds(5);
 
+// Beside the server (the build tree), else where the package installs it:
+// PREFIX/libexec/lightcuts/ for PREFIX/bin/lightmass_server (CMakeLists.txt install()).
 fs::path rank_program(const MpiLaunchOptions& mpi) {
     if (!mpi.rank_program.empty()) return mpi.rank_program;
     std::error_code ec;
     const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path("lightmass_rank") : self.parent_path() / "lightmass_rank";
+    if (ec) return "lightmass_rank";
+    const fs::path beside = self.parent_path() / "lightmass_rank";
+    const fs::path installed = self.parent_path().parent_path() / "libexec" / "lightcuts" / "lightmass_rank";
+    return fs::exists(beside, ec) || !fs::exists(installed, ec) ? beside : installed;
 }
 
 fs::path make_job_dir(const MpiLaunchOptions& mpi) {
@@ -43,8 +53,9 @@ fs::path make_job_dir(const MpiLaunchOptions& mpi) {
 }
 
 std::vector<std::string> launch_command(const MpiLaunchOptions& mpi, uint32_t ranks, const fs::path& hostfile,
-                                        const fs::path& dir) {
+                                        const fs::path& dir, const LocalLaunch& local) {
     std::vector<std::string> argv{mpi.launcher, "-n", std::to_string(ranks)};
+    argv.insert(argv.end(), local.extra_args.begin(), local.extra_args.end());
     argv.insert(argv.end(), mpi.launcher_args.begin(), mpi.launcher_args.end());
     if (!hostfile.empty()) argv.insert(argv.end(), {"--hostfile", hostfile.string()});
     argv.insert(argv.end(), {rank_program(mpi).string(), "--job", dir.string()});
@@ -196,6 +207,11 @@ Error job_failure(const MpiLaunchOptions& mpi, uint32_t ranks, const std::vector
     if (fs::exists(dir / "error.txt"))
         return make_error("MPI bake failed: " + tail_of(dir / "error.txt", 2000));
     if (fault) return host_fault_error(mpi, ranks, *fault);
+    // The launcher's whole output for the operator (info: a spawned --quiet server keeps it off the
+    // user's terminal); a refusal we know reaches the client as one line naming the flag.
+    const std::string log = tail_of(dir / "mpirun.log", 4000);
+    spdlog::info("MPI job of {} ranks failed; {} said: {}", ranks, argv[0], log);
+    if (std::string known = explain_mpi_failure(log, ranks); !known.empty()) return make_error(known);
     const std::string code =
         WIFEXITED(status) && WEXITSTATUS(status) == 127 ? " (launcher '" + argv[0] + "' not found?)" : "";
     return make_error(over_ranks(ranks) + " failed: " + argv[0] + " " + exit_text(status) + code +
@@ -219,7 +235,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     Result<fs::path> hostfile = job_hostfile(inputs.mpi, dir);
     if (!hostfile)
         return make_error(over_ranks(inputs.ranks) + " refused: " + hostfile.error(), ErrorKind::kRefused);
-    const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, *hostfile, dir);
+    const LocalLaunch local = local_launch(inputs.mpi, inputs.ranks, std::max(1u, std::thread::hardware_concurrency()));
+    if (!local.note.empty()) spdlog::info("{}", local.note);
+    const std::vector<std::string> argv = launch_command(inputs.mpi, inputs.ranks, *hostfile, dir, local);
     Result<pid_t> pid = spawn_group(argv, dir / "mpirun.log");
     if (!pid) return pid.failure();
     const auto launch_deadline =
@@ -257,7 +275,9 @@ Result<BuildResult> run_job(const BakeInputs& inputs, const fs::path& dir, const
     else
         fs::rename(dir / "result.lcut", tree_file, ec);
     if (ec) return make_error("cannot move rank 0's tree out of " + dir.string() + ": " + ec.message());
-    return read_rank_result(dir, tree_file);
+    Result<BuildResult> result = read_rank_result(dir, tree_file);
+    if (result && !local.note.empty()) result->report.effects.push_back(local.note);
+    return result;
 }
 
 }  // namespace

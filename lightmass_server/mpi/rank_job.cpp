@@ -164,6 +164,8 @@ Status write_rank_report(const fs::path& dir, const BuildReport& r,
     text << "build_ms " << r.build_ms << "\npairing_cost " << r.pairing_cost << "\npairing_lower_bound "
          << r.pairing_lower_bound << "\nexact " << (r.exact ? 1 : 0) << "\nlevels " << r.levels << "\ndepth "
          << r.depth << "\n";
+    text << "tree_lights " << r.lights.punctual << " " << r.lights.area_samples << " " << r.lights.environment
+         << " " << r.lights.vpls << " " << r.lights.patches << "\n";
     for (const std::string& line : rank_lines) text << line << "\n";
     return write_text(dir / "report.txt", text.str());
 }
@@ -198,6 +200,9 @@ Result<BuildResult> read_rank_result(const fs::path& dir, const fs::path& tree_f
             r.levels = uint32_t(std::stoul(value));
         else if (key == "depth")
             r.depth = uint32_t(std::stoul(value));
+        else if (key == "tree_lights")
+            std::istringstream(value) >> r.lights.punctual >> r.lights.area_samples >> r.lights.environment >>
+                r.lights.vpls >> r.lights.patches;
     }
     return result;
 }

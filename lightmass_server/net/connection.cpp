@@ -30,14 +30,14 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 Connection::Connection(Transport transport, const ServerOptions& options, BakeLanes& workers,
                        const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
-                       std::string busy_reason)
+                       std::string busy_reason, std::function<StatusReplyMsg()> status)
     : transport_(std::move(transport)),
       options_(options),
       workers_(workers),
       recorder_(recorder),
       id_(id),
       session_(ServerSessionOptions{id, options.token, recorder.enabled(), std::move(busy_reason),
-                                    &memory_budget, options.memory_budget_bytes / 2}),
+                                    &memory_budget, options.memory_budget_bytes / 2, std::move(status)}),
       decoder_(options.max_frame_bytes),
       wake_(transport_.get_executor()),
       deadline_timer_(transport_.get_executor()) {

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,12 +32,13 @@ public:
     // `busy_reason` non-empty: the server is full, this peer is told so after its Hello.
     Connection(Transport transport, const ServerOptions& options, BakeLanes& workers,
                const ChannelRecorder& recorder, uint64_t id, MemoryBudget& memory_budget,
-               std::string busy_reason);
+               std::string busy_reason, std::function<StatusReplyMsg()> status = {});
 
     void start();
     void close(const std::string& reason);
     bool closed() const { return closed_; }
     uint64_t id() const { return id_; }
+    std::optional<BakeStatusEntry> bake_status() const { return session_.bake_status(); }
 
 private:
     using Clock = std::chrono::steady_clock;

@@ -4,6 +4,7 @@
 
 #include <thread>
 
+#include "lightcuts/version.h"
 #include "lightmass_server/net/accept_backoff.h"
 #include "protocol/tls_context.h"
 
@@ -64,6 +65,26 @@ void Server::stop() {
     });
 }
 
+StatusReplyMsg Server::status() const {
+    StatusReplyMsg reply;
+    reply.version = std::string("lightmass_server ") + kVersion;
+    reply.uptime_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+    for (const auto& weak : connections_) {
+        const auto connection = weak.lock();
+        if (!connection || connection->closed()) continue;
+        ++reply.connections;
+        if (std::optional<BakeStatusEntry> bake = connection->bake_status()) reply.bakes.push_back(*bake);
+    }
+    reply.memory_budget_bytes = memory_budget_.limit();
+    reply.memory_held_bytes = memory_budget_.used();
+    reply.max_connections = options_.max_connections;
+    reply.max_concurrent_bakes = workers_.concurrent_bakes();
+    reply.max_bake_seconds = uint32_t(options_.max_bake_time.count());
+    reply.mpi_launcher = options_.mpi.launcher;
+    reply.mpi_max_ranks = options_.mpi.max_ranks;
+    return reply;
+}
+
 awaitable<void> Server::accept_loop() {
     AcceptBackoff backoff;
     asio::steady_timer retry_timer(io_);
@@ -91,7 +112,7 @@ awaitable<void> Server::accept_loop() {
                                            : Transport::plain(std::move(socket));
         auto connection = std::make_shared<Connection>(std::move(transport), options_, workers_, recorder_,
                                                        next_connection_id_++, memory_budget_,
-                                                       std::move(busy_reason));
+                                                       std::move(busy_reason), [this] { return status(); });
         connections_.push_back(connection);
         connection->start();
     }

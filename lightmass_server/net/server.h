@@ -4,6 +4,7 @@
 // SIGINT/SIGTERM call in main).
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -35,6 +36,8 @@ public:
 
 private:
     awaitable<void> accept_loop();
+    // A StatusRequest's answer: every connection's bake, the budget, the limits. On the I/O thread.
+    StatusReplyMsg status() const;
 
     ServerOptions options_;
     // The builders' TBB loops share the bake threads' budget: --threads 1 is one
@@ -50,6 +53,7 @@ private:
     ChannelRecorder recorder_;
     std::vector<std::weak_ptr<Connection>> connections_;
     uint64_t next_connection_id_ = 1;
+    std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace lc::bake

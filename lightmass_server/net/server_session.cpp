@@ -10,6 +10,7 @@
 #include "lightmass_server/indirect/patch_mesh.h"
 #include "lightmass_server/bake/result_channel_file.h"
 #include "protocol/bake_limits.h"
+#include "lightcuts/version.h"
 #include "protocol/channel_name.h"
 
 namespace lc::bake {
@@ -44,6 +45,8 @@ ServerActions ServerSession::on_message(Message message) {
         keep = on_bake_request(*request);
     } else if (auto* cancel = std::get_if<CancelMsg>(&message)) {
         on_cancel(*cancel);
+    } else if (auto* status = std::get_if<StatusRequestMsg>(&message)) {
+        on_status_request(*status);
     } else {
         send_error(0, ErrorCode::kMalformedFrame,
                    std::string("a client may not send ") + message_name(message) + " messages");
@@ -107,7 +110,7 @@ bool ServerSession::on_hello(const HelloMsg& hello) {
     }
     greeted_ = true;
     spdlog::info("connection {}: hello from '{}'", options_.connection_id, hello.peer_name);
-    send(HelloAckMsg{kProtocolVersion, "lightmass_server 0.1.0"});
+    send(HelloAckMsg{kProtocolVersion, std::string("lightmass_server ") + kVersion});
     return true;
 }
 
@@ -382,7 +385,7 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     spdlog::info("connection {}: bake {} of {} lights{} with {} (seed {})", options_.connection_id,
                  request.bake_id, start.inputs.lights->size(), start.inputs.geometry ? " and geometry" : "",
                  builder_name(build.builder), build.seed);
-    bake_ = ActiveBake{request.bake_id, false, false, std::move(reservation)};
+    bake_ = ActiveBake{request.bake_id, false, false, std::move(reservation), request.ranks, {}};
     send(ProgressMsg{request.bake_id, "queued", 0.0f});
     actions_.push_back(std::move(start));
     return true;
@@ -433,8 +436,27 @@ void ServerSession::on_cancel(const CancelMsg& cancel) {
     actions_.push_back(CancelBake{cancel.bake_id});
 }
 
+void ServerSession::on_status_request(const StatusRequestMsg& request) {
+    StatusReplyMsg reply = options_.status ? options_.status() : StatusReplyMsg{};
+    reply.request_id = request.request_id;
+    send(std::move(reply));
+}
+
+std::optional<BakeStatusEntry> ServerSession::bake_status() const {
+    if (!bake_) return std::nullopt;
+    BakeStatusEntry entry;
+    entry.connection = options_.connection_id;
+    entry.bake_id = bake_->bake_id;
+    entry.state = bake_->streaming ? "streaming" : bake_->latest.stage.empty() ? "queued" : "running";
+    entry.stage = bake_->streaming ? "streaming" : bake_->latest.stage;
+    entry.percent = bake_->streaming ? 100.0f : bake_->latest.percent;
+    entry.ranks = bake_->ranks;
+    return entry;
+}
+
 ServerActions ServerSession::on_bake_progress(const ProgressMsg& progress) {
     if (closing_ || !bake_ || bake_->bake_id != progress.bake_id || bake_->streaming) return {};
+    bake_->latest = progress;
     send(progress);
     return take_actions();
 }
@@ -465,6 +487,7 @@ ServerActions ServerSession::on_bake_finished(uint32_t bake_id, Result<BuildResu
     done.pairing_lower_bound = built.report.pairing_lower_bound;
     done.exact = built.report.exact;
     done.effects = built.report.effects;
+    done.lights = built.report.lights;
     spdlog::info("connection {}: bake {} built {} nodes in {:.1f} ms", options_.connection_id, bake_id,
                  done.node_count, done.build_ms);
     if (options_.record_channels) record_result(done.result_channel, tree, built.channel_file);

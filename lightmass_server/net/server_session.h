@@ -5,6 +5,7 @@
 // only moves bytes and carries the actions out, so every protocol rule here
 // is tested without a socket (tests/server_session_test.cpp).
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -39,6 +40,8 @@ struct ServerSessionOptions {
     // Announced bytes of this connection's open channels together; 0: no cap
     // beyond the budget. Keeps one connection from holding the whole budget.
     uint64_t max_connection_channel_bytes = 0;
+    // Answers a StatusRequest (the server's state over every connection); null: the version alone.
+    std::function<StatusReplyMsg()> status;
 };
 
 // Send this message now (after those already queued).
@@ -106,6 +109,8 @@ public:
     bool receiving_channel() const { return !incoming_.empty(); }
     bool bake_running() const { return bake_.has_value(); }
     bool streaming() const { return bake_ && bake_->streaming; }
+    // This connection's bake for a StatusReply: queued until its first progress, then running, then streaming.
+    std::optional<BakeStatusEntry> bake_status() const;
 
 private:
     // A scene or geometry channel on its way in.
@@ -139,6 +144,8 @@ private:
         bool cancel_requested = false;
         bool streaming = false;
         BudgetReservation reservation;  // the bake's estimated peak, until it is delivered or dropped
+        uint32_t ranks = 0;
+        ProgressMsg latest;  // empty stage: no worker has reported yet (queued)
     };
 
     // Each returns false when the peer broke the protocol and the connection must close.
@@ -157,6 +164,7 @@ private:
     // What this connection's stored scenes, environments and geometries hold against the budget.
     uint64_t stored_channel_bytes() const;
     void on_cancel(const CancelMsg& cancel);
+    void on_status_request(const StatusRequestMsg& request);
 
     void send(Message message);
     void send_error(uint32_t bake_id, ErrorCode code, const std::string& text);

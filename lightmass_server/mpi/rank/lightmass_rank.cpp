@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "lightcuts/version.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "lightmass_server/mpi/rank/rank_bake.h"
 
@@ -84,6 +85,7 @@ std::vector<std::string> rank_lines(int rank, int ranks, const RankStats& stats)
 
 int main(int argc, char** argv) {
     CLI::App app{"lightmass_rank: one MPI rank of a lightmass_server bake"};
+    app.set_version_flag("--version", std::string("lightmass_rank ") + lc::kVersion);
     RankFlags flags;
     app.add_option("--job", flags.job, "The bake's job folder, written by lightmass_server")->required();
     app.add_option("--test-die-rank", flags.die_rank, "Tests: this rank dies once the job has arrived");

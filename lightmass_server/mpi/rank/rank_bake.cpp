@@ -26,6 +26,7 @@ struct Share {
 // The census lines and warnings rank 0 reports, as run_bake reports them.
 struct BakeNotes {
     std::vector<std::string> effects, warnings;
+    TreeLightCounts lights;  // over every rank
 };
 
 // Lights one rank made: its own share (index: where it sits among all the
@@ -141,7 +142,7 @@ std::string phase_census(const BuildReport& report, int ranks) {
 // area, sky, bounces): rank 0 adds the scene's and the sky's, which every
 // rank holds.
 OwnedLights owned_lights(const RankJob& job, const Share& share, MadeLights<SceneLight> area,
-                         const std::vector<SceneLight>& sky, MadeLights<IndirectLight> bounced) {
+                         const std::vector<SceneLight>& sky, MadeLights<IndirectLight> bounced, BakeNotes& notes) {
     OwnedLights owned;
     const uint64_t scene = job.lights.size();
     const auto add = [&owned](std::vector<SceneLight>& lights, uint64_t first) {
@@ -158,16 +159,19 @@ OwnedLights owned_lights(const RankJob& job, const Share& share, MadeLights<Scen
     // tree's indices come from the kept ones' counts.
     std::vector<SceneLight> tree_bounced = as_tree_lights(bounced.lights, bounced.index.before);
     bounced.lights = {};
-    add(tree_bounced, scene + area.index.total + sky.size() + index_of_share(tree_bounced.size()).before);
+    const ShareIndex kept = index_of_share(tree_bounced.size());
+    notes.lights.add_bounced(job.request.indirect.method, kept.total);
+    add(tree_bounced, scene + area.index.total + sky.size() + kept.before);
     return owned;
 }
 
 // Rank 0 gathered every light: it builds the tree with any builder and writes it.
 Result<BuildResult> build_on_rank_zero(const RankJob& job, const MadeLights<SceneLight>& area,
                                        const std::vector<SceneLight>& sky, MadeLights<IndirectLight> bounced,
-                                       const ProgressFn& progress) {
+                                       const ProgressFn& progress, BakeNotes& notes) {
     std::vector<SceneLight> lights = job.lights;
     std::vector<SceneLight> tree_bounced = as_tree_lights(bounced.lights);
+    notes.lights.add_bounced(job.request.indirect.method, tree_bounced.size());
     bounced.lights = {};
     lights.reserve(lights.size() + area.lights.size() + sky.size() + tree_bounced.size());
     lights.insert(lights.end(), area.lights.begin(), area.lights.end());
@@ -221,20 +225,24 @@ Result<std::optional<BuildResult>> bake_share(const RankJob& job, int rank, int 
         indirect_lights(job, share, caster ? &*caster : nullptr, sources, gather, progress, stats, notes);
     if (!bounced) return bounced.failure();
     caster.reset();
+    notes.lights.punctual = job.lights.size();
+    notes.lights.area_samples = area.index.total;
+    notes.lights.environment = sky.size();
     Result<BuildResult> built = BuildResult{};
     if (!gather) {
-        OwnedLights owned = owned_lights(job, share, std::move(area), sky, std::move(bounced.value()));
+        OwnedLights owned = owned_lights(job, share, std::move(area), sky, std::move(bounced.value()), notes);
         Result<BuildReport> report =
             build_split_lbvh(std::move(owned), job_build_options(job.request), tree_file,
                              share.root() ? progress : ProgressFn{}, stats);
         if (!report) return report.failure();
         built->report = std::move(report.value());
     } else if (share.root()) {
-        built = build_on_rank_zero(job, area, sky, std::move(bounced.value()), progress);
+        built = build_on_rank_zero(job, area, sky, std::move(bounced.value()), progress, notes);
     }
     if (!built) return built.failure();
     if (!share.root()) return std::optional<BuildResult>{};
     built->report.effects = std::move(notes.effects);
+    built->report.lights = notes.lights;
     if (!gather) built->report.effects.push_back(phase_census(built->report, ranks));
     built->report.warnings.insert(built->report.warnings.begin(), notes.warnings.begin(),
                                   notes.warnings.end());
