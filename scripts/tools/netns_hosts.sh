@@ -35,6 +35,10 @@ host_up() {
     ip -n "$host" link set lo up
     ip -n "$host" addr add "$subnet.$i/24" dev eth0
     ip -n "$host" link set eth0 up
+    # Keepalives only probe an idle connection: a cable pulled while mpirun and a daemon have data
+    # in flight is noticed when TCP gives up retransmitting, after about 15 minutes by default
+    # (tcp_retries2 = 15). Three retries give up after about 3 s (README, "Several machines").
+    ip netns exec "$host" sysctl -qw net.ipv4.tcp_retries2=3
     # `ip netns exec` bind-mounts /etc/netns/HOST/* over /etc: every host resolves the others' names.
     mkdir -p "/etc/netns/$host"
     { echo "127.0.0.1 localhost"; for j in $(seq "$2"); do echo "$subnet.$j $prefix$j"; done; } \
