@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "lightmass_server/bake/result_channel_file.h"
+#include "lightmass_server/indirect/vpl_tracer.h"
 #include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/mpi/host_roster.h"
 #include "multi_rank_fixtures.h"
@@ -118,15 +119,26 @@ TEST(MpiBake, TheSplitLbvhWritesTheInProcessTreeForUnevenShares) {
     }
 }
 
+std::string effect_starting(const Result<BuildResult>& built, const std::string& start) {
+    for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{})
+        if (effect.rfind(start, 0) == 0) return effect;
+    return "";
+}
+
 // Another builder still gathers every light on rank 0 and builds there.
 TEST(MpiBake, AnAgglomerativeTreeOverRanksIsTheInProcessTree) {
     SKIP_WITHOUT_MPI();
     BakeInputs inputs = cornell_inputs();
     inputs.build.builder = BuilderKind::kAgglomerative;
     inputs.indirect.vpl.particle_count = 1001;
+    inputs.indirect.vpl.bounces = bake::kMaxVplBounces;  // the default: until Russian roulette ends a path
     const std::vector<uint8_t> in_process = tree_bytes(run_bake(inputs, {}));
     inputs.ranks = 3;
-    EXPECT_EQ(tree_bytes(run_bake(inputs, {})), in_process);
+    const Result<BuildResult> built = run_bake(inputs, {});
+    EXPECT_EQ(tree_bytes(built), in_process);
+    // No cap to print (the ranks' summary said "65535 bounces").
+    const std::string census = effect_starting(built, "indirect: simulated (");
+    EXPECT_NE(census.find(" particles, all bounces until Russian roulette, 3 ranks)"), std::string::npos) << census;
 }
 
 TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
@@ -150,6 +162,8 @@ TEST(MpiBake, TheTreeIsTheSameAtOneToFourRanksAsInOneProcess) {
         EXPECT_EQ(bytes, in_process) << ranks << " ranks";
         if (!built) continue;
         EXPECT_EQ(built->report.lights, kinds) << ranks << " ranks";
+        const std::string census = effect_starting(built, "indirect: simulated (");
+        EXPECT_NE(census.find(" particles, 3 bounces, "), std::string::npos) << census;
         expect_valid_tree(bytes, (built->channel_file->node_count() + 1) / 2, ranks);
         // One "rank R ..." line per rank: every rank took part.
         size_t rank_lines = 0;
@@ -167,12 +181,6 @@ BakeInputs radiosity_inputs(double tolerance) {
     inputs.indirect.radiosity.patch_size = 0.08f;
     inputs.indirect.radiosity.tolerance = tolerance;
     return inputs;
-}
-
-std::string effect_starting(const Result<BuildResult>& built, const std::string& start) {
-    for (const std::string& effect : built ? built->report.effects : std::vector<std::string>{})
-        if (effect.rfind(start, 0) == 0) return effect;
-    return "";
 }
 
 TEST(MpiBake, RadiositySplitOverRanksGivesTheInProcessTree) {

@@ -8,6 +8,7 @@
 #include "lightmass_server/emitters/environment_sampler.h"
 #include "lightmass_server/builders/index_range.h"
 #include "lightmass_server/indirect/radiosity_parts.h"
+#include "lightmass_server/indirect/vpl_tracer.h"
 #include "lightmass_server/mpi/rank/mpi_transfer.h"
 #include "lightmass_server/mpi/rank/split_lbvh.h"
 #include "lightmass_server/raycast/ray_caster.h"
@@ -75,9 +76,13 @@ std::string indirect_census(const IndirectOptions& options, const IndirectStageR
     const std::string over = std::to_string(ranks) + " ranks)";
     if (options.method == IndirectMethod::kRadiosity)  // patches, steps and unshot power are global
         return "indirect: " + stage.census.substr(0, stage.census.rfind(')')) + ", " + over;
+    // The default follows paths until Russian roulette ends them: no count to print.
+    const std::string bounces = options.vpl.bounces < kMaxVplBounces
+                                    ? std::to_string(options.vpl.bounces) + " bounces"
+                                    : std::string("all bounces until Russian roulette");
     char text[160];
-    std::snprintf(text, sizeof text, "indirect: simulated (%zu VPLs from %llu particles, %u bounces, ",
-                  lights, static_cast<unsigned long long>(options.vpl.particle_count), options.vpl.bounces);
+    std::snprintf(text, sizeof text, "indirect: simulated (%zu VPLs from %llu particles, %s, ", lights,
+                  static_cast<unsigned long long>(options.vpl.particle_count), bounces.c_str());
     return text + over;
 }
 
