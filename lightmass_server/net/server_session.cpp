@@ -127,9 +127,8 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
     };
     auto name = ChannelName::parse(open.name);
     if (!name) return refuse(ErrorCode::kUnknownChannel, "not a VERSION.GUID.ext channel name");
-    const bool environment = name->extension == kEnvironmentChannelExtension;
-    const bool geometry = name->extension == kGeometryExtension;
-    if (name->extension != kSceneExtension && !environment && !geometry)
+    const std::optional<ChannelKind> kind = channel_kind_of_extension(name->extension);
+    if (!kind)
         return refuse(ErrorCode::kUnknownChannel, "this server accepts only ." + std::string(kSceneExtension) +
                                                       ", ." + kGeometryExtension + " and ." +
                                                       kEnvironmentChannelExtension + " channels, got ." +
@@ -138,18 +137,11 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
         return refuse(ErrorCode::kVersionMismatch, "scene format version " + name->version.to_hex() +
                                                        " is not supported; this server reads " +
                                                        kSceneFormatVersionGuid.to_hex());
-    const uint64_t max_bytes = environment ? max_environment_channel_bytes()
-                               : geometry  ? max_geometry_channel_bytes()
-                                           : 4 + uint64_t{kMaxSceneLights} * scene_record_bytes();
-    const std::string limit = environment ? std::to_string(kMaxEquirectWidth) + " x " +
-                                                std::to_string(kMaxEquirectHeight) + " texels"
-                              : geometry ? std::to_string(kMaxGeometryMaterials) + " materials and " +
-                                               std::to_string(kMaxGeometryTriangles) + " triangles and their masks"
-                                         : std::to_string(kMaxSceneLights) + " lights";
-    if (open.total_bytes > max_bytes)
+    const ChannelLimit limit = channel_limit(*kind);
+    if (open.total_bytes > limit.max_bytes)
         return refuse(ErrorCode::kTooLarge, "announces " + std::to_string(open.total_bytes) +
-                                                " bytes; the limit is " + std::to_string(max_bytes) + " (" +
-                                                limit + ")");
+                                                " bytes; the limit is " + std::to_string(limit.max_bytes) + " (" +
+                                                limit.words + ")");
     if (incoming_.size() >= kMaxOpenChannels)
         return refuse(ErrorCode::kBusy, "too many channels open at once (limit " +
                                             std::to_string(kMaxOpenChannels) + ")");
@@ -165,12 +157,8 @@ bool ServerSession::on_open_channel(const OpenChannelMsg& open) {
                                             " bytes do not fit in the memory budget (" +
                                             std::to_string(budget->used()) + " of " +
                                             std::to_string(budget->limit()) + " bytes in use; --memory-budget-mb)");
-    IncomingScene& scene = incoming_[open.channel_id];
-    scene.name = open.name;
-    scene.environment = environment;
-    scene.geometry = geometry;
-    scene.total_bytes = open.total_bytes;
-    scene.reservation = BudgetReservation(budget, open.total_bytes);
+    incoming_.try_emplace(open.channel_id, open.name, *kind, open.total_bytes,
+                          BudgetReservation(budget, open.total_bytes));
     return true;
 }
 
@@ -184,7 +172,7 @@ uint64_t ServerSession::stored_channel_bytes() const {
 
 uint64_t ServerSession::open_channel_bytes() const {
     uint64_t bytes = 0;
-    for (const auto& [id, channel] : incoming_) bytes += channel.total_bytes;
+    for (const auto& [id, channel] : incoming_) bytes += channel.total_bytes();
     return bytes;
 }
 
@@ -196,29 +184,18 @@ bool ServerSession::on_write_channel(WriteChannelMsg& write) {
                    "write to channel id " + std::to_string(write.channel_id) + " which is not open");
         return false;
     }
-    IncomingScene& scene = it->second;
-    if (write.offset != scene.received) {
+    IncomingChannel& channel = it->second;
+    if (write.offset != channel.received()) {
         send_error(0, ErrorCode::kMalformedFrame,
-                   "channel '" + scene.name + "': write at offset " + std::to_string(write.offset) +
-                       ", expected " + std::to_string(scene.received));
+                   "channel '" + channel.name() + "': write at offset " + std::to_string(write.offset) +
+                       ", expected " + std::to_string(channel.received()));
         return false;
     }
-    auto refuse = [&](const std::string& text) {
-        send_error(0, ErrorCode::kInvalidScene,
-                   scene.kind() + " channel '" + scene.name + "': " + text);
+    if (Status consumed = channel.consume(write.bytes(), options_.record_channels); !consumed) {
+        send_error(0, ErrorCode::kInvalidScene, channel.label() + ": " + consumed.error());
         refused_.insert(write.channel_id);
         incoming_.erase(it);
-        return true;
-    };
-    const std::span<const uint8_t> data = write.bytes();
-    if (scene.received + data.size() > scene.total_bytes)
-        return refuse("more bytes than the " + std::to_string(scene.total_bytes) + " announced");
-    Status consumed = scene.environment ? scene.environment_reader.consume(data)
-                      : scene.geometry  ? scene.geometry_reader.consume(data)
-                                        : scene.reader.consume(data);
-    if (!consumed) return refuse(consumed.error());
-    scene.received += data.size();
-    if (options_.record_channels) scene.recorded.insert(scene.recorded.end(), data.begin(), data.end());
+    }
     return true;
 }
 
@@ -230,68 +207,75 @@ bool ServerSession::on_close_channel(const CloseChannelMsg& close) {
                    "close of channel id " + std::to_string(close.channel_id) + " which is not open");
         return false;
     }
-    IncomingScene scene = std::move(it->second);
+    IncomingChannel channel = std::move(it->second);
     incoming_.erase(it);
-    if (scene.received != scene.total_bytes) {
+    if (!channel.complete()) {
         send_error(0, ErrorCode::kInvalidScene,
-                   scene.kind() + " channel '" + scene.name +
-                       "' closed after " + std::to_string(scene.received) + " of " +
-                       std::to_string(scene.total_bytes) + " bytes");
+                   channel.label() + " closed after " + std::to_string(channel.received()) + " of " +
+                       std::to_string(channel.total_bytes()) + " bytes");
         return true;
     }
-    if (scene.geometry) {
-        store_geometry(scene);
-        return true;
+    switch (channel.kind()) {
+        case ChannelKind::kScene: store_scene(channel); break;
+        case ChannelKind::kGeometry: store_geometry(channel); break;
+        case ChannelKind::kEnvironment: store_environment(channel); break;
     }
-    if (scene.environment) {
-        Result<Environment> environment = scene.environment_reader.finish();
-        if (!environment) {
-            send_error(0, ErrorCode::kInvalidScene, "environment channel '" + scene.name + "': " + environment.error());
-            return true;
-        }
-        if (options_.record_channels) actions_.push_back(RecordChannel{scene.name, std::move(scene.recorded)});
-        spdlog::info("connection {}: environment '{}' received, {}", options_.connection_id, scene.name,
-                     environment->has_sky() ? std::string("a sun and sky")
-                                            : std::to_string(environment->map.width) + " x " +
-                                                  std::to_string(environment->map.height) + " map");
-        if (environments_.size() >= kMaxStoredScenes && !environments_.count(scene.name))
-            environments_.erase(environments_.begin());
-        environments_[scene.name] = StoredEnvironment{
-            std::make_shared<const Environment>(std::move(environment.value())), std::move(scene.reservation)};
-        return true;
-    }
-    Result<std::vector<SceneLight>> lights = scene.reader.finish();
-    if (!lights) {
-        send_error(0, ErrorCode::kInvalidScene, "scene channel '" + scene.name + "': " + lights.error());
-        return true;
-    }
-    if (options_.record_channels) actions_.push_back(RecordChannel{scene.name, std::move(scene.recorded)});
-    spdlog::info("connection {}: scene '{}' received, {} lights", options_.connection_id, scene.name,
-                 lights->size());
-    if (scenes_.size() >= kMaxStoredScenes && !scenes_.count(scene.name)) scenes_.erase(scenes_.begin());
-    scenes_[scene.name] = StoredScene{std::move(lights.value()), std::move(scene.reservation)};
     return true;
 }
 
-void ServerSession::store_geometry(IncomingScene& channel) {
-    const size_t degenerate = channel.geometry_reader.degenerate_skipped();
-    Result<SceneGeometry> geometry = channel.geometry_reader.finish();
-    if (!geometry) {
-        send_error(0, ErrorCode::kInvalidScene, "geometry channel '" + channel.name + "': " + geometry.error());
+// The oldest of `stored` makes room when it holds kMaxStoredScenes others.
+template <typename Stored>
+static void store_channel(std::map<std::string, Stored>& stored, const std::string& name, Stored value) {
+    if (stored.size() >= kMaxStoredScenes && !stored.count(name)) stored.erase(stored.begin());
+    stored[name] = std::move(value);
+}
+
+void ServerSession::store_scene(IncomingChannel& channel) {
+    Result<std::vector<SceneLight>> lights = std::get<SceneChannelReader>(channel.reader()).finish();
+    if (!lights) {
+        send_error(0, ErrorCode::kInvalidScene, channel.label() + ": " + lights.error());
         return;
     }
-    if (options_.record_channels)
-        actions_.push_back(RecordChannel{channel.name, std::move(channel.recorded)});
+    if (options_.record_channels) actions_.push_back(RecordChannel{channel.name(), channel.take_recorded()});
+    spdlog::info("connection {}: scene '{}' received, {} lights", options_.connection_id, channel.name(),
+                 lights->size());
+    store_channel(scenes_, channel.name(), StoredScene{std::move(lights.value()), channel.take_reservation()});
+}
+
+void ServerSession::store_environment(IncomingChannel& channel) {
+    Result<Environment> environment = std::get<EnvironmentChannelReader>(channel.reader()).finish();
+    if (!environment) {
+        send_error(0, ErrorCode::kInvalidScene, channel.label() + ": " + environment.error());
+        return;
+    }
+    if (options_.record_channels) actions_.push_back(RecordChannel{channel.name(), channel.take_recorded()});
+    spdlog::info("connection {}: environment '{}' received, {}", options_.connection_id, channel.name(),
+                 environment->has_sky() ? std::string("a sun and sky")
+                                        : std::to_string(environment->map.width) + " x " +
+                                              std::to_string(environment->map.height) + " map");
+    store_channel(environments_, channel.name(),
+                  StoredEnvironment{std::make_shared<const Environment>(std::move(environment.value())),
+                                    channel.take_reservation()});
+}
+
+void ServerSession::store_geometry(IncomingChannel& channel) {
+    GeometryChannelReader& reader = std::get<GeometryChannelReader>(channel.reader());
+    const size_t degenerate = reader.degenerate_skipped();
+    Result<SceneGeometry> geometry = reader.finish();
+    if (!geometry) {
+        send_error(0, ErrorCode::kInvalidScene, channel.label() + ": " + geometry.error());
+        return;
+    }
+    if (options_.record_channels) actions_.push_back(RecordChannel{channel.name(), channel.take_recorded()});
     if (degenerate > 0) {
-        send(WarningMsg{0, "geometry channel '" + channel.name + "': " + std::to_string(degenerate) +
+        send(WarningMsg{0, channel.label() + ": " + std::to_string(degenerate) +
                                " degenerate triangles (zero or non-finite area) skipped"});
     }
     spdlog::info("connection {}: geometry '{}' received, {} triangles, {} materials", options_.connection_id,
-                 channel.name, geometry->triangles.size(), geometry->materials.size());
-    if (geometries_.size() >= kMaxStoredScenes && !geometries_.count(channel.name))
-        geometries_.erase(geometries_.begin());
-    geometries_[channel.name] = StoredGeometry{std::make_shared<const SceneGeometry>(std::move(geometry.value())),
-                                               std::move(channel.reservation)};
+                 channel.name(), geometry->triangles.size(), geometry->materials.size());
+    store_channel(geometries_, channel.name(),
+                  StoredGeometry{std::make_shared<const SceneGeometry>(std::move(geometry.value())),
+                                 channel.take_reservation()});
 }
 
 bool ServerSession::check_bake_request(const BakeRequestMsg& request) {
@@ -310,6 +294,17 @@ bool ServerSession::check_bake_request(const BakeRequestMsg& request) {
     return patches.ok();
 }
 
+template <typename Stored>
+const Stored* ServerSession::find_stored(const std::map<std::string, Stored>& stored, const std::string& name,
+                                         ChannelKind kind, uint32_t bake_id) {
+    auto it = stored.find(name);
+    if (it != stored.end()) return &it->second;
+    send_error(bake_id, ErrorCode::kUnknownChannel,
+               std::string("no complete ") + channel_kind_name(kind) + " channel named '" + name +
+                   "' (open, write and close it before BakeRequest)");
+    return nullptr;
+}
+
 bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     if (bake_) {
         send_error(request.bake_id, ErrorCode::kBusy,
@@ -317,23 +312,14 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
         return true;
     }
     if (!check_bake_request(request)) return true;
-    auto scene = scenes_.find(request.scene_channel);
-    if (scene == scenes_.end()) {
-        send_error(request.bake_id, ErrorCode::kUnknownChannel,
-                   "no complete scene channel named '" + request.scene_channel +
-                       "' (open, write and close it before BakeRequest)");
-        return true;
-    }
+    const StoredScene* scene = find_stored(scenes_, request.scene_channel, ChannelKind::kScene, request.bake_id);
+    if (!scene) return true;
     std::shared_ptr<const Environment> environment;
     if (!request.environment_channel.empty()) {
-        auto stored = environments_.find(request.environment_channel);
-        if (stored == environments_.end()) {
-            send_error(request.bake_id, ErrorCode::kUnknownChannel,
-                       "no complete environment channel named '" + request.environment_channel +
-                           "' (open, write and close it before BakeRequest)");
-            return true;
-        }
-        environment = stored->second.environment;
+        const StoredEnvironment* stored =
+            find_stored(environments_, request.environment_channel, ChannelKind::kEnvironment, request.bake_id);
+        if (!stored) return true;
+        environment = stored->environment;
         if (request.environment_lights != 0) {
             Status count = validate_environment_light_count(*environment, request.environment_lights);
             if (!count) {
@@ -344,18 +330,14 @@ bool ServerSession::on_bake_request(const BakeRequestMsg& request) {
     }
     std::shared_ptr<const SceneGeometry> geometry;
     if (!request.geometry_channel.empty()) {
-        auto stored = geometries_.find(request.geometry_channel);
-        if (stored == geometries_.end()) {
-            send_error(request.bake_id, ErrorCode::kUnknownChannel,
-                       "no complete geometry channel named '" + request.geometry_channel +
-                           "' (open, write and close it before BakeRequest)");
-            return true;
-        }
-        geometry = stored->second.geometry;
+        const StoredGeometry* stored =
+            find_stored(geometries_, request.geometry_channel, ChannelKind::kGeometry, request.bake_id);
+        if (!stored) return true;
+        geometry = stored->geometry;
     }
     auto lights = std::make_shared<std::vector<SceneLight>>();
     size_t classic = 0;
-    for (const SceneLight& light : scene->second.lights) {
+    for (const SceneLight& light : scene->lights) {
         if (light.classic) ++classic;
         else lights->push_back(light);
     }

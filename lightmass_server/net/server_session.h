@@ -19,6 +19,7 @@
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightmass_server/bake/bake_pipeline.h"
+#include "lightmass_server/net/incoming_channel.h"
 #include "lightmass_server/net/memory_budget.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
@@ -113,20 +114,6 @@ public:
     std::optional<BakeStatusEntry> bake_status() const;
 
 private:
-    // A scene or geometry channel on its way in.
-    struct IncomingScene {
-        std::string name;
-        bool geometry = false;  // a .geom channel (geometry_reader); neither: .scene (reader)
-        uint64_t total_bytes = 0;
-        uint64_t received = 0;
-        bool environment = false;  // a .env channel (environment_reader)
-        SceneChannelReader reader;
-        std::string kind() const { return environment ? "environment" : geometry ? "geometry" : "scene"; }
-        EnvironmentChannelReader environment_reader;
-        GeometryChannelReader geometry_reader;
-        std::vector<uint8_t> recorded;  // kept only when recording
-        BudgetReservation reservation;
-    };
     struct StoredScene {
         std::vector<SceneLight> lights;
         BudgetReservation reservation;
@@ -153,7 +140,14 @@ private:
     bool on_open_channel(const OpenChannelMsg& open);
     bool on_write_channel(WriteChannelMsg& write);
     bool on_close_channel(const CloseChannelMsg& close);
-    void store_geometry(IncomingScene& channel);
+    // A complete channel's contents, kept for bakes (the oldest of its kind makes room).
+    void store_scene(IncomingChannel& channel);
+    void store_environment(IncomingChannel& channel);
+    void store_geometry(IncomingChannel& channel);
+    // The stored channel a bake request names; null: refused, the error sent.
+    template <typename Stored>
+    const Stored* find_stored(const std::map<std::string, Stored>& stored, const std::string& name,
+                              ChannelKind kind, uint32_t bake_id);
     bool on_bake_request(const BakeRequestMsg& request);
     // The request's settings against the protocol's limits and its stored
     // channels; false: refused, the error sent.
@@ -179,7 +173,7 @@ private:
     ServerActions actions_;
     bool greeted_ = false;
     bool closing_ = false;
-    std::map<uint32_t, IncomingScene> incoming_;
+    std::map<uint32_t, IncomingChannel> incoming_;
     std::set<uint32_t> refused_;  // channels already refused with an error: their writes are dropped
     std::map<std::string, StoredScene> scenes_;
     std::map<std::string, StoredEnvironment> environments_;
