@@ -18,7 +18,9 @@
 #include <vector>
 
 #include "editor_client/bake/bake_outcome.h"
+#include "editor_client/bake/channel_upload.h"
 #include "editor_client/bake/client_action.h"
+#include "editor_client/bake/result_download.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
 #include "lightcuts/result.h"
@@ -89,9 +91,12 @@ public:
 
 private:
     using Clock = std::chrono::steady_clock;
-    enum class UploadStep { kOpen, kData, kClose, kRequest, kDone };
+    // The result's dump (bake -o): none asked, open, or its commit emitted with the outcome.
+    enum class Dump { kNone, kOpen, kCommitting };
 
     std::optional<Message> next_upload_message();
+    ChannelUpload start_upload();
+    BakeRequestMsg bake_request();
     void on_hello_reply(const Message& message);
     void on_bake_message(const Message& message);
     void on_result_open(const OpenChannelMsg& open);
@@ -99,11 +104,9 @@ private:
     void on_bake_done(const BakeDoneMsg& done);
     void finish(Result<BakeOutcome> result);
 
-    struct UploadChannel {
-        uint32_t id = 0;
-        std::string name;
-        std::vector<uint8_t> bytes;
-    };
+    static constexpr uint32_t kSceneChannelId = 1;
+    static constexpr uint32_t kGeometryChannelId = 2;
+    static constexpr uint32_t kEnvironmentChannelId = 3;
 
     std::vector<SceneLight> lights_;
     std::string scene_channel_;
@@ -116,27 +119,11 @@ private:
     bool cancel_sent_ = false;
     std::optional<Result<BakeOutcome>> result_;
 
-    // Upload.
-    static constexpr uint32_t kSceneChannelId = 1;
-    static constexpr uint32_t kGeometryChannelId = 2;
-    static constexpr uint32_t kEnvironmentChannelId = 3;
-    UploadStep upload_step_ = UploadStep::kOpen;
-    std::vector<UploadChannel> uploads_;  // the scene channel, then the geometry's and the environment's when due
-    size_t upload_index_ = 0;
-    uint64_t upload_offset_ = 0;
+    std::optional<ChannelUpload> upload_;  // made when the upload starts, gone once BakeRequest is sent
     Clock::time_point upload_start_;
-
-    // Result channel.
+    ResultDownload download_;
+    Dump dump_ = Dump::kNone;
     BakeOutcome outcome_;
-    ResultChannelReader reader_;
-    std::vector<uint8_t> result_bytes_;  // kept for the outcome or the recording
-    bool dump_open_ = false;             // OpenDump emitted, neither committed nor discarded
-    bool dump_committing_ = false;       // CommitDump emitted with the outcome
-    uint64_t result_received_ = 0;
-    std::optional<uint32_t> result_channel_id_;
-    uint64_t expected_bytes_ = 0;
-    bool channel_closed_ = false;
-    Clock::time_point download_start_;
 };
 
 }  // namespace lc::client
