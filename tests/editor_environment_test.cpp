@@ -86,11 +86,11 @@ TEST(EditorEnvironment, ScriptedBakeFromTheWindowSendsTheEmissivePanelAndTheSky)
     Result<EditorLoopSummary> summary = run_editor_loop(window, *context, session, options);
     ASSERT_TRUE(summary.ok()) << summary.error();
     EXPECT_EQ(summary->script_state, ScriptState::kQuit) << script.error();
-    ASSERT_TRUE(session.last_bake() && session.last_bake()->succeeded)
-        << (session.last_bake() ? session.last_bake()->error : "no bake");
+    ASSERT_TRUE(session.baking().last_bake() && session.baking().last_bake()->succeeded)
+        << (session.baking().last_bake() ? session.baking().last_bake()->error : "no bake");
 
     // The tree holds the panel's area lights (oriented) and the sky's (directional).
-    std::shared_ptr<const LightTree> tree = session.tree();
+    std::shared_ptr<const LightTree> tree = session.baking().tree();
     ASSERT_TRUE(tree && !tree->empty());
     size_t area = 0, sky = 0;
     for (const LightTreeNode& node : tree->nodes) {

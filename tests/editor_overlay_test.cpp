@@ -15,12 +15,12 @@ bool has_line(const std::vector<std::string>& lines, const std::string& text) {
 
 TEST(EditorOverlay, ShowsFrameViewAndLightCounts) {
     EditorSession session(make_room_scene());
-    ASSERT_TRUE(session.add_light(SceneLight{.position = {0, 1, 0}, .intensity = 2.0f}));
+    ASSERT_TRUE(session.edits().add_light(SceneLight{.position = {0, 1, 0}, .intensity = 2.0f}));
     ASSERT_TRUE(
-        session.add_light(SceneLight{.position = {1, 1, 0}, .intensity = 2.0f, .classic = true}));
-    ASSERT_TRUE(session.set_mode("lightcuts"));
-    ASSERT_TRUE(session.set_criterion("bound"));
-    ASSERT_TRUE(session.set_max_cut(300));
+        session.edits().add_light(SceneLight{.position = {1, 1, 0}, .intensity = 2.0f, .classic = true}));
+    ASSERT_TRUE(session.view_settings().set_mode("lightcuts"));
+    ASSERT_TRUE(session.view_settings().set_criterion("bound"));
+    ASSERT_TRUE(session.view_settings().set_max_cut(300));
 
     FrameInfo frame{.frame_ms = 125.0,
                     .gpu_ms = 100.0,

@@ -43,7 +43,7 @@ RenderCamera looking_at(const glm::vec3& eye, const glm::vec3& target) {
 
 TEST_F(ImGuiFixture, PanelsDrawEveryControlAndTheOverlay) {
     EditorSession session(make_room_scene());
-    ASSERT_TRUE(session.add_light(SceneLight{}).ok());
+    ASSERT_TRUE(session.edits().add_light(SceneLight{}).ok());
     NullHost host;
     PanelState state;
     FrameInfo frame;
@@ -62,13 +62,13 @@ TEST_F(ImGuiFixture, PanelsDrawEveryControlAndTheOverlay) {
     EXPECT_STREQ(state.save_path.data(), "edited.gltf");
     // Drawing alone changes nothing in the session.
     EXPECT_EQ(session.scene().lights.size(), 1u);
-    EXPECT_EQ(session.undo_stack().undo_depth(), 1u);
+    EXPECT_EQ(session.edits().undo_stack().undo_depth(), 1u);
 }
 
 TEST_F(ImGuiFixture, ClickPlacesTheNewLightAboveTheSurfaceUnderTheCursor) {
     EditorSession session(make_room_scene());
     // Looking straight down at the floor (y = 0) from above its centre.
-    ASSERT_TRUE(session.set_camera(looking_at({0.3f, 2.5f, 0.2f}, {0.3f, 0.0f, 0.21f})));
+    ASSERT_TRUE(session.view_settings().set_camera(looking_at({0.3f, 2.5f, 0.2f}, {0.3f, 0.0f, 0.21f})));
     PanelState state;
     state.place_by_click = true;
     ViewClick click{320.0 - 0.5, 180.0 - 0.5, 640, 360};  // the centre pixel
@@ -86,16 +86,16 @@ TEST_F(ImGuiFixture, ClickWithoutPlacingSelectsTheLightUnderTheCursor) {
     a.position = {-2.0f, 1.5f, 0.0f};
     SceneLight b;
     b.position = {2.0f, 1.5f, 0.0f};
-    ASSERT_TRUE(session.add_light(a).ok());
-    ASSERT_TRUE(session.add_light(b).ok());
-    ASSERT_TRUE(session.select(std::nullopt));
-    ASSERT_TRUE(session.set_camera(looking_at({0.0f, 1.5f, 4.0f}, a.position)));
+    ASSERT_TRUE(session.edits().add_light(a).ok());
+    ASSERT_TRUE(session.edits().add_light(b).ok());
+    ASSERT_TRUE(session.edits().select(std::nullopt));
+    ASSERT_TRUE(session.view_settings().set_camera(looking_at({0.0f, 1.5f, 4.0f}, a.position)));
     PanelState state;
     ASSERT_TRUE(apply_view_click(session, state, ViewClick{319.5, 179.5, 640, 360}));
-    EXPECT_EQ(session.selection(), std::optional<size_t>(0));
+    EXPECT_EQ(session.edits().selection(), std::optional<size_t>(0));
     // A click at the far corner points away from both lights: nothing selected.
     EXPECT_FALSE(apply_view_click(session, state, ViewClick{0.5, 0.5, 640, 360}));
-    EXPECT_EQ(session.selection(), std::optional<size_t>(0));
+    EXPECT_EQ(session.edits().selection(), std::optional<size_t>(0));
 }
 
 }  // namespace

@@ -217,9 +217,9 @@ std::unique_ptr<EditorSession> room_in_lightcuts(const std::filesystem::path& di
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     const std::filesystem::path tree = test::write_tree_dump(scene, dir);
     auto session = std::make_unique<EditorSession>(std::move(scene));
-    EXPECT_TRUE(session->set_camera(camera));
+    EXPECT_TRUE(session->view_settings().set_camera(camera));
     EXPECT_TRUE(session->import_tree_dump(tree).ok());
-    session->set_mode(RenderMode::kLightcuts);
+    session->view_settings().set_mode(RenderMode::kLightcuts);
     return session;
 }
 
@@ -304,7 +304,7 @@ TEST(EditorProgressive, AutoExposureFromTheCoarsePassKeepsRefining) {
     Scene scene = test::overexposed_lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.view_settings().set_camera(camera));
     const ScriptedRun run = run_progressive_script(*context, session, "wait-refined\nquit\n", 64, 48, true);
     const Result<EditorLoopSummary>& summary = run.summary;
     ASSERT_TRUE(summary.ok()) << summary.error();

@@ -28,18 +28,18 @@ std::unique_ptr<EditorSession> room_in_realtime(const std::filesystem::path& dir
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     const std::filesystem::path tree = test::write_tree_dump(scene, dir);
     auto session = std::make_unique<EditorSession>(std::move(scene));
-    EXPECT_TRUE(session->set_camera(camera));
+    EXPECT_TRUE(session->view_settings().set_camera(camera));
     EXPECT_TRUE(session->import_tree_dump(tree).ok());
-    EXPECT_TRUE(session->set_mode("realtime").ok());
+    EXPECT_TRUE(session->view_settings().set_mode("realtime").ok());
     return session;
 }
 
 TEST(EditorRealtime, CutIsAValidatedViewControl) {
     EditorSession session(test::lit_room(3));
-    EXPECT_TRUE(session.set_realtime_cut(8).ok());
+    EXPECT_TRUE(session.view_settings().set_realtime_cut(8).ok());
     EXPECT_EQ(session.view().realtime_cut, 8u);
     for (uint32_t bad : {0u, 33u}) {
-        const Status refused = session.set_realtime_cut(bad);
+        const Status refused = session.view_settings().set_realtime_cut(bad);
         ASSERT_FALSE(refused.ok()) << bad;
         EXPECT_NE(refused.error().find("real-time cut"), std::string::npos) << refused.error();
         EXPECT_EQ(session.view().realtime_cut, 8u) << "a refused value leaves the view as it was";
@@ -54,9 +54,9 @@ TEST(EditorRealtime, CutIsAValidatedViewControl) {
 TEST(EditorRealtime, ShadowRayBudgetIsAValidatedViewControl) {
     EditorSession session(test::lit_room(3));
     EXPECT_EQ(session.view().realtime_rays, kDefaultRealtimeRays);
-    EXPECT_TRUE(session.set_realtime_rays(0).ok()) << "0: one ray per cut node";
-    EXPECT_TRUE(session.set_realtime_rays(2).ok());
-    const Status refused = session.set_realtime_rays(kMaxStochasticRays + 1);
+    EXPECT_TRUE(session.view_settings().set_realtime_rays(0).ok()) << "0: one ray per cut node";
+    EXPECT_TRUE(session.view_settings().set_realtime_rays(2).ok());
+    const Status refused = session.view_settings().set_realtime_rays(kMaxStochasticRays + 1);
     ASSERT_FALSE(refused.ok());
     EXPECT_NE(refused.error().find("shadow rays"), std::string::npos) << refused.error();
     EXPECT_EQ(session.view().realtime_rays, 2u) << "a refused value leaves the view as it was";

@@ -22,7 +22,7 @@ RenderCamera start_camera() {
 
 class EditorViewControls : public ::testing::Test {
 protected:
-    void SetUp() override { ASSERT_TRUE(session_.set_camera(start_camera())); }
+    void SetUp() override { ASSERT_TRUE(session_.view_settings().set_camera(start_camera())); }
 
     EditorSession session_{make_room_scene()};
 };
@@ -57,7 +57,7 @@ TEST_F(EditorViewControls, DragsAndTheWheelMoveTheCameraKeepingItsUp) {
 
 TEST_F(EditorViewControls, FlyingCoversMoreGroundInASlowerFrameUpToTheCap) {
     const auto flown = [&](double frame_ms) {
-        EXPECT_TRUE(session_.set_camera(start_camera()));
+        EXPECT_TRUE(session_.view_settings().set_camera(start_camera()));
         ViewControls controls(session_.view().camera);
         WindowInput fly;
         fly.fly = {0.0f, 0.0f, 1.0f};
@@ -75,7 +75,7 @@ TEST_F(EditorViewControls, ACameraSetElsewhereIsWhereTheNextOrbitStarts) {
     ViewControls controls(session_.view().camera);
     RenderCamera scripted = start_camera();
     scripted.eye = {3.0f, 2.0f, 0.0f};
-    ASSERT_TRUE(session_.set_camera(scripted));
+    ASSERT_TRUE(session_.view_settings().set_camera(scripted));
     EXPECT_FALSE(controls.apply(WindowInput{}, session_, 16.0));
     EXPECT_EQ(session_.view().camera, scripted) << "no input: the scripted camera stays";
 

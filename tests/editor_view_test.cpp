@@ -137,7 +137,7 @@ TEST(EditorView, HeadlessLoopRunsTheScriptAgainstALocalServer) {
     Scene scene = test::lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene), session_options);
-    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.view_settings().set_camera(camera));
 
     HeadlessWindow window(96, 72);
     EditorLoopOptions options;
@@ -185,7 +185,7 @@ TEST(EditorView, AutoExposureIsSetFromTheFirstFullSizeFrameUnlessGiven) {
         EXPECT_TRUE(lines.ok()) << lines.error();
         ScriptRunner script(std::move(lines).value(), "exposure.txt");
         EditorSession session(scene);
-        EXPECT_TRUE(session.set_camera(camera));
+        EXPECT_TRUE(session.view_settings().set_camera(camera));
         HeadlessWindow window(48, 36);
         EditorLoopOptions options;
         options.width = 48;
@@ -227,7 +227,7 @@ TEST(EditorView, EditsReachTheRendererWithoutABake) {
     Scene scene = test::lit_room(5);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.view_settings().set_camera(camera));
     HeadlessWindow window(64, 48);
     EditorLoopOptions options;
     options.width = 64;

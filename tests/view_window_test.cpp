@@ -80,7 +80,7 @@ TEST(EditorLoop, HeadlessInputSwitchesModesAndOrbits) {
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     const std::filesystem::path tree = test::write_tree_dump(scene, dir);
     EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.view_settings().set_camera(camera));
     Status imported = session.import_tree_dump(tree);
     ASSERT_TRUE(imported.ok()) << imported.error();
 
@@ -124,7 +124,7 @@ TEST(EditorLoop, ModesThatNeedATreeRenderTheReferenceWithoutOne) {
     Scene scene = test::lit_room(11);
     const RenderCamera camera = camera_from_scene(scene.cameras.at(0));
     EditorSession session(std::move(scene));
-    ASSERT_TRUE(session.set_camera(camera));
+    ASSERT_TRUE(session.view_settings().set_camera(camera));
     HeadlessWindow window(32, 32);
     WindowInput lightcuts;
     lightcuts.mode_key = 2;

@@ -120,12 +120,12 @@ std::unique_ptr<EditorSession> open_session(const ViewCommandOptions& options, S
     else
         session_options.bake.environment = or_fail(options.bake.environment.load(scene.environment));
     auto session = std::make_unique<EditorSession>(std::move(scene), session_options);
-    or_fail(session->set_camera(requested.camera));
-    or_fail(session->set_exposure(requested.exposure));
-    session->set_mode(requested.mode);
-    or_fail(session->set_representatives(options.representatives));
-    or_fail(session->set_realtime_cut(options.realtime_cut));
-    or_fail(session->set_realtime_rays(options.realtime_rays));
+    or_fail(session->view_settings().set_camera(requested.camera));
+    or_fail(session->view_settings().set_exposure(requested.exposure));
+    session->view_settings().set_mode(requested.mode);
+    or_fail(session->view_settings().set_representatives(options.representatives));
+    or_fail(session->view_settings().set_realtime_cut(options.realtime_cut));
+    or_fail(session->view_settings().set_realtime_rays(options.realtime_rays));
     if (!options.tree.empty()) or_fail(session->import_tree_dump(options.tree));
     return session;
 }
@@ -137,13 +137,13 @@ void bake_for_the_first_frame(const ViewCommandOptions& options, RenderMode mode
     or_fail(session.start_bake());
     if (options.frames == 0) return;
     ProgressDisplay progress(stderr);
-    while (session.bake_running()) {
-        if (std::optional<BakeProgress> p = session.bake_progress()) progress.update(p->stage, p->percent);
-        if (session.poll_bake()) break;
+    while (session.baking().bake_running()) {
+        if (std::optional<BakeProgress> p = session.baking().bake_progress()) progress.update(p->stage, p->percent);
+        if (session.baking().poll_bake()) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     progress.finish();
-    const std::optional<BakeReport>& report = session.last_bake();
+    const std::optional<BakeReport>& report = session.baking().last_bake();
     if (!report || !report->succeeded)
         fail("bake failed: " + (report ? report->error : std::string("no report")));
 }

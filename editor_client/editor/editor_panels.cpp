@@ -36,30 +36,30 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
     int mode = int(view.mode);
     const char* const modes[] = {"reference", "lightcuts", "cuts", "cutsize"};
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
-        report(state, session.set_mode(modes[mode]), std::string("mode ") + modes[mode]);
+        report(state, session.view_settings().set_mode(modes[mode]), std::string("mode ") + modes[mode]);
     if (mode_needs_tree(view.mode) && !session.tree_matches_scene())
         ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "no tree for these lights: showing reference");
     int criterion = int(view.criterion);
     const char* const criteria[] = {"radius", "bound"};
     if (ImGui::Combo("criterion", &criterion, criteria, IM_ARRAYSIZE(criteria)))
-        report(state, session.set_criterion(criteria[criterion]),
+        report(state, session.view_settings().set_criterion(criteria[criterion]),
                std::string("criterion ") + criteria[criterion]);
     float ratio = float(view.error_ratio);
     if (ImGui::SliderFloat("error ratio", &ratio, float(kMinErrorRatio), 0.2f, "%.4f",
                            ImGuiSliderFlags_Logarithmic))
-        report(state, session.set_error_ratio(ratio), "error ratio set");
+        report(state, session.view_settings().set_error_ratio(ratio), "error ratio set");
     int max_cut = int(view.max_cut);
     if (ImGui::SliderInt("max cut", &max_cut, 1, 4096, "%d", ImGuiSliderFlags_Logarithmic))
-        report(state, session.set_max_cut(uint32_t(std::max(max_cut, 1))), "max cut set");
+        report(state, session.view_settings().set_max_cut(uint32_t(std::max(max_cut, 1))), "max cut set");
     if (view.mode == RenderMode::kRealtime) {
         // Shadow rays per pixel and frame: the real-time mode's whole budget.
         int nodes = int(view.realtime_cut);
         if (ImGui::SliderInt("real-time cut", &nodes, 1, int(kMaxStochasticCut)))
-            report(state, session.set_realtime_cut(uint32_t(std::max(nodes, 1))), "real-time cut set");
+            report(state, session.view_settings().set_realtime_cut(uint32_t(std::max(nodes, 1))), "real-time cut set");
         // 0 traces one ray per cut node; fewer rays are picked among the cut's lights.
         int rays = int(view.realtime_rays);
         if (ImGui::SliderInt("shadow rays", &rays, 0, int(kMaxStochasticRays)))
-            report(state, session.set_realtime_rays(uint32_t(std::max(rays, 0))), "shadow rays set");
+            report(state, session.view_settings().set_realtime_rays(uint32_t(std::max(rays, 0))), "shadow rays set");
     }
     if (view.criterion == CutCriterion::kBound) {
         // How a cluster is evaluated: importance keeps E = 0.005 within 2% at 99% of pixels
@@ -67,12 +67,12 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
         int representatives = int(view.representatives);
         const char* const kinds[] = {"tree", "pixel", "importance"};
         if (ImGui::Combo("representatives", &representatives, kinds, IM_ARRAYSIZE(kinds)))
-            report(state, session.set_representatives(kinds[representatives]),
+            report(state, session.view_settings().set_representatives(kinds[representatives]),
                    std::string("representatives ") + kinds[representatives]);
     }
     float exposure = view.exposure;
     if (ImGui::SliderFloat("exposure", &exposure, 0.0f, 8.0f, "%.2f"))
-        report(state, session.set_exposure(exposure), "exposure set");
+        report(state, session.view_settings().set_exposure(exposure), "exposure set");
 }
 
 void draw_light_list(EditorSession& session, PanelState& state) {
@@ -90,23 +90,23 @@ void draw_light_list(EditorSession& session, PanelState& state) {
                 std::snprintf(label, sizeof label, "%d %s (%.2f %.2f %.2f) %.3g%s", i,
                               kLightTypes[int(l.type)], l.position.x, l.position.y, l.position.z, l.intensity,
                               l.classic ? " classic" : "");
-                const bool selected = session.selection() == size_t(i);
+                const bool selected = session.edits().selection() == size_t(i);
                 if (ImGui::Selectable(label, selected))
-                    report(state, session.select(size_t(i)), "selected light " + std::to_string(i));
+                    report(state, session.edits().select(size_t(i)), "selected light " + std::to_string(i));
             }
         }
         ImGui::EndListBox();
     }
-    if (std::optional<size_t> selected = session.selection()) {
+    if (std::optional<size_t> selected = session.edits().selection()) {
         const SceneLight& light = lights[*selected];
         float position[3] = {light.position.x, light.position.y, light.position.z};
         if (ImGui::DragFloat3("move", position, 0.05f))
-            report(state, session.move_light(*selected, {position[0], position[1], position[2]}),
+            report(state, session.edits().move_light(*selected, {position[0], position[1], position[2]}),
                    "moved light " + std::to_string(*selected));
         if (ImGui::Button("Delete selected")) to_delete = *selected;
     }
     if (to_delete)
-        report(state, session.remove_light(*to_delete), "removed light " + std::to_string(*to_delete));
+        report(state, session.edits().remove_light(*to_delete), "removed light " + std::to_string(*to_delete));
 }
 
 void draw_add_light(EditorSession& session, EditorHost& host, PanelState& state) {
@@ -131,7 +131,7 @@ void draw_add_light(EditorSession& session, EditorHost& host, PanelState& state)
         light.intensity = state.intensity;
         light.range = state.range;
         light.classic = state.classic;
-        Result<size_t> added = session.add_light(light);
+        Result<size_t> added = session.edits().add_light(light);
         if (added)
             report(state, Ok{}, "added light " + std::to_string(*added));
         else
@@ -156,41 +156,41 @@ void draw_add_light(EditorSession& session, EditorHost& host, PanelState& state)
 }
 
 void draw_bake_panel(EditorSession& session, PanelState& state) {
-    ImGui::TextUnformatted(session.server_description().c_str());
-    if (session.bake_running()) {
-        const BakeProgress progress = session.bake_progress().value_or(BakeProgress{});
+    ImGui::TextUnformatted(session.baking().server_description().c_str());
+    if (session.baking().bake_running()) {
+        const BakeProgress progress = session.baking().bake_progress().value_or(BakeProgress{});
         char text[96];
         std::snprintf(text, sizeof text, "%s %.0f%%",
                       progress.stage.empty() ? "connecting" : progress.stage.c_str(),
                       double(progress.percent));
         ImGui::ProgressBar(std::clamp(progress.percent / 100.0f, 0.0f, 1.0f), ImVec2(-FLT_MIN, 0), text);
-        if (ImGui::Button("Cancel")) session.cancel_bake();
+        if (ImGui::Button("Cancel")) session.baking().cancel_bake();
     } else {
         const char* const methods[] = {"off", "VPL (instant radiosity)", "radiosity (patches)"};
-        int method = int(session.indirect());
+        int method = int(session.baking().indirect());
         if (ImGui::Combo("indirect light", &method, methods, IM_ARRAYSIZE(methods)))
-            session.set_indirect(IndirectMethod(method));
-        ImGui::BeginDisabled(!session.has_server());
+            session.baking().set_indirect(IndirectMethod(method));
+        ImGui::BeginDisabled(!session.baking().has_server());
         if (ImGui::Button("Build lighting"))
             report(state, session.start_bake(),
                    "baking " + std::to_string(session.scene().lights.size()) + " lights");
         ImGui::EndDisabled();
     }
-    if (const std::optional<BakeReport>& last = session.last_bake(); last && !last->succeeded)
+    if (const std::optional<BakeReport>& last = session.baking().last_bake(); last && !last->succeeded)
         ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "last bake %s: %s",
                            last->cancelled ? "cancelled" : "failed", last->error.c_str());
 }
 
 void draw_file_panel(EditorSession& session, PanelState& state) {
-    ImGui::BeginDisabled(session.undo_stack().undo_depth() == 0);
-    if (ImGui::Button("Undo")) report(state, session.undo(), "undone");
+    ImGui::BeginDisabled(session.edits().undo_stack().undo_depth() == 0);
+    if (ImGui::Button("Undo")) report(state, session.edits().undo(), "undone");
     ImGui::EndDisabled();
     ImGui::SameLine();
     ImGui::InputText("##save", state.save_path.data(), state.save_path.size());
     ImGui::SameLine();
     if (ImGui::Button("Save")) {
         const std::string path(state.save_path.data());
-        report(state, session.save(path), "saved " + path);
+        report(state, session.edits().save(path), "saved " + path);
     }
 }
 
@@ -213,7 +213,7 @@ bool apply_view_click(EditorSession& session, PanelState& state, const ViewClick
     }
     const std::optional<size_t> light = pick_light(session.scene(), ray, kLightPickAngle);
     if (!light) return false;
-    report(state, session.select(*light), "selected light " + std::to_string(*light));
+    report(state, session.edits().select(*light), "selected light " + std::to_string(*light));
     return true;
 }
 

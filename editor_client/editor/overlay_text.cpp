@@ -55,19 +55,19 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
     lines.push_back(format("lights %zu (%zu in the tree, %zu classic)",
                            session.scene().lights.size(), session.scene().lights.size() - classic,
                            classic));
-    const std::shared_ptr<const LightTree> tree = session.tree();
+    const std::shared_ptr<const LightTree> tree = session.baking().tree();
     if (!tree || tree->empty()) {
         lines.push_back("tree: none (Build lighting to bake one)");
     } else {
         lines.push_back(format("tree: %zu nodes, %u leaves%s", tree->nodes.size(), tree->leaf_count,
                                session.tree_matches_scene() ? "" : " (stale: lights changed)"));
     }
-    if (std::optional<BakeProgress> progress = session.bake_progress()) {
+    if (std::optional<BakeProgress> progress = session.baking().bake_progress()) {
         lines.push_back(format("baking: %s %.0f%%",
                                progress->stage.empty() ? "connecting" : progress->stage.c_str(),
                                double(progress->percent)));
     }
-    if (const std::optional<BakeReport>& last = session.last_bake()) {
+    if (const std::optional<BakeReport>& last = session.baking().last_bake()) {
         if (last->succeeded)
             lines.push_back(format("last bake: %.0f ms (build %.0f ms), %zu lights", last->total_ms,
                                    last->build_ms, last->light_count));

@@ -45,49 +45,49 @@ Status execute_editor_command(const EditorCommand& command, EditorSession& sessi
         [&](const auto& c) -> Status {
             using T = std::decay_t<decltype(c)>;
             if constexpr (std::is_same_v<T, cmd::AddLight>) {
-                return as_status(session.add_light(c.light));
+                return as_status(session.edits().add_light(c.light));
             } else if constexpr (std::is_same_v<T, cmd::AddLights>) {
                 return as_status(
-                    session.add_procedural_lights(layout_in_scene(c, session.scene())));
+                    session.edits().add_procedural_lights(layout_in_scene(c, session.scene())));
             } else if constexpr (std::is_same_v<T, cmd::RemoveLight>) {
-                return session.remove_light(c.index);
+                return session.edits().remove_light(c.index);
             } else if constexpr (std::is_same_v<T, cmd::MoveLight>) {
-                return session.move_light(c.index, c.position);
+                return session.edits().move_light(c.index, c.position);
             } else if constexpr (std::is_same_v<T, cmd::Select>) {
-                return session.select(c.index);
+                return session.edits().select(c.index);
             } else if constexpr (std::is_same_v<T, cmd::Undo>) {
-                return session.undo();
+                return session.edits().undo();
             } else if constexpr (std::is_same_v<T, cmd::Redo>) {
-                return session.redo();
+                return session.edits().redo();
             } else if constexpr (std::is_same_v<T, cmd::Bake>) {
                 return session.start_bake();
             } else if constexpr (std::is_same_v<T, cmd::CancelBake>) {
-                session.cancel_bake();
+                session.baking().cancel_bake();
                 return Ok{};
             } else if constexpr (std::is_same_v<T, cmd::Mode>) {
-                return session.set_mode(c.name);
+                return session.view_settings().set_mode(c.name);
             } else if constexpr (std::is_same_v<T, cmd::Criterion>) {
-                return session.set_criterion(c.name);
+                return session.view_settings().set_criterion(c.name);
             } else if constexpr (std::is_same_v<T, cmd::ErrorRatio>) {
-                return session.set_error_ratio(c.ratio);
+                return session.view_settings().set_error_ratio(c.ratio);
             } else if constexpr (std::is_same_v<T, cmd::MaxCut>) {
-                return session.set_max_cut(c.max_cut);
+                return session.view_settings().set_max_cut(c.max_cut);
             } else if constexpr (std::is_same_v<T, cmd::RealtimeCut>) {
-                return session.set_realtime_cut(c.nodes);
+                return session.view_settings().set_realtime_cut(c.nodes);
             } else if constexpr (std::is_same_v<T, cmd::RealtimeRays>) {
-                return session.set_realtime_rays(c.rays);
+                return session.view_settings().set_realtime_rays(c.rays);
             } else if constexpr (std::is_same_v<T, cmd::RepresentativesChoice>) {
-                return session.set_representatives(c.name);
+                return session.view_settings().set_representatives(c.name);
             } else if constexpr (std::is_same_v<T, cmd::Exposure>) {
-                return session.set_exposure(c.exposure);
+                return session.view_settings().set_exposure(c.exposure);
             } else if constexpr (std::is_same_v<T, cmd::Camera>) {
                 RenderCamera camera = c.camera;
                 camera.up = session.view().camera.up;
-                return session.set_camera(camera);
+                return session.view_settings().set_camera(camera);
             } else if constexpr (std::is_same_v<T, cmd::Screenshot>) {
                 return host.screenshot(c.path);
             } else if constexpr (std::is_same_v<T, cmd::Save>) {
-                return session.save(c.path);
+                return session.edits().save(c.path);
             } else if constexpr (std::is_same_v<T, cmd::SaveView>) {
                 return host.save_view(c.path);
             } else if constexpr (std::is_same_v<T, cmd::WaitFrames> || std::is_same_v<T, cmd::WaitRefined>) {
@@ -116,11 +116,11 @@ ScriptState ScriptRunner::step(EditorSession& session, EditorHost& host) {
         return state_;
     if (waiting_for_bake_) {
         // The frame loop polls the session; poll here too for loops that do not.
-        std::optional<BakeReport> report = session.poll_bake();
-        if (session.bake_running()) return state_ = ScriptState::kWaiting;
+        std::optional<BakeReport> report = session.baking().poll_bake();
+        if (session.baking().bake_running()) return state_ = ScriptState::kWaiting;
         waiting_for_bake_ = false;
         const ScriptLine& bake_line = lines_[next_ - 1];
-        if (!report) report = session.last_bake();
+        if (!report) report = session.baking().last_bake();
         if (!report) return fail(bake_line, "the bake ended without a report");
         if (!report->succeeded) return fail(bake_line, "bake failed: " + report->error);
     }
@@ -155,7 +155,7 @@ ScriptState run_script_to_end(ScriptRunner& runner, EditorSession& session, Edit
     while (true) {
         const ScriptState state = runner.step(session, host);
         if (state != ScriptState::kWaiting) return state;
-        if (session.bake_running()) session.wait_for_bake();
+        if (session.baking().bake_running()) session.baking().wait_for_bake();
     }
 }
 

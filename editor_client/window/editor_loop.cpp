@@ -186,7 +186,7 @@ void EditorLoop::draw_panels(ImGuiLayer& ui) {
 
 // The update step: the bake in flight, the script, and the renderer brought in step with both.
 Result<bool> EditorLoop::update() {
-    if (std::optional<BakeReport> report = session_.poll_bake()) log_bake(*report);
+    if (std::optional<BakeReport> report = session_.baking().poll_bake()) log_bake(*report);
     if (options_.script != nullptr && !steady_since_) {
         const ScriptState state = options_.script->step(session_, *host_);
         summary_.script_state = state;

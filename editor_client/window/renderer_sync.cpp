@@ -9,7 +9,7 @@ namespace lc::client {
 
 Status RendererSync::update() {
     if (in_step()) return Ok{};
-    tree_ = session_.tree_matches_scene() ? session_.tree() : nullptr;
+    tree_ = session_.tree_matches_scene() ? session_.baking().tree() : nullptr;
     if (tree_ && tree_->empty()) tree_.reset();
     // The walk form lives only while the renderer copies it to the GPU.
     std::optional<WalkTree> walk;
@@ -20,7 +20,7 @@ Status RendererSync::update() {
     }
     LC_RETURN_IF_ERROR(renderer_.set_tree(walk ? &*walk : nullptr));
     revision_ = session_.scene_revision();
-    generation_ = session_.tree_generation();
+    generation_ = session_.baking().tree_generation();
     synced_ = true;
     ++updates_;
     return Ok{};

@@ -21,7 +21,7 @@ public:
     uint64_t updates() const { return updates_; }
     // Whether the renderer holds the session's lights and tree (no edit since update()).
     bool in_step() const {
-        return synced_ && revision_ == session_.scene_revision() && generation_ == session_.tree_generation();
+        return synced_ && revision_ == session_.scene_revision() && generation_ == session_.baking().tree_generation();
     }
 
     // The session's settings at a size, falling back to reference mode while

@@ -17,7 +17,7 @@ Status ViewAutoExposure::after_frame(FramePlan& plan, FrameSchedule& schedule, R
     if (session.view().exposure != initial_) return Ok{};
     Result<std::vector<float>> hdr = renderer.read_hdr();
     if (!hdr) return make_error(hdr.error());
-    LC_RETURN_IF_ERROR(session.set_exposure(auto_exposure(*hdr)));
+    LC_RETURN_IF_ERROR(session.view_settings().set_exposure(auto_exposure(*hdr)));
     if (!plan.tiled) return Ok{};
     return tone_map_again(plan, schedule, renderer, session, context, *canvas);
 }

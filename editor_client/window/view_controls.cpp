@@ -23,10 +23,10 @@ bool ViewControls::apply(const WindowInput& input, EditorSession& session, doubl
         orbit_.fly(input.fly, orbit_.fly_speed() * float(std::max(frame_s, 1.0 / 60.0)));
         RenderCamera next = orbit_.camera();
         next.up = session.view().camera.up;
-        if (session.set_camera(next)) orbit_camera_ = session.view().camera;
+        if (session.view_settings().set_camera(next)) orbit_camera_ = session.view().camera;
     }
     if (input.mode_key && *input.mode_key >= 1 && *input.mode_key <= kRenderModeCount)
-        session.set_mode(static_cast<RenderMode>(*input.mode_key - 1));
+        session.view_settings().set_mode(static_cast<RenderMode>(*input.mode_key - 1));
     return moved;
 }
 
