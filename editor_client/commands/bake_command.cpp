@@ -143,7 +143,7 @@ void run_bake(const BakeCommandOptions& options) {
 
 }  // namespace
 
-void add_bake_command(CLI::App& app) {
+void register_bake_command(CLI::App& app) {
     auto options = std::make_shared<BakeCommandOptions>();
     CLI::App* cmd = app.add_subcommand("bake", "Bake a scene's light tree on a lightmass_server");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")->required();

@@ -5,11 +5,11 @@
 
 namespace lc::client {
 
-void add_bake_command(CLI::App& app);
-void add_inspect_command(CLI::App& app);
-void add_light_edit_commands(CLI::App& app);  // add-lights, remove-lights
-void add_render_command(CLI::App& app);
-void add_view_command(CLI::App& app);
-void add_server_status_command(CLI::App& app);
+void register_bake_command(CLI::App& app);
+void register_inspect_command(CLI::App& app);
+void register_light_edit_commands(CLI::App& app);  // add-lights, remove-lights
+void register_render_command(CLI::App& app);
+void register_view_command(CLI::App& app);
+void register_server_status_command(CLI::App& app);
 
 }  // namespace lc::client

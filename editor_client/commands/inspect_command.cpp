@@ -59,7 +59,7 @@ void print_text(const std::string& channel, const LightTree& tree) {
 
 }  // namespace
 
-void add_inspect_command(CLI::App& app) {
+void register_inspect_command(CLI::App& app) {
     struct Options {
         std::string path;
         bool json = false;

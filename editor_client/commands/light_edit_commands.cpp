@@ -67,7 +67,7 @@ const char* type_choice_name(LightTypeChoice choice) {
     return "unknown";
 }
 
-void add_add_lights_command(CLI::App& app) {
+void register_add_lights_command(CLI::App& app) {
     struct Options {
         std::string scene;
         uint32_t count = 0;
@@ -146,7 +146,7 @@ void add_add_lights_command(CLI::App& app) {
     });
 }
 
-void add_remove_lights_command(CLI::App& app) {
+void register_remove_lights_command(CLI::App& app) {
     struct Options {
         std::string scene;
         std::string indices;
@@ -186,7 +186,7 @@ void add_remove_lights_command(CLI::App& app) {
     });
 }
 
-void add_make_scene_command(CLI::App& app) {
+void register_make_scene_command(CLI::App& app) {
     struct Options {
         std::string name;
         std::string out;
@@ -214,10 +214,10 @@ void add_make_scene_command(CLI::App& app) {
 
 }  // namespace
 
-void add_light_edit_commands(CLI::App& app) {
-    add_add_lights_command(app);
-    add_remove_lights_command(app);
-    add_make_scene_command(app);
+void register_light_edit_commands(CLI::App& app) {
+    register_add_lights_command(app);
+    register_remove_lights_command(app);
+    register_make_scene_command(app);
 }
 
 }  // namespace lc::client

@@ -800,7 +800,7 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
 
 }  // namespace
 
-void add_render_command(CLI::App& app) {
+void register_render_command(CLI::App& app) {
     auto options = std::make_shared<RenderOptions>();
     CLI::App* cmd = app.add_subcommand("render", "Render a scene headless with Vulkan");
     cmd->add_option("scene", options->scene, "glTF 2.0 scene (.gltf/.glb) with KHR_lights_punctual")

@@ -12,7 +12,7 @@
 
 namespace lc::client {
 
-void add_server_status_command(CLI::App& app) {
+void register_server_status_command(CLI::App& app) {
     struct Options {
         ServerStatusQuery query;
         bool json = false;

@@ -222,7 +222,7 @@ void run_view(const ViewCommandOptions& options) {
 
 }  // namespace
 
-void add_view_command(CLI::App& app) {
+void register_view_command(CLI::App& app) {
     auto options = std::make_shared<ViewCommandOptions>();
     CLI::App* cmd =
         app.add_subcommand("view",
