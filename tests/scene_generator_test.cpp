@@ -14,7 +14,7 @@
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/gltf/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "test_paths.h"
 #include "tree_fixtures.h"

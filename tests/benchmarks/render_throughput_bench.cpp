@@ -20,7 +20,7 @@
 #include <memory>
 #include <random>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/gltf/gltf_writer.h"

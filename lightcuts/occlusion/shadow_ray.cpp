@@ -1,4 +1,4 @@
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // The full-precision light tree the builders share while building. Every
-// attribute is double; lightcuts/tree_export.h turns it into the float
+// attribute is double; lightcuts/tree/tree_export.h turns it into the float
 // lc::LightTree in one place, with conservative rounding.
 #include <glm/vec3.hpp>
 

@@ -1,4 +1,4 @@
-#include "lightcuts/compact_node.h"
+#include "lightcuts/tree/compact_node.h"
 
 #include <glm/geometric.hpp>
 

@@ -12,8 +12,8 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc {
 

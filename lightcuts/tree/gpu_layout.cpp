@@ -1,11 +1,11 @@
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
 #include "lightcuts/check.h"
-#include "lightcuts/compact_node.h"
+#include "lightcuts/tree/compact_node.h"
 #include "lightcuts/shading_model.h"
 
 namespace lc {

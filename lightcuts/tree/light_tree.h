@@ -1,7 +1,7 @@
 #pragma once
 // The light tree as it travels on the result channel and as the client
 // imports it. Float precision, conservatively rounded from the server's
-// double-precision build (see lightcuts/tree_export.h). Every walk (the
+// double-precision build (see lightcuts/tree/tree_export.h). Every walk (the
 // shaders, the CPU evaluator) reads its walk form instead, made once by
 // make_walk_tree (walk_tree.h, gpu_layout.h).
 #include <glm/vec3.hpp>

@@ -29,7 +29,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 
 namespace lc {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"

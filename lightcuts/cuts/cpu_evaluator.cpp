@@ -14,7 +14,7 @@
 //   indirect leaf on it is clamped to half the error ratio of the cut's total
 //   (device/indirect_clamp.glsl.h), before the classic lights are added; the
 //   reference (every leaf) clamps them exactly (exact_indirect_clamp.h).
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 
 #include <glm/geometric.hpp>
 
@@ -23,18 +23,18 @@
 #include <limits>
 #include <vector>
 
-#include "lightcuts/bound_walk.h"
+#include "lightcuts/cuts/bound_walk.h"
 #include "lightcuts/check.h"
-#include "lightcuts/compact_node.h"
-#include "lightcuts/cut_traversal.h"
+#include "lightcuts/tree/compact_node.h"
+#include "lightcuts/cuts/cut_traversal.h"
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "lightcuts/device/cut_hash.glsl.h"
 #include "lightcuts/device/pixel_representative.glsl.h"
-#include "lightcuts/exact_indirect_clamp.h"
+#include "lightcuts/cuts/exact_indirect_clamp.h"
 #include "lightcuts/material_model.h"
 #include "lightcuts/shading_model.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 
 namespace lc {
 

@@ -12,7 +12,7 @@
 #include <cstdint>
 
 #include "lightcuts/device/gpu_structs.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 
 namespace lc {
 

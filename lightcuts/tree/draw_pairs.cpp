@@ -1,4 +1,4 @@
-#include "lightcuts/draw_pairs.h"
+#include "lightcuts/tree/draw_pairs.h"
 
 #include <glm/geometric.hpp>
 

@@ -1,7 +1,7 @@
 // The occluder BVH: binned SAH built top-down, large ranges' two sides in
 // parallel and small ones from an explicit work list, emitted in pre-order
 // with escapes, then collapsed 4-wide for the any-hit walk.
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 
 #include <glm/geometric.hpp>
 #include <tbb/parallel_invoke.h>
@@ -16,7 +16,7 @@
 #include <string>
 #include <utility>
 
-#include "lightcuts/wide_bvh.h"
+#include "lightcuts/occlusion/wide_bvh.h"
 
 namespace lc {
 namespace {

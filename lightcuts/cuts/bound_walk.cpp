@@ -1,10 +1,10 @@
-#include "lightcuts/bound_walk.h"
+#include "lightcuts/cuts/bound_walk.h"
 
 #include <algorithm>
 #include <limits>
 #include <utility>
 
-#include "lightcuts/cut_traversal.h"
+#include "lightcuts/cuts/cut_traversal.h"
 #include "lightcuts/device/walk_schedule.glsl.h"
 
 namespace lc {

@@ -15,9 +15,9 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/scene_light.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc {
 

@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <functional>
 
-#include "lightcuts/build_tree.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/build_tree.h"
+#include "lightcuts/tree/light_tree.h"
 
 namespace lc {
 

@@ -1,6 +1,6 @@
 // Binary to 4-wide: breadth-first over the binary inner nodes that head a wide
 // node, so a wide node's index is known when its parent names it.
-#include "lightcuts/wide_bvh.h"
+#include "lightcuts/occlusion/wide_bvh.h"
 
 #include <algorithm>
 #include <array>

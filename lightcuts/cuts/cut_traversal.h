@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/device/indirect_clamp.glsl.h"
 
 namespace lc {

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "lightcuts/device/gpu_structs.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc {
 

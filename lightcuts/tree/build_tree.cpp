@@ -1,4 +1,4 @@
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 
 #include <glm/geometric.hpp>
 

@@ -1,4 +1,4 @@
-#include "lightcuts/supersampled_shading.h"
+#include "lightcuts/cuts/supersampled_shading.h"
 
 #include <glm/geometric.hpp>
 
@@ -10,9 +10,9 @@
 #include <numbers>
 #include <thread>
 
-#include "lightcuts/cut_traversal.h"
+#include "lightcuts/cuts/cut_traversal.h"
 #include "lightcuts/material_model.h"
-#include "lightcuts/reconstruction_cut.h"
+#include "lightcuts/cuts/reconstruction_cut.h"
 #include "lightcuts/seeded_mixer.h"
 
 namespace lc {

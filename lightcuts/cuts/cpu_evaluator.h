@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "lightcuts/scene_light.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc {
 

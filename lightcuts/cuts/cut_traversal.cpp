@@ -1,4 +1,4 @@
-#include "lightcuts/cut_traversal.h"
+#include "lightcuts/cuts/cut_traversal.h"
 
 #include <limits>
 

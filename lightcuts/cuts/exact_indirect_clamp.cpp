@@ -1,4 +1,4 @@
-#include "lightcuts/exact_indirect_clamp.h"
+#include "lightcuts/cuts/exact_indirect_clamp.h"
 
 #include <algorithm>
 #include <functional>

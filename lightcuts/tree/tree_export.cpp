@@ -1,4 +1,4 @@
-#include "lightcuts/tree_export.h"
+#include "lightcuts/tree/tree_export.h"
 
 #include <algorithm>
 #include <cmath>

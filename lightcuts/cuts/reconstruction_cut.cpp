@@ -1,4 +1,4 @@
-#include "lightcuts/reconstruction_cut.h"
+#include "lightcuts/cuts/reconstruction_cut.h"
 
 #include <glm/geometric.hpp>
 
@@ -8,9 +8,9 @@
 #include <utility>
 #include <vector>
 
-#include "lightcuts/cut_traversal.h"
+#include "lightcuts/cuts/cut_traversal.h"
 #include "lightcuts/material_model.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 
 namespace lc {
 namespace {
