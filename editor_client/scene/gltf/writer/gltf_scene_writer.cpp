@@ -1,7 +1,7 @@
 // Scene -> a new glTF. We write the JSON ourselves (nlohmann) rather than
 // through tinygltf, as the light patcher must (gltf_light_patcher.cpp), so
 // both writers share the light JSON and the document output.
-#include "editor_client/scene/gltf/gltf_scene_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_scene_writer.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf/gltf_document_output.h"
+#include "editor_client/scene/gltf/writer/gltf_document_output.h"
 #include "editor_client/scene/gltf/gltf_environment.h"
 #include "editor_client/scene/gltf/gltf_json_values.h"
-#include "editor_client/scene/gltf/gltf_light_json.h"
+#include "editor_client/scene/gltf/writer/gltf_light_json.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {

@@ -2,7 +2,7 @@
 // rather than go through tinygltf: every other field, extension and
 // external file must stay exactly as it was, which a parse-and-reserialise
 // round trip through tinygltf's model does not keep.
-#include "editor_client/scene/gltf/gltf_light_patcher.h"
+#include "editor_client/scene/gltf/writer/gltf_light_patcher.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "editor_client/scene/gltf/gltf_document_output.h"
-#include "editor_client/scene/gltf/gltf_glb_container.h"
+#include "editor_client/scene/gltf/writer/gltf_document_output.h"
+#include "editor_client/scene/gltf/writer/gltf_glb_container.h"
 #include "editor_client/scene/gltf/gltf_json_values.h"
-#include "editor_client/scene/gltf/gltf_light_json.h"
+#include "editor_client/scene/gltf/writer/gltf_light_json.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_uri_rewrite.h"
+#include "editor_client/scene/gltf/writer/gltf_uri_rewrite.h"
 
 namespace lc::client {
 namespace {

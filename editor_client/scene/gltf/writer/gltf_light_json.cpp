@@ -1,4 +1,4 @@
-#include "editor_client/scene/gltf/gltf_light_json.h"
+#include "editor_client/scene/gltf/writer/gltf_light_json.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>

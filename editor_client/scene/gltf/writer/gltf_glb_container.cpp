@@ -1,4 +1,4 @@
-#include "editor_client/scene/gltf/gltf_glb_container.h"
+#include "editor_client/scene/gltf/writer/gltf_glb_container.h"
 
 namespace lc::client {
 namespace {

@@ -1,4 +1,4 @@
-#include "editor_client/scene/gltf/gltf_document_output.h"
+#include "editor_client/scene/gltf/writer/gltf_document_output.h"
 
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "editor_client/scene/gltf/gltf_glb_container.h"
+#include "editor_client/scene/gltf/writer/gltf_glb_container.h"
 
 namespace lc::client {
 namespace {

@@ -1,4 +1,4 @@
-#include "editor_client/scene/gltf/gltf_uri_rewrite.h"
+#include "editor_client/scene/gltf/writer/gltf_uri_rewrite.h"
 
 #include <cctype>
 #include <string>

@@ -10,5 +10,5 @@
 // rotation taking -Z onto it) carrying extras.lightcuts_guid, so the loader
 // gives it back the same GUID, and extras.lightcuts_classic when classic
 // (gltf_light_json.h).
-#include "editor_client/scene/gltf/gltf_light_patcher.h"
-#include "editor_client/scene/gltf/gltf_scene_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_light_patcher.h"
+#include "editor_client/scene/gltf/writer/gltf_scene_writer.h"
