@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 

@@ -1,4 +1,4 @@
-// The bound criterion's walk search (lightcuts/bound_walk.h) for one pixel,
+// The bound criterion's walk search (lightcuts/cuts/bound_walk.h) for one pixel,
 // shared by lightcuts_bound_walk.comp and reconstruction cuts
 // (lightcuts_reconstruction_samples.comp runs it at the samples and records
 // each kept cut under LC_WALK_RECORDS; lightcuts_reconstruction_pixels.comp

@@ -9,7 +9,7 @@
 #include "lightcuts/device/cluster_bounds.glsl.h"
 #include "material_model.glsl"
 
-// lightcuts/compact_node.h's octahedral unit vector (2 x snorm16).
+// lightcuts/tree/compact_node.h's octahedral unit vector (2 x snorm16).
 vec3 decode_octahedral(uint bits) {
     vec2 e = unpackSnorm2x16(bits);
     vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));

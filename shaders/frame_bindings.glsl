@@ -20,7 +20,7 @@ layout(std430, set = 0, binding = kBindLeafLights) readonly buffer LeafLights { 
 layout(std430, set = 0, binding = kBindTreeNodes) readonly buffer TreeNodes { GpuTreeNode tree_nodes[]; };
 layout(std430, set = 0, binding = kBindClassicLights) readonly buffer ClassicLights { GpuLight classic_lights[]; };
 layout(std430, set = 0, binding = kBindCounters) buffer FrameCounters { GpuFrameCounters counters; };
-// The shadow-casting triangles and their 4-wide BVH (lightcuts/shadow_bvh.h).
+// The shadow-casting triangles and their 4-wide BVH (lightcuts/occlusion/shadow_bvh.h).
 layout(std430, set = 0, binding = kBindBvhNodes) readonly buffer BvhNodes { GpuWideBvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = kBindShadowTriangles) readonly buffer ShadowTriangles { GpuShadowTriangle shadow_triangles[]; };
 // Alpha-masked shadow triangles (lightcuts/alpha_mask.h): texture coordinates, masks, texels.

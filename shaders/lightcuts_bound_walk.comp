@@ -1,6 +1,6 @@
 #version 460
 // Lightcuts with the bound criterion, walk search (the default;
-// lightcuts/bound_walk.h): threshold passes, each a pre-order walk shared by
+// lightcuts/cuts/bound_walk.h): threshold passes, each a pre-order walk shared by
 // the subgroup like the radius walk, refining every node whose error bound
 // exceeds the pass's threshold; passes stop once every bound on the cut is
 // <= error x the cut's total, the cut would exceed max-cut (the pixel keeps

@@ -1,6 +1,6 @@
 #version 460
 // Lightcuts with the thesis's radius criterion: a stackless pre-order walk
-// (first child / escape indices, lightcuts/gpu_layout.h) that a subgroup
+// (first child / escape indices, lightcuts/tree/gpu_layout.h) that a subgroup
 // shares. A node is refined while the point lies strictly inside its influence
 // radius (radius < 0: unbounded, always inside) and it has children;
 // mixed-type junctions are always refined. Every step moves forward in

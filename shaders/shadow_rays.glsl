@@ -1,5 +1,5 @@
 // Shadow rays: is a light visible from a shading point? Mirrors
-// lightcuts/shadow_ray.h (the ray) and ShadowBvh::occluded (the any-hit walk
+// lightcuts/occlusion/shadow_ray.h (the ray) and ShadowBvh::occluded (the any-hit walk
 // over the 4-wide BVH: an inner node pushes the children whose boxes the ray
 // hits, the nearest on top for the direction's octant; a leaf tests its
 // triangles; the walk ends at the first occluder or an empty stack). kShadows is false when the scene analysis finds that nothing can

@@ -3,7 +3,7 @@
 // its intensity x an estimate of cos / d^2 at the point
 // (stochastic_sphere_geometry, pixel_representative.glsl.h), one uniform
 // stretched down the levels and spread over frames (frame_strata.glsl). One GpuDrawPair
-// record per level (set kDrawPairSet, lightcuts/draw_pairs.h): the
+// record per level (set kDrawPairSet, lightcuts/tree/draw_pairs.h): the
 // children's spheres, intensities and destinations in 48 bytes, where the
 // tree's nodes would take three dependent loads of 64 bytes.
 #ifndef LC_STOCHASTIC_DRAW_GLSL

@@ -21,8 +21,8 @@
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightcuts/alpha_mask.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightmass_server/mpi/bake_dispatch.h"
 #include "lightmass_server/emitters/area_light_sampler.h"
 #include "protocol/channel_records.h"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {

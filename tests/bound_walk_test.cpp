@@ -10,8 +10,8 @@
 #include <random>
 #include <vector>
 
-#include "lightcuts/bound_walk.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/bound_walk.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {

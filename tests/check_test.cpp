@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "lightcuts/check.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc {
 namespace {

@@ -1,4 +1,4 @@
-// The compact tree node (lightcuts/compact_node.h) is conservative: every
+// The compact tree node (lightcuts/tree/compact_node.h) is conservative: every
 // leaf's position (its direction for directional lights) lies inside each
 // ancestor's decoded box, and every spot direction inside each ancestor's
 // decoded cone, on random trees and on hard ones. Also the octahedral packing.
@@ -9,8 +9,8 @@
 #include <random>
 #include <vector>
 
-#include "lightcuts/compact_node.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/compact_node.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "tree_invariants.h"
 

@@ -2,7 +2,7 @@
 // so a cut's hash names it whatever order its nodes were found in.
 #include <gtest/gtest.h>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 
 namespace lc::test {
 namespace {

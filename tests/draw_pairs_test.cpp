@@ -1,4 +1,4 @@
-// The real-time mode's light-draw records (lightcuts/draw_pairs.h) describe
+// The real-time mode's light-draw records (lightcuts/tree/draw_pairs.h) describe
 // the tree they were made from: each internal node's record names its two
 // children (a leaf child by its light), weighs them by their intensities and
 // bounding spheres, and a descent through the records from any node reaches
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "lightcuts/device/pixel_representative.glsl.h"
-#include "lightcuts/draw_pairs.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/draw_pairs.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "tree_invariants.h"
 

@@ -14,7 +14,7 @@
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/script_runner.h"
 #include "editor_client/render/output/image_io.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/headless_window.h"

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "test_paths.h"
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/material_model.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "tree_fixtures.h"

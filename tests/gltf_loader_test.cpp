@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/scene/inputs/scene_guid.h"
 #include "gltf_import_equivalence.h"

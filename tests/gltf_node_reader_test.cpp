@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "editor_client/scene/gltf/gltf_node_reader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "gltf_import_equivalence.h"
 #include "test_paths.h"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "test_paths.h"
 
 namespace lc::client {

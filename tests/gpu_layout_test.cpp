@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lightcuts/gpu_layout.h"
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/tree/gpu_layout.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 #include "lightcuts/shading_model.h"
 
 namespace lc::client {

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "editor_client/render/renderer.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/device/indirect_clamp.glsl.h"
-#include "lightcuts/exact_indirect_clamp.h"
+#include "lightcuts/cuts/exact_indirect_clamp.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_records.h"
 #include "render_test_support.h"

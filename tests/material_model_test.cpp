@@ -10,9 +10,9 @@
 #include <numbers>
 #include <random>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/material_model.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 
 namespace lc::client {
 namespace {

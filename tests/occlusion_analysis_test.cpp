@@ -12,8 +12,8 @@
 
 #include "editor_client/render/analysis/occlusion_analysis.h"
 #include "editor_client/render/analysis/scene_effects.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"
 
 namespace lc::client {

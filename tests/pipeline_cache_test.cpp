@@ -10,7 +10,7 @@
 #include "editor_client/render/gpu/pipeline_cache.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/vk/pipeline_layout.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "render_test_support.h"
 #include "tone_map_comp.spv.h"
 

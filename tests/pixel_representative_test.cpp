@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "lightcuts/bound_walk.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/bound_walk.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/device/pixel_representative.glsl.h"
 #include "tree_fixtures.h"
 

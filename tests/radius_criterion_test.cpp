@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {

@@ -1,5 +1,5 @@
-// Reconstruction cuts (lightcuts/reconstruction_cut.h) and the supersampled
-// image they shade (lightcuts/supersampled_shading.h), on the CPU: a floor
+// Reconstruction cuts (lightcuts/cuts/reconstruction_cut.h) and the supersampled
+// image they shade (lightcuts/cuts/supersampled_shading.h), on the CPU: a floor
 // under a square table top lit by lights above it, seen from straight above
 // with 16 jittered eye rays per pixel; the reference sums every light with
 // its shadow ray at every eye ray.
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "lightcuts/reconstruction_cut.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/supersampled_shading.h"
+#include "lightcuts/cuts/reconstruction_cut.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/cuts/supersampled_shading.h"
 #include "tree_fixtures.h"
 
 namespace lc {

@@ -10,7 +10,7 @@
 #include <span>
 
 #include "editor_client/render/renderer.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "lightmass_server/mpi/bake_dispatch.h"
 #include "rectangle_form_factor.h"

@@ -15,7 +15,7 @@
 #include <initializer_list>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/scene_generator.h"

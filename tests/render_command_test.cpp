@@ -15,7 +15,7 @@
 #include "editor_client/render/output/exr_image.h"
 #include "editor_client/render/output/image_io.h"
 #include "lightcuts/tone_mapping.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "protocol/channel_name.h"

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/render/analysis/scene_effects.h"

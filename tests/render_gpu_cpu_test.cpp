@@ -20,7 +20,7 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
 #include "lightcuts/tone_mapping.h"
 #include "lightmass_server/builders/tree_builder.h"

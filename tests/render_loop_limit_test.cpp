@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
 #include "render_test_support.h"
 

@@ -15,9 +15,9 @@
 #include <random>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/renderer.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 #include "editor_client/scene/scene_generator.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "render_test_support.h"

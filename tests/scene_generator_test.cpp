@@ -12,9 +12,9 @@
 #include <set>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "test_paths.h"
 #include "tree_fixtures.h"

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/shading_model.h"
 #include "tree_fixtures.h"
 

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "tree_fixtures.h"
 
 namespace lc::test {

@@ -1,10 +1,10 @@
-// The shadow-ray BVH (lightcuts/shadow_bvh.h): any-hit answers equal
+// The shadow-ray BVH (lightcuts/occlusion/shadow_bvh.h): any-hit answers equal
 // a brute-force loop over every triangle, the stackless layout is a valid
 // pre-order tree with conservative float boxes, its 4-wide collapse holds
 // the same leaves with nearest-first orders and a bounded stack, the build
 // is the same at any thread count, and the hard cases (empty, identical,
 // chained, far-away, axis-parallel, degenerate) stay correct.
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 
 #include <gtest/gtest.h>
 #include <glm/geometric.hpp>
@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "lightcuts/wide_bvh.h"
+#include "lightcuts/occlusion/wide_bvh.h"
 
 namespace lc::client {
 namespace {

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 
 namespace lc {
 namespace {

@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "test_paths.h"
 

@@ -11,7 +11,7 @@
 #include <limits>
 #include <utility>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 
 namespace lc::test {
 namespace {

@@ -10,10 +10,10 @@
 
 #include <glm/vec3.hpp>
 
-#include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/scene_light.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::test {
 

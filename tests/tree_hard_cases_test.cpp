@@ -14,7 +14,7 @@
 #include "lightmass_server/builders/lbvh_builder.h"
 #include "lightmass_server/builders/optimal_pair_builder.h"
 #include "lightmass_server/builders/tree_builder.h"
-#include "lightcuts/tree_export.h"
+#include "lightcuts/tree/tree_export.h"
 #include "protocol/channel_records.h"
 #include "tree_invariants.h"
 

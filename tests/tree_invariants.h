@@ -13,9 +13,9 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 #include "lightmass_server/builders/cluster_attributes.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/scene_light.h"
 
 namespace lc::test {

@@ -14,7 +14,7 @@
 #include "editor_client/bake/bake_outcome.h"
 #include "lightcuts/environment.h"
 #include "lightcuts/guid.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/scene_geometry.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"

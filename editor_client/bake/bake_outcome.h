@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::client {

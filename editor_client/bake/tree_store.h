@@ -6,7 +6,7 @@
 #include <memory>
 
 #include "editor_client/bake/bake_client.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 
 namespace lc::client {

@@ -10,7 +10,7 @@
 #include "editor_client/commands/commands.h"
 #include "editor_client/commands/gltf_load_flags.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/heavy_mesh.h"
 #include "editor_client/scene/light_edit.h"
 #include "editor_client/scene/scene_generator.h"

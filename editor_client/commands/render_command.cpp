@@ -57,7 +57,7 @@
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/surface_geometry.h"
 #include "editor_client/vk/context.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/version.h"
 
 namespace lc::client {

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/inputs/scene_guid.h"
 #include "editor_client/scene/light_edit.h"
 #include "protocol/channel_records.h"

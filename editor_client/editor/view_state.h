@@ -1,7 +1,7 @@
 #pragma once
 // What the editor shows: mode, cut criterion and its controls, camera and
 // exposure. Edited through EditorSession so every change is validated.
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "editor_client/render/settings/render_settings.h"
 
 namespace lc::client {

@@ -4,7 +4,7 @@
 #include <cstddef>
 
 #include "editor_client/render/renderer.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 
 namespace lc::client {
 

@@ -9,7 +9,7 @@
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/scene.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 
 namespace lc::client {

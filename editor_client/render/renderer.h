@@ -34,12 +34,12 @@
 #include "editor_client/render/gpu/vpl_visibility.h"
 #include "editor_client/vk/context.h"
 #include "lightcuts/environment.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::client {
 

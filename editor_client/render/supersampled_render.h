@@ -20,8 +20,8 @@
 #include "editor_client/render/renderer.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
-#include "lightcuts/supersampled_shading.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/cuts/supersampled_shading.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::client {
 

@@ -1,18 +1,16 @@
 #include "editor_client/scene/scene_generator.h"
 
 #include <glm/geometric.hpp>
-#include <glm/vector_relational.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <numbers>
 
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/scene/inputs/scene_guid.h"
-#include "lightcuts/alpha_mask.h"
+#include "editor_client/scene/surface_sampler.h"
 #include "lightcuts/seeded_mixer.h"
 #include "protocol/channel_records.h"
 
@@ -225,127 +223,11 @@ Status check_layout_options(const LightLayoutOptions& options) {
     return Ok{};
 }
 
-// A triangle the surface layout may place lights on, in double precision.
-struct SurfaceTriangle {
-    glm::dvec3 a, b, c;
-    glm::dvec3 front;  // unit geometric normal, turned to the side the shading normal faces
-    int32_t mask = -1;  // alpha mask (SurfaceSelection::masks) cutting it out in places
-    glm::vec2 uv[3]{};  // with a mask
-};
-
-struct SurfaceSelection {
-    std::vector<SurfaceTriangle> triangles;
-    std::vector<double> cumulative_area;  // prefix sums of the areas, for area-weighted picks
-    double scene_diagonal = 0.0;          // of every mesh, inside the box or not
-    size_t usable_triangles = 0;          // non-degenerate ones anywhere in the scene
-    std::vector<AlphaMask> masks;         // of alphaMode MASK materials (alpha_mask.h)
-};
-
 std::string box_text(const glm::vec3& lo, const glm::vec3& hi) {
     char text[160];
     std::snprintf(text, sizeof(text), "(%g, %g, %g) - (%g, %g, %g)", lo.x, lo.y, lo.z, hi.x, hi.y,
                   hi.z);
     return text;
-}
-
-// The non-degenerate triangles whose centroid lies in [lo, hi] (inclusive).
-Result<SurfaceSelection> select_surfaces(const Scene& scene, const glm::dvec3& lo,
-                                         const glm::dvec3& hi) {
-    SurfaceSelection selection;
-    glm::dvec3 scene_min(std::numeric_limits<double>::max());
-    glm::dvec3 scene_max(std::numeric_limits<double>::lowest());
-    double total_area = 0.0;
-    const std::vector<int32_t> mesh_mask = mesh_alpha_masks(scene, selection.masks);
-    for (size_t m = 0; m < scene.meshes.size(); ++m) {
-        const Mesh& mesh = scene.meshes[m];
-        const bool has_normals = mesh.normals.size() == mesh.positions.size();
-        const int32_t mask = mesh.uvs.size() == mesh.positions.size() ? mesh_mask[m] : -1;
-        // A surface its mask cuts out everywhere is not there to stand on.
-        if (mesh_mask[m] >= 0 && mask_cuts_everything(selection.masks[size_t(mesh_mask[m])])) continue;
-        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-            auto what = [&] {
-                return "mesh " + std::to_string(m) + ", triangle " + std::to_string(t / 3);
-            };
-            std::array<glm::dvec3, 3> v;
-            glm::dvec3 shading_sum(0.0);
-            for (size_t k = 0; k < 3; ++k) {
-                const uint32_t index = mesh.indices[t + k];
-                if (index >= mesh.positions.size()) {
-                    return make_error(what() + " has vertex index " + std::to_string(index) +
-                                      " out of range (" + std::to_string(mesh.positions.size()) +
-                                      " positions)");
-                }
-                v[k] = glm::dvec3(mesh.positions[index]);
-                if (!std::isfinite(v[k].x) || !std::isfinite(v[k].y) || !std::isfinite(v[k].z)) {
-                    return make_error(what() + " has a non-finite vertex position");
-                }
-                if (has_normals) shading_sum += glm::dvec3(mesh.normals[index]);
-                scene_min = glm::min(scene_min, v[k]);
-                scene_max = glm::max(scene_max, v[k]);
-            }
-            const glm::dvec3 cross = glm::cross(v[1] - v[0], v[2] - v[0]);
-            const double twice_area = glm::length(cross);
-            if (!(twice_area > 0.0) || !std::isfinite(twice_area)) continue;  // degenerate
-            ++selection.usable_triangles;
-            const glm::dvec3 centroid = (v[0] + v[1] + v[2]) / 3.0;
-            if (glm::any(glm::lessThan(centroid, lo)) || glm::any(glm::greaterThan(centroid, hi))) {
-                continue;
-            }
-            glm::dvec3 front = cross / twice_area;
-            // Vertex normals say which side the surface shows; without any
-            // (or if they cancel out), the winding's side.
-            const double side = glm::dot(front, shading_sum);
-            if (std::isfinite(side) && side < 0.0) front = -front;
-            SurfaceTriangle kept{v[0], v[1], v[2], front};
-            if (mask >= 0) {
-                kept.mask = mask;
-                for (size_t k = 0; k < 3; ++k) kept.uv[k] = mesh.uvs[mesh.indices[t + k]];
-            }
-            selection.triangles.push_back(kept);
-            total_area += 0.5 * twice_area;
-            selection.cumulative_area.push_back(total_area);
-        }
-    }
-    if (selection.usable_triangles > 0) {
-        selection.scene_diagonal = glm::length(scene_max - scene_min);
-    }
-    return selection;
-}
-
-struct SurfacePoint {
-    const SurfaceTriangle* triangle = nullptr;
-    glm::dvec3 position{0.0};
-};
-
-// Draws at this many points at most for one light before deciding that the
-// masks cut out (nearly) every surface in the box.
-constexpr int kMaskedDrawLimit = 10000;
-
-// A point uniform over the selected area that no alpha mask cuts out:
-// three draws per try whatever the light's type, so positions do not depend
-// on types; a scene without masks takes the first try, as it always did.
-Result<SurfacePoint> draw_kept_point(const SurfaceSelection& selection, SplitMix64& rng) {
-    const double total_area = selection.cumulative_area.back();
-    for (int attempt = 0; attempt < kMaskedDrawLimit; ++attempt) {
-        const double pick = rng.uniform() * total_area;
-        const double u1 = rng.uniform();
-        const double u2 = rng.uniform();
-        const size_t t = std::min(size_t(std::upper_bound(selection.cumulative_area.begin(),
-                                                          selection.cumulative_area.end(), pick) -
-                                         selection.cumulative_area.begin()),
-                                  selection.triangles.size() - 1);
-        const SurfaceTriangle& tri = selection.triangles[t];
-        // Uniform over the triangle: barycentrics (1 - sqrt(u1), sqrt(u1)(1 - u2), sqrt(u1) u2).
-        const double s = std::sqrt(u1);
-        const double wa = 1.0 - s, wb = s * (1.0 - u2), wc = s * u2;
-        if (tri.mask >= 0) {
-            const glm::vec2 uv = tri.uv[0] * float(wa) + tri.uv[1] * float(wb) + tri.uv[2] * float(wc);
-            if (!mask_keeps(selection.masks[size_t(tri.mask)], uv)) continue;
-        }
-        return SurfacePoint{&tri, wa * tri.a + wb * tri.b + wc * tri.c};
-    }
-    return make_error("the alpha masks cut out (nearly) every surface in the box: no point kept in " +
-                      std::to_string(kMaskedDrawLimit) + " draws");
 }
 
 // Surface layout: see generate_lights in the header.

@@ -21,7 +21,7 @@
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/progressive_refinement.h"
 #include "editor_client/editor/script_runner.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 #include "editor_client/vk/context.h"
 #include "editor_client/window/window.h"
 #include "lightcuts/result.h"

@@ -2,7 +2,7 @@
 
 #include <optional>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {

@@ -51,7 +51,7 @@ struct LC_ALIGN16 GpuLight {
 };
 
 // A light-tree node as the walks read it, 64 bytes (pbrt-v4's
-// CompactLightBounds is the model; made and decoded in lightcuts/compact_node.h).
+// CompactLightBounds is the model; made and decoded in lightcuts/tree/compact_node.h).
 // A node evaluated as a cluster is its representative leaf light
 // (leaf_lights[representative]) with the cluster's intensity, so no light
 // parameter is quantised; the bound criterion reads the box and the cone,
@@ -239,7 +239,7 @@ struct LC_ALIGN16 GpuTemporalParams {
 // level of its descent instead of three dependent node loads (the node, its
 // first child for the sibling's index, the sibling): record i holds what the
 // draw weighs node i's two children by, and where each leads. 48 bytes,
-// made from the compact nodes by lightcuts/draw_pairs.h. A child is a node
+// made from the compact nodes by lightcuts/tree/draw_pairs.h. A child is a node
 // index, or ~light (negative) for a leaf: the leaf light the draw ends at.
 struct LC_ALIGN16 GpuDrawPair {
     // Each child's bounding sphere of light positions, relative to nothing

@@ -90,7 +90,7 @@ LC_INLINE float importance_geometry(vec3 bbox_min, vec3 bbox_max, vec3 x, vec3 n
 // light drawn from the sibling a weight 1e4 times too large: fireflies). Zero
 // only where the whole sphere is behind the surface (dot(n, c) + r <= 0), so
 // the draw stays unbiased. The shader's descent reads c and r from
-// GpuDrawPair records (lightcuts/draw_pairs.h).
+// GpuDrawPair records (lightcuts/tree/draw_pairs.h).
 LC_INLINE float stochastic_sphere_geometry(vec3 c, float r, vec3 n) {
     float z_max = dot(n, c) + r;
     if (!(z_max > 0.0f)) return 0.0f;

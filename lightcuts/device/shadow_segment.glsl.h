@@ -1,5 +1,5 @@
 // The segment a shadow ray tests, written once: the shaders include it as
-// GLSL (shaders/shadow_rays.glsl, float), lightcuts/shadow_ray.cpp as C++
+// GLSL (shaders/shadow_rays.glsl, float), lightcuts/occlusion/shadow_ray.cpp as C++
 // (double) in lc::shading.
 //
 // The ray leaves x `bias` along the unit normal n and `bias` further along

@@ -1,4 +1,4 @@
-// The thresholds of the bound criterion's walk search (lightcuts/bound_walk.h),
+// The thresholds of the bound criterion's walk search (lightcuts/cuts/bound_walk.h),
 // written once: shaders/lightcuts_bound_walk.comp includes it as GLSL (float),
 // bound_walk.cpp as C++ (double) in lc::device.
 #ifndef LC_DEVICE_WALK_SCHEDULE_GLSL_H

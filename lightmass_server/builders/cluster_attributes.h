@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::bake {

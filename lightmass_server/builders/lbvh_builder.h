@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "lightcuts/result.h"
 

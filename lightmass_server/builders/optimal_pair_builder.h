@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <span>
 
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 #include "lightmass_server/builders/tree_builder.h"
 #include "lightcuts/result.h"
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "lightcuts/build_tree.h"
+#include "lightcuts/tree/build_tree.h"
 #include "lightmass_server/control/bake_stop.h"
 
 namespace lc::bake {

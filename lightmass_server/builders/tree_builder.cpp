@@ -9,8 +9,8 @@
 #include <cmath>
 #include <string>
 
-#include "lightcuts/build_tree.h"
-#include "lightcuts/tree_export.h"
+#include "lightcuts/tree/build_tree.h"
+#include "lightcuts/tree/tree_export.h"
 #include "lightmass_server/builders/agglomerative_builder.h"
 #include "lightmass_server/builders/build_phase_timer.h"
 #include "lightmass_server/builders/cluster_attributes.h"

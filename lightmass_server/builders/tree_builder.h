@@ -8,7 +8,7 @@
 #include <string_view>
 #include <vector>
 
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "protocol/messages.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "lightcuts/status_macros.h"
-#include "lightcuts/tree_export.h"
+#include "lightcuts/tree/tree_export.h"
 #include "lightmass_server/builders/cluster_attributes.h"
 #include "protocol/channel_records.h"
 

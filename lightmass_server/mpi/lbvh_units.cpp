@@ -8,7 +8,7 @@
 #include <cstring>
 #include <string>
 
-#include "lightcuts/tree_export.h"
+#include "lightcuts/tree/tree_export.h"
 #include "protocol/channel_records.h"
 
 namespace lc::bake {

@@ -12,8 +12,8 @@
 #include <span>
 #include <vector>
 
-#include "lightcuts/build_tree.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/build_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightmass_server/builders/lbvh_builder.h"
 #include "lightmass_server/builders/tree_builder.h"

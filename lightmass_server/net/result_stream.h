@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "protocol/encoded_frame.h"
 #include "protocol/messages.h"
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "lightcuts/environment.h"
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightmass_server/bake/bake_pipeline.h"

@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "editor_client/render/gbuffer_surface.h"
-#include "lightcuts/cpu_evaluator.h"
-#include "lightcuts/exact_indirect_clamp.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
+#include "lightcuts/cuts/exact_indirect_clamp.h"
 #include "tests/benchmarks/gbuffer_diagnostic.h"
 
 namespace lc::client {

@@ -31,8 +31,8 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/vk/context.h"
-#include "lightcuts/bound_walk.h"
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/bound_walk.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/seeded_mixer.h"
 #include "tests/benchmarks/gbuffer_diagnostic.h"
 

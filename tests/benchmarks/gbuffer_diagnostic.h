@@ -18,7 +18,7 @@
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
 #include "editor_client/vk/context.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 
 namespace lc::client {
 

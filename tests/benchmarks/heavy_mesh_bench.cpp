@@ -10,7 +10,7 @@
 
 #include "editor_client/scene/heavy_mesh.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 
 namespace {
 

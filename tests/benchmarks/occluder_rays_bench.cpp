@@ -15,8 +15,8 @@
 
 #include "editor_client/scene/heavy_mesh.h"
 #include "editor_client/scene/scene_generator.h"
-#include "lightcuts/shadow_bvh.h"
-#include "lightcuts/shadow_ray.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_ray.h"
 
 namespace {
 

@@ -20,10 +20,10 @@
 #include <memory>
 #include <random>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "editor_client/render/renderer.h"
 #include "editor_client/scene/gltf/gltf_loader.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "editor_client/scene/scene_generator.h"
 #include "editor_client/vk/barriers.h"
 #include "editor_client/vk/buffer.h"

@@ -5,7 +5,7 @@
 
 #include "editor_client/render/analysis/scene_effects.h"
 #include "lightcuts/environment.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::client {
 

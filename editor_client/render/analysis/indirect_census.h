@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "lightcuts/light_tree.h"
+#include "lightcuts/tree/light_tree.h"
 #include "protocol/messages.h"
 
 namespace lc::client {

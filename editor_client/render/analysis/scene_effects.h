@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "lightcuts/scene.h"
-#include "lightcuts/shadow_ray.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/occlusion/shadow_ray.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::client {
 

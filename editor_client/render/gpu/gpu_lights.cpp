@@ -3,7 +3,7 @@
 #include <span>
 
 #include "editor_client/render/gpu/storage_upload.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/status_macros.h"
 #include "protocol/channel_records.h"
 

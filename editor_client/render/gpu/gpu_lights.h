@@ -12,7 +12,7 @@
 #include "lightcuts/device/gpu_structs.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene.h"
-#include "lightcuts/walk_tree.h"
+#include "lightcuts/tree/walk_tree.h"
 
 namespace lc::client {
 

@@ -9,7 +9,7 @@
 #include "editor_client/vk/context.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene.h"
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 
 namespace lc::client {
 

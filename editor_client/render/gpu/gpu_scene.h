@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/scene.h"
 #include "editor_client/vk/buffer.h"
 #include "editor_client/vk/context.h"

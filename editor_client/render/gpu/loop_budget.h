@@ -12,7 +12,7 @@
 #include "editor_client/render/settings/render_settings.h"
 #include "editor_client/vk/device_quirks.h"
 #include "lightcuts/result.h"
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 
 namespace lc::client {
 

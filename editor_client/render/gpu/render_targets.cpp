@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/status_macros.h"
 
 namespace lc::client {

@@ -5,7 +5,7 @@
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
 #include "editor_client/vk/barriers.h"
-#include "lightcuts/bound_walk.h"
+#include "lightcuts/cuts/bound_walk.h"
 
 namespace lc::client {
 

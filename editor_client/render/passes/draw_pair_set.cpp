@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "lightcuts/device/bindings.h"
-#include "lightcuts/draw_pairs.h"
+#include "lightcuts/tree/draw_pairs.h"
 
 namespace lc::client {
 

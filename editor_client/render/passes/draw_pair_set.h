@@ -1,6 +1,6 @@
 #pragma once
 // The real-time mode's light-draw records on the GPU (set kDrawPairSet of
-// RealtimePass's layout): one GpuDrawPair per tree node (lightcuts/draw_pairs.h),
+// RealtimePass's layout): one GpuDrawPair per tree node (lightcuts/tree/draw_pairs.h),
 // remade whenever the renderer uploads a tree.
 #include <vulkan/vulkan.h>
 

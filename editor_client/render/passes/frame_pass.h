@@ -13,7 +13,7 @@
 #include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/gpu/render_targets.h"
 #include "editor_client/render/analysis/scene_effects.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/result.h"
 
 namespace lc::client {

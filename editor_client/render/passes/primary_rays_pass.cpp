@@ -11,7 +11,7 @@
 #include "editor_client/vk/barriers.h"
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
-#include "lightcuts/shadow_bvh.h"
+#include "lightcuts/occlusion/shadow_bvh.h"
 #include "lightcuts/status_macros.h"
 #include "primary_rays_comp.spv.h"
 

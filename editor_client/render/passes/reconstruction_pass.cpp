@@ -7,7 +7,7 @@
 #include "editor_client/render/passes/compute_pass.h"
 #include "editor_client/render/passes/lighting_pass.h"
 #include "editor_client/vk/barriers.h"
-#include "lightcuts/bound_walk.h"
+#include "lightcuts/cuts/bound_walk.h"
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/spec_constants.h"
 #include "lightcuts/status_macros.h"

@@ -18,7 +18,7 @@
 #include "editor_client/vk/descriptor_set.h"
 #include "editor_client/vk/device.h"
 #include "editor_client/vk/image.h"
-#include "lightcuts/gpu_layout.h"
+#include "lightcuts/tree/gpu_layout.h"
 #include "lightcuts/result.h"
 
 namespace lc::client {

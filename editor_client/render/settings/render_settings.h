@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "lightcuts/cpu_evaluator.h"
+#include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/result.h"
 
