@@ -163,6 +163,14 @@ void add_path_means(const RealtimeSweep& sweep, RealtimeSweepSummary& summary) {
     summary.path_err_mean = frames ? err / frames : none;
 }
 
+// The path's MSE had the variant's frame cost what the baseline's did: noise
+// scales with the time spent; a variant that does not accumulate (biased,
+// the same image at any time) keeps its error, if its frame fits the time at all.
+double path_mse_at_time(const RealtimeVariant& variant, const RealtimeSweepSummary& summary, double baseline_ms) {
+    if (variant.accumulates) return summary.path_rel_mse * summary.path_frame_ms / baseline_ms;
+    return summary.path_frame_ms <= baseline_ms ? summary.path_rel_mse : std::numeric_limits<double>::quiet_NaN();
+}
+
 }  // namespace
 
 Result<std::vector<uint32_t>> parse_count_list(std::string_view text, std::string_view flag, uint32_t min,
@@ -230,8 +238,8 @@ void summarize_realtime_sweep(RealtimeSweep& sweep, const std::vector<RealtimeVa
         if (variant.label == sweep.baseline) baseline_path_ms = summary.path_frame_ms;
         sweep.summaries.push_back(summary);
     }
-    for (RealtimeSweepSummary& summary : sweep.summaries)
-        summary.path_equal_time_rel_mse = summary.path_rel_mse * summary.path_frame_ms / baseline_path_ms;
+    for (size_t i = 0; i < variants.size(); ++i)
+        sweep.summaries[i].path_equal_time_rel_mse = path_mse_at_time(variants[i], sweep.summaries[i], baseline_path_ms);
 }
 
 void print_realtime_sweep(std::FILE* out, const RealtimeSweep& sweep) {
@@ -247,7 +255,7 @@ void print_realtime_sweep(std::FILE* out, const RealtimeSweep& sweep) {
     std::fprintf(out,
                  "at equal cost: the still view's error after the %.1f ms and %.1f shadow rays a pixel that %s "
                  "spent (log-log between measured frame counts; nan: not within them); moving: means over the path,\n"
-                 "its MSE at %s's frame time = MSE x ms / %s's ms\n",
+                 "its MSE at %s's frame time = MSE x ms / %s's ms (a mode that does not accumulate: its MSE if its frame fits)\n",
                  sweep.budget_ms, sweep.budget_rays, sweep.baseline.c_str(), sweep.baseline.c_str(),
                  sweep.baseline.c_str());
     std::fprintf(out, "%-9s %10s %14s %14s %14s %12s %12s %14s\n", "variant", "ms/frame", "MSE equal ms",

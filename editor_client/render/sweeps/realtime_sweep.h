@@ -48,7 +48,8 @@ struct RealtimeSweepSummary {
     double path_rel_mse = 0.0;
     double path_err_mean = 0.0;
     // The path's MSE at the baseline's frame time: path_rel_mse x path_frame_ms
-    // / the baseline's (noise whose variance falls as 1 / samples).
+    // / the baseline's (noise whose variance falls as 1 / samples); a variant
+    // that does not accumulate keeps its MSE where its frame fits that time (else NaN).
     double path_equal_time_rel_mse = 0.0;
 };
 
