@@ -126,7 +126,7 @@ TEST_F(RealtimeSweepRender, VariantsSideBySideStillAndMoving) {
     settings.camera = test::furnished_room_camera();
     settings.realtime_rays = 2;
     RealtimeSweepPlan plan;
-    plan.variants = *parse_realtime_variants("lc0.2,4,8", settings)  // a coarse, cheap lightcut;
+    plan.variants = *parse_realtime_variants("lc0.2,4,8", settings);  // a coarse, cheap lightcut
     plan.frame_counts = {2, 8, 32};
     plan.path_frames = 4;
     Result<RealtimeSweep> sweep = run_realtime_sweep(**renderer, settings, plan);
