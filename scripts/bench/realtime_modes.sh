@@ -16,6 +16,7 @@
 # (a table per scene, the winner at equal time) and rtsweep_SCENE.png where
 # python3 has matplotlib (scripts/install_deps.sh installs it).
 # Usage: scripts/bench/realtime_modes.sh [build-dir] [lights]
+# LC_SWEEP_SCENES="furnished boxes area" picks scenes (the report covers those);
 # LC_SWEEP_SIZE=WxH (128x128), LC_SWEEP_PATH=N (32), LC_SWEEP_FRAMES=list
 # (1,4,16,64) shrink the run (every reference costs a full exact frame: about
 # 65 s at 128x128 with 16,384 lights on lavapipe); LC_BENCH_OUT=DIR writes there.
@@ -26,6 +27,7 @@ lights="${2:-16384}"
 size="${LC_SWEEP_SIZE:-128x128}"
 path_frames="${LC_SWEEP_PATH:-32}"
 frames="${LC_SWEEP_FRAMES:-1,4,16,64}"
+scenes="${LC_SWEEP_SCENES:-furnished boxes area}"
 variants="${LC_VARIANTS:-lc0.02,K8,K16,K32,K8r1,K16r1}"
 bench_out="${LC_BENCH_OUT:-docs/bench}"
 source scripts/lib/furnished_bench.sh
@@ -49,7 +51,7 @@ make_area() {  # DIR: the Cornell box lit by its emissive panel alone
         -o "$1/tree.lcut" >/dev/null 2>&1
 }
 
-for scene in furnished boxes area; do
+for scene in $scenes; do
     dir="$work/$scene"
     mkdir -p "$dir"
     case "$scene" in
@@ -62,5 +64,5 @@ for scene in furnished boxes area; do
         --sweep-realtime "$variants" --sweep-frames "$frames" --sweep-path "$path_frames" \
         --sweep-csv "$bench_out/rtsweep_$scene.csv" -o "$dir/last.png" > "$bench_out/rtsweep_$scene.txt"
 done
-python3 scripts/bench/rtsweep_report.py "$bench_out" furnished boxes area \
+python3 scripts/bench/rtsweep_report.py "$bench_out" $scenes \
     --command "scripts/bench/realtime_modes.sh $build_dir $lights (LC_SWEEP_SIZE=$size LC_SWEEP_PATH=$path_frames LC_SWEEP_FRAMES=$frames)"
