@@ -81,13 +81,13 @@ PY
 # each measured after 1, 4, 16 and 64 frames against one exact reference; the image is K = 16's
 # mean of 64 frames.
 "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --size 128x128 \
-    --mode realtime --sweep-realtime 8,16,32 --sweep-frames 1,4,16,64 --frames 64 \
+    --mode realtime --sweep-realtime 8,16,32 --sweep-frames 1,4,16,64 --sweep-path 0 --frames 64 \
     --sweep-csv "$out/furnished_realtime_sweep.csv" -o "$out/furnished_realtime_64.png" \
     > "$out/furnished_realtime_sweep.txt"
 python3 - "$out/furnished_realtime_sweep.csv" <<'PY'
 import csv, sys
 for r in csv.DictReader(open(sys.argv[1])):
-    if r["frames"] not in ("1", "64"):
+    if r["camera"] != "still" or r["frames"] not in ("1", "64"):
         continue
     frame_ms, reference = float(r["frame_ms"]), float(r["reference_ms"])
     print("demo: furnished room, %s lights, shadows, 128x128, real-time mode (K = %s, %.1f shadow rays a pixel): "
@@ -96,6 +96,22 @@ for r in csv.DictReader(open(sys.argv[1])):
              reference / frame_ms,
              "one frame" if r["frames"] == "1" else "mean of 64 frames (%.2f s)" % (float(r["total_ms"]) / 1000.0),
              100.0 * (1.0 - float(r["frac_over_2pct"])), 100.0 * float(r["rel_err_mean"])))
+PY
+
+# The real-time modes side by side (scripts/bench/realtime_modes.sh runs the full table on three
+# scenes): deterministic lightcuts at E = 0.02 and stochastic lightcuts at K = 8 and 16 and at K = 8
+# with one shadow ray a pixel, still (1, 4, 16 frames) and along an 8-frame orbit of the camera, each
+# frame against its own reference; small (32x32) so that its 9 references take about a minute on lavapipe.
+"$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --size 32x32 \
+    --mode realtime --sweep-realtime lc0.02,K8,K16,K8r1 --sweep-frames 1,4,16 --sweep-path 8 \
+    --sweep-csv "$out/furnished_side_by_side.csv" -o "$out/furnished_side_by_side.png" \
+    > "$out/furnished_side_by_side.txt"
+python3 - "$out/furnished_side_by_side_equal.csv" <<'PY'
+import csv, sys
+for r in csv.DictReader(open(sys.argv[1])):
+    print("demo: side by side, furnished room 32x32, %s: %.1f ms a frame, still rel MSE at %s's time %s, "
+          "moving rel MSE %.3g a frame" % (r["variant"], float(r["frame_ms"]), r["baseline"],
+                                          r["equal_time_rel_mse"], float(r["path_rel_mse"])))
 PY
 
 # Then the empty room (10 x 3 x 10 m) with 768 point and 256 spot lights of limited range, made by

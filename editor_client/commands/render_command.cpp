@@ -6,7 +6,7 @@
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
 //   [--exposure E] -o OUT.png|OUT.exr [--float OUT.pfm|OUT.exr] [--exr-half] [--stats OUT.json] [--validation]
-//   [--sweep-error E1,E2,... [--sweep-blocks B1,B2,...] | --mode realtime --sweep-realtime K1,K2,... [--sweep-frames F1,F2,...]]
+//   [--sweep-error E1,E2,... [--sweep-blocks B1,B2,...] | --mode realtime --sweep-realtime V1,V2,... [--sweep-frames F1,F2,...] [--sweep-path N]]
 //   [--sweep-csv OUT.csv]
 //   [--spp N [--spp-method gpu|lightcuts|reconstruction] [--spp-seed S] [--threads T]]
 //   [--pixel-stride K | --tile-stride K] [--realtime-cut K] [--frames N] [--realtime-filter on|off]
@@ -84,9 +84,10 @@ struct RenderOptions {
     std::string primary = "auto";
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
-    std::string sweep_realtime;             // "8,16,32": the real-time mode's table per cut size
+    std::string sweep_realtime;             // "lc,K8r1,16": the real-time variants side by side
     std::string sweep_blocks;               // "4,8": --sweep-error's reconstruction-cut rows
     std::string sweep_frames = "1,4,16,64";  // measured after these many frames
+    uint32_t sweep_path = 32;  // --sweep-realtime's moving camera: frames of its orbit (0: none)
     bool compare_reference = false;
     std::string size = "512x512";
     std::string camera;
@@ -236,9 +237,8 @@ struct RenderRequest {
     bool error_mode = false;  // `error`: lightcuts shown as its error against the reference
     bool compare = false;     // also render the reference and measure the error
     std::vector<float> sweep_ratios;
-    std::vector<uint32_t> sweep_cuts;  // --sweep-realtime
+    RealtimeSweepPlan realtime_sweep;  // --sweep-realtime, --sweep-frames, --sweep-path
     std::vector<uint32_t> sweep_blocks;  // --sweep-blocks
-    std::vector<uint32_t> sweep_frames;
     uint32_t width = 0;  // the written image's size (a stride's is smaller than the frame's)
     uint32_t height = 0;
     std::vector<PixelRegion> tiles;  // --tile-stride: the tiles rendered
@@ -285,6 +285,17 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     return settings;
 }
 
+// --sweep-realtime's variants, frame counts and path.
+void check_realtime_sweep(const RenderOptions& options, RenderRequest& request) {
+    if (request.settings.mode != RenderMode::kRealtime)
+        fail("--sweep-realtime needs --mode realtime and a tree source");
+    RealtimeSweepPlan& plan = request.realtime_sweep;
+    plan.variants = or_fail(parse_realtime_variants(options.sweep_realtime, request.settings));
+    plan.frame_counts = or_fail(parse_count_list(options.sweep_frames, "--sweep-frames", 1, 4096));
+    if (options.sweep_path > 4096) fail("--sweep-path: " + std::to_string(options.sweep_path) + " is over 4096 frames");
+    plan.path_frames = options.sweep_path;
+}
+
 // The sweep, the comparison and the strides, each only where it applies.
 void check_request(const RenderOptions& options, RenderRequest& request) {
     const RenderMode mode = request.settings.mode;
@@ -298,12 +309,8 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
         request.sweep_blocks =
             or_fail(parse_count_list(options.sweep_blocks, "--sweep-blocks", 2, kMaxReconstructionBlock));
     }
-    if (!options.sweep_realtime.empty()) {
-        if (mode != RenderMode::kRealtime) fail("--sweep-realtime needs --mode realtime and a tree source");
-        request.sweep_cuts = or_fail(parse_count_list(options.sweep_realtime, "--sweep-realtime", 1, kMaxStochasticCut));
-        request.sweep_frames = or_fail(parse_count_list(options.sweep_frames, "--sweep-frames", 1, 4096));
-    }
-    if (!options.sweep_csv.empty() && request.sweep_ratios.empty() && request.sweep_cuts.empty())
+    if (!options.sweep_realtime.empty()) check_realtime_sweep(options, request);
+    if (!options.sweep_csv.empty() && request.sweep_ratios.empty() && request.realtime_sweep.variants.empty())
         fail("--sweep-csv needs --sweep-error or --sweep-realtime");
     if (request.compare && !mode_needs_tree(mode))
         fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or error)");
@@ -396,14 +403,15 @@ void print_sweep(Renderer& renderer, const RenderOptions& options, const RenderR
 
 // --sweep-realtime: the real-time mode's price of accuracy, printed (and written as CSV).
 void print_realtime_sweep_of(Renderer& renderer, const RenderOptions& options, const RenderRequest& request) {
-    RealtimeSweep sweep =
-        or_fail(run_realtime_sweep(renderer, request.settings, request.sweep_cuts, request.sweep_frames));
-    const uint32_t rays = request.settings.realtime_rays;
-    const std::string budget = rays == 0 ? "a shadow ray per cut node" : std::to_string(rays) + " shadow rays a pixel";
-    std::printf("real-time sweep, %s, %ux%u:\n", budget.c_str(), request.width, request.height);
+    RealtimeSweep sweep = or_fail(run_realtime_sweep(renderer, request.settings, request.realtime_sweep));
+    std::printf("real-time sweep, %zu variants, %ux%u, still and along a %u-frame orbit:\n",
+                request.realtime_sweep.variants.size(), request.width, request.height,
+                request.realtime_sweep.path_frames);
     print_realtime_sweep(stdout, sweep);
     if (!options.sweep_csv.empty()) {
         if (Status written = write_realtime_sweep_csv(options.sweep_csv, sweep); !written) fail(written.error());
+        const std::filesystem::path summary = realtime_summary_path(options.sweep_csv);
+        if (Status written = write_realtime_summary_csv(summary, sweep); !written) fail(written.error());
     }
 }
 
@@ -619,7 +627,7 @@ void run_render(const RenderOptions& options) {
     const std::optional<EffectDecision> sky_decision =
         prepare_renderer(*renderer, options, scene, source, tree.get());
     if (!request.sweep_ratios.empty()) print_sweep(*renderer, options, request);
-    if (!request.sweep_cuts.empty()) print_realtime_sweep_of(*renderer, options, request);
+    if (!request.realtime_sweep.variants.empty()) print_realtime_sweep_of(*renderer, options, request);
     const std::optional<SupersampleRequest> spp = supersample_request(options, request);
     const SupersampleRequest* eye_rays = spp ? &*spp : nullptr;
     const std::vector<SceneLight> classic = classic_lights_of(scene);
@@ -704,16 +712,21 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
                     "With --sweep-error: after each ratio's lightcut per pixel, reconstruction cuts "
                     "(--reconstruction) with each block side of the list (e.g. 4,8)");
     cmd->add_option("--sweep-realtime", options->sweep_realtime,
-                    "With --mode realtime: print the real-time mode's price of accuracy on this "
-                    "scene and camera: for each cut size of the list (e.g. 8,16,32) the still "
-                    "view's frames accumulated, against one reference, after each count of "
-                    "--sweep-frames: GPU time, shadow rays and measured error");
+                    "With --mode realtime: the real-time modes side by side on this scene: for each "
+                    "variant of the list (lc or lc0.05: deterministic lightcuts at --error or that "
+                    "ratio; K16, K8r1 or 16: stochastic lightcuts at that cut and ray budget) the "
+                    "still view's frames accumulated, against one reference, after each count of "
+                    "--sweep-frames, then each frame of --sweep-path's orbit against its own, then "
+                    "the error at the cheapest variant's time and rays");
+    cmd->add_option("--sweep-path", options->sweep_path,
+                    "With --sweep-realtime: frames of the moving camera's orbit (0: none)")
+        ->capture_default_str();
     cmd->add_option("--sweep-frames", options->sweep_frames,
                     "With --sweep-realtime: the frame counts measured, ascending")
         ->capture_default_str();
     cmd->add_option("--sweep-csv", options->sweep_csv,
                     "With --sweep-error or --sweep-realtime: also write the table as CSV (one row per "
-                    "ratio, or per cut size and frame count)");
+                    "ratio, or per variant and frame count, and OUT_equal.csv: per variant at equal cost)");
     cmd->add_flag("--compare-reference", options->compare_reference,
                   "Also render the reference and write error statistics (rel_err_mean, "
                   "rel_err_p99, frac_over_error, max_err; implied by --mode error)");

@@ -196,6 +196,9 @@ void print_summary(const EditorLoopSummary& summary, const ViewCommandOptions& o
         context.validation_message_count(), options.screenshot.empty() ? "" : " -> ",
         options.screenshot.c_str(), summary.steady_frames, summary.steady_seconds, steady_fps,
         summary.last_frame.width, summary.last_frame.height, session.scene().lights.size());
+    // The real-time mode's accumulation, for scripted sessions to check.
+    if (summary.last_frame.realtime_frames)
+        std::printf("realtime history: %u frames\n", *summary.last_frame.realtime_frames);
 }
 
 void run_view(const ViewCommandOptions& options) {
