@@ -17,7 +17,7 @@
 #include "editor_client/render/output/image_io.h"
 #include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/sweeps/camera_path.h"
-#include "editor_client/scene/gltf/gltf_writer.h"
+#include "editor_client/scene/gltf/writer/gltf_writer.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 
