@@ -55,6 +55,7 @@ struct ServerFlags {
     uint64_t memory_budget_mb = 4096;
     unsigned max_bake_seconds = 600;
     unsigned max_concurrent_bakes = 0;
+    int bake_nice = 10;
     bool quiet = false;
     bool print_config = false;
     lc::bake::MpiLaunchOptions mpi;
@@ -107,6 +108,11 @@ void add_server_flags(CLI::App& app, ServerFlags& flags) {
                    "at most one per 256 MiB of --memory-budget-mb")
         ->capture_default_str()
         ->check(CLI::Range(0u, 256u));
+    app.add_option("--bake-nice", flags.bake_nice,
+                   "Nice value of the bake threads, so connections and status requests are answered "
+                   "first on a busy machine; 0: the server's own")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 19));
     app.add_flag("--quiet", flags.quiet, "Log warnings and errors only");
     lc::bake::add_mpi_flags(app, flags.mpi);
     // A service keeps every flag in one file (packaging/lightmass_server.conf); the command line wins.
@@ -137,6 +143,7 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     options.memory_budget_bytes = flags.memory_budget_mb << 20;
     options.max_bake_time = std::chrono::seconds(flags.max_bake_seconds);
     options.max_concurrent_bakes = flags.max_concurrent_bakes;
+    options.bake_nice = flags.bake_nice;
     options.tls_certificate = flags.tls_cert;
     options.tls_private_key = flags.tls_key;
     options.mpi = flags.mpi;

@@ -13,6 +13,7 @@ namespace lc::bake {
 Server::Server(ServerOptions options)
     : options_(std::move(options)),
       bake_parallelism_(tbb::global_control::max_allowed_parallelism, std::max(1u, options_.bake_threads)),
+      bake_worker_priority_(options_.bake_nice),
       memory_budget_(options_.memory_budget_bytes),
       workers_(options_.max_concurrent_bakes != 0
                    ? options_.max_concurrent_bakes

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lightcuts/result.h"
+#include "lightmass_server/control/bake_priority.h"
 #include "lightmass_server/net/bake_lanes.h"
 #include "lightmass_server/net/connection.h"
 #include "lightmass_server/net/memory_budget.h"
@@ -43,6 +44,7 @@ private:
     // The builders' TBB loops share the bake threads' budget: --threads 1 is one
     // thread in all (TBB would otherwise add a worker per core).
     tbb::global_control bake_parallelism_;
+    BakeWorkerPriority bake_worker_priority_;
     // Declared before io_: connections still queued on io_ at destruction use it.
     std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
     // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.
