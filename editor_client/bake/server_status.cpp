@@ -72,9 +72,22 @@ awaitable<Status> connect(Transport& transport, const std::string& host, const s
     co_return Ok{};
 }
 
-awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, std::string port, std::string token) {
+// Milliseconds since `since`, and `since` moved to now.
+double lap_ms(std::chrono::steady_clock::time_point& since) {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - since).count();
+    since = now;
+    return ms;
+}
+
+awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, std::string port, std::string token,
+                                      ServerStatusTiming* timing) {
+    ServerStatusTiming ignored;
+    if (!timing) timing = &ignored;
+    auto since = std::chrono::steady_clock::now();
     Status connected = co_await connect(transport, host, port);
     if (!connected) co_return connected.failure();
+    timing->connect_ms = lap_ms(since);
     StatusExchange exchange(transport);
     const Message hello = HelloMsg{kProtocolVersion, std::string("editor_client ") + kVersion, token};
     Status sent = co_await exchange.send(hello);
@@ -83,6 +96,7 @@ awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, st
     if (!ack) co_return ack.failure();
     if (!std::holds_alternative<HelloAckMsg>(*ack))
         co_return make_error(std::string("expected HelloAck, the server sent ") + message_name(*ack));
+    timing->hello_ms = lap_ms(since);
     const Message request = StatusRequestMsg{1};
     sent = co_await exchange.send(request);
     if (!sent) co_return sent.failure();
@@ -90,6 +104,7 @@ awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, st
     if (!reply) co_return reply.failure();
     auto* status = std::get_if<StatusReplyMsg>(&*reply);
     if (!status) co_return make_error(std::string("expected StatusReply, the server sent ") + message_name(*reply));
+    timing->status_ms = lap_ms(since);
     StatusReplyMsg answer = std::move(*status);
     co_await transport.shutdown(kShutdownLimit);
     co_return answer;
@@ -120,7 +135,7 @@ Result<StatusReplyMsg> query_server_status(const ServerStatusQuery& query) {
     deadline.async_wait([&](const boost::system::error_code& ec) {
         if (!ec && !outcome) transport.close();
     });
-    asio::co_spawn(io, ask(transport, host, port, *token), [&](std::exception_ptr error, Result<StatusReplyMsg> result) {
+    asio::co_spawn(io, ask(transport, host, port, *token, query.timing), [&](std::exception_ptr error, Result<StatusReplyMsg> result) {
         deadline.cancel();
         outcome = error ? Result<StatusReplyMsg>(make_error("server-status failed")) : std::move(result);
     });
