@@ -60,10 +60,21 @@ private:
 
 awaitable<Status> connect(Transport& transport, const std::string& host, const std::string& port) {
     boost::system::error_code ec;
-    tcp::resolver resolver(transport.get_executor());
-    auto endpoints = co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
-    if (ec) co_return make_error("cannot resolve server '" + host + "': " + ec.message());
-    co_await asio::async_connect(transport.lowest_layer(), endpoints, asio::redirect_error(asio::use_awaitable, ec));
+    // A numeric address needs no resolver: asio's runs on a thread of its own, which
+    // took 3 to 60 ms to start on a loaded machine (docs/bench/ops2.md).
+    const asio::ip::address numeric = asio::ip::make_address(host, ec);
+    if (!ec) {
+        co_await transport.lowest_layer().async_connect(tcp::endpoint(numeric, uint16_t(std::stoi(port))),
+                                                        asio::redirect_error(asio::use_awaitable, ec));
+    } else {
+        ec.clear();
+        tcp::resolver resolver(transport.get_executor());
+        auto endpoints =
+            co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
+        if (ec) co_return make_error("cannot resolve server '" + host + "': " + ec.message());
+        co_await asio::async_connect(transport.lowest_layer(), endpoints,
+                                     asio::redirect_error(asio::use_awaitable, ec));
+    }
     if (ec) co_return make_error("cannot connect to " + host + ":" + port + ": " + ec.message());
     if (!transport.is_tls()) co_return Ok{};
     if (Status named = transport.expect_peer_host(host); !named) co_return make_error(named.error());

@@ -18,7 +18,7 @@ trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 elapsed_ms() {
     local start end
     start=$(date +%s%N)
-    "$@" >"$work/out"
+    "$@" >"$work/out" 2>"$work/err"
     end=$(date +%s%N)
     echo $(((end - start) / 1000000))
 }
@@ -37,8 +37,8 @@ for nice in 0 10; do
     sleep 1
     status=() version=()
     for _ in $(seq "$queries"); do
-        status+=("$(elapsed_ms "$bin/editor_client" server-status "$address")")
-        grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out" || echo "no bake"
+        status+=("$(elapsed_ms "$bin/editor_client" server-status --timing "$address")")
+        echo "$(grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out" || echo "no bake") $(cat "$work/err")"
         version+=("$(elapsed_ms "$bin/editor_client" --version)")
         sleep 0.25
     done
