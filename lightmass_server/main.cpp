@@ -5,9 +5,12 @@
 #include <spdlog/spdlog.h>
 
 #include <malloc.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -16,6 +19,7 @@
 #include "lightcuts/version.h"
 #include "protocol/asio.h"
 #include "lightmass_server/control/journal_log.h"
+#include "lightmass_server/control/stale_temporaries.h"
 #include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
@@ -159,14 +163,34 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     return options;
 }
 
-// Listens, says where ("listening on HOST:PORT" first on stdout), and serves until a signal stops it.
-int serve(const lc::bake::ServerOptions& options, const std::string& port_file) {
+// Removes what a crashed server left in the folders this one writes to, and says so.
+void sweep_stale_temporaries(const lc::bake::ServerOptions& options) {
+    std::error_code ec;
+    std::vector<std::filesystem::path> dirs{options.record_dir,
+                                            options.mpi.work_dir.empty() ? std::filesystem::temp_directory_path(ec)
+                                                                         : options.mpi.work_dir};
+    if (!options.radiosity_out.empty()) dirs.push_back(std::filesystem::absolute(options.radiosity_out).parent_path());
+    const lc::bake::SweepReport swept = lc::bake::sweep_stale_temporaries(dirs);
+    for (const std::filesystem::path& path : swept.removed)
+        spdlog::warn("startup sweep: removed '{}', a temporary left by a server that did not stop cleanly",
+                     path.string());
+    for (const std::string& error : swept.errors) spdlog::warn("startup sweep: cannot remove {}", error);
+}
+
+// Listens, says where ("listening on HOST:PORT" first on stdout), and serves until a signal stops
+// it. SIGHUP is a graceful restart: `restart` is set and the caller runs the program again.
+int serve(const lc::bake::ServerOptions& options, const std::string& port_file, bool& restart) {
+    sweep_stale_temporaries(options);
     lc::bake::Server server(options);
     // Handle signals before announcing the address: a launcher may stop us at once.
-    lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM);
+    lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM, SIGHUP);
     signals.async_wait([&](const boost::system::error_code& ec, int signal) {
         if (ec) return;
-        spdlog::info("signal {} received: shutting down", signal);
+        restart = signal == SIGHUP;
+        if (restart)
+            spdlog::warn("SIGHUP received: restarting (running bakes are cancelled; the config file is read again)");
+        else
+            spdlog::info("signal {} received: shutting down", signal);
         server.stop();
     });
     auto endpoint = server.listen();
@@ -198,6 +222,9 @@ int main(int argc, char** argv) {
     // bake's mid-sized buffers then fragment the heap: 238 MiB instead of 164 at
     // 262,144 lights, above the estimate the bake was admitted by (RELIABILITY.md).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
+    // A launcher that read our address and closed the pipe must not kill us when a
+    // restart (SIGHUP) prints it again: the write fails instead.
+    std::signal(SIGPIPE, SIG_IGN);
     CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
     app.set_version_flag("--version", std::string("lightmass_server ") + lc::kVersion);
     ServerFlags flags;
@@ -213,5 +240,12 @@ int main(int argc, char** argv) {
     spdlog::set_level(flags.quiet ? spdlog::level::warn : spdlog::level::info);
     std::variant<lc::bake::ServerOptions, int> options = server_options(flags);
     if (const int* status = std::get_if<int>(&options)) return *status;
-    return serve(std::get<lc::bake::ServerOptions>(options), flags.port_file);
+    bool restart = false;
+    const int status = serve(std::get<lc::bake::ServerOptions>(options), flags.port_file, restart);
+    if (!restart) return status;
+    // Every socket and bake thread is gone with the server: the same program, same
+    // command line and same PID (systemd's ExecReload sees no exit) starts afresh.
+    execv("/proc/self/exe", argv);
+    spdlog::error("restart failed: cannot run /proc/self/exe again: {}", std::strerror(errno));
+    return 1;
 }

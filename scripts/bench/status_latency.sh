@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
-# server-status latency while a 1,000,000-path VPL bake runs, with the bake
-# threads at nice 0 (as before --bake-nice) and at the default 10, back to back.
-# BUSY busy loops run beside it (the other builds of a shared box).
-# Usage: scripts/bench/status_latency.sh [BUILD_DIR] [QUERIES] [BUSY]
+# server-status latency while a 1,000,000-path VPL bake runs, before and after
+# issue 41's fixes, back to back: "before" is BEFORE_BUILD's client (asio's
+# resolver) against bake threads at nice 0; "after" is BUILD's client with
+# --timing against the default --bake-nice 10. BUSY busy loops run beside it
+# (the other builds of a shared box).
+# Usage: scripts/bench/status_latency.sh BUILD BEFORE_BUILD [QUERIES] [BUSY]
 set -euo pipefail
-build=${1:-build}
-queries=${2:-12}
-busy=${3:-0}
+build=$1
+before=$2
+queries=${3:-12}
+busy=${4:-0}
 bin=$build/bin
 work=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
@@ -14,7 +17,7 @@ trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$work"' EXIT
 "$bin/editor_client" add-lights "$work/room.gltf" --count 24 --layout random --seed 5 \
     --box -4.7,0.3,-4.7,4.7,2.7,4.7 -o "$work/room24.gltf" >/dev/null
 
-# Milliseconds one command takes, start to exit (its output in $work/out).
+# Milliseconds one command takes, start to exit (its output in $work/out and err).
 elapsed_ms() {
     local start end
     start=$(date +%s%N)
@@ -24,7 +27,9 @@ elapsed_ms() {
 }
 for _ in $(seq "$busy"); do (while :; do :; done) & done
 
-for nice in 0 10; do
+for side in before after; do
+    if [ "$side" = before ]; then nice=0 client=("$before/bin/editor_client" server-status)
+    else nice=10 client=("$bin/editor_client" server-status --timing); fi
     rm -f "$work/port"
     "$bin/lightmass_server" --listen 127.0.0.1:0 --port-file "$work/port" --threads 2 --bake-nice "$nice" \
         --quiet >/dev/null &
@@ -37,14 +42,14 @@ for nice in 0 10; do
     sleep 1
     status=() version=()
     for _ in $(seq "$queries"); do
-        status+=("$(elapsed_ms "$bin/editor_client" server-status --timing "$address")")
-        echo "$(grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out" || echo "no bake") $(cat "$work/err")"
+        status+=("$(elapsed_ms "${client[@]}" "$address")")
+        echo "$side: $(grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out" || echo "no bake") $(cat "$work/err")"
         version+=("$(elapsed_ms "$bin/editor_client" --version)")
         sleep 0.25
     done
-    echo "bake-nice $nice: server-status ms: ${status[*]}"
-    echo "bake-nice $nice: --version ms:      ${version[*]}"
-    echo "bake-nice $nice: load: $(cut -d' ' -f1-3 /proc/loadavg); bake still running: $(kill -0 $bake 2>/dev/null && echo yes || echo no)"
+    echo "$side: server-status ms: ${status[*]}"
+    echo "$side: --version ms:      ${version[*]}"
+    echo "$side: load: $(cut -d' ' -f1-3 /proc/loadavg)"
     kill "$bake" 2>/dev/null || true
     wait "$bake" 2>/dev/null || true
     kill "$server"
