@@ -194,7 +194,9 @@ void draw_server_panel(EditorSession& session, PanelState& state) {
         query->timeout_seconds = kServerStatusTimeoutSeconds;
         state.server_status = std::make_shared<ServerStatusPoller>(*query, kServerStatusInterval);
     }
+    ImGui::PushTextWrapPos(0.0f);  // a bake's stage can be longer than the panel is wide
     for (const std::string& line : state.server_status->lines()) ImGui::TextUnformatted(line.c_str());
+    ImGui::PopTextWrapPos();
 }
 
 void draw_file_panel(EditorSession& session, PanelState& state) {
