@@ -41,11 +41,14 @@ for side in before after; do
     bake=$!
     sleep 1
     status=() version=()
+    # Queries while the bake runs (not once it streams or is done), up to QUERIES of them.
     for _ in $(seq "$queries"); do
-        status+=("$(elapsed_ms "${client[@]}" "$address")")
-        echo "$side: $(grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out" || echo "no bake") $(cat "$work/err")"
+        ms=$(elapsed_ms "${client[@]}" "$address")
+        grep -q 'bake 1: running' "$work/out" || break
+        status+=("$ms")
+        echo "$side: $(grep -o 'bake 1: [a-z]*, [a-z ]*[0-9.]*%' "$work/out") $(cat "$work/err")"
         version+=("$(elapsed_ms "$bin/editor_client" --version)")
-        sleep 0.25
+        sleep 0.1
     done
     echo "$side: server-status ms: ${status[*]}"
     echo "$side: --version ms:      ${version[*]}"
