@@ -40,6 +40,12 @@ uint64_t ServerStatusPoller::answers() const {
     return answers_;
 }
 
+std::vector<std::string> ServerStatusPoller::answered_lines() {
+    std::unique_lock lock(mutex_);
+    answered_.wait(lock, [&] { return answers_ > 0; });
+    return lines_;
+}
+
 void ServerStatusPoller::poll(std::stop_token stop) {
     while (!stop.stop_requested()) {
         Result<StatusReplyMsg> status = query_server_status(query_);
@@ -48,6 +54,7 @@ void ServerStatusPoller::poll(std::stop_token stop) {
         std::unique_lock lock(mutex_);
         lines_ = std::move(lines);
         ++answers_;
+        answered_.notify_all();
         wake_.wait_for(lock, stop, interval_, [] { return false; });
     }
 }

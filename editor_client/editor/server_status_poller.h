@@ -35,6 +35,8 @@ public:
     std::vector<std::string> lines() const;
     // Answers received (replies and failures), for tests that wait for one.
     uint64_t answers() const;
+    // The lines once at least one answer came (waits for the first: at most the query's timeout).
+    std::vector<std::string> answered_lines();
 
 private:
     void poll(std::stop_token stop);
@@ -42,7 +44,8 @@ private:
     const ServerStatusQuery query_;
     const std::chrono::milliseconds interval_;
     mutable std::mutex mutex_;
-    std::condition_variable_any wake_;
+    std::condition_variable_any wake_;   // the poll thread's wait between queries
+    std::condition_variable answered_;   // answered_lines()' wait for the first answer
     std::vector<std::string> lines_;
     uint64_t answers_ = 0;
     std::jthread thread_;  // last: started after the members it uses
