@@ -25,7 +25,9 @@ namespace fs = std::filesystem;
 using client::ServerProcess;
 using namespace std::chrono_literals;
 
-std::string bin(const std::string& program) { return (test::bin_dir() / program).string(); }
+std::string bin(const std::string& program) {
+    return (test::bin_dir() / program).string();
+}
 
 uint16_t free_port() {
     asio::io_context io;
@@ -60,7 +62,8 @@ protected:
         fs::create_directories(state_ / "jobs");
         address_ = "127.0.0.1:" + std::to_string(free_port());
         const std::string scene = (dir_ / "room.gltf").string();
-        ASSERT_EQ(std::system((bin("editor_client") + " make-scene room -o " + scene + " >/dev/null").c_str()), 0);
+        ASSERT_EQ(
+            std::system((bin("editor_client") + " make-scene room -o " + scene + " >/dev/null").c_str()), 0);
         ASSERT_EQ(std::system((bin("editor_client") + " add-lights " + scene +
                                " --count 24 --layout random --seed 5 --box -4.7,0.3,-4.7,4.7,2.7,4.7 -o " +
                                scene + " >/dev/null")
@@ -74,8 +77,9 @@ protected:
     }
     void start_server() {
         auto server = ServerProcess::spawn_with(
-            bin("lightmass_server"), {"--listen", address_, "--threads", "2", "--memory-budget-mb", "8192", "--record",
-                                      (state_ / "recordings").string(), "--mpi-work-dir", (state_ / "jobs").string()});
+            bin("lightmass_server"),
+            {"--listen", address_, "--threads", "2", "--memory-budget-mb", "8192", "--record",
+             (state_ / "recordings").string(), "--mpi-work-dir", (state_ / "jobs").string()});
         ASSERT_TRUE(server.ok()) << server.error();
         server_ = std::move(server.value());
     }
@@ -114,7 +118,8 @@ protected:
         client::BakeClientOptions options;
         options.server = address_;
         options.timeout_seconds = 60.0;
-        auto baked = client::bake_lights(test::random_lights(40, 3, LightType::kPoint), Guid{9, 9, 9, 9}, options);
+        auto baked =
+            client::bake_lights(test::random_lights(40, 3, LightType::kPoint), Guid{9, 9, 9, 9}, options);
         ASSERT_TRUE(baked.ok()) << baked.error();
         EXPECT_EQ(baked->tree.nodes.size(), 79u);
     }

@@ -15,7 +15,8 @@ StatusReplyMsg busy_server() {
     StatusReplyMsg s;
     s.version = "lightmass_server 9.9.9";
     s.uptime_seconds = 3725.0;
-    s.bakes = {BakeStatusEntry{3, 1, "running", "indirect", 42.5f, 4}, BakeStatusEntry{5, 2, "queued", "", 0.0f, 0}};
+    s.bakes = {BakeStatusEntry{3, 1, "running", "indirect", 42.5f, 4},
+               BakeStatusEntry{5, 2, "queued", "", 0.0f, 0}};
     s.memory_budget_bytes = uint64_t{1024} << 20;
     s.memory_held_bytes = uint64_t{256} << 20;
     s.connections = 3;
@@ -64,7 +65,8 @@ TEST(ServerStatusPanel, ThePollerReportsAServerNobodyAnswersFor) {
     while (poller.answers() < 2) std::this_thread::yield();  // it asks again after the interval
     const std::vector<std::string> lines = poller.lines();
     ASSERT_EQ(lines.size(), 1u);
-    EXPECT_EQ(lines[0].rfind("server " + query.server + " unreachable: cannot connect to ", 0), 0u) << lines[0];
+    EXPECT_EQ(lines[0].rfind("server " + query.server + " unreachable: cannot connect to ", 0), 0u)
+        << lines[0];
 }
 
 }  // namespace

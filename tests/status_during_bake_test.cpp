@@ -64,7 +64,8 @@ TEST(StatusDuringBake, AnsweredWhileABakeHoldsTheWorker) {
         client::BakeClientOptions bake_options;
         bake_options.server = address;
         bake_options.timeout_seconds = 60.0;
-        outcome = client::bake_lights(test::random_lights(40, 3, LightType::kPoint), kSceneGuid, bake_options);
+        outcome =
+            client::bake_lights(test::random_lights(40, 3, LightType::kPoint), kSceneGuid, bake_options);
     });
     const int held_nice = gate.wait_for_arrival();
 

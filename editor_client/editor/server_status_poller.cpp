@@ -49,8 +49,9 @@ std::vector<std::string> ServerStatusPoller::answered_lines() {
 void ServerStatusPoller::poll(std::stop_token stop) {
     while (!stop.stop_requested()) {
         Result<StatusReplyMsg> status = query_server_status(query_);
-        std::vector<std::string> lines = status ? server_panel_lines(status.value())
-                                                : std::vector{server_panel_error_line(query_.server, status.error())};
+        std::vector<std::string> lines =
+            status ? server_panel_lines(status.value())
+                   : std::vector{server_panel_error_line(query_.server, status.error())};
         std::unique_lock lock(mutex_);
         lines_ = std::move(lines);
         ++answers_;

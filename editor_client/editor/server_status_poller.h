@@ -44,8 +44,8 @@ private:
     const ServerStatusQuery query_;
     const std::chrono::milliseconds interval_;
     mutable std::mutex mutex_;
-    std::condition_variable_any wake_;   // the poll thread's wait between queries
-    std::condition_variable answered_;   // answered_lines()' wait for the first answer
+    std::condition_variable_any wake_;  // the poll thread's wait between queries
+    std::condition_variable answered_;  // answered_lines()' wait for the first answer
     std::vector<std::string> lines_;
     uint64_t answers_ = 0;
     std::jthread thread_;  // last: started after the members it uses

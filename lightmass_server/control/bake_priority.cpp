@@ -10,7 +10,9 @@ namespace lc::bake {
 namespace {
 
 // PRIO_PROCESS with a thread id addresses that one thread on Linux.
-id_t this_thread_id() { return id_t(syscall(SYS_gettid)); }
+id_t this_thread_id() {
+    return id_t(syscall(SYS_gettid));
+}
 
 }  // namespace
 
@@ -28,7 +30,9 @@ BakeWorkerPriority::BakeWorkerPriority(int nice) : tbb::task_scheduler_observer(
     if (nice_ > 0) observe(true);
 }
 
-BakeWorkerPriority::~BakeWorkerPriority() { observe(false); }
+BakeWorkerPriority::~BakeWorkerPriority() {
+    observe(false);
+}
 
 void BakeWorkerPriority::on_scheduler_entry(bool is_worker) {
     // The lane thread that starts a parallel loop lowered itself already.

@@ -19,10 +19,12 @@ constexpr std::string_view kTmpMarker = ".tmp-";
 std::optional<pid_t> pid_before_counter(std::string_view digits) {
     pid_t pid = 0;
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), pid);
-    if (ec != std::errc() || pid <= 0 || end == digits.data() + digits.size() || *end != '-') return std::nullopt;
+    if (ec != std::errc() || pid <= 0 || end == digits.data() + digits.size() || *end != '-')
+        return std::nullopt;
     std::string_view counter(end + 1, size_t(digits.data() + digits.size() - end - 1));
     if (counter.ends_with(".lcut")) counter.remove_suffix(5);
-    if (counter.empty() || counter.find_first_not_of("0123456789") != std::string_view::npos) return std::nullopt;
+    if (counter.empty() || counter.find_first_not_of("0123456789") != std::string_view::npos)
+        return std::nullopt;
     return pid;
 }
 
