@@ -191,7 +191,8 @@ int serve(const lc::bake::ServerOptions& options, const std::string& port_file, 
             spdlog::warn("SIGHUP received: restarting (running bakes are cancelled; the config file is read again)");
         else
             spdlog::info("signal {} received: shutting down", signal);
-        server.stop();
+        server.stop(restart ? "the server is restarting (SIGHUP)"
+                            : "the server is shutting down (signal " + std::to_string(signal) + ")");
     });
     auto endpoint = server.listen();
     if (!endpoint) {

@@ -137,7 +137,9 @@ TEST_F(ServerRestart, SighupCancelsTheBakeAndRestartsInPlace) {
     const pid_t pid = server_->pid();
     ASSERT_EQ(kill(pid, SIGHUP), 0);
     baking_.join();
-    EXPECT_NE(bake_exit_, 0) << test::read_text(dir_ / "bake.log");
+    const std::string bake_log = test::read_text(dir_ / "bake.log");
+    EXPECT_NE(bake_exit_, 0) << bake_log;
+    EXPECT_NE(bake_log.find("bake 1 stopped: the server is restarting (SIGHUP)"), std::string::npos) << bake_log;
 
     Result<StatusReplyMsg> after = status_once_serving();
     ASSERT_TRUE(after.ok()) << after.error();

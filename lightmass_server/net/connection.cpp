@@ -86,6 +86,11 @@ void Connection::close(const std::string& reason) {
     deadline_timer_.cancel();
 }
 
+void Connection::stop_serving(const std::string& reason) {
+    if (closed_) return;
+    apply(session_.on_server_stopping(reason));
+}
+
 void Connection::close_after_flush(const std::string& reason) {
     if (closing_ || closed_) return;
     closing_ = true;

@@ -30,13 +30,16 @@ public:
     Result<tcp::endpoint> listen();
     // Serves until stop(); call from one thread.
     void run();
-    // Thread-safe: closes the acceptor and every connection, cancels bakes.
-    void stop();
+    // Thread-safe: closes the acceptor, cancels bakes, tells each peer `reason`,
+    // and closes every connection once told (or after a short grace).
+    void stop(const std::string& reason = "the server is shutting down");
 
     asio::io_context& io() { return io_; }
 
 private:
     awaitable<void> accept_loop();
+    // Waits until every connection has closed (at most kStopGrace), then stops the I/O.
+    awaitable<void> close_after_grace();
     // A StatusRequest's answer: every connection's bake, the budget, the limits. On the I/O thread.
     StatusReplyMsg status() const;
 
