@@ -5,9 +5,12 @@
 #include <spdlog/spdlog.h>
 
 #include <malloc.h>
+#include <unistd.h>
 
 #include <csignal>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -16,6 +19,7 @@
 #include "lightcuts/version.h"
 #include "protocol/asio.h"
 #include "lightmass_server/control/journal_log.h"
+#include "lightmass_server/control/stale_temporaries.h"
 #include "lightmass_server/mpi/host_roster.h"
 #include "lightmass_server/mpi/mpi_flags.h"
 #include "lightmass_server/net/auth_token.h"
@@ -55,6 +59,7 @@ struct ServerFlags {
     uint64_t memory_budget_mb = 4096;
     unsigned max_bake_seconds = 600;
     unsigned max_concurrent_bakes = 0;
+    int bake_nice = 10;
     bool quiet = false;
     bool print_config = false;
     lc::bake::MpiLaunchOptions mpi;
@@ -107,6 +112,11 @@ void add_server_flags(CLI::App& app, ServerFlags& flags) {
                    "at most one per 256 MiB of --memory-budget-mb")
         ->capture_default_str()
         ->check(CLI::Range(0u, 256u));
+    app.add_option("--bake-nice", flags.bake_nice,
+                   "Nice value of the bake threads, so connections and status requests are answered "
+                   "first on a busy machine; 0: the server's own")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 19));
     app.add_flag("--quiet", flags.quiet, "Log warnings and errors only");
     lc::bake::add_mpi_flags(app, flags.mpi);
     // A service keeps every flag in one file (packaging/lightmass_server.conf); the command line wins.
@@ -137,6 +147,7 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     options.memory_budget_bytes = flags.memory_budget_mb << 20;
     options.max_bake_time = std::chrono::seconds(flags.max_bake_seconds);
     options.max_concurrent_bakes = flags.max_concurrent_bakes;
+    options.bake_nice = flags.bake_nice;
     options.tls_certificate = flags.tls_cert;
     options.tls_private_key = flags.tls_key;
     options.mpi = flags.mpi;
@@ -152,15 +163,36 @@ std::variant<lc::bake::ServerOptions, int> server_options(const ServerFlags& fla
     return options;
 }
 
-// Listens, says where ("listening on HOST:PORT" first on stdout), and serves until a signal stops it.
-int serve(const lc::bake::ServerOptions& options, const std::string& port_file) {
+// Removes what a crashed server left in the folders this one writes to, and says so.
+void sweep_stale_temporaries(const lc::bake::ServerOptions& options) {
+    std::error_code ec;
+    std::vector<std::filesystem::path> dirs{options.record_dir,
+                                            options.mpi.work_dir.empty() ? std::filesystem::temp_directory_path(ec)
+                                                                         : options.mpi.work_dir};
+    if (!options.radiosity_out.empty()) dirs.push_back(std::filesystem::absolute(options.radiosity_out).parent_path());
+    const lc::bake::SweepReport swept = lc::bake::sweep_stale_temporaries(dirs);
+    for (const std::filesystem::path& path : swept.removed)
+        spdlog::warn("startup sweep: removed '{}', a temporary left by a server that did not stop cleanly",
+                     path.string());
+    for (const std::string& error : swept.errors) spdlog::warn("startup sweep: cannot remove {}", error);
+}
+
+// Listens, says where ("listening on HOST:PORT" first on stdout), and serves until a signal stops
+// it. SIGHUP is a graceful restart: `restart` is set and the caller runs the program again.
+int serve(const lc::bake::ServerOptions& options, const std::string& port_file, bool& restart) {
+    sweep_stale_temporaries(options);
     lc::bake::Server server(options);
     // Handle signals before announcing the address: a launcher may stop us at once.
-    lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM);
+    lc::asio::signal_set signals(server.io(), SIGINT, SIGTERM, SIGHUP);
     signals.async_wait([&](const boost::system::error_code& ec, int signal) {
         if (ec) return;
-        spdlog::info("signal {} received: shutting down", signal);
-        server.stop();
+        restart = signal == SIGHUP;
+        if (restart)
+            spdlog::warn("SIGHUP received: restarting (running bakes are cancelled; the config file is read again)");
+        else
+            spdlog::info("signal {} received: shutting down", signal);
+        server.stop(restart ? "the server is restarting (SIGHUP)"
+                            : "the server is shutting down (signal " + std::to_string(signal) + ")");
     });
     auto endpoint = server.listen();
     if (!endpoint) {
@@ -191,6 +223,9 @@ int main(int argc, char** argv) {
     // bake's mid-sized buffers then fragment the heap: 238 MiB instead of 164 at
     // 262,144 lights, above the estimate the bake was admitted by (RELIABILITY.md).
     mallopt(M_MMAP_THRESHOLD, 1 << 20);
+    // A launcher that read our address and closed the pipe must not kill us when a
+    // restart (SIGHUP) prints it again: the write fails instead.
+    std::signal(SIGPIPE, SIG_IGN);
     CLI::App app{"lightmass_server: builds Lightcuts light trees for editor_client"};
     app.set_version_flag("--version", std::string("lightmass_server ") + lc::kVersion);
     ServerFlags flags;
@@ -206,5 +241,12 @@ int main(int argc, char** argv) {
     spdlog::set_level(flags.quiet ? spdlog::level::warn : spdlog::level::info);
     std::variant<lc::bake::ServerOptions, int> options = server_options(flags);
     if (const int* status = std::get_if<int>(&options)) return *status;
-    return serve(std::get<lc::bake::ServerOptions>(options), flags.port_file);
+    bool restart = false;
+    const int status = serve(std::get<lc::bake::ServerOptions>(options), flags.port_file, restart);
+    if (!restart) return status;
+    // Every socket and bake thread is gone with the server: the same program, same
+    // command line and same PID (systemd's ExecReload sees no exit) starts afresh.
+    execv("/proc/self/exe", argv);
+    spdlog::error("restart failed: cannot run /proc/self/exe again: {}", std::strerror(errno));
+    return 1;
 }

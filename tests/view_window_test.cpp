@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "editor_client/bake/server_process.h"
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/render/output/image_io.h"
 #include "editor_client/scene/gltf/writer/gltf_writer.h"
@@ -19,6 +20,8 @@
 #include "editor_client/window/editor_loop.h"
 #include "editor_client/window/headless_window.h"
 #include "editor_client/window/orbit_camera.h"
+#include "lightcuts/version.h"
+#include "protocol/asio.h"
 #include "render_test_support.h"
 #include "test_paths.h"
 
@@ -211,6 +214,47 @@ TEST_F(ViewWindow, XvfbBuildLightingBakesIndirectLight) {
     ASSERT_NE(at, std::string::npos) << text;
     const unsigned long nodes = std::stoul(text.substr(at + std::string("bake: 0 lights -> ").size()));
     EXPECT_GT(nodes, 2u * 256u) << "no patches beside the 256 area-light samples: " << text;
+    std::filesystem::remove_all(dir);
+}
+
+// The Server panel in a scripted session: it asks the server `view` bakes with
+// for its status (the log says what the panel said at the end), and says in
+// one line when nothing answers at that address.
+TEST_F(ViewWindow, XvfbServerPanelShowsTheServersStatus) {
+    const std::filesystem::path dir = test::make_temp_dir("view-window-server-panel");
+    const std::filesystem::path scene_path = dir / "room.gltf";
+    ASSERT_TRUE(write_scene_gltf(test::lit_room(5), scene_path).ok());
+    std::ofstream(dir / "script.txt") << "wait-frames 2\nquit\n";
+    auto view_with_server = [&](const std::string& address) {
+        return run_logged("xvfb-run -a " + (test::bin_dir() / "editor_client").string() + " view " +
+                              scene_path.string() + " --server " + address + " --script " +
+                              (dir / "script.txt").string() + " --size 96x72 --validation",
+                          dir / "view.log");
+    };
+
+    auto server = ServerProcess::spawn_with((test::bin_dir() / "lightmass_server").string(),
+                                            {"--listen", "127.0.0.1:0", "--max-connections", "7", "--quiet"});
+    ASSERT_TRUE(server.ok()) << server.error();
+    const auto [status, text] = view_with_server(server.value()->address());
+    ASSERT_EQ(status, 0) << text;
+    EXPECT_NE(text.find("0 validation messages"), std::string::npos) << text;
+    EXPECT_NE(text.find(std::string("server panel: lightmass_server ") + kVersion + ", up "), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("server panel: connections: 1 of 7"), std::string::npos) << text;
+    EXPECT_NE(text.find("server panel: bakes: 0 running, 0 queued, 0 streaming"), std::string::npos) << text;
+
+    uint16_t closed = 0;
+    {
+        asio::io_context io;
+        tcp::acceptor acceptor(io, tcp::endpoint(asio::ip::make_address("127.0.0.1"), 0));
+        closed = acceptor.local_endpoint().port();
+    }
+    const std::string nobody = "127.0.0.1:" + std::to_string(closed);
+    const auto [unreachable_status, unreachable] = view_with_server(nobody);
+    ASSERT_EQ(unreachable_status, 0) << unreachable;
+    EXPECT_NE(unreachable.find("server panel: server " + nobody + " unreachable: cannot connect to "),
+              std::string::npos)
+        << unreachable;
     std::filesystem::remove_all(dir);
 }
 

@@ -60,10 +60,21 @@ private:
 
 awaitable<Status> connect(Transport& transport, const std::string& host, const std::string& port) {
     boost::system::error_code ec;
-    tcp::resolver resolver(transport.get_executor());
-    auto endpoints = co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
-    if (ec) co_return make_error("cannot resolve server '" + host + "': " + ec.message());
-    co_await asio::async_connect(transport.lowest_layer(), endpoints, asio::redirect_error(asio::use_awaitable, ec));
+    // A numeric address needs no resolver: asio's runs on a thread of its own, which
+    // took 3 to 60 ms to start on a loaded machine (docs/bench/ops2.md).
+    const asio::ip::address numeric = asio::ip::make_address(host, ec);
+    if (!ec) {
+        co_await transport.lowest_layer().async_connect(tcp::endpoint(numeric, uint16_t(std::stoi(port))),
+                                                        asio::redirect_error(asio::use_awaitable, ec));
+    } else {
+        ec.clear();
+        tcp::resolver resolver(transport.get_executor());
+        auto endpoints =
+            co_await resolver.async_resolve(host, port, asio::redirect_error(asio::use_awaitable, ec));
+        if (ec) co_return make_error("cannot resolve server '" + host + "': " + ec.message());
+        co_await asio::async_connect(transport.lowest_layer(), endpoints,
+                                     asio::redirect_error(asio::use_awaitable, ec));
+    }
     if (ec) co_return make_error("cannot connect to " + host + ":" + port + ": " + ec.message());
     if (!transport.is_tls()) co_return Ok{};
     if (Status named = transport.expect_peer_host(host); !named) co_return make_error(named.error());
@@ -72,9 +83,22 @@ awaitable<Status> connect(Transport& transport, const std::string& host, const s
     co_return Ok{};
 }
 
-awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, std::string port, std::string token) {
+// Milliseconds since `since`, and `since` moved to now.
+double lap_ms(std::chrono::steady_clock::time_point& since) {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - since).count();
+    since = now;
+    return ms;
+}
+
+awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, std::string port, std::string token,
+                                      ServerStatusTiming* timing) {
+    ServerStatusTiming ignored;
+    if (!timing) timing = &ignored;
+    auto since = std::chrono::steady_clock::now();
     Status connected = co_await connect(transport, host, port);
     if (!connected) co_return connected.failure();
+    timing->connect_ms = lap_ms(since);
     StatusExchange exchange(transport);
     const Message hello = HelloMsg{kProtocolVersion, std::string("editor_client ") + kVersion, token};
     Status sent = co_await exchange.send(hello);
@@ -83,6 +107,7 @@ awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, st
     if (!ack) co_return ack.failure();
     if (!std::holds_alternative<HelloAckMsg>(*ack))
         co_return make_error(std::string("expected HelloAck, the server sent ") + message_name(*ack));
+    timing->hello_ms = lap_ms(since);
     const Message request = StatusRequestMsg{1};
     sent = co_await exchange.send(request);
     if (!sent) co_return sent.failure();
@@ -90,6 +115,7 @@ awaitable<Result<StatusReplyMsg>> ask(Transport& transport, std::string host, st
     if (!reply) co_return reply.failure();
     auto* status = std::get_if<StatusReplyMsg>(&*reply);
     if (!status) co_return make_error(std::string("expected StatusReply, the server sent ") + message_name(*reply));
+    timing->status_ms = lap_ms(since);
     StatusReplyMsg answer = std::move(*status);
     co_await transport.shutdown(kShutdownLimit);
     co_return answer;
@@ -120,7 +146,7 @@ Result<StatusReplyMsg> query_server_status(const ServerStatusQuery& query) {
     deadline.async_wait([&](const boost::system::error_code& ec) {
         if (!ec && !outcome) transport.close();
     });
-    asio::co_spawn(io, ask(transport, host, port, *token), [&](std::exception_ptr error, Result<StatusReplyMsg> result) {
+    asio::co_spawn(io, ask(transport, host, port, *token, query.timing), [&](std::exception_ptr error, Result<StatusReplyMsg> result) {
         deadline.cancel();
         outcome = error ? Result<StatusReplyMsg>(make_error("server-status failed")) : std::move(result);
     });

@@ -16,11 +16,14 @@ void register_server_status_command(CLI::App& app) {
     struct Options {
         ServerStatusQuery query;
         bool json = false;
+        bool timing = false;
     };
     auto options = std::make_shared<Options>();
     CLI::App* cmd = app.add_subcommand("server-status", "Ask a lightmass_server how it is (bakes, memory, limits)");
     cmd->add_option("server", options->query.server, "HOST:PORT of the server")->required();
     cmd->add_flag("--json", options->json, "Print the status as JSON");
+    cmd->add_flag("--timing", options->timing,
+                  "Also print, on stderr, where the query's time went (connect, Hello, the status reply)");
     cmd->add_option("--token-file", options->query.token_file, "Token for a server that requires one");
     auto* tls = cmd->add_flag("--tls", options->query.tls, "Connect over TLS (a server started with --tls-cert)");
     cmd->add_option("--tls-ca", options->query.tls_ca_file,
@@ -31,8 +34,13 @@ void register_server_status_command(CLI::App& app) {
         ->check(CLI::PositiveNumber);
     cmd->callback([options] {
         if (!options->query.tls_ca_file.empty()) options->query.tls = true;
+        ServerStatusTiming timing;
+        if (options->timing) options->query.timing = &timing;
         Result<StatusReplyMsg> status = query_server_status(options->query);
         if (!status) fail("server-status: " + status.error());
+        if (options->timing)
+            std::fprintf(stderr, "timing: connect %.2f ms, hello %.2f ms, status %.2f ms\n", timing.connect_ms,
+                         timing.hello_ms, timing.status_ms);
         if (options->json)
             std::cout << server_status_json(*status).dump(2) << "\n";
         else

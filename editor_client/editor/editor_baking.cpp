@@ -33,6 +33,21 @@ std::string EditorBaking::server_description() const {
     return "none (--server HOST:PORT or --spawn-server)";
 }
 
+std::optional<ServerStatusQuery> EditorBaking::status_query() const {
+    ServerStatusQuery query;
+    if (options_.spawn_server) {
+        if (!spawned_server_) return std::nullopt;
+        query.server = spawned_server_->address();
+    } else {
+        if (options_.server.empty()) return std::nullopt;
+        query.server = options_.server;
+        query.tls = options_.tls;
+        query.tls_ca_file = options_.tls_ca_file;
+    }
+    query.token_file = options_.token_file;
+    return query;
+}
+
 Status EditorBaking::start_bake(const Scene& scene) {
     if (job_) return make_error("a bake is already running; cancel it or wait for it");
     if (!has_server())

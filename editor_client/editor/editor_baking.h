@@ -11,6 +11,7 @@
 
 #include "editor_client/bake/bake_client.h"
 #include "editor_client/bake/server_process.h"
+#include "editor_client/bake/server_status.h"
 #include "editor_client/bake/tree_store.h"
 #include "editor_client/editor/bake_job.h"
 #include "lightcuts/result.h"
@@ -51,6 +52,9 @@ public:
     bool has_server() const;
     // For the status line: "HOST:PORT", "local 127.0.0.1:PORT", or why there is none.
     std::string server_description() const;
+    // How to ask the server bakes go to for its status (the panel's poller); none
+    // before a spawned server has started.
+    std::optional<ServerStatusQuery> status_query() const;
     // The bounced light the next bake adds (the bake panel's choice; --indirect).
     IndirectMethod indirect() const { return options_.indirect.method; }
     void set_indirect(IndirectMethod method) { options_.indirect.method = method; }

@@ -181,6 +181,24 @@ void draw_bake_panel(EditorSession& session, PanelState& state) {
                            last->cancelled ? "cancelled" : "failed", last->error.c_str());
 }
 
+// The server panel: the poller's latest lines; the poller follows the session's
+// server (a spawned one appears at the first bake).
+void draw_server_panel(EditorSession& session, PanelState& state) {
+    std::optional<ServerStatusQuery> query = session.baking().status_query();
+    if (!query) {
+        state.server_status.reset();
+        ImGui::TextUnformatted(session.baking().server_description().c_str());
+        return;
+    }
+    if (!state.server_status || state.server_status->server() != query->server) {
+        query->timeout_seconds = kServerStatusTimeoutSeconds;
+        state.server_status = std::make_shared<ServerStatusPoller>(*query, kServerStatusInterval);
+    }
+    ImGui::PushTextWrapPos(0.0f);  // a bake's stage can be longer than the panel is wide
+    for (const std::string& line : state.server_status->lines()) ImGui::TextUnformatted(line.c_str());
+    ImGui::PopTextWrapPos();
+}
+
 void draw_file_panel(EditorSession& session, PanelState& state) {
     ImGui::BeginDisabled(session.edits().undo_stack().undo_depth() == 0);
     if (ImGui::Button("Undo")) report(state, session.edits().undo(), "undone");
@@ -229,6 +247,7 @@ void draw_editor_panels(EditorSession& session, EditorHost& host, PanelState& st
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) draw_view_panel(session, state);
     if (ImGui::CollapsingHeader("Build lighting", ImGuiTreeNodeFlags_DefaultOpen))
         draw_bake_panel(session, state);
+    if (ImGui::CollapsingHeader("Server", ImGuiTreeNodeFlags_DefaultOpen)) draw_server_panel(session, state);
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) draw_light_list(session, state);
     if (ImGui::CollapsingHeader("Add light")) draw_add_light(session, host, state);
     if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) draw_file_panel(session, state);

@@ -6,13 +6,16 @@
 // Pure ImGui calls against an EditorSession: the window owns the backends,
 // and the panels can be drawn in a test with no display at all.
 #include <array>
+#include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/overlay_text.h"
 #include "editor_client/editor/script_runner.h"
+#include "editor_client/editor/server_status_poller.h"
 
 namespace lc::client {
 
@@ -32,9 +35,16 @@ struct PanelState {
     int procedural_seed = 1;
 
     std::array<char, 512> save_path{};
+    // Asks the bake server for its status off the render thread; made when the
+    // session has a server (a spawned one: after its first bake).
+    std::shared_ptr<ServerStatusPoller> server_status;
     std::string message;  // the last action's outcome
     bool message_is_error = false;
 };
+
+// How often the server panel asks for the status, and how long one query may take.
+inline constexpr std::chrono::milliseconds kServerStatusInterval{3000};
+inline constexpr double kServerStatusTimeoutSeconds = 2.0;
 
 // A click in the view (not on a panel), in window pixels.
 struct ViewClick {

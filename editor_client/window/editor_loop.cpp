@@ -291,6 +291,10 @@ Result<EditorLoopSummary> EditorLoop::finish() {
     if (!options_.screenshot.empty()) LC_RETURN_IF_ERROR(host_->screenshot(options_.screenshot));
     if (!options_.window_screenshot.empty()) LC_RETURN_IF_ERROR(save_window_screenshot());
     summary_.screenshots = host_->count();
+    // What the Server panel says, for a scripted session's log.
+    if (panel_state_.server_status)
+        for (const std::string& line : panel_state_.server_status->answered_lines())
+            spdlog::info("server panel: {}", line);
     summary_.refinement_events = schedule_->events();
     summary_.first_complete_seconds = schedule_->first_complete_seconds();
     summary_.refining_frames = schedule_->refining_frames();

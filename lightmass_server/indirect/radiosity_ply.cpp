@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <fstream>
 
+#include "lightmass_server/control/stale_temporaries.h"
+
 namespace lc::bake {
 namespace {
 
@@ -45,11 +47,9 @@ std::string radiosity_ply(std::span<const Patch> patches, std::span<const glm::v
 
 Status write_radiosity_ply(const std::string& path, std::span<const Patch> patches,
                            std::span<const glm::vec3> radiosity) {
-    std::ofstream file(path, std::ios::binary | std::ios::trunc);
-    if (!file) return make_error("cannot open " + path + " for the radiosity PLY");
-    std::string text = radiosity_ply(patches, radiosity);
-    file.write(text.data(), std::streamsize(text.size()));
-    if (!file) return make_error("writing the radiosity PLY " + path + " failed");
+    // Through a temporary renamed when whole: a crash never leaves half a PLY.
+    if (!write_file_whole(path, radiosity_ply(patches, radiosity)))
+        return make_error("writing the radiosity PLY " + path + " failed");
     return Ok{};
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "lightmass_server/control/bake_priority.h"
 #include "lightmass_server/mpi/bake_dispatch.h"
 #include "protocol/codec.h"
 
@@ -85,6 +86,11 @@ void Connection::close(const std::string& reason) {
     deadline_timer_.cancel();
 }
 
+void Connection::stop_serving(const std::string& reason) {
+    if (closed_) return;
+    apply(session_.on_server_stopping(reason));
+}
+
 void Connection::close_after_flush(const std::string& reason) {
     if (closing_ || closed_) return;
     closing_ = true;
@@ -145,6 +151,8 @@ void Connection::start_bake(StartBake start) {
     asio::thread_pool& lane = workers_.lane(start.small);
     asio::post(lane, [self, executor, start = std::move(start), stop] {
         const uint32_t bake_id = start.bake_id;
+        lower_this_thread_priority(self->options_.bake_nice);
+        if (self->options_.on_bake_thread_start) self->options_.on_bake_thread_start();
         auto last_sent = Clock::now() - kProgressInterval;
         std::string last_stage;
         ProgressFn progress = [&](std::string_view stage, double percent) {

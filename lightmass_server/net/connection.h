@@ -36,6 +36,8 @@ public:
 
     void start();
     void close(const std::string& reason);
+    // Tells the peer why (its bake cancelled) and closes once that is sent.
+    void stop_serving(const std::string& reason);
     bool closed() const { return closed_; }
     uint64_t id() const { return id_; }
     std::optional<BakeStatusEntry> bake_status() const { return session_.bake_status(); }

@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <thread>
 
 #include "lightcuts/version.h"
@@ -9,10 +10,17 @@
 #include "protocol/tls_context.h"
 
 namespace lc::bake {
+namespace {
+
+// How long a stopping server waits for its peers to be told why.
+constexpr auto kStopGrace = std::chrono::milliseconds(1000);
+
+}  // namespace
 
 Server::Server(ServerOptions options)
     : options_(std::move(options)),
       bake_parallelism_(tbb::global_control::max_allowed_parallelism, std::max(1u, options_.bake_threads)),
+      bake_worker_priority_(options_.bake_nice),
       memory_budget_(options_.memory_budget_bytes),
       workers_(options_.max_concurrent_bakes != 0
                    ? options_.max_concurrent_bakes
@@ -54,15 +62,34 @@ void Server::run() {
     io_.run();
 }
 
-void Server::stop() {
-    asio::post(io_, [this] {
+void Server::stop(const std::string& reason) {
+    asio::post(io_, [this, reason] {
         boost::system::error_code ignored;
         acceptor_.close(ignored);
         for (auto& weak : connections_)
-            if (auto connection = weak.lock()) connection->close("server shutting down");
-        connections_.clear();
-        io_.stop();
+            if (auto connection = weak.lock()) connection->stop_serving(reason);
+        asio::co_spawn(io_, close_after_grace(), asio::detached);
     });
+}
+
+awaitable<void> Server::close_after_grace() {
+    asio::steady_timer timer(io_);
+    const auto deadline = std::chrono::steady_clock::now() + kStopGrace;
+    auto open = [this] {
+        return std::any_of(connections_.begin(), connections_.end(), [](const std::weak_ptr<Connection>& weak) {
+            const auto connection = weak.lock();
+            return connection && !connection->closed();
+        });
+    };
+    while (open() && std::chrono::steady_clock::now() < deadline) {
+        timer.expires_after(std::chrono::milliseconds(10));
+        boost::system::error_code ec;
+        co_await timer.async_wait(asio::redirect_error(asio::use_awaitable, ec));
+    }
+    for (auto& weak : connections_)
+        if (auto connection = weak.lock()) connection->close("server shutting down");
+    connections_.clear();
+    io_.stop();
 }
 
 StatusReplyMsg Server::status() const {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lightcuts/result.h"
+#include "lightmass_server/control/bake_priority.h"
 #include "lightmass_server/net/bake_lanes.h"
 #include "lightmass_server/net/connection.h"
 #include "lightmass_server/net/memory_budget.h"
@@ -29,13 +30,16 @@ public:
     Result<tcp::endpoint> listen();
     // Serves until stop(); call from one thread.
     void run();
-    // Thread-safe: closes the acceptor and every connection, cancels bakes.
-    void stop();
+    // Thread-safe: closes the acceptor, cancels bakes, tells each peer `reason`,
+    // and closes every connection once told (or after a short grace).
+    void stop(const std::string& reason = "the server is shutting down");
 
     asio::io_context& io() { return io_; }
 
 private:
     awaitable<void> accept_loop();
+    // Waits until every connection has closed (at most kStopGrace), then stops the I/O.
+    awaitable<void> close_after_grace();
     // A StatusRequest's answer: every connection's bake, the budget, the limits. On the I/O thread.
     StatusReplyMsg status() const;
 
@@ -43,6 +47,7 @@ private:
     // The builders' TBB loops share the bake threads' budget: --threads 1 is one
     // thread in all (TBB would otherwise add a worker per core).
     tbb::global_control bake_parallelism_;
+    BakeWorkerPriority bake_worker_priority_;
     // Declared before io_: connections still queued on io_ at destruction use it.
     std::shared_ptr<asio::ssl::context> tls_context_;  // null: plain TCP
     // Before io_ too: connections destroyed with io_'s queued work give their bytes back to it.

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -44,6 +45,10 @@ struct ServerOptions {
     std::chrono::seconds max_bake_time{600};
     // Big bakes at once; 0: from the cores and the budget (bake_lanes.h).
     unsigned max_concurrent_bakes = 0;
+    // Bake threads' nice value (bake_priority.h): the I/O thread answers first. 0: no change.
+    int bake_nice = 10;
+    // Tests only: called on the bake's lane thread before the bake runs (to hold it there).
+    std::function<void()> on_bake_thread_start;
 };
 
 // True for 127.0.0.0/8, ::1 and "localhost".

@@ -70,6 +70,16 @@ ServerActions ServerSession::on_bad_frame_header(const std::string& error) {
     return take_actions();
 }
 
+ServerActions ServerSession::on_server_stopping(const std::string& reason) {
+    if (closing_) return {};
+    if (bake_)
+        // Not kCancelled: the client says "cancelled" for its own cancel, without our reason.
+        send_error(bake_->bake_id, ErrorCode::kBakeFailed,
+                   "bake " + std::to_string(bake_->bake_id) + " stopped: " + reason);
+    close_after_flush(reason);
+    return take_actions();
+}
+
 void ServerSession::close_after_flush(std::string reason) {
     ServerActions cancel = on_closing();
     actions_.insert(actions_.end(), cancel.begin(), cancel.end());

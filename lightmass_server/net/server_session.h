@@ -102,6 +102,9 @@ public:
     // The connection is closing (peer gone, protocol broken, server stopping):
     // a running build is cancelled; nothing more is answered.
     ServerActions on_closing();
+    // The server stops (SIGTERM) or restarts (SIGHUP): a bake running or streaming
+    // is told it was stopped and why, then the connection closes after a flush.
+    ServerActions on_server_stopping(const std::string& reason);
 
     bool greeted() const { return greeted_; }
     // No bake running or streaming and no channel half-received: the idle timeout applies.
