@@ -15,6 +15,7 @@
 
 #include "lightcuts_generated.h"
 #include "protocol/record_bytes.h"
+#include "protocol/tree_links.h"
 
 namespace lc {
 namespace {
@@ -38,17 +39,18 @@ constexpr size_t kMaxUpFrontRecords = 1u << 16;
 constexpr size_t kReserveAllAfterFraction = 8;
 
 constexpr uint8_t kSceneFlagClassic = 1u << 0;
+// FLightData.light_flags carries the node's flags (device/node_flags.h) but
+// kNodeMixedTypes, whose bit is Unreal's cluster bit here; the mixed-types bit
+// travels in the node record's flags. The indirect and patch bits are
+// documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's hash
+// is in every dump, and the recorded dumps stay valid.
 constexpr uint32_t kLightFlagCluster = 1u << 0;
-// Every light under the node is bounced light (LightTreeNode::indirect).
-// Documented in docs/PROTOCOL.md, not in lightcuts.fbs: the schema file's
-// hash is in every dump, and the recorded dumps stay valid.
-constexpr uint32_t kLightFlagIndirect = 1u << 1;
-// Every light under the node is a radiosity patch (LightTreeNode::patch), its
-// disk radius in light_source_radius; documented like the indirect bit.
-constexpr uint32_t kLightFlagPatch = 1u << 2;
-constexpr uint32_t kLightFlagTypeShift = 8;
-constexpr uint32_t kLightFlagTypeMask = 0xFFu << kLightFlagTypeShift;
-constexpr uint8_t kNodeFlagMixedTypes = 1u << 0;
+constexpr uint32_t kLightFlagNodeBits = kNodeIndirect | kNodePatch;
+constexpr uint32_t kLightFlagTypeMask = 0xFFu << kNodeTypeShift;
+constexpr uint32_t kRecordFlagNodeBits = kNodeMixedTypes;
+static_assert((kLightFlagCluster & (kLightFlagNodeBits | kLightFlagTypeMask)) == 0);
+static_assert((kLightFlagNodeBits | kRecordFlagNodeBits) == (kNodeMixedTypes | kNodeIndirect | kNodePatch),
+              "every node flag travels in one of the two records");
 // A VPL leaf's light_source_length is the bounce that left it (a whole number,
 // 1 and up; 0: not recorded); every other node's is 0. Documented like the
 // indirect bit: the field is Unreal's tube length, which no tree light has.
@@ -68,8 +70,6 @@ constexpr float kCosineTolerance = 1e-6f;
 std::string light_label(size_t index, const Guid& guid) {
     return "light " + std::to_string(index) + " (GUID " + guid.to_hex() + ")";
 }
-
-std::string node_label(size_t index) { return "node " + std::to_string(index); }
 
 bool non_negative3(const glm::vec3& v) { return v.x >= 0.0f && v.y >= 0.0f && v.z >= 0.0f; }
 bool unit_length(const glm::vec3& v) {
@@ -153,9 +153,8 @@ glm::vec3 normalised_color(const LightTreeNode& n) {
 }
 
 ResultRecord to_record(const LightTreeNode& n) {
-    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) | (n.indirect ? kLightFlagIndirect : 0u) |
-                           (n.patch ? kLightFlagPatch : 0u) |
-                           (static_cast<uint32_t>(n.type) << kLightFlagTypeShift);
+    const uint32_t flags = (n.is_leaf() ? 0u : kLightFlagCluster) | (n.flags.bits & kLightFlagNodeBits) |
+                           (static_cast<uint32_t>(n.type) << kNodeTypeShift);
     const float w = n.type == LightType::kDirectional ? 0.0f : 1.0f;
     const glm::vec3 color = normalised_color(n);
     const fb::FLightData light(
@@ -167,7 +166,7 @@ ResultRecord to_record(const LightTreeNode& n) {
     const fb::LightcutsNodeRecord node(
         n.left, n.right, n.representative, to_fb(n.intensity), to_fb(n.bbox_min), to_fb(n.bbox_max),
         to_fb(n.cone_axis), n.cone_cos, n.range, n.spot_cos_inner, n.spot_cos_outer,
-        static_cast<uint8_t>(n.type), n.mixed_types ? kNodeFlagMixedTypes : uint8_t{0}, 0);
+        static_cast<uint8_t>(n.type), uint8_t(n.flags.bits & kRecordFlagNodeBits), 0);
     return {light, point, node};
 }
 
@@ -223,14 +222,14 @@ NodeProblem emission_problem(const LightTreeNode& n) {
 
 // Patches, their source radius, and a VPL's bounce.
 NodeProblem indirect_problem(const LightTreeNode& n) {
-    if (n.patch && !n.indirect) return "light_flags mark a patch that is not indirect";
+    if (n.flags.patch() && !n.flags.indirect()) return "light_flags mark a patch that is not indirect";
     if (!std::isfinite(n.source_radius) || n.source_radius < 0.0f) {
         return "light_source_radius " + number(n.source_radius) + " is not a finite value >= 0";
     }
-    if (n.source_radius != 0.0f && !n.patch) {
+    if (n.source_radius != 0.0f && !n.flags.patch()) {
         return "light_source_radius " + number(n.source_radius) + " on a light that is not a patch";
     }
-    if (n.bounce != 0 && !(n.indirect && !n.patch && n.is_leaf())) {
+    if (n.bounce != 0 && !(n.flags.indirect() && !n.flags.patch() && n.is_leaf())) {
         return "light_source_length " + std::to_string(n.bounce) + " (a bounce) on a node that is not a VPL leaf";
     }
     return std::nullopt;
@@ -249,11 +248,11 @@ NodeProblem bounds_problem(const LightTreeNode& n) {
     if (!std::isfinite(n.spot_cos_inner) || !std::isfinite(n.spot_cos_outer)) return "spot cosines are not finite";
     const bool oriented = n.type == LightType::kSpot || n.type == LightType::kDirectional ||
                           n.type == LightType::kOriented;
-    if (oriented && !n.mixed_types && !unit_length(n.direction)) {
+    if (oriented && !n.flags.mixed_types() && !unit_length(n.direction)) {
         return "direction " + vec_text(n.direction) + " of a " + light_type_name(n.type) +
                " light is not unit length";
     }
-    if (n.type == LightType::kSpot && !n.mixed_types) {
+    if (n.type == LightType::kSpot && !n.flags.mixed_types()) {
         const bool ordered = n.spot_cos_outer >= -kCosineTolerance && n.spot_cos_outer <= n.spot_cos_inner &&
                              n.spot_cos_inner <= 1.0f;
         if (!ordered) {
@@ -279,7 +278,7 @@ Status validate_node(const LightTreeNode& n, size_t index, size_t node_count) {
 Status from_record(const ResultRecord& r, size_t index, size_t node_count, LightTreeNode& n) {
     const auto who = [index] { return node_label(index); };
     const uint32_t flags = r.light.light_flags();
-    const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kLightFlagTypeShift;
+    const uint32_t type_in_flags = (flags & kLightFlagTypeMask) >> kNodeTypeShift;
     if (r.node.light_type() >= kLightTypeCount) {
         return make_error(who() + ": light_type " + std::to_string(r.node.light_type()) + " is unknown");
     }
@@ -288,10 +287,10 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
                           " disagrees with the node record's light_type " +
                           std::to_string(r.node.light_type()));
     }
-    if ((flags & ~(kLightFlagCluster | kLightFlagIndirect | kLightFlagPatch | kLightFlagTypeMask)) != 0) {
+    if ((flags & ~(kLightFlagCluster | kLightFlagNodeBits | kLightFlagTypeMask)) != 0) {
         return make_error(who() + ": FLightData.light_flags " + hex(flags) + " carries unknown bits");
     }
-    if ((r.node.flags() & ~kNodeFlagMixedTypes) != 0 || r.node.reserved1() != 0) {
+    if ((r.node.flags() & ~kRecordFlagNodeBits) != 0 || r.node.reserved1() != 0) {
         return make_error(who() + ": node record flags carry unknown bits");
     }
     n.guid = from_fb(r.light.guid());
@@ -314,9 +313,7 @@ Status from_record(const ResultRecord& r, size_t index, size_t node_count, Light
     n.bbox_max = from_fb(r.node.bbox_max());
     n.cone_axis = from_fb(r.node.cone_axis());
     n.cone_cos = r.node.cone_cos();
-    n.mixed_types = (r.node.flags() & kNodeFlagMixedTypes) != 0;
-    n.indirect = (flags & kLightFlagIndirect) != 0;
-    n.patch = (flags & kLightFlagPatch) != 0;
+    n.flags.bits = uint8_t((flags & kLightFlagNodeBits) | (r.node.flags() & kRecordFlagNodeBits));
     n.source_radius = r.light.light_source_radius();
     const float bounce = r.light.light_source_length();
     if (!(bounce >= 0.0f && bounce <= kMaxBounce) || bounce != std::floor(bounce)) {
@@ -446,94 +443,6 @@ void check_node_range(const LightTree& tree, size_t first, size_t count) {
 void put_count(std::vector<uint8_t>& out, size_t count, uint32_t limit) {
     if (count > limit) throw std::length_error("channel record count exceeds its limit");
     put_u32(out, static_cast<uint32_t>(count));
-}
-
-// The structure of a tree whose nodes each passed validate_node (child indices
-// in range and after their parent), from its links: one parent each, the leaf
-// count, and representatives that are leaves inside their subtree.
-// A cluster carries a subtree flag exactly when both its children do.
-Status check_subtree_flag(size_t index, const char* flag, bool set, bool children) {
-    if (set == children) return Ok{};
-    return make_error(node_label(index) + ": " + flag + " flag " + (set ? "set" : "clear") +
-                      " but its children " + (children ? "both" : "do not both") + " carry it");
-}
-
-Status validate_links(std::span<const NodeLinks> links, uint32_t leaf_count) {
-    const size_t n = links.size();
-    if (n > kMaxTreeNodes) {
-        return make_error("tree has " + std::to_string(n) + " nodes, above the limit of " +
-                          std::to_string(kMaxTreeNodes));
-    }
-    // Child ranges (children after their parent) are validate_node's, already checked.
-    std::vector<uint8_t> parents(n, 0);
-    size_t leaves = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const NodeLinks& node = links[i];
-        if (node.left == kNoChild) {
-            ++leaves;
-            if (node.representative != static_cast<int32_t>(i)) {
-                return make_error(node_label(i) + ": a leaf must represent itself, not node " +
-                                  std::to_string(node.representative));
-            }
-            continue;
-        }
-        for (int32_t child : {node.left, node.right}) {
-            if (++parents[static_cast<size_t>(child)] > 1) {
-                return make_error(node_label(static_cast<size_t>(child)) + " has more than one parent");
-            }
-        }
-        // The renderer clamps and skips by the indirect flag, and leaves patches
-        // unclamped: each must hold for every light below.
-        const NodeLinks& left = links[static_cast<size_t>(node.left)];
-        const NodeLinks& right = links[static_cast<size_t>(node.right)];
-        if (Status s = check_subtree_flag(i, "indirect", node.indirect, left.indirect && right.indirect); !s)
-            return s;
-        if (Status s = check_subtree_flag(i, "patch", node.patch, left.patch && right.patch); !s) return s;
-    }
-    // Children always follow their parent, so a node without a parent other
-    // than the root would start a second tree.
-    for (size_t i = 1; i < n; ++i) {
-        if (parents[i] == 0) return make_error(node_label(i) + " has no parent");
-    }
-    if (leaves != leaf_count) {
-        return make_error("tree says it has " + std::to_string(leaf_count) + " leaves, its nodes hold " +
-                          std::to_string(leaves));
-    }
-    if (n == 0) return Ok{};
-
-    // Pre-order numbering without a stack (chains can be 10^6 deep): subtree
-    // sizes bottom-up (children have larger indices than their parent), then
-    // each child's entry from its parent's, top-down. Node j lies in i's
-    // subtree exactly when enter[i] <= enter[j] < enter[i] + subtree[i]; a
-    // subtree of one node is a leaf.
-    std::vector<uint32_t> subtree(n, 1);
-    for (size_t k = n; k-- > 0;) {
-        if (links[k].left == kNoChild) continue;
-        subtree[k] =
-            1 + subtree[static_cast<size_t>(links[k].left)] + subtree[static_cast<size_t>(links[k].right)];
-    }
-    std::vector<uint32_t> enter(n, 0);
-    for (size_t i = 0; i < n; ++i) {
-        if (links[i].left == kNoChild) continue;
-        const auto left = static_cast<size_t>(links[i].left);
-        enter[left] = enter[i] + 1;
-        enter[static_cast<size_t>(links[i].right)] = enter[i] + 1 + subtree[left];
-    }
-    for (size_t i = 0; i < n; ++i) {
-        const auto rep = static_cast<size_t>(links[i].representative);
-        if (subtree[rep] != 1) {
-            return make_error(node_label(i) + ": representative " + std::to_string(rep) + " is not a leaf");
-        }
-        if (enter[rep] < enter[i] || enter[rep] >= enter[i] + subtree[i]) {
-            return make_error(node_label(i) + ": representative " + std::to_string(rep) +
-                              " is outside its subtree");
-        }
-    }
-    return Ok{};
-}
-
-NodeLinks links_of(const LightTreeNode& node) {
-    return {node.left, node.right, node.representative, node.indirect, node.patch};
 }
 
 // One pass over the (large) nodes, copying the links the checks need into a
@@ -679,7 +588,7 @@ Status ResultChannelReader::consume(std::span<const uint8_t> bytes) {
     if (keep_nodes) reserve_once_an_eighth_arrives(nodes_, expected_, arriving);
     reserve_once_an_eighth_arrives(links_, expected_, arriving);
     // Validation decodes each record into a node either way; without nodes to
-    // keep, into this one, which stays in cache, instead of a fresh 136 bytes.
+    // keep, into this one, which stays in cache, instead of a fresh 140-byte node.
     LightTreeNode scratch;
     Status status = push_records(
         pending_, expected_, links_.size(), kResultRecordBytes, bytes,

@@ -13,6 +13,7 @@
 #include "lightcuts/tree/light_tree.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
+#include "protocol/tree_links.h"
 
 namespace lc {
 
@@ -55,16 +56,6 @@ private:
     uint64_t bytes_seen_ = 0;
     std::vector<SceneLight> lights_;
     bool failed_ = false;
-};
-
-// A tree node's links, apart from the node: the structure checks walk these
-// compact arrays instead of the 140-byte nodes (LightTreeNode).
-struct NodeLinks {
-    int32_t left;
-    int32_t right;
-    int32_t representative;
-    bool indirect;  // the renderer clamps and skips whole subtrees by it
-    bool patch;     // radiosity patches, never clamped: kept apart from VPLs
 };
 
 // What a ResultChannelReader keeps of each record once it passed validation.

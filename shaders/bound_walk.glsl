@@ -47,7 +47,7 @@ void bound_walk_step(inout int i, inout bool waiting, inout int resume, inout Wa
     }
     bool refine = false;
     if (!waiting) {
-        bool leaf = node.first_child == kEndOfWalk;
+        bool leaf = node.first_child == kNoChild;
         bool mixed = (node.flags & kNodeMixedTypes) != 0u;
         float key = 0.0;
         if (!leaf && !mixed)

@@ -7,18 +7,8 @@
 #include "common_lighting.glsl"
 #include "frame_bindings.glsl"
 #include "lightcuts/device/cluster_bounds.glsl.h"
+#include "lightcuts/device/octahedral.glsl.h"
 #include "material_model.glsl"
-
-// lightcuts/tree/compact_node.h's octahedral unit vector (2 x snorm16).
-vec3 decode_octahedral(uint bits) {
-    vec2 e = unpackSnorm2x16(bits);
-    vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (v.z < 0.0) {
-        vec2 sign_not_zero = mix(vec2(1.0), vec2(-1.0), lessThan(e, vec2(0.0)));
-        v.xy = (1.0 - abs(e.yx)) * sign_not_zero;
-    }
-    return normalize(v);
-}
 
 // The compact node (loaded once by the caller) and its representative's
 // position and range as the bounds see them; effects the scene lacks compile away.
@@ -28,7 +18,7 @@ ClusterShape cluster_shape_of(GpuTreeNode node, vec3 rep_position, float rep_ran
     c.directional = kDirectionalLights && type == kLightDirectional;
     c.spot = kSpotLights && type == kLightSpot;
     c.oriented = kOrientedLights && type == kLightOriented;
-    c.leaf = node.first_child == kEndOfWalk;
+    c.leaf = node.first_child == kNoChild;
     c.bbox_min = node.bbox_min;
     c.bbox_max = node.bbox_max;
     c.position = rep_position;

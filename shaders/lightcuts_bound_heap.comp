@@ -74,7 +74,7 @@ void heap_pop(inout int size) {
 // mixed-type junction (always refined), else f_r bound x G bound x I_C.
 float node_key(int i, SurfacePoint p) {
     GpuTreeNode node = tree_nodes[i];
-    if (node.first_child == kEndOfWalk) return 0.0;
+    if (node.first_child == kNoChild) return 0.0;
     if ((node.flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
     return cluster_error_bound(node, p);
 }
@@ -97,7 +97,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
     vec3 total = root_unit * tree_nodes[0].intensity;
     // Its indirect leaves, for the clamped total the rule reads.
     IndirectSums leaves = no_indirect_sums();
-    if (kIndirectClamp && clamped_node(tree_nodes[0].flags, tree_nodes[0].first_child == kEndOfWalk))
+    if (kIndirectClamp && clamped_node(tree_nodes[0].flags, tree_nodes[0].first_child == kNoChild))
         add_indirect_leaf(leaves, total);
     // Each refinement adds one node net; node_count refinements always suffice.
     for (uint step = 0u; step < frame.node_count && size > 0; ++step) {
@@ -137,7 +137,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
                                                 : child_node.representative == parent_representative;
             vec3 unit = shares ? parent_unit : unit_response(child, p);
             total += unit * child_node.intensity;
-            if (kIndirectClamp && clamped_node(child_node.flags, child_node.first_child == kEndOfWalk))
+            if (kIndirectClamp && clamped_node(child_node.flags, child_node.first_child == kNoChild))
                 add_indirect_leaf(leaves, unit * child_node.intensity);
             heap_push(size, node_key(child, p), child, unit);
         }
@@ -147,7 +147,7 @@ Cut select_cut_bound(SurfacePoint p, out vec3 radiance, out bool max_cut_hit) {
         GpuTreeNode node = tree_nodes[heap_node[k]];
         vec3 contribution = heap_unit[k] * node.intensity;
         radiance += contribution;
-        tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
+        tally_indirect(cut.indirect, node.flags, node.first_child == kNoChild, contribution);
         cut.hash += cut_hash_term(uint(heap_node[k]));
     }
     cut.size = uint(size);

@@ -28,7 +28,7 @@ Cut empty_cut() { return Cut(vec3(0.0), 0u, 0u, no_indirect_sums()); }
 void add_to_cut(inout Cut cut, uint node_index, GpuTreeNode node, SurfacePoint p) {
     vec3 contribution = light_radiance(cluster_light(int(node_index), node, p), p);
     cut.radiance += contribution;
-    tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
+    tally_indirect(cut.indirect, node.flags, node.first_child == kNoChild, contribution);
     cut.size += 1u;
     cut.hash += cut_hash_term(node_index);
 }

@@ -13,7 +13,7 @@
 // Reads only what the decision needs: most steps of a walk refine, and a
 // node's light is loaded only when the node joins the cut.
 bool refine_by_radius(int i, vec3 x) {
-    if (tree_nodes[i].first_child == kEndOfWalk) return false;
+    if (tree_nodes[i].first_child == kNoChild) return false;
     if ((tree_nodes[i].flags & kNodeMixedTypes) != 0u) return true;
     float radius = tree_nodes[i].radius;
     if (radius < 0.0) return true;

@@ -56,7 +56,7 @@ float draw_weight(int i, SurfacePoint p) {
 // loaded: llvmpipe gathers a whole struct per lane.
 void descend_one_level(inout int i, inout int first_child, inout int escape, inout float probability,
                        SurfacePoint p) {
-    if (first_child == kEndOfWalk) return;
+    if (first_child == kNoChild) return;
     int c0 = first_child;
     int c1 = tree_nodes[c0].escape;
     bool take_first = true;
@@ -79,17 +79,17 @@ void descend_one_level(inout int i, inout int first_child, inout int escape, ino
 // cuts short keeps the stored one and is noted like a cut-short walk (the
 // walk search runs the pass again).
 PixelDraw pixel_draw(int i, GpuTreeNode node, SurfacePoint p) {
-    if (kRepresentatives == kRepresentativesTree || node.first_child == kEndOfWalk)
+    if (kRepresentatives == kRepresentativesTree || node.first_child == kNoChild)
         return PixelDraw(node.representative, 1.0);
     int first_child = node.first_child;
     int escape = node.escape;
     float probability = 1.0;
     // Two levels per iteration: each back edge spends llvmpipe's loop budget.
-    for (uint level = 0u; first_child != kEndOfWalk && level < frame.node_count; level += 2u) {
+    for (uint level = 0u; first_child != kNoChild && level < frame.node_count; level += 2u) {
         descend_one_level(i, first_child, escape, probability, p);
         descend_one_level(i, first_child, escape, probability, p);
     }
-    if (first_child != kEndOfWalk) {
+    if (first_child != kNoChild) {
         g_shadow_walk_cut_short = true;
         return PixelDraw(node.representative, 1.0);
     }
@@ -102,7 +102,7 @@ PixelDraw pixel_draw(int i, GpuTreeNode node, SurfacePoint p) {
 GpuLight cluster_light(int i, GpuTreeNode node, SurfacePoint p) {
     PixelDraw draw = pixel_draw(i, node, p);
     GpuLight light = leaf_lights[draw.light];
-    if (draws_by_weight() && node.first_child != kEndOfWalk)
+    if (draws_by_weight() && node.first_child != kNoChild)
         light.intensity = draw.probability > 0.0 ? light.intensity / draw.probability : vec3(0.0);
     else
         light.intensity = node.intensity;

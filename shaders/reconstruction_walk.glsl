@@ -93,7 +93,7 @@ void reconstruction_step(inout int i, inout bool waiting, inout int resume, inou
     }
     bool refine = false;
     if (!waiting) {
-        bool leaf = node.first_child == kEndOfWalk;
+        bool leaf = node.first_child == kNoChild;
         bool below = false;
         bool all_visible = true;
         bool any_visible = false;

@@ -27,7 +27,7 @@ shared bool s_has_surface[kMaxWorkgroupInvocations];
 // leaf (nothing to split), +inf for a junction of several light types.
 float split_priority(int i, SurfacePoint p) {
     GpuTreeNode node = tree_nodes[i];
-    if (node.first_child == kEndOfWalk) return 0.0;
+    if (node.first_child == kNoChild) return 0.0;
     if ((node.flags & kNodeMixedTypes) != 0u) return uintBitsToFloat(0x7f800000u);
     return cluster_error_bound(node, p);
 }
@@ -101,7 +101,7 @@ vec3 drawn_light_radiance(GpuLight light, SurfacePoint p, bool shaded) {
 
 void add_to_cut(inout Cut cut, int i, GpuTreeNode node, vec3 contribution) {
     cut.radiance += contribution;
-    tally_indirect(cut.indirect, node.flags, node.first_child == kEndOfWalk, contribution);
+    tally_indirect(cut.indirect, node.flags, node.first_child == kNoChild, contribution);
     cut.hash += cut_hash_term(uint(i));
 }
 
@@ -118,7 +118,7 @@ void shade_cut_node(inout Cut cut, inout ShadowBudget budget, bool budgeted, uin
     vec3 l;
     vec3 e = surface ? light_irradiance(light, p.position, p.normal, l) : vec3(0.0);
     vec3 unshadowed = surface ? brdf_toward(p, l) * e : vec3(0.0);
-    offer_to_budget(budget, k, drawn_light_index(d, node), unshadowed, node.flags, node.first_child == kEndOfWalk);
+    offer_to_budget(budget, k, drawn_light_index(d, node), unshadowed, node.flags, node.first_child == kNoChild);
     cut.hash += cut_hash_term(uint(i));
 }
 

@@ -51,7 +51,7 @@ void draw_one_level(inout Descent d, SurfacePoint p) {
 
 // Cut node i's draw, its uniform the frame's stratum for the node.
 Descent start_descent(int i, GpuTreeNode node) {
-    int next = node.first_child == kEndOfWalk ? ~int(node.representative) : i;
+    int next = node.first_child == kNoChild ? ~int(node.representative) : i;
     return Descent(next, 1.0, start_chain(frame_stratum(kStrataDraw, uint(i))));
 }
 
@@ -61,7 +61,7 @@ Descent start_descent(int i, GpuTreeNode node) {
 // representative with the cluster's intensity, and is counted like a
 // cut-short shadow walk.
 GpuLight finish_descent(Descent d, GpuTreeNode node) {
-    if (node.first_child == kEndOfWalk || d.next >= 0) {
+    if (node.first_child == kNoChild || d.next >= 0) {
         if (d.next >= 0) g_shadow_walk_cut_short = true;
         GpuLight kept = leaf_lights[node.representative];
         kept.intensity = node.intensity;
@@ -75,7 +75,7 @@ GpuLight finish_descent(Descent d, GpuTreeNode node) {
 // The leaf light finish_descent evaluates the node through (its position is
 // where a shadow ray aims).
 uint drawn_light_index(Descent d, GpuTreeNode node) {
-    return node.first_child == kEndOfWalk || d.next >= 0 ? node.representative : uint(~d.next);
+    return node.first_child == kNoChild || d.next >= 0 ? node.representative : uint(~d.next);
 }
 
 // Two descents side by side: they are independent, so each level's loads of

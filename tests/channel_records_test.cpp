@@ -34,7 +34,7 @@ bool same_node(const LightTreeNode& x, const LightTreeNode& y) {
            x.intensity == y.intensity && x.brightness == y.brightness && x.radius == y.radius &&
            x.falloff_exponent == y.falloff_exponent && x.bbox_min == y.bbox_min &&
            x.bbox_max == y.bbox_max && x.cone_axis == y.cone_axis && x.cone_cos == y.cone_cos &&
-           x.mixed_types == y.mixed_types && x.indirect == y.indirect;
+           x.flags.mixed_types() == y.flags.mixed_types() && x.flags.indirect() == y.flags.indirect();
 }
 
 void expect_same_tree(const LightTree& x, const LightTree& y) {
@@ -143,9 +143,9 @@ LightTree mixed_tree() {
     tree.nodes[4] = sun;
     for (int32_t i = 2; i < 5; ++i) tree.nodes[static_cast<size_t>(i)].representative = i;
     tree.nodes[1] = cluster(tree, 3, 4, kUnboundedRadius);
-    tree.nodes[1].mixed_types = true;
+    tree.nodes[1].flags.set(kNodeMixedTypes, true);
     tree.nodes[0] = cluster(tree, 1, 2, kUnboundedRadius);
-    tree.nodes[0].mixed_types = true;
+    tree.nodes[0].flags.set(kNodeMixedTypes, true);
     tree.leaf_count = 3;
     return tree;
 }
@@ -636,7 +636,7 @@ TEST(ChannelRecords, ValidateOnlyReaderChecksTheStructureAndKeepsNoNodes) {
     LightTree rep_outside = thesis_tree();
     rep_outside.nodes[2].representative = 7;
     LightTree indirect_mixed = thesis_tree();
-    indirect_mixed.nodes[3].indirect = true;
+    indirect_mixed.nodes[3].flags.set(kNodeIndirect, true);
     for (const LightTree& broken : {two_parents, rep_outside, indirect_mixed}) {
         const auto broken_bytes = encode_result_channel(broken);
         const std::string error = result_error(broken_bytes);

@@ -33,7 +33,7 @@ void expect_conservative(const LightTree& tree) {
         EXPECT_LE(bounds.cone_cos, double(cluster.cone_cos)) << "node " << i << ": narrowed";
         const bool spot_cluster = (cluster.type == LightType::kSpot ||
                                    cluster.type == LightType::kOriented) &&
-                                  !cluster.mixed_types;
+                                  !cluster.flags.mixed_types();
         std::vector<int32_t> stack{int32_t(i)};
         while (!stack.empty()) {
             const LightTreeNode& node = tree.nodes[size_t(stack.back())];
@@ -43,7 +43,7 @@ void expect_conservative(const LightTree& tree) {
                     if (child != kNoChild) stack.push_back(child);
                 continue;
             }
-            if (cluster.mixed_types) continue;  // never bounded: always refined
+            if (cluster.flags.mixed_types()) continue;  // never bounded: always refined
             const glm::dvec3 point(node.type == LightType::kDirectional ? node.direction
                                                                          : node.position);
             EXPECT_TRUE(inside(point, bounds.bbox_min, bounds.bbox_max)) << "node " << i;
@@ -88,7 +88,7 @@ TEST(CompactNode, AZeroWidthConeIsWidenedByWhatThePackingMovedItsAxis) {
     node.type = LightType::kSpot;
     node.cone_axis = glm::normalize(glm::vec3(1, 2, 3));
     node.cone_cos = 1.0f;
-    const CompactBounds bounds = decode_bounds(make_compact_node(node, 0, 0.0f, kEndOfWalk, kEndOfWalk));
+    const CompactBounds bounds = decode_bounds(make_compact_node(node, 0, 0.0f, kNoChild, kEndOfWalk));
     const glm::dvec3 axis = glm::normalize(glm::dvec3(node.cone_axis));
     EXPECT_GT(glm::length(bounds.cone_axis - axis), 0.0);  // the packing moved the axis
     EXPECT_GE(glm::dot(axis, bounds.cone_axis), bounds.cone_cos);
@@ -112,7 +112,7 @@ TEST(CompactNode, FlagsTheNodesWhoseRepresentativeHasARange) {
     }
     EXPECT_GT(flagged, 0u);
     EXPECT_LT(flagged, tree.nodes.size());
-    EXPECT_EQ(make_compact_node(tree.nodes[0], 0, 0.0f, kEndOfWalk, kEndOfWalk).flags & kNodeBoundedRepresentative,
+    EXPECT_EQ(make_compact_node(tree.nodes[0], 0, 0.0f, kNoChild, kEndOfWalk).flags & kNodeBoundedRepresentative,
               0u);
 }
 

@@ -56,7 +56,7 @@ TEST(DrawPairs, RecordsNameEachNodesChildrenAndBoundTheirBoxes) {
     ASSERT_EQ(pairs.size(), tree.nodes.size());
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
         const GpuTreeNode& node = tree.nodes[i];
-        if (node.first_child == kEndOfWalk) continue;
+        if (node.first_child == kNoChild) continue;
         const int c0 = node.first_child;
         const int c1 = tree.nodes[size_t(c0)].escape;
         const GpuDrawPair& pair = pairs[i];
@@ -64,7 +64,7 @@ TEST(DrawPairs, RecordsNameEachNodesChildrenAndBoundTheirBoxes) {
              {std::tuple{c0, pair.child0, pair.centre0, pair.radius0, pair.intensity0},
               std::tuple{c1, pair.child1, pair.centre1, pair.radius1, pair.intensity1}}) {
             const GpuTreeNode& c = tree.nodes[size_t(child)];
-            EXPECT_EQ(destination, c.first_child == kEndOfWalk ? ~int(c.representative) : child);
+            EXPECT_EQ(destination, c.first_child == kNoChild ? ~int(c.representative) : child);
             EXPECT_EQ(intensity, device::representative_scalar(c.intensity));
             for (const vec3& corner : {c.bbox_min, c.bbox_max}) {
                 EXPECT_LE(glm::length(corner - centre), radius) << "node " << i;

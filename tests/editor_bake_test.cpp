@@ -145,9 +145,9 @@ TEST(EditorBake, BuildLightingBakesIndirectLightWithItsStageInTheProgress) {
         EXPECT_TRUE(stages.count(solver)) << solver;
         size_t patches = 0, vpls = 0;
         for (const LightTreeNode& node : session.baking().tree()->nodes) {
-            if (!node.is_leaf() || !node.indirect) continue;
-            patches += node.patch;
-            vpls += !node.patch;
+            if (!node.is_leaf() || !node.flags.indirect()) continue;
+            patches += node.flags.patch();
+            vpls += !node.flags.patch();
         }
         if (method == IndirectMethod::kRadiosity) {
             EXPECT_GT(patches, 10u);

@@ -73,7 +73,7 @@ TEST(GpuLayout, EscapeIndicesOfABalancedTree) {
     ASSERT_TRUE(gpu.ok()) << gpu.error();
     EXPECT_EQ(gpu->nodes[0].first_child, 1);
     EXPECT_EQ(gpu->nodes[1].first_child, 3);
-    EXPECT_EQ(gpu->nodes[3].first_child, kEndOfWalk);
+    EXPECT_EQ(gpu->nodes[3].first_child, kNoChild);
     EXPECT_EQ(gpu->leaves.size(), 4u);
     EXPECT_EQ(gpu->depth, 2u);
 }
@@ -86,7 +86,7 @@ std::vector<int32_t> walk(const WalkTree& tree, const std::vector<bool>& refine)
     size_t steps = 0;
     while (i != kEndOfWalk && steps++ < tree.nodes.size()) {
         const GpuTreeNode& n = tree.nodes[i];
-        if (n.first_child != kEndOfWalk && refine[i]) {
+        if (n.first_child != kNoChild && refine[i]) {
             i = n.first_child;
         } else {
             cut.push_back(i);

@@ -265,29 +265,31 @@ TEST(IndirectTree, IndirectLightsHaveSubtreesOfTheirOwnAndTravelOnTheWire) {
     size_t indirect_leaves = 0, indirect_clusters = 0;
     for (const LightTreeNode& node : tree.nodes) {
         if (node.is_leaf()) {
-            indirect_leaves += node.indirect;
+            indirect_leaves += node.flags.indirect();
             continue;
         }
-        const bool both = tree.nodes[size_t(node.left)].indirect && tree.nodes[size_t(node.right)].indirect;
-        EXPECT_EQ(node.indirect, both);
+        const bool both =
+            tree.nodes[size_t(node.left)].flags.indirect() && tree.nodes[size_t(node.right)].flags.indirect();
+        EXPECT_EQ(node.flags.indirect(), both);
         // Only junctions join indirect with direct light: no cluster mixes them.
-        if (!node.mixed_types) {
-            EXPECT_EQ(node.indirect, tree.nodes[size_t(node.left)].indirect);
+        if (!node.flags.mixed_types()) {
+            EXPECT_EQ(node.flags.indirect(), tree.nodes[size_t(node.left)].flags.indirect());
         }
-        indirect_clusters += node.indirect;
+        indirect_clusters += node.flags.indirect();
     }
     EXPECT_EQ(indirect_leaves, 301u);
     EXPECT_EQ(indirect_clusters, 300u);
 
     Result<LightTree> decoded = decode_result_channel(encode_result_channel(tree));
     ASSERT_TRUE(decoded.ok()) << decoded.error();
-    for (size_t i = 0; i < tree.nodes.size(); ++i) EXPECT_EQ(decoded->nodes[i].indirect, tree.nodes[i].indirect);
+    for (size_t i = 0; i < tree.nodes.size(); ++i)
+        EXPECT_EQ(decoded->nodes[i].flags.indirect(), tree.nodes[i].flags.indirect());
 
     // A cluster that calls itself indirect over a direct child is refused.
     LightTree bad = tree;
     for (LightTreeNode& node : bad.nodes) {
-        if (node.mixed_types) {
-            node.indirect = true;
+        if (node.flags.mixed_types()) {
+            node.flags.set(kNodeIndirect, true);
             break;
         }
     }
@@ -296,7 +298,7 @@ TEST(IndirectTree, IndirectLightsHaveSubtreesOfTheirOwnAndTravelOnTheWire) {
 
 TEST(IndirectTree, TreesWithoutIndirectLightsKeepTheirBytes) {
     const LightTree tree = build(direct_lights());
-    for (const LightTreeNode& node : tree.nodes) EXPECT_FALSE(node.indirect);
+    for (const LightTreeNode& node : tree.nodes) EXPECT_FALSE(node.flags.indirect());
     const std::vector<uint8_t> bytes = encode_result_channel(tree);
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
         uint32_t flags = 0;
@@ -310,18 +312,19 @@ TEST(IndirectTree, PatchesHaveSubtreesApartFromVplsAndTravelOnTheWire) {
     ASSERT_TRUE(validate_tree(tree).ok()) << validate_tree(tree).error();
     size_t patch_leaves = 0, vpl_leaves = 0;
     for (const LightTreeNode& node : tree.nodes) {
-        EXPECT_TRUE(!node.patch || node.indirect);
-        EXPECT_EQ(node.source_radius, node.patch ? kPatchRadius : 0.0f);
+        EXPECT_TRUE(!node.flags.patch() || node.flags.indirect());
+        EXPECT_EQ(node.source_radius, node.flags.patch() ? kPatchRadius : 0.0f);
         if (node.is_leaf()) {
-            patch_leaves += node.patch;
-            vpl_leaves += node.indirect && !node.patch;
+            patch_leaves += node.flags.patch();
+            vpl_leaves += node.flags.indirect() && !node.flags.patch();
             continue;
         }
         // Only junctions join patches with other lights: no cluster mixes them.
-        if (!node.mixed_types) {
-            EXPECT_EQ(node.patch, tree.nodes[size_t(node.left)].patch);
+        if (!node.flags.mixed_types()) {
+            EXPECT_EQ(node.flags.patch(), tree.nodes[size_t(node.left)].flags.patch());
         }
-        EXPECT_EQ(node.patch, tree.nodes[size_t(node.left)].patch && tree.nodes[size_t(node.right)].patch);
+        EXPECT_EQ(node.flags.patch(), tree.nodes[size_t(node.left)].flags.patch() &&
+                                          tree.nodes[size_t(node.right)].flags.patch());
     }
     EXPECT_EQ(patch_leaves, 21u);
     EXPECT_EQ(vpl_leaves, 300u);
@@ -329,7 +332,7 @@ TEST(IndirectTree, PatchesHaveSubtreesApartFromVplsAndTravelOnTheWire) {
     Result<LightTree> decoded = decode_result_channel(encode_result_channel(tree));
     ASSERT_TRUE(decoded.ok()) << decoded.error();
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
-        EXPECT_EQ(decoded->nodes[i].patch, tree.nodes[i].patch);
+        EXPECT_EQ(decoded->nodes[i].flags.patch(), tree.nodes[i].flags.patch());
         EXPECT_EQ(decoded->nodes[i].source_radius, tree.nodes[i].source_radius);
     }
 
@@ -345,12 +348,17 @@ TEST(IndirectTree, PatchesHaveSubtreesApartFromVplsAndTravelOnTheWire) {
         return *std::find_if(t.nodes.begin(), t.nodes.end(), which);
     };
     EXPECT_TRUE(refused([&](LightTree& t) {
-        first(t, [](const LightTreeNode& n) { return !n.is_leaf() && n.indirect && !n.patch; }).patch = true;
+        first(t, [](const LightTreeNode& n) {
+            return !n.is_leaf() && n.flags.indirect() && !n.flags.patch();
+        }).flags.set(kNodePatch, true);
     }));
-    EXPECT_TRUE(refused(
-        [&](LightTree& t) { first(t, [](const LightTreeNode& n) { return n.patch; }).indirect = false; }));
     EXPECT_TRUE(refused([&](LightTree& t) {
-        first(t, [](const LightTreeNode& n) { return n.indirect && !n.patch; }).source_radius = 0.1f;
+        first(t, [](const LightTreeNode& n) { return n.flags.patch(); }).flags.set(kNodeIndirect, false);
+    }));
+    EXPECT_TRUE(refused([&](LightTree& t) {
+        first(t, [](const LightTreeNode& n) {
+            return n.flags.indirect() && !n.flags.patch();
+        }).source_radius = 0.1f;
     }));
 
     // The builder refuses the same lights.

@@ -57,7 +57,7 @@ void expect_identical_trees(const LightTree& a, const LightTree& b) {
         EXPECT_EQ(x.left, y.left) << i;
         EXPECT_EQ(x.right, y.right) << i;
         EXPECT_EQ(x.representative, y.representative) << i;
-        EXPECT_EQ(x.mixed_types, y.mixed_types) << i;
+        EXPECT_EQ(x.flags.mixed_types(), y.flags.mixed_types()) << i;
         EXPECT_EQ(std::memcmp(&x.position, &y.position, sizeof x.position), 0) << i;
         EXPECT_EQ(std::memcmp(&x.intensity, &y.intensity, sizeof x.intensity), 0) << i;
         EXPECT_EQ(std::memcmp(&x.bbox_min, &y.bbox_min, sizeof x.bbox_min), 0) << i;
@@ -235,7 +235,7 @@ TEST(OptimalPairBuilder, TypesGetSeparateTreesJoinedByJunctions) {
     size_t junctions = 0;
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
         const LightTreeNode& node = tree.nodes[i];
-        if (node.mixed_types) {
+        if (node.flags.mixed_types()) {
             ++junctions;
             EXPECT_EQ(node.radius, kUnboundedRadius);
             continue;
@@ -246,13 +246,13 @@ TEST(OptimalPairBuilder, TypesGetSeparateTreesJoinedByJunctions) {
         EXPECT_EQ(tree.nodes[size_t(node.right)].type, node.type);
     }
     EXPECT_EQ(junctions, 2u);
-    EXPECT_TRUE(tree.nodes[0].mixed_types);
+    EXPECT_TRUE(tree.nodes[0].flags.mixed_types());
 
     // One type: no junction.
     const std::vector<SceneLight> points = random_lights(9, 1, LightType::kPoint);
     Result<BuildResult> single = build_light_tree(points, BuildOptions{}, {});
     ASSERT_TRUE(single);
-    for (const LightTreeNode& node : single->tree.nodes) EXPECT_FALSE(node.mixed_types);
+    for (const LightTreeNode& node : single->tree.nodes) EXPECT_FALSE(node.flags.mixed_types());
 }
 
 TEST(OptimalPairBuilder, AutoModeGoesApproximateAboveTheLimitAndSaysSo) {

@@ -54,7 +54,7 @@ TEST(RadiusCriterion, PicksTheExpectedCutsOnTheThesisTree) {
 TEST(RadiusCriterion, MixedJunctionsAreAlwaysRefinedAndClassicLightsAdded) {
     LightTree tree = thesis_tree();
     const SurfacePoint p = surface({1000, 0, 0});
-    tree.nodes[0].mixed_types = true;
+    tree.nodes[0].flags.set(kNodeMixedTypes, true);
     SceneLight classic = make_light(LightType::kPoint, {1000, 0, 10}, 100.0f);
     const WalkTree walk = walk_tree(tree);
     const CutResult r = shade_lightcuts(walk, std::span(&classic, 1), p, {CutCriterion::kRadius});

@@ -109,7 +109,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     // walks all 139,999 nodes, two per iteration: past the 65,535 limit.
     LightTree tree = test::make_pairing_tree(scene.lights);
     for (LightTreeNode& node : tree.nodes)
-        if (!node.is_leaf()) node.mixed_types = true;
+        if (!node.is_leaf()) node.flags.set(kNodeMixedTypes, true);
     auto renderer = test::create_renderer(*context, scene, &tree);
     ASSERT_TRUE(renderer.ok()) << renderer.error();
     RenderSettings settings;

@@ -230,7 +230,7 @@ LightTree morton_pairing_tree(const std::vector<SceneLight>& lights, uint64_t se
         n.bbox_max = hi;
         n.cone_axis = rep.direction;
         n.cone_cos = std::clamp(round_down(min_cos - 1e-7), -1.0f, 1.0f);
-        n.mixed_types = mixed;
+        n.flags.set(kNodeMixedTypes, mixed);
         if (t.left < 0) {
             n.radius = rep.range > 0.0f ? rep.range : kUnboundedRadius;
         } else {
@@ -279,7 +279,8 @@ LightTree make_pairing_tree(const std::vector<SceneLight>& lights) {
         parent.node = l;  // representative parameters: the left child's
         parent.node.intensity = l.intensity + r.intensity;
         parent.node.brightness = l.brightness + r.brightness;
-        parent.node.mixed_types = l.mixed_types || r.mixed_types || l.type != r.type;
+        parent.node.flags.set(kNodeMixedTypes,
+                              l.flags.mixed_types() || r.flags.mixed_types() || l.type != r.type);
         if (l.radius < 0.0f || r.radius < 0.0f) {
             parent.node.radius = kUnboundedRadius;
         } else {

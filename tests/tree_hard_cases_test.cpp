@@ -219,7 +219,7 @@ TEST(TreeHardCases, DirectionalLightsOnly) {
         for (const LightTreeNode& node : r.tree.nodes) {
             EXPECT_EQ(node.radius, kUnboundedRadius);
             EXPECT_EQ(node.type, LightType::kDirectional);
-            EXPECT_FALSE(node.mixed_types);
+            EXPECT_FALSE(node.flags.mixed_types());
             for (int c = 0; c < 3; ++c) {
                 EXPECT_GE(node.bbox_min[c], -1.0001f);
                 EXPECT_LE(node.bbox_max[c], 1.0001f);

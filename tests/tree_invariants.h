@@ -113,7 +113,7 @@ inline void expect_build_invariants(const lc::BuildArena& arena, int32_t root,
         ASSERT_TRUE(nodes[rep].is_leaf()) << "representative of " << id << " is no leaf";
         ASSERT_TRUE(tin[id] <= tin[rep] && tin[rep] < tout[id])
             << "representative of " << id << " outside its subtree";
-        if (node.is_leaf() || node.mixed_types) continue;
+        if (node.is_leaf() || node.flags.mixed_types()) continue;
         const lc::BuildNode& l = nodes[size_t(node.left)];
         const lc::BuildNode& r = nodes[size_t(node.right)];
         EXPECT_LT(l.min_light_index, r.min_light_index) << "left child must hold the first light";
@@ -147,7 +147,7 @@ inline void expect_build_invariants(const lc::BuildArena& arena, int32_t root,
                 EXPECT_LE(node.bbox_min[c], point[c]);
                 EXPECT_GE(node.bbox_max[c], point[c]);
             }
-            if (node.mixed_types) continue;
+            if (node.flags.mixed_types()) continue;
             if (!node.unbounded()) {
                 const glm::dvec3 p(arena.lights[node.representative].position);
                 const glm::dvec3 q(arena.lights[leaf].position);

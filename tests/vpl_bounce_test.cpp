@@ -86,7 +86,7 @@ TEST(VplBounce, VplLeavesKeepTheirBounceOnTheWireAndNothingElseHasOne) {
     for (size_t i = 0; i < tree.nodes.size(); ++i) {
         const LightTreeNode& n = decoded->nodes[i];
         EXPECT_EQ(n.bounce, tree.nodes[i].bounce) << "node " << i;
-        const bool vpl_leaf = n.is_leaf() && n.indirect && !n.patch;
+        const bool vpl_leaf = n.is_leaf() && n.flags.indirect() && !n.flags.patch();
         vpl_leaves += vpl_leaf;
         if (vpl_leaf) {
             EXPECT_GE(n.bounce, 1u);
@@ -109,13 +109,13 @@ TEST(VplBounce, ABounceWhereItMeansNothingIsRefused) {
         ASSERT_FALSE(decoded.ok()) << why;
         EXPECT_NE(decoded.error().find("not a VPL leaf"), std::string::npos) << decoded.error();
     };
-    refused_with([](const LightTreeNode& n) { return !n.is_leaf() && n.indirect; }, "a VPL cluster");
-    refused_with([](const LightTreeNode& n) { return n.is_leaf() && !n.indirect; }, "a direct light");
+    refused_with([](const LightTreeNode& n) { return !n.is_leaf() && n.flags.indirect(); }, "a VPL cluster");
+    refused_with([](const LightTreeNode& n) { return n.is_leaf() && !n.flags.indirect(); }, "a direct light");
 
     // On the wire the field is a float: a fraction or a negative is no bounce.
     std::vector<uint8_t> bytes = encode_result_channel(tree);
     const size_t vpl = size_t(std::find_if(tree.nodes.begin(), tree.nodes.end(), [](const LightTreeNode& n) {
-                                  return n.is_leaf() && n.indirect;
+                                  return n.is_leaf() && n.flags.indirect();
                               }) - tree.nodes.begin());
     // light_source_length: the count prefix, then FLightData's guid, flags,
     // three Vec4s, brightness and light_source_radius before it.

@@ -7,7 +7,7 @@
 //   direction to the light is undefined.
 // - Radius criterion: a node is refined while |p - position| < radius
 //   (strictly; radius < 0 means unbounded, always inside), or when it is a
-//   mixed_types junction.
+//   kNodeMixedTypes junction.
 // - Bound criterion: colours are compared through their largest channel:
 //   a node is refined while max_c(bound_c) > error_ratio * max_c(total_c).
 // - Indirect lights: the cut is chosen from unclamped estimates; then each

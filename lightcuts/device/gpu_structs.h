@@ -6,6 +6,7 @@
 #define LC_DEVICE_GPU_STRUCTS_H
 
 #include "lightcuts/device/glsl_compat.h"
+#include "lightcuts/device/node_flags.h"
 
 LC_DEVICE_BEGIN
 
@@ -17,17 +18,6 @@ LC_CONST uint kLightOriented = 3u;
 
 // Pre-order "next node after my subtree" (tree walks, shadow BVH): past the last node.
 LC_CONST int kEndOfWalk = -1;
-
-// GpuTreeNode::flags: kNodeMixedTypes, kNodeIndirect, kNodePatch,
-// kNodeBoundedRepresentative, and the node's LightType from bit
-// kNodeTypeShift on.
-LC_CONST uint kNodeMixedTypes = 1u;  // always refined, never a cluster
-LC_CONST uint kNodeIndirect = 2u;    // every light below is indirect (LightTreeNode::indirect)
-LC_CONST uint kNodePatch = 4u;       // every light below is a radiosity patch (LightTreeNode::patch)
-// The representative has a range (> 0): the bounds read its position and
-// range. Clear: the node is unbounded, and a bound need not load the light.
-LC_CONST uint kNodeBoundedRepresentative = 8u;
-LC_CONST uint kNodeTypeShift = 8u;
 
 // GpuLight::flags
 LC_CONST uint kGpuLightIndirect = 1u;  // bounced light: clamped (indirect_clamp.glsl.h)
@@ -61,13 +51,13 @@ struct LC_ALIGN16 GpuTreeNode {
     uint representative LC_DEFAULT(0u);     // index into the leaf lights
     // The leaves' positions (their directions for directional lights).
     vec3 bbox_min LC_DEFAULT(vec3(0.0f));
-    int first_child LC_DEFAULT(kEndOfWalk);  // left when present, else right; -1 for leaves
+    int first_child LC_DEFAULT(kNoChild);  // left when present, else right; kNoChild for leaves
     vec3 bbox_max LC_DEFAULT(vec3(0.0f));
     int escape LC_DEFAULT(kEndOfWalk);  // next node in pre-order after this subtree
-    float radius LC_DEFAULT(-1.0f);     // influence radius around the representative; < 0 unbounded
+    float radius LC_DEFAULT(kUnboundedRadius);  // influence radius around the representative; < 0 unbounded
     uint cone_axis LC_DEFAULT(0u);      // the spot directions' cone: octahedral, 2 x snorm16
     float cone_cos LC_DEFAULT(-1.0f);   // its half-angle's cosine, rounded down; -1: every direction
-    uint flags LC_DEFAULT(0u);          // kNodeMixedTypes | kNodeIndirect | kNodePatch |
+    uint flags LC_DEFAULT(0u);          // node_flags.h: kNodeMixedTypes | kNodeIndirect | kNodePatch |
                                         // kNodeBoundedRepresentative | type << kNodeTypeShift
 };
 

@@ -1,10 +1,10 @@
 // The C/GLSL common subset in which a formula is written once for both the
 // shaders and the CPU evaluator (docs/CODE_STYLE.md). A header that includes
 // this one compiles as GLSL (glslang, -I of the project root) and as C++:
-//   real, real3: float, vec3 in GLSL; double, glm::dvec3 in C++ (the CPU
+//   real, real2, real3: float, vec2, vec3 in GLSL; double, glm::dvec2, glm::dvec3 in C++ (the CPU
 //     evaluator is the double-precision ground truth);
-//   GLSL's built-ins (abs, clamp, dot, length, max, min, acos, exp2, pow,
-//     sqrt) come from glm and <cmath> under the same names in lc::device;
+//   GLSL's built-ins (abs, clamp, dot, length, normalize, max, min, acos, exp2,
+//     pow, sqrt) come from glm and <cmath> under the same names in lc::device;
 //   LC_INLINE, LC_CONST, LC_IN(T), LC_OUT(T), LC_INOUT(T) spell what differs:
 //     inline functions and constants, read-only, out and in-out parameters.
 // Write literals as decimals (1.0, not 1): GLSL converts neither way.
@@ -15,6 +15,7 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include <cmath>
@@ -23,6 +24,7 @@
 namespace lc::device {
 
 using real = double;
+using real2 = glm::dvec2;
 using real3 = glm::dvec3;
 using uint = std::uint32_t;
 
@@ -33,6 +35,7 @@ using glm::dot;
 using glm::length;
 using glm::max;
 using glm::min;
+using glm::normalize;
 // Only ever called on scalars here.
 using std::acos;
 using std::exp2;
@@ -57,6 +60,7 @@ inline real copysign_one(real x) { return std::copysign(1.0, x); }
 #else  // GLSL
 
 #define real float
+#define real2 vec2
 #define real3 vec3
 #define LC_INLINE
 #define LC_CONST const

@@ -15,15 +15,15 @@ BuildNode make_leaf(const SceneLight& light, uint32_t light_index) {
     BuildNode leaf;
     leaf.guid = light.guid;
     leaf.type = light.type;
-    leaf.indirect = light.indirect;
-    leaf.patch = light.patch;
+    leaf.flags.set(kNodeIndirect, light.indirect);
+    leaf.flags.set(kNodePatch, light.patch);
     leaf.representative = light_index;
     leaf.min_light_index = light_index;
     leaf.intensity = to_dvec3(light.color) * double(light.intensity);
     leaf.brightness = light.intensity;
 
     const bool bounded = light.type != LightType::kDirectional && light.range > 0.0f;
-    leaf.radius = bounded ? double(light.range) : kUnboundedBuildRadius;
+    leaf.radius = bounded ? double(light.range) : kUnboundedRadius;
 
     const glm::dvec3 direction = to_dvec3(light.direction);
     // Directional lights are points on the unit sphere (the paper, section 4).

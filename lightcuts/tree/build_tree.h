@@ -14,34 +14,27 @@
 
 #include "lightcuts/guid.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/tree/node_flags.h"
 
 namespace lc {
 
-inline constexpr int32_t kNoBuildChild = -1;
-// Influence radius of a node that reaches everywhere (no range, directional, or
-// a child that is unbounded).
-inline constexpr double kUnboundedBuildRadius = -1.0;
-
 struct BuildNode {
     Guid guid;
-    int32_t left = kNoBuildChild;  // arena indices; a leaf has neither child
-    int32_t right = kNoBuildChild;
+    int32_t left = kNoChild;  // arena indices; a leaf has neither child
+    int32_t right = kNoChild;
     // Arena index of the leaf whose light represents this node (leaves: itself).
     uint32_t representative = 0;
     // Smallest input light index in the subtree: orders levels and children.
     uint32_t min_light_index = 0;
     LightType type = LightType::kPoint;
-    bool mixed_types = false;  // junction of per-type trees, always refined
-    // Every light under the node is indirect (SceneLight::indirect): the
-    // builders never join indirect and direct lights below a junction.
-    bool indirect = false;
-    // Every light under the node is a radiosity patch (SceneLight::patch); the
-    // builders never join patches and VPLs below a junction either.
-    bool patch = false;
+    // A junction of per-type trees (always refined); every light below
+    // indirect, or a radiosity patch: the builders never join indirect and
+    // direct lights, nor patches and VPLs, below a junction.
+    NodeFlags flags;
 
     glm::dvec3 intensity{0.0};  // RGB sum of the leaves' color * intensity
     double brightness = 0.0;    // sum of the leaves' scalar intensity
-    double radius = kUnboundedBuildRadius;
+    double radius = kUnboundedRadius;
     // Bounds of the leaves' positions (directions, as unit-sphere points, for
     // directional lights).
     glm::dvec3 bbox_min{0.0};
@@ -50,7 +43,7 @@ struct BuildNode {
     glm::dvec3 cone_axis{0.0, 0.0, -1.0};
     double cone_cos = -1.0;
 
-    bool is_leaf() const { return left == kNoBuildChild && right == kNoBuildChild; }
+    bool is_leaf() const { return left == kNoChild && right == kNoChild; }
     bool unbounded() const { return radius < 0.0; }
 };
 

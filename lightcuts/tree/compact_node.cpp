@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "lightcuts/device/octahedral.glsl.h"
+
 namespace lc {
 namespace {
 
@@ -14,12 +16,6 @@ uint32_t pack_snorm16(double v) {
     const double q = std::round(std::clamp(v, -1.0, 1.0) * 32767.0);
     return uint32_t(uint16_t(int16_t(q)));
 }
-
-double unpack_snorm16(uint32_t bits) {
-    return std::clamp(double(int16_t(uint16_t(bits))) / 32767.0, -1.0, 1.0);
-}
-
-double sign_not_zero(double v) { return v < 0.0 ? -1.0 : 1.0; }
 
 // What the shaders add on top of the packing's own error: their float decode
 // and normalisation differ from this double one by a few float ulps.
@@ -32,23 +28,14 @@ uint32_t encode_octahedral(const glm::dvec3& unit) {
     double x = unit.x / l1;
     double y = unit.y / l1;
     if (unit.z < 0.0) {
-        const double folded_x = (1.0 - std::abs(y)) * sign_not_zero(x);
-        y = (1.0 - std::abs(x)) * sign_not_zero(y);
+        const double folded_x = (1.0 - std::abs(y)) * octahedral::sign_not_zero(x);
+        y = (1.0 - std::abs(x)) * octahedral::sign_not_zero(y);
         x = folded_x;
     }
     return pack_snorm16(x) | (pack_snorm16(y) << 16);
 }
 
-glm::dvec3 decode_octahedral(uint32_t bits) {
-    const double x = unpack_snorm16(bits & 0xffffu);
-    const double y = unpack_snorm16(bits >> 16);
-    glm::dvec3 v(x, y, 1.0 - std::abs(x) - std::abs(y));
-    if (v.z < 0.0) {
-        v.x = (1.0 - std::abs(y)) * sign_not_zero(x);
-        v.y = (1.0 - std::abs(x)) * sign_not_zero(y);
-    }
-    return glm::normalize(v);
-}
+glm::dvec3 decode_octahedral(uint32_t bits) { return octahedral::decode_octahedral(bits); }
 
 GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative, float representative_range,
                               int32_t first_child, int32_t escape) {
@@ -60,8 +47,7 @@ GpuTreeNode make_compact_node(const LightTreeNode& node, uint32_t representative
     out.first_child = first_child;
     out.escape = escape;
     out.radius = node.radius;
-    out.flags = (node.mixed_types ? kNodeMixedTypes : 0u) | (node.indirect ? kNodeIndirect : 0u) |
-                (node.patch ? kNodePatch : 0u) | (representative_range > 0.0f ? kNodeBoundedRepresentative : 0u) |
+    out.flags = node.flags.bits | (representative_range > 0.0f ? kNodeBoundedRepresentative : 0u) |
                 (uint32_t(node.type) << kNodeTypeShift);
     // A cone that excludes nothing, or that nothing can be learnt from,
     // becomes "every direction" (the bound then excludes nothing either).

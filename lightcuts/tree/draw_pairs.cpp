@@ -26,7 +26,7 @@ ChildDraw child_draw(std::span<const GpuTreeNode> nodes, int index) {
     const GpuTreeNode& node = nodes[size_t(index)];
     ChildDraw draw;
     draw.intensity = device::representative_scalar(node.intensity);
-    draw.destination = node.first_child == kEndOfWalk ? ~int(node.representative) : index;
+    draw.destination = node.first_child == kNoChild ? ~int(node.representative) : index;
     if (!weighs_by_intensity_alone(node)) {
         draw.centre = 0.5f * (node.bbox_min + node.bbox_max);
         // Widened by a few ulps so that the sphere holds the box's corners
@@ -42,7 +42,7 @@ std::vector<GpuDrawPair> make_draw_pairs(std::span<const GpuTreeNode> nodes) {
     std::vector<GpuDrawPair> pairs(std::max<size_t>(nodes.size(), 1));
     for (size_t i = 0; i < nodes.size(); ++i) {
         const GpuTreeNode& node = nodes[i];
-        if (node.first_child == kEndOfWalk) continue;
+        if (node.first_child == kNoChild) continue;
         const int c0 = node.first_child;
         const int c1 = nodes[size_t(c0)].escape;
         // The first child's escape is its sibling, unless it is the parent's own.

@@ -66,7 +66,7 @@ GpuLight make_gpu_leaf_light(const LightTreeNode& node) {
     gpu.spot_cos_inner = node.spot_cos_inner;
     gpu.spot_cos_outer = node.spot_cos_outer;
     gpu.spot_scale = float(shading::spot_scale(node.spot_cos_inner, node.spot_cos_outer));
-    gpu.flags = (node.indirect ? kGpuLightIndirect : 0u) | (node.patch ? kGpuLightPatch : 0u);
+    gpu.flags = (node.flags.indirect() ? kGpuLightIndirect : 0u) | (node.flags.patch() ? kGpuLightPatch : 0u);
     gpu.source_radius = node.source_radius;
     return gpu;
 }
@@ -135,7 +135,7 @@ Result<WalkTree> make_walk_tree(const LightTree& tree) {
             if (child != kNoChild) depth[child] = depth[i] + 1;
         gpu.depth = std::max(gpu.depth, depth[i]);
         if (node.is_leaf()) {
-            if (node.mixed_types)
+            if (node.flags.mixed_types())
                 return make_error("tree node " + std::to_string(i) +
                                   " is a leaf marked as joining light types");
             gpu.leaves.push_back(make_gpu_leaf_light(node));

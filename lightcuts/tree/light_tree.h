@@ -12,12 +12,9 @@
 
 #include "lightcuts/guid.h"
 #include "lightcuts/scene_light.h"
+#include "lightcuts/tree/node_flags.h"
 
 namespace lc {
-
-inline constexpr int32_t kNoChild = -1;
-// FPointLightData.Radius for lights without a range: the light reaches everywhere.
-inline constexpr float kUnboundedRadius = -1.0f;
 
 struct LightTreeNode {
     Guid guid;  // a leaf carries its scene light's GUID; a cluster a derived one
@@ -43,17 +40,14 @@ struct LightTreeNode {
     glm::vec3 bbox_min{0.0f};  // bounds of the leaves' positions (directions for directional)
     glm::vec3 bbox_max{0.0f};
     glm::vec3 cone_axis{0.0f, 0.0f, -1.0f};  // orientation cone of spot lights
-    float cone_cos = 1.0f;                    // cos of its half-angle; -1 means all directions
-    // Joins trees of different light types (the paper keeps one tree per type):
-    // never used as a cluster, always refined.
-    bool mixed_types = false;
-    // Every light under the node is bounced light (SceneLight::indirect); the
-    // tree keeps indirect lights in subtrees of their own.
-    bool indirect = false;
-    // Every light under the node is a radiosity patch (SceneLight::patch),
-    // kept apart from VPLs the same way; `source_radius` is the
-    // representative's disk radius (0 for every other light).
-    bool patch = false;
+    // cos of its half-angle; -1 means all directions, the default of every node form: a
+    // cone nobody computed then bounds as lights facing every way (loose, never too low).
+    float cone_cos = -1.0f;
+    // Joins trees of different light types, every light below indirect, or
+    // every light below a radiosity patch (device/node_flags.h); the tree keeps
+    // indirect lights and patches in subtrees of their own.
+    NodeFlags flags;
+    // The representative's disk radius when a patch (0 for every other light).
     float source_radius = 0.0f;
 
     bool is_leaf() const { return left == kNoChild && right == kNoChild; }

@@ -94,9 +94,9 @@ LightTreeNode export_node(const BuildNode& node, const SceneLight& light, int32_
     LightTreeNode out;
     out.guid = node.guid;
     out.type = node.type;
-    const bool has_left = node.left != kNoBuildChild;
+    const bool has_left = node.left != kNoChild;
     out.left = has_left ? first_child : kNoChild;
-    out.right = node.right == kNoBuildChild ? kNoChild : first_child + (has_left ? 1 : 0);
+    out.right = node.right == kNoChild ? kNoChild : first_child + (has_left ? 1 : 0);
     out.representative = representative_index;
 
     out.position = light.position;
@@ -113,11 +113,9 @@ LightTreeNode export_node(const BuildNode& node, const SceneLight& light, int32_
     out.bbox_max = round_up(node.bbox_max);
     out.cone_axis = glm::vec3(node.cone_axis);
     out.cone_cos = export_cone_cos(node.cone_cos);
-    out.mixed_types = node.mixed_types;
-    out.indirect = node.indirect;
-    out.patch = node.patch;
+    out.flags = node.flags;
     out.source_radius = light.source_radius;
-    out.bounce = node.left == kNoBuildChild && node.right == kNoBuildChild ? light.bounce : uint16_t{0};
+    out.bounce = node.left == kNoChild && node.right == kNoChild ? light.bounce : uint16_t{0};
     return out;
 }
 
@@ -154,7 +152,7 @@ ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const Para
         }
         const BuildNode& node = arena.nodes[order[head]];
         for (const int32_t child : {node.left, node.right}) {
-            if (child != kNoBuildChild) order.push_back(uint32_t(child));
+            if (child != kNoChild) order.push_back(uint32_t(child));
         }
     }
 

@@ -26,7 +26,7 @@ struct ExportedTree {
 using ParallelRanges =
     std::function<void(size_t count, const std::function<void(size_t begin, size_t end)>& body)>;
 
-// `root` is an arena index, or kNoBuildChild for an empty tree. Iterative. The
+// `root` is an arena index, or kNoChild for an empty tree. Iterative. The
 // nodes are converted through `parallel` when given, else on this thread.
 ExportedTree export_light_tree(const BuildArena& arena, int32_t root, const ParallelRanges& parallel = {});
 

@@ -40,7 +40,7 @@ inline LightType node_type(const GpuTreeNode& node) {
     return LightType(node.flags >> kNodeTypeShift);
 }
 inline bool is_leaf(const GpuTreeNode& node) {
-    return node.first_child == kEndOfWalk;
+    return node.first_child == kNoChild;
 }
 inline bool joins_types(const GpuTreeNode& node) {
     return (node.flags & kNodeMixedTypes) != 0;
@@ -63,7 +63,7 @@ inline bool is_patch(const GpuLight& light) {
 // is still inside the node's subtree. Writes them to `out`, returns how many.
 inline int children_of(const WalkTree& tree, int32_t index, int32_t out[2]) {
     const GpuTreeNode& node = tree.node(index);
-    if (node.first_child == kEndOfWalk) return 0;
+    if (node.first_child == kNoChild) return 0;
     out[0] = node.first_child;
     const int32_t next = tree.node(node.first_child).escape;
     if (next == node.escape) return 1;

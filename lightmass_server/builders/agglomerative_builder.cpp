@@ -131,7 +131,7 @@ double total_cluster_metric(const BuildArena& arena, int32_t root, const MetricP
         if (node.is_leaf()) continue;
         const BuildNode l = arena.node(uint32_t(node.left));
         const BuildNode r = arena.node(uint32_t(node.right));
-        if (!node.mixed_types) {
+        if (!node.flags.mixed_types()) {
             total += cluster_metric(params, shape_of(l), shape_of(r), cone_of(l), cone_of(r));
         }
         stack.push_back(node.left);
@@ -392,7 +392,7 @@ private:
 Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                          const BuildOptions& options, const BuildProgressFn& progress,
                                          BuildReport& report) {
-    if (leaves.empty()) return kNoBuildChild;
+    if (leaves.empty()) return kNoChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
     BuildPhaseTimer timer(report);
     return AgglomerativeRounds(arena, leaves, options, progress, timer).run();
@@ -401,7 +401,7 @@ Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint
 Result<int32_t> build_agglomerative_tree_exact_greedy(BuildArena& arena,
                                                       std::span<const uint32_t> leaves,
                                                       const BuildOptions& options) {
-    if (leaves.empty()) return kNoBuildChild;
+    if (leaves.empty()) return kNoChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
     ClusterState state = initial_state(arena, leaves);
     const size_t n = leaves.size();

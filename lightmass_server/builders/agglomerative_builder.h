@@ -19,7 +19,7 @@
 namespace lc::bake {
 
 // Builds the tree over `leaves` (arena indices of leaves of one light type, in
-// input order); returns the root's arena index (kNoBuildChild when empty).
+// input order); returns the root's arena index (kNoChild when empty).
 Result<int32_t> build_agglomerative_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                          const BuildOptions& options,
                                          const BuildProgressFn& progress, BuildReport& report);

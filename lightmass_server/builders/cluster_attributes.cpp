@@ -47,8 +47,8 @@ BuildNode combine_sums_and_bounds(const BuildNode& left, const BuildNode& right)
     node.brightness = left.brightness + right.brightness;
     node.bbox_min = glm::min(left.bbox_min, right.bbox_min);
     node.bbox_max = glm::max(left.bbox_max, right.bbox_max);
-    node.indirect = left.indirect && right.indirect;
-    node.patch = left.patch && right.patch;
+    node.flags.set(kNodeIndirect, left.flags.indirect() && right.flags.indirect());
+    node.flags.set(kNodePatch, left.flags.patch() && right.flags.patch());
     return node;
 }
 
@@ -130,7 +130,7 @@ BuildNode merge_clusters(const BuildArena& arena, uint32_t a, uint32_t b, Repres
     // Thesis rule: the sphere around the representative's position that holds
     // both children's influence spheres.
     if (left.unbounded() || right.unbounded()) {
-        node.radius = kUnboundedBuildRadius;
+        node.radius = kUnboundedRadius;
     } else {
         const glm::dvec3 p = to_dvec3(arena.lights[node.representative].position);
         const double r_left =
@@ -151,9 +151,9 @@ BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b) {
     node.left = int32_t(children.left_index);
     node.right = int32_t(children.right_index);
     node.type = left.type;
-    node.mixed_types = true;
+    node.flags.set(kNodeMixedTypes, true);
     node.representative = left.representative;
-    node.radius = kUnboundedBuildRadius;
+    node.radius = kUnboundedRadius;
     node.cone_axis = glm::dvec3(0.0, 0.0, -1.0);
     node.cone_cos = -1.0;
     return node;

@@ -67,7 +67,7 @@ inline void prefetch_merge_input(const BuildArena& arena, uint32_t index) {
 }
 
 // A node that joins two trees of different light types: sums and bounds as a
-// cluster, but unbounded, all directions, and flagged mixed_types so the
+// cluster, but unbounded, all directions, and flagged kNodeMixedTypes so the
 // renderer always refines it.
 BuildNode make_junction(const BuildArena& arena, uint32_t a, uint32_t b);
 

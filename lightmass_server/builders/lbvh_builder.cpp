@@ -177,7 +177,7 @@ std::vector<uint32_t> inner_nodes_below(const SplitHierarchy& h, uint32_t root) 
 Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                 const BuildOptions& options, const BuildProgressFn& progress,
                                 BuildReport& report) {
-    if (leaves.empty()) return kNoBuildChild;
+    if (leaves.empty()) return kNoChild;
     if (leaves.size() == 1) return int32_t(leaves[0]);
     BuildPhaseTimer timer(report);
 
@@ -282,7 +282,7 @@ Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys,
     LC_RETURN_IF_ERROR(merge_bottom_up(arena, h, arena_of, options, {}, merges));
     // Breadth-first inner nodes, children as global light indices or inner ordinals.
     const std::vector<uint32_t> inner = inner_nodes_below(h, 0);
-    std::vector<int32_t> ordinal_of_slot(arena.nodes.size(), kNoBuildChild);
+    std::vector<int32_t> ordinal_of_slot(arena.nodes.size(), kNoChild);
     for (size_t k = 0; k < inner.size(); ++k) ordinal_of_slot[arena_of[inner[k]]] = encode_inner_child(uint32_t(k));
     const auto global_child = [&](int32_t slot) {
         return arena.is_leaf_index(uint32_t(slot)) ? int32_t(global_of[size_t(slot)]) : ordinal_of_slot[size_t(slot)];

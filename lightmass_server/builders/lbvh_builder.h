@@ -50,7 +50,7 @@ Result<std::vector<BuildNode>> merge_lbvh_subtree(std::span<const LbvhKey> keys,
                                                   const BuildOptions& options);
 
 // Builds the tree over `leaves` (arena indices of one light type, in input
-// order); returns the root's arena index (kNoBuildChild when empty).
+// order); returns the root's arena index (kNoChild when empty).
 Result<int32_t> build_lbvh_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                 const BuildOptions& options, const BuildProgressFn& progress,
                                 BuildReport& report);

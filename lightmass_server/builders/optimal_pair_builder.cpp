@@ -68,7 +68,7 @@ bool gather_points(const BuildArena& arena, const std::vector<uint32_t>& level, 
 Result<int32_t> build_optimal_pair_tree(BuildArena& arena, std::span<const uint32_t> leaves,
                                         const BuildOptions& options,
                                         const BuildProgressFn& progress, BuildReport& report) {
-    if (leaves.empty()) return kNoBuildChild;
+    if (leaves.empty()) return kNoChild;
     BuildPhaseTimer timer(report);
     const LightType type = arena.lights[leaves[0]].type;
 

@@ -12,7 +12,7 @@
 namespace lc::bake {
 
 // Builds the tree over `leaves` (arena indices of leaves of one light type, in
-// input order) and returns its root's arena index (kNoBuildChild when empty).
+// input order) and returns its root's arena index (kNoChild when empty).
 // Adds pairing cost, lower bound, exactness, level count and warnings to `report`.
 // The next level is ordered by each node's smallest input light index; within a
 // pair the left child is the one with the smaller such index.

@@ -125,7 +125,7 @@ bool group_leaves(std::span<const SceneLight> lights, const BakeStop* stop,
 
 // The per-group roots joined left to right under junction nodes: the whole tree's root.
 int32_t join_under_junctions(BuildArena& arena, const std::vector<uint32_t>& roots) {
-    int32_t root = roots.empty() ? kNoBuildChild : int32_t(roots[0]);
+    int32_t root = roots.empty() ? kNoChild : int32_t(roots[0]);
     for (size_t i = 1; i < roots.size(); ++i) {
         const BuildNode junction = make_junction(arena, uint32_t(root), roots[i]);
         root = int32_t(arena.nodes.size());

@@ -97,7 +97,7 @@ Result<std::vector<std::vector<int32_t>>> unit_levels(const SortedShare& share, 
             for (int32_t child : {node.left, node.right}) {
                 const int64_t leaf = child >= 0 && leaves ? leaves->offset_of(uint32_t(child)) : child;
                 if (leaf < 0 && child >= 0) return make_error("a unit's node names a light outside it");
-                if (child != kNoBuildChild) next.push_back(int32_t(leaf));
+                if (child != kNoChild) next.push_back(int32_t(leaf));
             }
         }
         if (next.empty()) return levels;
@@ -171,7 +171,7 @@ Result<int32_t> write_unit_records(int fd, const SortedShare& share, const LbvhU
                 if (representative < 0) return make_error("a unit's representative is outside it");
                 chunk.nodes.push_back(export_node(node, share.lights[unit.begin + size_t(representative)],
                                                   int32_t(next_child), leaf_index[size_t(representative)]));
-                next_child += uint32_t(node.left != kNoBuildChild) + uint32_t(node.right != kNoBuildChild);
+                next_child += uint32_t(node.left != kNoChild) + uint32_t(node.right != kNoChild);
             }
             if (chunk.nodes.size() == kRecordsPerWrite || j + 1 == (*levels)[l].size()) {
                 const uint64_t first = bases[l] + j + 1 - chunk.nodes.size();

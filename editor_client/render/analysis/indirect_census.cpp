@@ -42,7 +42,8 @@ std::string skipped_reason(const IndirectCensusFacts& f) {
 uint32_t deepest_vpl_bounce(const LightTree& tree) {
     uint32_t deepest = 0;
     for (const LightTreeNode& node : tree.nodes)
-        if (node.indirect && !node.patch && node.is_leaf()) deepest = std::max<uint32_t>(deepest, node.bounce);
+        if (node.flags.indirect() && !node.flags.patch() && node.is_leaf())
+            deepest = std::max<uint32_t>(deepest, node.bounce);
     return deepest;
 }
 
