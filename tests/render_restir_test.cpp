@@ -72,7 +72,8 @@ protected:
     }
     void use_lights(std::vector<SceneLight> lights) {
         scene_.lights = std::move(lights);
-        tree_ = test::agglomerative_tree(scene_.lights);
+        // No lights: an empty tree (the renderer draws from no node).
+        tree_ = scene_.lights.empty() ? LightTree{} : test::agglomerative_tree(scene_.lights);
         Result<std::unique_ptr<Renderer>> renderer = test::create_renderer(*context_, scene_, &tree_);
         ASSERT_TRUE(renderer.ok()) << renderer.error();
         renderer_ = std::move(renderer).value();
@@ -151,12 +152,16 @@ TEST_F(Restir, TracesOneShadowRayPerLitPixel) {
     EXPECT_EQ(last_stats_.loop_limit_stops, 0u);
 }
 
+// Frames are seeded by their number since the renderer was made (as the
+// real-time mode's are): a fresh renderer repeats them.
 TEST_F(Restir, SameSeedGivesTheSameBytes) {
-    use_lights(floor_lights(48, 5));
     settings_.representative_seed = 7;
+    use_lights(floor_lights(48, 5));
     const std::vector<float> first = accumulated(settings_, 3);
+    use_lights(floor_lights(48, 5));
     const std::vector<float> second = accumulated(settings_, 3);
     EXPECT_EQ(first, second);
+    use_lights(floor_lights(48, 5));
     settings_.representative_seed = 8;
     EXPECT_NE(accumulated(settings_, 3), first);
 }

@@ -2,6 +2,7 @@
 // values, and errors that name the flag.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 

@@ -13,6 +13,7 @@
 #include "lightcuts/status_macros.h"
 #include "restir_candidates_comp.spv.h"
 #include "restir_spatial_comp.spv.h"
+#include "spatial_filter_comp.spv.h"
 #include "temporal_accumulate_comp.spv.h"
 
 namespace lc::client {
@@ -53,11 +54,11 @@ Status RestirPass::prepare(PipelineCache& pipelines, const Frame& frame) {
     LC_RETURN_IF_ERROR(reservoirs_.prepare(frame.settings->width, frame.settings->height));
     const std::array<std::span<const uint32_t>, kStageCount> modules{
         spirv_words(restir_candidates_comp_spv), spirv_words(restir_spatial_comp_spv),
-        spirv_words(temporal_accumulate_comp_spv)};
+        spirv_words(temporal_accumulate_comp_spv), spirv_words(spatial_filter_comp_spv)};
     for (int stage = 0; stage < kStageCount; ++stage) {
         vk::Specialization spec;
         spec.set_uint(kSpecWorkgroupX, frame.workgroup_size).set_uint(kSpecWorkgroupY, frame.workgroup_size);
-        if (stage != kTemporal) {
+        if (stage == kCandidates || stage == kSpatial) {
             specialize_lighting(spec, frame);
             spec.set_uint(kSpecRepresentatives, device::kRepresentativesTree);
             specialize_restir(spec, frame.settings->restir);

@@ -1,13 +1,14 @@
 #pragma once
 // The ReSTIR DI mode's lighting (RenderMode::kRestir, Bitterli et al. 2020),
-// three dispatches that own their pipelines, reservoirs and descriptor sets:
+// four dispatches that own their pipelines, reservoirs and descriptor sets:
 // initial candidates drawn from the light tree and resampled, merged with the
 // previous frame's reservoir (restir_candidates.comp); spatial reuse over
 // neighbours, one shadow ray for the survivor and its shading
 // (restir_spatial.comp); and the real-time mode's temporal pass
 // (temporal_accumulate.comp: the running mean of a still view's frames, a
-// short clamped history while it moves). The output pass tone-maps what it
-// leaves in the HDR image.
+// short clamped history while it moves) and its edge-aware filter
+// (spatial_filter.comp: fades out over the first frames, then copies the
+// mean into the HDR image). The output pass tone-maps what it leaves there.
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -46,7 +47,7 @@ public:
     }
 
 private:
-    enum Stage { kCandidates = 0, kSpatial = 1, kTemporal = 2, kStageCount = 3 };
+    enum Stage { kCandidates = 0, kSpatial = 1, kTemporal = 2, kFilter = 3, kStageCount = 4 };
 
     RestirPass(TemporalHistory history, DrawPairSet draws, RestirReservoirs reservoirs, vk::PipelineLayout layout)
         : history_(std::move(history)),
