@@ -11,7 +11,7 @@
 # (scripts/bench/restir_report.py).
 # Usage: scripts/bench/restir.sh [build-dir] [lights] [size] [frames list] [variants]
 # variants: a space-separated subset of the names below (default: all).
-# LC_BENCH_CACHE=DIR keeps the scene, tree and reference in DIR/restir_LIGHTS_SIZE/.
+# LC_BENCH_CACHE=DIR keeps the scene, tree and reference in DIR/restir_LIGHTS/ (the reference per size).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 build_dir="${1:-build}"
@@ -38,15 +38,15 @@ fi
 declare -A variants=(
     [realtime_16_0]="--mode realtime --realtime-cut 16 --realtime-rays 0 --realtime-filter off"
     [realtime_8_1]="--mode realtime --realtime-cut 8 --realtime-rays 1 --realtime-filter off"
-    [restir_default]="--mode restir"
-    [restir_power]="--mode restir --restir-source power"
-    [restir_m16]="--mode restir --restir-candidates 16"
-    [restir_m32]="--mode restir --restir-candidates 32"
-    [restir_k0]="--mode restir --restir-spatial 0"
-    [restir_k5]="--mode restir --restir-spatial 5"
-    [restir_unbiased]="--mode restir --restir-bias unbiased"
-    [restir_notemporal]="--mode restir --restir-temporal off"
-    [restir_visibility]="--mode restir --restir-visibility on"
+    [restir_default]="--mode restir --realtime-filter off"
+    [restir_power]="--mode restir --realtime-filter off --restir-source power"
+    [restir_m16]="--mode restir --realtime-filter off --restir-candidates 16"
+    [restir_m32]="--mode restir --realtime-filter off --restir-candidates 32"
+    [restir_k0]="--mode restir --realtime-filter off --restir-spatial 0"
+    [restir_k5]="--mode restir --realtime-filter off --restir-spatial 5"
+    [restir_unbiased]="--mode restir --realtime-filter off --restir-bias unbiased"
+    [restir_notemporal]="--mode restir --realtime-filter off --restir-temporal off"
+    [restir_visibility]="--mode restir --realtime-filter off --restir-visibility on"
 )
 names="${5:-${!variants[*]}}"
 tags=()
