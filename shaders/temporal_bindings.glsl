@@ -21,4 +21,17 @@ bool inside_image(ivec2 pixel) {
     return pixel.x >= 0 && pixel.y >= 0 && pixel.x < int(frame.width) && pixel.y < int(frame.height);
 }
 
+// Where the world position x was in the previous frame, in pixels; false
+// outside its image or behind its camera.
+bool previous_pixel(vec3 x, out ivec2 pixel) {
+    vec4 clip = temporal.previous_view_proj * vec4(x, 1.0);
+    pixel = ivec2(-1);
+    if (!(clip.w > 0.0)) return false;
+    vec2 ndc = clip.xy / clip.w;
+    vec2 at = (ndc * 0.5 + 0.5) * vec2(frame.width, frame.height);
+    if (!(at.x >= 0.0 && at.y >= 0.0)) return false;
+    pixel = ivec2(at);
+    return inside_image(pixel);
+}
+
 #endif

@@ -18,6 +18,7 @@
 
 #include "lightcuts/device/bindings.h"
 #include "lightcuts/device/gpu_structs.h"
+#include "lightcuts/device/restir.h"
 #include "lightcuts/device/spec_constants.h"
 #include "shader_modules.h"
 
@@ -112,6 +113,11 @@ const std::map<std::string, CppStruct>& cpp_structs() {
           {LC_FIELD(GpuDrawPair, centre0), LC_FIELD(GpuDrawPair, radius0), LC_FIELD(GpuDrawPair, centre1),
            LC_FIELD(GpuDrawPair, radius1), LC_FIELD(GpuDrawPair, intensity0), LC_FIELD(GpuDrawPair, intensity1),
            LC_FIELD(GpuDrawPair, child0), LC_FIELD(GpuDrawPair, child1)}}},
+        {"GpuReservoir",
+         {sizeof(GpuReservoir),
+          {LC_FIELD(GpuReservoir, position), LC_FIELD(GpuReservoir, light), LC_FIELD(GpuReservoir, normal),
+           LC_FIELD(GpuReservoir, weight), LC_FIELD(GpuReservoir, count), LC_FIELD(GpuReservoir, target),
+           LC_FIELD(GpuReservoir, pad0), LC_FIELD(GpuReservoir, pad1)}}},
         {"GpuPrimaryTriangle",
          {sizeof(GpuPrimaryTriangle),
           {LC_FIELD(GpuPrimaryTriangle, v0), LC_FIELD(GpuPrimaryTriangle, v1), LC_FIELD(GpuPrimaryTriangle, v2),
@@ -214,6 +220,9 @@ const std::map<std::string, Block>& known_blocks() {
         {"DrawConstants", {-1, "GpuDrawConstants"}},
         {"TemporalParams", {kBindTemporalParams, "GpuTemporalParams", kTemporalSet}},
         {"DrawPairs", {kBindDrawPairs, "GpuDrawPair", kDrawPairSet}},
+        {"ReservoirsPrevious", {kBindReservoirsPrevious, "GpuReservoir", kRestirSet}},
+        {"ReservoirsTemporal", {kBindReservoirsTemporal, "GpuReservoir", kRestirSet}},
+        {"ReservoirsFinal", {kBindReservoirsFinal, "GpuReservoir", kRestirSet}},
         {"PrimaryNodes", {kBindPrimaryNodes, "GpuBvhNode", kPrimarySet, "primary"}},
         {"PrimaryTriangles", {kBindPrimaryTriangles, "GpuShadowTriangle", kPrimarySet, "primary"}},
         {"PrimarySources", {kBindPrimarySources, "GpuPrimaryTriangle", kPrimarySet, "primary"}},
@@ -284,6 +293,12 @@ const std::map<std::string, uint32_t>& known_spec_constants() {
         {"kRepresentativeSeed", kSpecRepresentativeSeed},
         {"kStochasticCut", kSpecStochasticCut},
         {"kStochasticRays", kSpecStochasticRays},
+        {"kCandidates", kSpecRestirCandidates},
+        {"kSource", kSpecRestirSource},
+        {"kSpatial", kSpecRestirSpatial},
+        {"kTemporal", kSpecRestirTemporal},
+        {"kUnbiased", kSpecRestirUnbiased},
+        {"kCandidateVisibility", kSpecRestirCandidateVisibility},
         {"kBlock", kSpecReconstructionBlock},
         {"kRecordCap", kSpecReconstructionCap},
     };

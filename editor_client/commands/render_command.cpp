@@ -38,6 +38,7 @@
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
 #include "editor_client/commands/gltf_load_flags.h"
+#include "editor_client/commands/restir_options.h"
 #include "editor_client/render/analysis/environment_census.h"
 #include "editor_client/render/analysis/error_stats.h"
 #include "editor_client/render/sweeps/error_sweep.h"
@@ -110,6 +111,7 @@ struct RenderOptions {
     uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;
+    RestirFlags restir;
 };
 
 // The scene's classic lights (shaded one by one besides the tree).
@@ -254,7 +256,7 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
     std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
     if (!mode)
-        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, realtime, error)");
+        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, realtime, restir, error)");
     if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
     settings.mode = *mode;
     settings.criterion = *criterion;
@@ -273,8 +275,9 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.realtime_rays = options.realtime_rays;
     settings.reconstruction_block = options.reconstruction_block;
     settings.reconstruction_cap = options.reconstruction_cap;
-    if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
-        fail("--frames accumulates the real-time mode (--mode realtime)");
+    settings.restir = or_fail(restir_settings_from(options.restir));
+    if (options.frames != 1 && !mode_accumulates(settings.mode))
+        fail("--frames accumulates the real-time modes (--mode realtime or restir)");
     const auto [width, height] = or_fail(parse_size(options.size));
     settings.width = width;
     settings.height = height;
@@ -444,7 +447,7 @@ RenderedFrame render_image(Renderer& renderer, const RenderOptions& options, con
                            std::span<const SceneLight> classic) {
     const RenderSettings& settings = request.settings;
     RenderedFrame rendered =
-        settings.mode == RenderMode::kRealtime
+        mode_accumulates(settings.mode)
             ? render_realtime(renderer, settings, options.frames)
             : render_frame(renderer, settings, spp, tree, classic, request.tiles, options.tile_stride);
     RenderStats& stats = rendered.stats;
@@ -660,11 +663,12 @@ void run_render(const RenderOptions& options) {
 void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--mode", options->mode,
                     "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
-                    "fixed shadow-ray budget) or error (relative error of lightcuts "
+                    "fixed shadow-ray budget), restir (ReSTIR DI: resampled candidates reused across "
+                    "pixels and frames, one shadow ray per pixel) or error (relative error of lightcuts "
                     "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
                     "when a tree source (--tree, --server, --spawn-server) is given, else "
                     "reference")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "error"}));
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "restir", "error"}));
     cmd->add_option("--criterion", options->criterion,
                     "Cut criterion: bound (the paper's error bounds) or radius (the thesis)")
         ->check(CLI::IsMember({"radius", "bound"}))
@@ -800,6 +804,7 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--frames", options->frames,
                     "Real-time mode: frames of the still view whose mean is the image")
         ->capture_default_str();
+    add_restir_options(cmd, &options->restir);
     cmd->add_option("--realtime-filter", options->realtime_filter,
                     "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
                     "plain mean of the frames, as the convergence benchmark measures it)")

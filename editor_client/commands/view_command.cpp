@@ -24,6 +24,7 @@
 #include <string>
 #include <thread>
 
+#include "editor_client/commands/restir_options.h"
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
@@ -50,6 +51,7 @@ struct ViewCommandOptions {
     std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
     uint32_t realtime_cut = 16;
     uint32_t realtime_rays = kDefaultRealtimeRays;
+    RestirFlags restir;
     std::string representatives = "tree";
     std::string shadows = "auto";
     std::string primary = "auto";
@@ -95,7 +97,7 @@ RenderSettings requested_view(const ViewCommandOptions& options, const Scene& sc
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
     const std::string mode_name = options.mode.value_or(options.tree.empty() ? "reference" : "lightcuts");
     std::optional<RenderMode> mode = parse_render_mode(mode_name);
-    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize, realtime)");
+    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize, realtime, restir)");
     const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
@@ -126,6 +128,7 @@ std::unique_ptr<EditorSession> open_session(const ViewCommandOptions& options, S
     or_fail(session->view_settings().set_representatives(options.representatives));
     or_fail(session->view_settings().set_realtime_cut(options.realtime_cut));
     or_fail(session->view_settings().set_realtime_rays(options.realtime_rays));
+    or_fail(session->view_settings().set_restir(or_fail(restir_settings_from(options.restir))));
     if (!options.tree.empty()) or_fail(session->import_tree_dump(options.tree));
     return session;
 }
@@ -239,9 +242,9 @@ void register_view_command(CLI::App& app) {
     options->bake.add_to(*cmd, /*server_required=*/false);
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode,
-                    "First mode: reference, lightcuts, cuts, cutsize or realtime (stochastic lightcuts, "
-                    "accumulated while the view rests) (default: lightcuts with --tree, reference otherwise)")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime"}));
+                    "First mode: reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts, "
+                    "accumulated while the view rests) or restir (ReSTIR DI) (default: lightcuts with --tree, reference otherwise)")
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "restir"}));
     cmd->add_option("--realtime-cut", options->realtime_cut,
                     "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (shadow rays per pixel and frame)")
         ->capture_default_str();
@@ -249,6 +252,7 @@ void register_view_command(CLI::App& app) {
                     "Real-time mode: shadow rays per pixel and frame, picked among the cut's drawn "
                     "lights (0: one per cut node)")
         ->capture_default_str();
+    add_restir_options(cmd, &options->restir);
     cmd->add_option("--representatives", options->representatives,
                     "Bound criterion: evaluate clusters through the tree's representatives, ones drawn "
                     "per pixel (pixel), or drawn per pixel by intensity x a bound of cos / d^2 "

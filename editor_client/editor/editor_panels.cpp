@@ -34,7 +34,7 @@ const char* const kLayouts[] = {"random", "grid"};
 void draw_view_panel(EditorSession& session, PanelState& state) {
     const ViewState& view = session.view();
     int mode = int(view.mode);
-    const char* const modes[] = {"reference", "lightcuts", "cuts", "cutsize"};
+    const char* const modes[] = {"reference", "lightcuts", "cuts", "cutsize", "realtime", "restir"};
     if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
         report(state, session.view_settings().set_mode(modes[mode]), std::string("mode ") + modes[mode]);
     if (mode_needs_tree(view.mode) && !session.tree_matches_scene())

@@ -34,13 +34,13 @@ FrameSchedule::FrameSchedule(const FrameScheduleOptions& options)
 bool FrameSchedule::tiled(const RenderSettings& settings) const {
     // The real-time mode shows whole frames at the full size: its history
     // refines the view, not tiles or a coarser size.
-    return refinement_ && settings.mode != RenderMode::kRealtime;
+    return refinement_ && !mode_accumulates(settings.mode);
 }
 
 FramePlan FrameSchedule::plan(const FrameInputs& inputs) {
     FramePlan plan;
     plan.settings = inputs.settings;
-    plan.realtime = inputs.settings.mode == RenderMode::kRealtime;
+    plan.realtime = mode_accumulates(inputs.settings.mode);
     plan.tiled = tiled(inputs.settings);
     if (plan.tiled) {
         restart_if_changed(inputs);

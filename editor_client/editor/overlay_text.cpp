@@ -35,6 +35,9 @@ std::vector<std::string> overlay_lines(const EditorSession& session, const Frame
         lines.push_back(format("mode %s, cut of %u, at most %u shadow rays per pixel and frame",
                                render_mode_name(view.mode), view.realtime_cut,
                                realtime_ray_budget(view.realtime_cut, view.realtime_rays)));
+    else if (view.mode == RenderMode::kRestir)
+        lines.push_back(format("mode %s, %u candidates, %u neighbours, one shadow ray per pixel and frame",
+                               render_mode_name(view.mode), view.restir.candidates, view.restir.spatial));
     else
         lines.push_back(format("mode %s, criterion %s, error %.3g, max cut %u",
                                render_mode_name(view.mode), criterion_name(view.criterion),

@@ -56,6 +56,11 @@ Status ViewSettings::set_realtime_rays(uint32_t rays) {
     return edit([&](ViewState& v) { v.realtime_rays = rays; });
 }
 
+Status ViewSettings::set_restir(const RestirSettings& restir) {
+    if (Status valid = validate(restir); !valid) return valid;
+    return edit([&](ViewState& v) { v.restir = restir; });
+}
+
 Status ViewSettings::set_representatives(std::string_view name) {
     std::optional<Representatives> representatives = parse_representatives(name);
     if (!representatives)

@@ -25,6 +25,8 @@ public:
     Status set_realtime_cut(uint32_t nodes);
     // Its shadow rays per pixel and frame, 0 to 8; 0: one per cut node (render --realtime-rays).
     Status set_realtime_rays(uint32_t rays);
+    // The ReSTIR mode's options (range-checked).
+    Status set_restir(const RestirSettings& restir);
     // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
     Status set_representatives(std::string_view name);
     Status set_camera(const RenderCamera& camera);

@@ -22,6 +22,7 @@ struct ViewState {
     uint32_t realtime_cut = 16;
     // Real-time mode: shadow rays per pixel and frame (0: one per cut node).
     uint32_t realtime_rays = kDefaultRealtimeRays;
+    RestirSettings restir;  // the ReSTIR mode's options
     RenderCamera camera;
     float exposure = 1.0f;
 
@@ -41,6 +42,7 @@ inline RenderSettings render_settings_for(const ViewState& view, uint32_t width,
     s.representatives = view.representatives;
     s.realtime_cut = view.realtime_cut;
     s.realtime_rays = view.realtime_rays;
+    s.restir = view.restir;
     s.width = width;
     s.height = height;
     s.camera = view.camera;

@@ -6,8 +6,8 @@ namespace lc::client {
 
 Result<RenderStats> render_realtime_frames(Renderer& renderer, const RenderSettings& settings,
                                             uint32_t frames) {
-    if (settings.mode != RenderMode::kRealtime)
-        return make_error("--frames accumulates the real-time mode (--mode realtime)");
+    if (!mode_accumulates(settings.mode))
+        return make_error("--frames accumulates the real-time modes (--mode realtime or restir)");
     if (frames < 1 || frames > kMaxRealtimeFrames)
         return make_error("--frames " + std::to_string(frames) + " is outside 1 .. " +
                           std::to_string(kMaxRealtimeFrames));

@@ -55,6 +55,7 @@ Result<std::unique_ptr<Renderer>> Renderer::create(const vk::Context& context, c
     if (!passes) return make_error(passes.error());
     renderer->passes_.emplace(std::move(passes).value());
     renderer->passes_->realtime().set_policy(options.realtime);
+    renderer->passes_->restir().set_policy(options.realtime);
     LC_RETURN_IF_ERROR(renderer->set_tree(tree));
     return renderer;
 }
@@ -75,6 +76,7 @@ Status Renderer::set_tree(const WalkTree* tree) {
     const std::span<const GpuTreeNode> nodes =
         tree != nullptr ? std::span(tree->nodes) : std::span<const GpuTreeNode>();
     LC_RETURN_IF_ERROR(passes_->realtime().set_tree_nodes(context_.command_pool(), nodes));
+    LC_RETURN_IF_ERROR(passes_->restir().set_tree_nodes(context_.command_pool(), nodes));
     SceneEffects effects = analyse_scene_effects(scene_, tree, options_.shadows, options_.indirect);
     // Which surfaces can hide a light depends on where the lights are; most
     // light edits leave them as they were, and the BVH stays.
@@ -91,7 +93,7 @@ Status Renderer::set_tree(const WalkTree* tree) {
                       d.reason);
     // The pipelines are keyed by the effects' specialization constants: a
     // frame after a change finds (or builds) the ones that match.
-    passes_->realtime().drop_history();
+    restart_realtime();
     return Ok{};
 }
 
@@ -99,7 +101,7 @@ Status Renderer::set_environment(std::shared_ptr<const Environment> environment)
     LC_RETURN_IF_ERROR(context_.device().wait_idle());
     descriptors_.mark_dirty();
     LC_RETURN_IF_ERROR(background_.set_environment(context_, std::move(environment)));
-    passes_->realtime().drop_history();
+    restart_realtime();
     return Ok{};
 }
 
@@ -273,6 +275,7 @@ void Renderer::record_prepared(VkCommandBuffer cmd, const PreparedFrame& prepare
         measurements_.end_pass(cmd, pass->last_stage(), ++pass_number);
     }
     if (settings.mode == RenderMode::kRealtime) passes_->realtime().advance();
+    if (settings.mode == RenderMode::kRestir) passes_->restir().advance();
 
     // Results become readable by copies (read-backs, blits) and by the host (counters).
     vk::memory_barrier(cmd, kComputeStage, kStorageWrite,
@@ -369,6 +372,7 @@ RenderStats Renderer::frame_stats(const RenderSettings& settings, const Submitte
     stats.mode = render_mode_name(settings.mode);
     stats.criterion = mode_searches_cuts(settings.mode) ? criterion_name(settings.criterion)
                       : settings.mode == RenderMode::kRealtime ? "stochastic"
+                      : settings.mode == RenderMode::kRestir   ? "restir"
                                                                : "none";
     stats.device = context_.physical().name();
     stats.width = settings.width;
@@ -419,6 +423,7 @@ void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& s
         stats.realtime_rays = settings.realtime_rays;
         stats.realtime_frames = passes_->realtime().frames_accumulated();
     }
+    if (settings.mode == RenderMode::kRestir) stats.realtime_frames = passes_->restir().frames_accumulated();
     if (mode_searches_cuts(settings.mode) && settings.criterion == CutCriterion::kBound) {
         stats.error_ratio = settings.error_ratio;
         stats.max_cut_setting = settings.max_cut;

@@ -162,8 +162,13 @@ public:
     float shadow_bias() const { return occluders_.bias(); }
     // The real-time mode: frames in its history after the last frame (its mean is the image).
     uint32_t realtime_frames() const { return passes_->realtime().frames_accumulated(); }
-    // The next real-time frame starts a history of its own, whatever the last one was.
-    void restart_realtime() { passes_->realtime().drop_history(); }
+    // The ReSTIR mode's likewise.
+    uint32_t restir_frames() const { return passes_->restir().frames_accumulated(); }
+    // The next real-time or ReSTIR frame starts a history of its own, whatever the last one was.
+    void restart_realtime() {
+        passes_->realtime().drop_history();
+        passes_->restir().drop_history();
+    }
     // Reference mode's dispatches: leaves per dispatch so that none exceeds
     // the device's loop budget (all of them in one on devices without one).
     uint32_t reference_chunk() const;

@@ -50,6 +50,8 @@ bool EditorLoopHost::view_refined() const {
     const RenderSettings settings = sync_.settings(width_, height_);
     if (settings.mode == RenderMode::kRealtime)
         return sync_.in_step() && renderer_.realtime_frames() >= kRealtimeRefinedFrames;
+    if (settings.mode == RenderMode::kRestir)
+        return sync_.in_step() && renderer_.restir_frames() >= kRealtimeRefinedFrames;
     if (!schedule_.progressive()) return true;
     return sync_.in_step() && schedule_.refined_for(settings, sync_.updates());
 }

@@ -15,6 +15,8 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     if (!gbuffer) return make_error(gbuffer.error());
     Result<std::unique_ptr<RealtimePass>> realtime = RealtimePass::create(device, frame_layout);
     if (!realtime) return make_error(realtime.error());
+    Result<std::unique_ptr<RestirPass>> restir = RestirPass::create(device, frame_layout);
+    if (!restir) return make_error(restir.error());
     Result<std::unique_ptr<ReconstructionPass>> reconstruction = ReconstructionPass::create(device, frame_layout);
     if (!reconstruction) return make_error(reconstruction.error());
     Result<std::unique_ptr<PrimaryRaysPass>> primary_rays =
@@ -30,6 +32,7 @@ Result<FramePasses> FramePasses::create(const vk::Context& context, VkDescriptor
     passes.may_fall_back_ = primary == PrimaryChoice::kAuto;
     passes.gbuffer_ = std::move(gbuffer).value();
     passes.realtime_ = std::move(realtime).value();
+    passes.restir_ = std::move(restir).value();
     passes.reconstruction_ = std::move(reconstruction).value();
     return passes;
 }
@@ -38,6 +41,8 @@ std::array<FramePass*, 3> FramePasses::for_settings(const RenderSettings& settin
     FramePass* lighting = &reference_;
     if (settings.mode == RenderMode::kRealtime) {
         lighting = realtime_.get();
+    } else if (settings.mode == RenderMode::kRestir) {
+        lighting = restir_.get();
     } else if (mode_needs_tree(settings.mode)) {
         if (settings.criterion == CutCriterion::kRadius)
             lighting = &radius_walk_;

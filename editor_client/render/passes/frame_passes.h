@@ -13,6 +13,7 @@
 #include "editor_client/render/passes/realtime_pass.h"
 #include "editor_client/render/passes/reconstruction_pass.h"
 #include "editor_client/render/passes/reference_pass.h"
+#include "editor_client/render/passes/restir_pass.h"
 #include "editor_client/render/passes/tone_map_pass.h"
 
 namespace lc::client {
@@ -37,6 +38,8 @@ public:
     PrimaryVisibility primary() const { return primary_; }
     RealtimePass& realtime() { return *realtime_; }
     const RealtimePass& realtime() const { return *realtime_; }
+    RestirPass& restir() { return *restir_; }
+    const RestirPass& restir() const { return *restir_; }
     const BoundHeapPass& bound_heap() const { return bound_heap_; }
 
 private:
@@ -49,6 +52,7 @@ private:
     BoundWalkPass bound_walk_;
     BoundHeapPass bound_heap_;
     std::unique_ptr<RealtimePass> realtime_;
+    std::unique_ptr<RestirPass> restir_;
     std::unique_ptr<ReconstructionPass> reconstruction_;
     ToneMapPass tone_map_;
     CutViewPass cut_view_;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "lightcuts/device/limits.h"
+#include "lightcuts/status_macros.h"
 
 namespace lc::client {
 namespace {
@@ -64,6 +65,8 @@ const char* render_mode_name(RenderMode mode) {
             return "cutsize";
         case RenderMode::kRealtime:
             return "realtime";
+        case RenderMode::kRestir:
+            return "restir";
     }
     return "unknown";
 }
@@ -225,6 +228,7 @@ Status validate(const RenderSettings& settings, const ValidationContext& context
         return make_error("real-time shadow rays " + std::to_string(settings.realtime_rays) +
                           " is outside 0 .. " + std::to_string(kMaxStochasticRays) +
                           " (0: one per cut node)");
+    LC_RETURN_IF_ERROR(validate(settings.restir));
     if (settings.reconstruction_block == 1 || settings.reconstruction_block > kMaxReconstructionBlock)
         return make_error("reconstruction block " + std::to_string(settings.reconstruction_block) +
                           " is outside 2 .. " + std::to_string(kMaxReconstructionBlock) + " (0: off)");

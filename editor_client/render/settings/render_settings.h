@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "editor_client/render/settings/restir_settings.h"
 #include "lightcuts/cuts/cpu_evaluator.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/result.h"
@@ -33,8 +34,16 @@ enum class RenderMode : uint8_t {
     // Stochastic lightcuts with a fixed shadow-ray budget, accumulated over
     // frames (RealtimePass): noise that converges instead of a bias.
     kRealtime = 4,
+    // ReSTIR DI (RestirPass): candidates resampled per pixel and reused
+    // across neighbours and frames, one shadow ray per pixel.
+    kRestir = 5,
 };
-inline constexpr int kRenderModeCount = 5;
+inline constexpr int kRenderModeCount = 6;
+// Modes that render a frame's light from draws and accumulate still frames
+// (a history advanced per frame, dropped on a new tree or new lights).
+inline bool mode_accumulates(RenderMode mode) {
+    return mode == RenderMode::kRealtime || mode == RenderMode::kRestir;
+}
 
 const char* render_mode_name(RenderMode mode);
 std::optional<RenderMode> parse_render_mode(std::string_view text);
@@ -43,12 +52,12 @@ inline bool mode_needs_tree(RenderMode mode) { return mode != RenderMode::kRefer
 // Modes that search a cut per pixel with a criterion (the real-time mode
 // refines one per block its own way, and draws its representatives).
 inline bool mode_searches_cuts(RenderMode mode) {
-    return mode_needs_tree(mode) && mode != RenderMode::kRealtime;
+    return mode_needs_tree(mode) && !mode_accumulates(mode);
 }
 // Modes whose display is tone-mapped radiance (the others visualise cuts).
 inline bool mode_is_shaded(RenderMode mode) {
     return mode == RenderMode::kReference || mode == RenderMode::kLightcuts ||
-           mode == RenderMode::kRealtime;
+           mode_accumulates(mode);
 }
 
 const char* criterion_name(CutCriterion criterion);
@@ -134,6 +143,7 @@ struct RenderSettings {
     // reconstruction_bytes() (passes/reconstruction_records.h).
     uint32_t reconstruction_block = 0;
     uint32_t reconstruction_cap = kDefaultReconstructionCap;
+    RestirSettings restir;  // RenderMode::kRestir
 
     bool operator==(const RenderSettings&) const = default;
 };
