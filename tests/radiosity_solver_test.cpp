@@ -90,6 +90,26 @@ TEST(RadiositySolver, ANearlyWhiteRoomConvergesWithinItsBudgetOrSaysWhy) {
     expect_finite(*stopped);
 }
 
+// Stopped with 30% of the power unshot, the ambient term (Cohen et al. 1988)
+// puts it back: in a closed furnace of one reflectance it is exact.
+TEST(RadiositySolver, TheAmbientTermStandsForThePowerLeftUnshot) {
+    const float rho = 0.5f, radiance = 1.0f;
+    RadiosityOptions options;
+    options.patch_size = 0.25f;
+    options.tolerance = 0.3;
+    auto r = solve(furnace(rho, radiance), options);
+    ASSERT_TRUE(r.ok()) << r.error();
+    EXPECT_GT(r->unshot_fraction, 0.1);
+    EXPECT_GT(r->ambient.y, 0.0);
+    const double expected = std::numbers::pi * radiance / (1.0 - rho);
+    double sum = 0.0, area = 0.0;
+    for (size_t j = 0; j < r->radiosity.size(); ++j) {
+        sum += double(r->radiosity[j].y) * double(r->mesh.patches[j].area);
+        area += double(r->mesh.patches[j].area);
+    }
+    EXPECT_NEAR(sum / area / expected, 1.0, 0.01);
+}
+
 TEST(RadiositySolver, ZeroAreaCoincidentAndTouchingGeometryStaysFiniteAndBounded) {
     const float rho = 0.3f;
     SceneGeometry g = furnace(rho, 1.0f);

@@ -12,6 +12,7 @@
 #include <numbers>
 
 #include "lightcuts/shading_model.h"
+#include "lightmass_server/indirect/patch_lights.h"
 #include "lightmass_server/indirect/photon_emitters.h"
 #include "lightmass_server/indirect/point_polygon_form_factor.h"
 #include "lightmass_server/indirect/radiosity_parts.h"
@@ -232,10 +233,50 @@ public:
             result_.emission[j] = glm::vec3(emission_[j]);
             glm::dvec3 reflected = radiosity_[j] - emission_[j];
             if (!(mean(reflected) > 0.0)) continue;
-            // Just off the surface, so the renderer's shadow rays leave it.
-            result_.lights.push_back({p.centre + p.normal * epsilon_, p.normal,
-                                      glm::vec3(reflected * double(p.area)), equivalent_disk_radius(p.area)});
+            const int levels = near_contact(p, caster_, epsilon_) ? kContactLightLevels : 0;
+            append_patch_lights(p, reflected, epsilon_, levels, result_.lights);
         }
+    }
+
+    // The power still unshot when the solve stops, spread as an ambient
+    // radiosity over the scene (Cohen, Chen, Wallace and Greenberg 1988):
+    // ambient = sum(dB_j A_j) / sum(A_j) / (1 - rho_mean), which a closed
+    // scene would reflect back and forth; each patch reflects rho_j ambient.
+    // Free, unlike a tighter tolerance; it overestimates by the share that
+    // leaves an open scene. Summed block by block: the same bytes at any part count.
+    Result<glm::dvec3> add_ambient() {
+        const IndexRange blocks = radiosity_blocks_of(patches_.size(), part_, parts_);
+        std::vector<double> mine;
+        for (uint64_t b = blocks.begin; b < blocks.end; ++b) {
+            glm::dvec3 sum(0.0);
+            const size_t end = std::min<size_t>(patches_.size(), (b + 1) * kRadiosityBlockPatches);
+            for (size_t j = b * kRadiosityBlockPatches; j < end; ++j) sum += unshot_[j] * double(patches_[j].area);
+            mine.insert(mine.end(), {sum.x, sum.y, sum.z});
+        }
+        std::vector<double> all = mine;
+        if (parts_ > 1 && options_.parts->all_gather) {
+            std::vector<int> sizes;
+            for (uint32_t part = 0; part < parts_; ++part) {
+                const IndexRange theirs = radiosity_blocks_of(patches_.size(), part, parts_);
+                sizes.push_back(int(3 * (theirs.end - theirs.begin)));
+            }
+            Result<std::vector<double>> gathered = options_.parts->all_gather(mine, sizes);
+            if (!gathered)
+                return make_error("radiosity over " + std::to_string(parts_) + " parts: " + gathered.error());
+            all = std::move(gathered).value();
+        }
+        glm::dvec3 unshot_power(0.0), reflectance(0.0);
+        for (size_t k = 0; k + 2 < all.size(); k += 3) unshot_power += glm::dvec3(all[k], all[k + 1], all[k + 2]);
+        double area = 0.0;
+        for (size_t j = 0; j < patches_.size(); ++j) {
+            area += double(patches_[j].area);
+            reflectance += albedo_[j] * double(patches_[j].area);
+        }
+        if (!(area > 0.0)) return glm::dvec3(0.0);
+        const glm::dvec3 rho_mean = glm::min(reflectance / area, glm::dvec3(0.999));
+        const glm::dvec3 ambient = unshot_power / area / (glm::dvec3(1.0) - rho_mean);
+        for (size_t j = receivers_.begin; j < receivers_.end; ++j) radiosity_[j] += albedo_[j] * ambient;
+        return ambient;
     }
 
 private:
@@ -334,6 +375,9 @@ Result<RadiosityResult> solve_radiosity(const SceneGeometry& geometry, const Ray
     }
     result.unshot_fraction = total > 0.0 ? unshot / total : 0.0;
     result.convergence.push_back({result.steps, seconds(), 1.0 - result.unshot_fraction});
+    Result<glm::dvec3> ambient = solver.add_ambient();
+    if (!ambient) return ambient.failure();
+    result.ambient = *ambient;
     solver.finish();
     return result;
 }

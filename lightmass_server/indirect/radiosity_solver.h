@@ -54,6 +54,9 @@ struct RadiosityResult {
     std::vector<IndirectLight> lights;
     uint64_t steps = 0;
     double unshot_fraction = 0.0;  // unshot over total power when it stopped
+    // The ambient radiosity that stands for the unshot power (W/m^2); each
+    // patch's radiosity includes its albedo times it.
+    glm::dvec3 ambient{0.0};
     bool converged = true;
     // Empty when it converged; else says why it stopped and what to change.
     std::string message;
