@@ -29,7 +29,7 @@ while [ $# -gt 0 ]; do
 done
 [ -n "$scene" ] && [ -n "$camera" ] || usage
 command -v blender > /dev/null || { echo "cycles_compare: needs blender (apt-get install blender)" >&2; exit 1; }
-client="$build/editor_client/editor_client"
+client="$build/bin/editor_client"
 [ -x "$client" ] || { echo "cycles_compare: no $client: build first (scripts/build.sh)" >&2; exit 1; }
 out=${out:-$(mktemp -d -t cycles_compare.XXXXXX)}
 mkdir -p "$out"

@@ -287,8 +287,8 @@ void decide_indirect(bool indirect, SceneEffects& effects) {
         effects.indirect_clamp = decide(effects, name, true,
                                         baked + ": " + plural(vpls, "VPL") +
                                             " clamped to half the error ratio of the pixel's total each, " +
-                                            std::to_string(effects.indirect_patches) +
-                                            " radiosity patch(es) shaded as disks of their area",
+                                            plural(effects.indirect_patches, "radiosity patch light") +
+                                            " shaded as disks of their area",
                                         "");
     }
 }
