@@ -1,0 +1,167 @@
+#include "editor_client/commands/render_options.h"
+
+#include "lightcuts/device/limits.h"
+
+namespace lc::client {
+namespace {
+
+// --mode and the cut: criterion, error, search, representatives, shadows.
+void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
+    cmd->add_option("--mode", options->mode,
+                    "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
+                    "fixed shadow-ray budget) or error (relative error of lightcuts "
+                    "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
+                    "when a tree source (--tree, --server, --spawn-server) is given, else "
+                    "reference")
+        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "error"}));
+    cmd->add_option("--criterion", options->criterion,
+                    "Cut criterion: bound (the paper's error bounds) or radius (the thesis)")
+        ->check(CLI::IsMember({"radius", "bound"}))
+        ->capture_default_str();
+    cmd->add_option("--error", options->error_ratio,
+                    "Bound criterion: refine until every node's error bound is <= this x the "
+                    "pixel's total")
+        ->capture_default_str();
+    cmd->add_option("--max-cut", options->max_cut,
+                    "Bound criterion: most nodes in a cut (pixels that reach it are counted as "
+                    "max_cut_hits)")
+        ->capture_default_str();
+    cmd->add_option("--bound-search", options->bound_search,
+                    "Bound criterion: walk (threshold passes, fast on SIMD devices) or heap (the "
+                    "paper's largest-bound-first order); both stop under the same rule")
+        ->check(CLI::IsMember({"walk", "heap"}))
+        ->capture_default_str();
+    cmd->add_flag("--share-cuts", options->share_cuts,
+                  "Bound criterion, walk search: one cut per subgroup of neighbouring pixels "
+                  "(8 on lavapipe), refined until it meets every one of their bounds");
+    cmd->add_option("--representatives", options->representatives,
+                    "Bound criterion: evaluate a cluster through the tree's representative (drawn "
+                    "once for the image), one drawn per pixel with the same probabilities "
+                    "(errors independent between pixels), or one drawn per pixel in proportion "
+                    "to intensity x a bound of cos / d^2 at the point (importance; walk search)")
+        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
+        ->capture_default_str();
+    cmd->add_option("--representative-seed", options->representative_seed,
+                    "--representatives pixel or importance: the seed of the per-pixel draws")
+        ->capture_default_str();
+    cmd->add_option("--shadows", options->shadows,
+                    "Shadow rays: auto (simulated when a surface may hide a light; the stats "
+                    "JSON says why), on or off")
+        ->check(CLI::IsMember({"auto", "on", "off"}))
+        ->capture_default_str();
+}
+
+// --sweep-error and --compare-reference: the error against the reference.
+void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
+    cmd->add_option("--sweep-error", options->sweep_error,
+                    "Print the price of accuracy on this scene and camera: lightcuts at each "
+                    "error ratio of the list (e.g. 0.005,0.01,0.02,0.05) against one reference: "
+                    "GPU time, speedup, cut sizes and measured error");
+    cmd->add_option("--sweep-blocks", options->sweep_blocks,
+                    "With --sweep-error: after each ratio's lightcut per pixel, reconstruction cuts "
+                    "(--reconstruction) with each block side of the list (e.g. 4,8)");
+    cmd->add_option("--sweep-realtime", options->sweep_realtime,
+                    "With --mode realtime: print the real-time mode's price of accuracy on this "
+                    "scene and camera: for each cut size of the list (e.g. 8,16,32) the still "
+                    "view's frames accumulated, against one reference, after each count of "
+                    "--sweep-frames: GPU time, shadow rays and measured error");
+    cmd->add_option("--sweep-frames", options->sweep_frames,
+                    "With --sweep-realtime: the frame counts measured, ascending")
+        ->capture_default_str();
+    cmd->add_option("--sweep-csv", options->sweep_csv,
+                    "With --sweep-error or --sweep-realtime: also write the table as CSV (one row per "
+                    "ratio, or per cut size and frame count)");
+    cmd->add_flag("--compare-reference", options->compare_reference,
+                  "Also render the reference and write error statistics (rel_err_mean, "
+                  "rel_err_p99, frac_over_error, max_err; implied by --mode error)");
+}
+
+// The image: size, camera, exposure and the files written.
+void add_image_flags(CLI::App* cmd, RenderOptions* options) {
+    cmd->add_option("--size", options->size, "Image size WxH")->capture_default_str();
+    auto* camera =
+        cmd->add_option("--camera", options->camera, "Camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
+    cmd->add_option("--camera-index", options->camera_index, "Camera of the file to use")->excludes(camera);
+    cmd->add_option("--exposure", options->exposure,
+                    "Linear exposure before the tone curve (default: automatic, the log-average "
+                    "luminance of the lit pixels maps to 0.18)");
+    cmd->add_option("-o,--output", options->output,
+                    "Image to write: .png (8-bit, tone-mapped) or .exr (OpenEXR, linear radiance)")
+        ->required();
+    cmd->add_option("--float", options->float_output, "Linear image to write besides: .pfm or .exr");
+    cmd->add_flag("--exr-half", options->exr_half, "Write .exr images in half floats (float by default)");
+    cmd->add_option("--stats", options->stats, "Statistics JSON to write");
+}
+
+// Eye rays per pixel, strides, and the real-time mode's frames.
+void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
+    cmd->add_option("--spp", options->spp,
+                    "Eye rays per pixel, jittered (seeded) and averaged into the pixel")
+        ->check(CLI::Range(1u, 1024u))
+        ->capture_default_str();
+    cmd->add_option("--spp-method", options->spp_method,
+                    "How --spp shades its eye rays: gpu (a whole frame per eye ray), lightcuts "
+                    "(a CPU lightcut per eye ray) or reconstruction (the paper's reconstruction "
+                    "cuts: CPU lightcuts at sparse samples, interpolated between)")
+        ->check(CLI::IsMember({"gpu", "lightcuts", "reconstruction"}))
+        ->capture_default_str();
+    cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")->capture_default_str();
+    cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
+        ->check(CLI::Range(1u, 256u))
+        ->capture_default_str();
+    cmd->add_option("--pixel-stride", options->pixel_stride,
+                    "Reference mode: render every K-th pixel in x and y only (the same work per "
+                    "pixel; K must divide both sides): a (W/K)x(H/K) image in a K^2-th of the time")
+        ->check(CLI::Range(1u, 64u))
+        ->capture_default_str();
+    cmd->add_option("--tile-stride", options->tile_stride,
+                    "Reference mode: render every K-th 8x8 tile in x and y only, the middle one "
+                    "of each KxK block of tiles (neighbouring pixels stay neighbours, as in the "
+                    "full frame; 8K must divide both sides): a (W/K)x(H/K) image of the tiles in "
+                    "a K^2-th of the time")
+        ->check(CLI::Range(1u, 64u))
+        ->capture_default_str();
+    cmd->add_option("--realtime-cut", options->realtime_cut,
+                    "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (at most this many "
+                    "shadow rays per pixel and frame)")
+        ->capture_default_str();
+    cmd->add_option("--realtime-rays", options->realtime_rays,
+                    "Real-time mode: shadow rays per pixel and frame, picked among the cut's "
+                    "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
+        ->check(CLI::Range(0u, kMaxStochasticRays))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction", options->reconstruction_block,
+                    "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
+                    "BLOCKxBLOCK pixel blocks, the pixels between shaded from them with shadow rays "
+                    "only where their visibility disagrees (0: a lightcut per pixel)")
+        ->check(CLI::Range(0u, kMaxReconstructionBlock))
+        ->capture_default_str();
+    cmd->add_option("--reconstruction-cap", options->reconstruction_cap,
+                    "Reconstruction cuts: cut nodes a sample records at most (4 bytes each); a "
+                    "sample over it makes its blocks' pixels run lightcuts of their own")
+        ->check(CLI::Range(1u, kMaxGpuCut))
+        ->capture_default_str();
+    cmd->add_option("--frames", options->frames,
+                    "Real-time mode: frames of the still view whose mean is the image")
+        ->capture_default_str();
+    cmd->add_option("--realtime-filter", options->realtime_filter,
+                    "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
+                    "plain mean of the frames, as the convergence benchmark measures it)")
+        ->capture_default_str();
+    cmd->add_option("--primary", options->primary,
+                    "How the G-buffer is made: raster, rays (a compute pass: faster on GPUs that "
+                    "rasterise on few units; untextured scenes), or auto (rays on a GPU for a scene "
+                    "without textures, raster otherwise)")
+        ->capture_default_str();
+}
+
+}  // namespace
+
+void add_render_flags(CLI::App& cmd, RenderOptions& options) {
+    add_mode_flags(&cmd, &options);
+    add_measurement_flags(&cmd, &options);
+    add_image_flags(&cmd, &options);
+    add_sampling_flags(&cmd, &options);
+}
+
+}  // namespace lc::client

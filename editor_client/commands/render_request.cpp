@@ -1,0 +1,132 @@
+#include "editor_client/commands/render_request.h"
+
+#include "editor_client/commands/command_errors.h"
+#include "editor_client/render/render_inputs.h"
+#include "editor_client/render/sweeps/error_sweep.h"
+#include "editor_client/render/sweeps/realtime_sweep.h"
+#include "lightcuts/device/limits.h"
+
+namespace lc::client {
+namespace {
+
+// The renderer's settings from the flags, in the order the flags are checked.
+RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source,
+                              bool& error_mode) {
+    RenderSettings settings;
+    const std::string mode_text =
+        options.mode.empty() ? (has_tree_source ? "lightcuts" : "reference") : options.mode;
+    error_mode = mode_text == "error";
+    std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
+    std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
+    if (!mode)
+        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, realtime, error)");
+    if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
+    settings.mode = *mode;
+    settings.criterion = *criterion;
+    settings.error_ratio = options.error_ratio;
+    settings.max_cut = options.max_cut;
+    std::optional<BoundSearch> search = parse_bound_search(options.bound_search);
+    if (!search) fail("unknown --bound-search '" + options.bound_search + "' (walk, heap)");
+    settings.bound_search = *search;
+    settings.share_cuts = options.share_cuts;
+    std::optional<Representatives> representatives = parse_representatives(options.representatives);
+    if (!representatives)
+        fail("unknown --representatives '" + options.representatives + "' (tree, pixel, importance)");
+    settings.representatives = *representatives;
+    settings.representative_seed = options.representative_seed;
+    settings.realtime_cut = options.realtime_cut;
+    settings.realtime_rays = options.realtime_rays;
+    settings.reconstruction_block = options.reconstruction_block;
+    settings.reconstruction_cap = options.reconstruction_cap;
+    if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
+        fail("--frames accumulates the real-time mode (--mode realtime)");
+    const auto [width, height] = or_fail(parse_size(options.size));
+    settings.width = width;
+    settings.height = height;
+    settings.exposure = options.exposure.value_or(1.0f);
+    settings.camera =
+        or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
+    if (Status valid = validate(settings, {.has_tree = has_tree_source}); !valid) fail(valid.error());
+    return settings;
+}
+
+// The sweep, the comparison and the strides, each only where it applies.
+void check_request(const RenderOptions& options, RenderRequest& request) {
+    const RenderMode mode = request.settings.mode;
+    request.compare = request.error_mode || options.compare_reference;
+    if (!options.sweep_error.empty()) {
+        request.sweep_ratios = or_fail(parse_error_list(options.sweep_error));
+        if (mode == RenderMode::kReference) fail("--sweep-error needs a lightcuts mode and a tree source");
+    }
+    if (!options.sweep_blocks.empty()) {
+        if (options.sweep_error.empty()) fail("--sweep-blocks needs --sweep-error");
+        request.sweep_blocks =
+            or_fail(parse_count_list(options.sweep_blocks, "--sweep-blocks", 2, kMaxReconstructionBlock));
+    }
+    if (!options.sweep_realtime.empty()) {
+        if (mode != RenderMode::kRealtime) fail("--sweep-realtime needs --mode realtime and a tree source");
+        request.sweep_cuts = or_fail(parse_count_list(options.sweep_realtime, "--sweep-realtime", 1, kMaxStochasticCut));
+        request.sweep_frames = or_fail(parse_count_list(options.sweep_frames, "--sweep-frames", 1, 4096));
+    }
+    if (!options.sweep_csv.empty() && request.sweep_ratios.empty() && request.sweep_cuts.empty())
+        fail("--sweep-csv needs --sweep-error or --sweep-realtime");
+    if (request.compare && !mode_needs_tree(mode))
+        fail("--compare-reference needs a lightcuts mode (lightcuts, cuts, cutsize, realtime or error)");
+    if (!request.sweep_ratios.empty() && mode == RenderMode::kRealtime)
+        fail("--sweep-error sweeps the deterministic lightcuts modes, not realtime");
+    if (options.pixel_stride > 1 || options.tile_stride > 1) {
+        if (mode != RenderMode::kReference || options.spp > 1 || options.spp_method != "gpu")
+            fail("--pixel-stride and --tile-stride render the reference alone (--mode reference, no --spp)");
+        if (options.pixel_stride > 1 && options.tile_stride > 1)
+            fail("--pixel-stride or --tile-stride, not both");
+    }
+}
+
+// --pixel-stride renders a smaller frame; --tile-stride renders some tiles of the full one.
+void apply_strides(const RenderOptions& options, RenderRequest& request) {
+    request.width = request.settings.width;
+    request.height = request.settings.height;
+    if (options.pixel_stride > 1) {
+        request.settings = or_fail(strided_settings(request.settings, options.pixel_stride));
+        request.width = request.settings.width;
+        request.height = request.settings.height;
+    }
+    if (options.tile_stride > 1) {
+        request.tiles =
+            or_fail(strided_tiles(request.width, request.height, kStrideTile, options.tile_stride));
+        request.width /= options.tile_stride;
+        request.height /= options.tile_stride;
+    }
+}
+
+}  // namespace
+
+RenderRequest make_request(const RenderOptions& options, const Scene& scene, bool has_tree_source) {
+    RenderRequest request;
+    request.settings = parse_settings(options, scene, has_tree_source, request.error_mode);
+    check_request(options, request);
+    apply_strides(options, request);
+    return request;
+}
+
+std::optional<SupersampleRequest> supersample_request(const RenderOptions& options,
+                                                      const RenderRequest& request) {
+    if (options.spp <= 1 && options.spp_method == "gpu") return std::nullopt;
+    SupersampleRequest spp;
+    spp.spp = options.spp;
+    spp.seed = options.spp_seed;
+    spp.threads = options.threads;
+    std::optional<SppMethod> method = parse_spp_method(options.spp_method);
+    if (!method) fail("unknown --spp-method '" + options.spp_method + "'");
+    spp.method = *method;
+    const RenderSettings& settings = request.settings;
+    if (!mode_is_shaded(settings.mode) || request.error_mode || !request.sweep_ratios.empty())
+        fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
+    if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
+        fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
+    if (spp.method != SppMethod::kGpu && settings.representatives != Representatives::kTree)
+        fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
+    return spp;
+}
+
+}  // namespace lc::client
