@@ -163,11 +163,9 @@ std::optional<EffectDecision> prepare_renderer(Renderer& renderer, const RenderO
 std::unique_ptr<Renderer> create_renderer(const vk::Context& context, const RenderOptions& options,
                                           const Scene& scene, const WalkTree* tree) {
     RendererOptions renderer_options;
-    renderer_options.shadows = or_fail(parse_shadow_mode(options.shadows));
+    renderer_options.shadows = options.shared.shadows;
     renderer_options.indirect = options.bake.renders_indirect();
-    const std::optional<PrimaryChoice> primary = parse_primary_choice(options.primary);
-    if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
-    renderer_options.primary = *primary;
+    renderer_options.primary = options.shared.primary;
     // A sweep measures the estimator: the plain mean of the frames.
     if (!options.realtime_filter || !options.sweep_realtime.empty()) renderer_options.realtime.filter_frames = 0;
     return or_fail(Renderer::create(context, scene, tree, renderer_options));

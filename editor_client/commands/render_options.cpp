@@ -1,23 +1,45 @@
 #include "editor_client/commands/render_options.h"
 
+#include <string>
+#include <vector>
+
+#include "editor_client/commands/enum_flags.h"
 #include "lightcuts/device/limits.h"
 
 namespace lc::client {
 namespace {
 
+// render --mode's names: the renderer's modes and the error view.
+std::vector<std::string> mode_names() {
+    std::vector<std::string> names;
+    for (const NamedValue<RenderMode>& entry : kRenderModeNames) names.emplace_back(entry.name);
+    names.emplace_back(kErrorViewName);
+    return names;
+}
+
+// --mode: a renderer mode, or the error view (lightcuts, shown as its error).
+void add_mode_flag(CLI::App* cmd, RenderOptions* options) {
+    auto pick = [options](const std::string& name) {
+        options->error_view = name == kErrorViewName;
+        options->mode = options->error_view ? RenderMode::kLightcuts : parse_render_mode(name);
+    };
+    cmd->add_option_function<std::string>(
+           "--mode", pick,
+           "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
+           "fixed shadow-ray budget) or error (relative error of lightcuts "
+           "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
+           "when a tree source (--tree, --server, --spawn-server) is given, else "
+           "reference")
+        ->check(CLI::IsMember(mode_names()));
+}
+
 // --mode and the cut: criterion, error, search, representatives, shadows.
 void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
-    cmd->add_option("--mode", options->mode,
-                    "reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts with a "
-                    "fixed shadow-ray budget) or error (relative error of lightcuts "
-                    "against the reference, as a heatmap; 0 .. 2 x --error). Default: lightcuts "
-                    "when a tree source (--tree, --server, --spawn-server) is given, else "
-                    "reference")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "error"}));
+    add_mode_flag(cmd, options);
     cmd->add_option("--criterion", options->criterion,
                     "Cut criterion: bound (the paper's error bounds) or radius (the thesis)")
-        ->check(CLI::IsMember({"radius", "bound"}))
-        ->capture_default_str();
+        ->transform(checked_names(kCriterionNames))
+        ->default_str(criterion_name(options->criterion));
     cmd->add_option("--error", options->error_ratio,
                     "Bound criterion: refine until every node's error bound is <= this x the "
                     "pixel's total")
@@ -29,26 +51,15 @@ void add_mode_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--bound-search", options->bound_search,
                     "Bound criterion: walk (threshold passes, fast on SIMD devices) or heap (the "
                     "paper's largest-bound-first order); both stop under the same rule")
-        ->check(CLI::IsMember({"walk", "heap"}))
-        ->capture_default_str();
+        ->transform(checked_names(kBoundSearchNames))
+        ->default_str(bound_search_name(options->bound_search));
     cmd->add_flag("--share-cuts", options->share_cuts,
                   "Bound criterion, walk search: one cut per subgroup of neighbouring pixels "
                   "(8 on lavapipe), refined until it meets every one of their bounds");
-    cmd->add_option("--representatives", options->representatives,
-                    "Bound criterion: evaluate a cluster through the tree's representative (drawn "
-                    "once for the image), one drawn per pixel with the same probabilities "
-                    "(errors independent between pixels), or one drawn per pixel in proportion "
-                    "to intensity x a bound of cos / d^2 at the point (importance; walk search)")
-        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
-        ->capture_default_str();
     cmd->add_option("--representative-seed", options->representative_seed,
                     "--representatives pixel or importance: the seed of the per-pixel draws")
         ->capture_default_str();
-    cmd->add_option("--shadows", options->shadows,
-                    "Shadow rays: auto (simulated when a surface may hide a light; the stats "
-                    "JSON says why), on or off")
-        ->check(CLI::IsMember({"auto", "on", "off"}))
-        ->capture_default_str();
+    add_shared_render_flags(*cmd, options->shared);
 }
 
 // --sweep-error and --compare-reference: the error against the reference.
@@ -103,8 +114,8 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "How --spp shades its eye rays: gpu (a whole frame per eye ray), lightcuts "
                     "(a CPU lightcut per eye ray) or reconstruction (the paper's reconstruction "
                     "cuts: CPU lightcuts at sparse samples, interpolated between)")
-        ->check(CLI::IsMember({"gpu", "lightcuts", "reconstruction"}))
-        ->capture_default_str();
+        ->transform(checked_names(kSppMethodNames))
+        ->default_str(spp_method_name(options->spp_method));
     cmd->add_option("--spp-seed", options->spp_seed, "Seed of the eye rays' jitter")->capture_default_str();
     cmd->add_option("--threads", options->threads, "CPU workers of the CPU --spp methods")
         ->check(CLI::Range(1u, 256u))
@@ -120,15 +131,6 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "full frame; 8K must divide both sides): a (W/K)x(H/K) image of the tiles in "
                     "a K^2-th of the time")
         ->check(CLI::Range(1u, 64u))
-        ->capture_default_str();
-    cmd->add_option("--realtime-cut", options->realtime_cut,
-                    "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (at most this many "
-                    "shadow rays per pixel and frame)")
-        ->capture_default_str();
-    cmd->add_option("--realtime-rays", options->realtime_rays,
-                    "Real-time mode: shadow rays per pixel and frame, picked among the cut's "
-                    "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
-        ->check(CLI::Range(0u, kMaxStochasticRays))
         ->capture_default_str();
     cmd->add_option("--reconstruction", options->reconstruction_block,
                     "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
@@ -147,11 +149,6 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--realtime-filter", options->realtime_filter,
                     "Real-time mode: the edge-aware spatial filter over the first 16 frames (off: the "
                     "plain mean of the frames, as the convergence benchmark measures it)")
-        ->capture_default_str();
-    cmd->add_option("--primary", options->primary,
-                    "How the G-buffer is made: raster, rays (a compute pass: faster on GPUs that "
-                    "rasterise on few units; untextured scenes), or auto (rays on a GPU for a scene "
-                    "without textures, raster otherwise)")
         ->capture_default_str();
 }
 

@@ -8,6 +8,7 @@
 
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/gltf_load_flags.h"
+#include "editor_client/commands/shared_render_flags.h"
 #include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/supersampled_render.h"
 
@@ -18,16 +19,15 @@ struct RenderOptions {
     GltfLoadOptions gltf;
     std::string tree;
     BakeFlags bake;
-    std::string mode;  // empty: lightcuts with a tree source, else reference
-    std::string criterion = "bound";
+    std::optional<RenderMode> mode;  // none: lightcuts with a tree source, else reference
+    bool error_view = false;         // --mode error: lightcuts shown as its error against the reference
+    CutCriterion criterion = CutCriterion::kBound;
     float error_ratio = 0.02f;
     uint32_t max_cut = kDefaultMaxCut;
-    std::string bound_search = "walk";
+    BoundSearch bound_search = BoundSearch::kWalk;
     bool share_cuts = false;
-    std::string representatives = "tree";
     uint32_t representative_seed = 0;
-    std::string shadows = "auto";
-    std::string primary = "auto";
+    SharedRenderFlags shared;  // the real-time budget, representatives, shadows, primary
     std::string sweep_error;  // "0.005,0.01,...": print the error/time table
     std::string sweep_csv;    // and write it here
     std::string sweep_realtime;             // "8,16,32": the real-time mode's table per cut size
@@ -44,18 +44,19 @@ struct RenderOptions {
     std::string stats;
     bool validation = false;
     uint32_t spp = 1;
-    std::string spp_method = "gpu";
+    SppMethod spp_method = SppMethod::kGpu;
     uint64_t spp_seed = kDefaultSppSeed;
     uint32_t threads = 2;
     uint32_t pixel_stride = 1;
     uint32_t tile_stride = 1;
-    uint32_t realtime_cut = 16;
-    uint32_t realtime_rays = kDefaultRealtimeRays;
     uint32_t reconstruction_block = 0;
     uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;
 };
+
+// render --mode's name for the error view, besides the renderer's modes.
+inline constexpr const char* kErrorViewName = "error";
 
 // Every flag of `render` but the scene, the tree source and --validation.
 void add_render_flags(CLI::App& cmd, RenderOptions& options);

@@ -1,5 +1,7 @@
 #include "editor_client/commands/render_request.h"
 
+#include <string>
+
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/render/render_inputs.h"
 #include "editor_client/render/sweeps/error_sweep.h"
@@ -10,32 +12,18 @@ namespace lc::client {
 namespace {
 
 // The renderer's settings from the flags, in the order the flags are checked.
-RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source,
-                              bool& error_mode) {
+RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source) {
     RenderSettings settings;
-    const std::string mode_text =
-        options.mode.empty() ? (has_tree_source ? "lightcuts" : "reference") : options.mode;
-    error_mode = mode_text == "error";
-    std::optional<RenderMode> mode = parse_render_mode(error_mode ? "lightcuts" : mode_text);
-    std::optional<CutCriterion> criterion = parse_criterion(options.criterion);
-    if (!mode)
-        fail("unknown --mode '" + mode_text + "' (reference, lightcuts, cuts, cutsize, realtime, error)");
-    if (!criterion) fail("unknown --criterion '" + options.criterion + "' (bound, radius)");
-    settings.mode = *mode;
-    settings.criterion = *criterion;
+    settings.mode = options.mode.value_or(has_tree_source ? RenderMode::kLightcuts : RenderMode::kReference);
+    settings.criterion = options.criterion;
     settings.error_ratio = options.error_ratio;
     settings.max_cut = options.max_cut;
-    std::optional<BoundSearch> search = parse_bound_search(options.bound_search);
-    if (!search) fail("unknown --bound-search '" + options.bound_search + "' (walk, heap)");
-    settings.bound_search = *search;
+    settings.bound_search = options.bound_search;
     settings.share_cuts = options.share_cuts;
-    std::optional<Representatives> representatives = parse_representatives(options.representatives);
-    if (!representatives)
-        fail("unknown --representatives '" + options.representatives + "' (tree, pixel, importance)");
-    settings.representatives = *representatives;
+    settings.representatives = options.shared.representatives;
     settings.representative_seed = options.representative_seed;
-    settings.realtime_cut = options.realtime_cut;
-    settings.realtime_rays = options.realtime_rays;
+    settings.realtime_cut = options.shared.realtime_cut;
+    settings.realtime_rays = options.shared.realtime_rays;
     settings.reconstruction_block = options.reconstruction_block;
     settings.reconstruction_cap = options.reconstruction_cap;
     if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
@@ -75,7 +63,7 @@ void check_request(const RenderOptions& options, RenderRequest& request) {
     if (!request.sweep_ratios.empty() && mode == RenderMode::kRealtime)
         fail("--sweep-error sweeps the deterministic lightcuts modes, not realtime");
     if (options.pixel_stride > 1 || options.tile_stride > 1) {
-        if (mode != RenderMode::kReference || options.spp > 1 || options.spp_method != "gpu")
+        if (mode != RenderMode::kReference || options.spp > 1 || options.spp_method != SppMethod::kGpu)
             fail("--pixel-stride and --tile-stride render the reference alone (--mode reference, no --spp)");
         if (options.pixel_stride > 1 && options.tile_stride > 1)
             fail("--pixel-stride or --tile-stride, not both");
@@ -103,7 +91,8 @@ void apply_strides(const RenderOptions& options, RenderRequest& request) {
 
 RenderRequest make_request(const RenderOptions& options, const Scene& scene, bool has_tree_source) {
     RenderRequest request;
-    request.settings = parse_settings(options, scene, has_tree_source, request.error_mode);
+    request.settings = parse_settings(options, scene, has_tree_source);
+    request.error_mode = options.error_view;
     check_request(options, request);
     apply_strides(options, request);
     return request;
@@ -111,21 +100,19 @@ RenderRequest make_request(const RenderOptions& options, const Scene& scene, boo
 
 std::optional<SupersampleRequest> supersample_request(const RenderOptions& options,
                                                       const RenderRequest& request) {
-    if (options.spp <= 1 && options.spp_method == "gpu") return std::nullopt;
+    if (options.spp <= 1 && options.spp_method == SppMethod::kGpu) return std::nullopt;
     SupersampleRequest spp;
     spp.spp = options.spp;
     spp.seed = options.spp_seed;
     spp.threads = options.threads;
-    std::optional<SppMethod> method = parse_spp_method(options.spp_method);
-    if (!method) fail("unknown --spp-method '" + options.spp_method + "'");
-    spp.method = *method;
+    spp.method = options.spp_method;
     const RenderSettings& settings = request.settings;
     if (!mode_is_shaded(settings.mode) || request.error_mode || !request.sweep_ratios.empty())
         fail("--spp renders the lightcuts or reference mode (no cut views, error or sweep)");
     if (spp.method != SppMethod::kGpu && settings.mode != RenderMode::kLightcuts)
-        fail("--spp-method " + options.spp_method + " shades lightcuts (--mode lightcuts)");
+        fail(std::string("--spp-method ") + spp_method_name(spp.method) + " shades lightcuts (--mode lightcuts)");
     if (spp.method != SppMethod::kGpu && settings.representatives != Representatives::kTree)
-        fail("--spp-method " + options.spp_method + " shades with the tree's representatives");
+        fail(std::string("--spp-method ") + spp_method_name(spp.method) + " shades with the tree's representatives");
     return spp;
 }
 

@@ -27,6 +27,7 @@ public:
     Status set_realtime_rays(uint32_t rays);
     // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
     Status set_representatives(std::string_view name);
+    Status set_representatives(Representatives representatives);
     Status set_camera(const RenderCamera& camera);
     Status set_exposure(float exposure);
 
