@@ -102,19 +102,19 @@ RenderedFrame render_frame(Renderer& renderer, const RenderSettings& settings, c
     SupersampledImage image =
         or_fail(render_supersampled(renderer, settings, *spp, tree, classic));
     // Every eye ray's frame on the wall clock, not the last one's.
-    out.stats.wall_ms =
+    out.stats.timing.wall_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     out.hdr = std::move(image.hdr);
     out.display = tone_map_image(out.hdr, settings.exposure);
-    out.stats.render_ms = image.shading_ms;
-    if (spp->method != SppMethod::kGpu) out.stats.render_clock = "CPU";
-    out.stats.shadow_rays = image.shadow_rays;
+    out.stats.timing.render_ms = image.shading_ms;
+    if (spp->method != SppMethod::kGpu) out.stats.timing.render_clock = "CPU";
+    out.stats.shadows.rays = image.shadow_rays;
     out.stats.nonfinite_pixels = image.nonfinite_pixels;
-    out.stats.spp = spp->spp;
-    out.stats.spp_method = spp_method_name(spp->method);
-    out.stats.lightcuts_computed = image.cpu.lightcuts;
-    out.stats.reconstruction_cuts = image.cpu.reconstruction_cuts;
-    out.stats.shading_cpu_ms = image.cpu.cpu_ms;
+    out.stats.supersampling.spp = spp->spp;
+    out.stats.supersampling.method = spp_method_name(spp->method);
+    out.stats.supersampling.lightcuts_computed = image.cpu.lightcuts;
+    out.stats.supersampling.reconstruction_cuts = image.cpu.reconstruction_cuts;
+    out.stats.supersampling.shading_cpu_ms = image.cpu.cpu_ms;
     return out;
 }
 
@@ -245,15 +245,15 @@ void compare_with_reference(Renderer& renderer, const RenderRequest& request, co
     ErrorStats errors =
         or_fail(compute_error_stats(image.hdr, reference.hdr, request.width, request.height, error_ratio));
     RenderStats& stats = image.stats;
-    stats.has_error_stats = true;
-    stats.rel_err_mean = errors.rel_err_mean;
-    stats.rel_err_p99 = errors.rel_err_p99;
-    stats.frac_over_error = errors.frac_over_error;
-    stats.frac_over_2pct = fraction_over(errors, 0.02);
-    stats.max_err = errors.max_err;
-    stats.error_pixels = errors.measured_pixels;
-    stats.reference_ms = reference.stats.render_ms;
-    stats.reference_shadow_rays = reference.stats.shadow_rays;
+    stats.error.measured = true;
+    stats.error.rel_err_mean = errors.rel_err_mean;
+    stats.error.rel_err_p99 = errors.rel_err_p99;
+    stats.error.frac_over_error = errors.frac_over_error;
+    stats.error.frac_over_2pct = fraction_over(errors, 0.02);
+    stats.error.max_err = errors.max_err;
+    stats.error.pixels = errors.measured_pixels;
+    stats.error.reference_ms = reference.stats.timing.render_ms;
+    stats.error.reference_shadow_rays = reference.stats.shadows.rays;
     if (request.error_mode) {
         image.display = error_heatmap(errors, reference.hdr, request.width, request.height, error_ratio);
         stats.mode = "error";
@@ -313,11 +313,11 @@ void run_render(const RenderOptions& options) {
     if (!options.stats.empty()) {
         if (Status written = write_stats_json(options.stats, stats); !written) fail(written.error());
     }
-    if (stats.loop_limit_stops > 0)
+    if (stats.cuts.loop_limit_stops > 0)
         std::fprintf(stderr,
                      "warning: the device's loop limit cut %llu pixels' cut search short; they "
                      "keep their last complete pass (counted in loop_limit_stops)\n",
-                     (unsigned long long)stats.loop_limit_stops);
+                     (unsigned long long)stats.cuts.loop_limit_stops);
     print_indirect_census(stats, scene, source, tree);
     print_report(stats, options, request, command_ms);
 }

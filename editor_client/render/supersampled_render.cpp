@@ -72,8 +72,8 @@ Result<SupersampledImage> render_gpu_frames(Renderer& renderer, const RenderSett
         frame.pixel_offset = glm::vec2(offset);
         Result<RenderStats> stats = renderer.render(frame);
         if (!stats) return make_error(stats.error());
-        image.shading_ms += stats->render_ms;
-        image.shadow_rays += stats->shadow_rays;
+        image.shading_ms += stats->timing.render_ms;
+        image.shadow_rays += stats->shadows.rays;
         image.nonfinite_pixels += stats->nonfinite_pixels;
         Result<std::vector<float>> hdr = renderer.read_hdr();
         if (!hdr) return make_error(hdr.error());

@@ -35,7 +35,7 @@ Result<RealtimeSweepRow> measure(Renderer& renderer, const RenderSettings& setti
     RealtimeSweepRow row;
     row.cut = settings.realtime_cut;
     row.rays = settings.realtime_rays;
-    row.shadow_rays_per_pixel = double(last.shadow_rays) / double(std::max<uint64_t>(last.geometry_pixels, 1));
+    row.shadow_rays_per_pixel = double(last.shadows.rays) / double(std::max<uint64_t>(last.geometry_pixels, 1));
     row.rel_mse = relative_mse(*image, reference);
     row.rel_err_mean = errors->rel_err_mean;
     row.rel_err_p99 = errors->rel_err_p99;
@@ -59,7 +59,7 @@ Status sweep_cut(Renderer& renderer, RenderSettings settings, const std::vector<
         for (; frames < target; ++frames) {
             Result<RenderStats> stats = renderer.render(settings);
             if (!stats) return make_error("cut " + std::to_string(settings.realtime_cut) + ": " + stats.error());
-            total_ms += stats->render_ms;
+            total_ms += stats->timing.render_ms;
             last = *stats;
         }
         Result<RealtimeSweepRow> row = measure(renderer, settings, reference, last);
@@ -96,9 +96,9 @@ Result<RealtimeSweep> run_realtime_sweep(Renderer& renderer, const RenderSetting
     RealtimeSweep sweep;
     Result<ReferenceFrame> reference = render_reference_frame(renderer, settings);
     if (!reference) return make_error(reference.error());
-    sweep.reference_ms = reference->stats.render_ms;
+    sweep.reference_ms = reference->stats.timing.render_ms;
     sweep.lights = reference->stats.lights;
-    sweep.shadows = reference->stats.shadows;
+    sweep.shadows = reference->stats.shadows.simulated;
     RenderSettings realtime = settings;
     realtime.mode = RenderMode::kRealtime;
     for (uint32_t cut : cuts) {
