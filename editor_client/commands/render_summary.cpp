@@ -70,7 +70,8 @@ void print_report(const RenderStats& stats, const RenderOptions& options, const 
             "heap search: %u entries on this device (its driver refused private memory for "
             "max cut %u); %llu pixels filled the heap\n",
             stats.cuts.heap_capacity, stats.cuts.max_cut_setting, (unsigned long long)stats.cuts.max_cut_hits);
-    if (stats.primary == "rays") std::printf("G-buffer: primary rays in compute (%.2f ms GPU)\n", stats.timing.gbuffer_ms);
+    if (stats.primary == "rays")
+        std::printf("G-buffer: primary rays in compute (%.2f ms GPU)\n", stats.timing.gbuffer_ms);
     if (stats.error.measured)
         std::printf(
             "error vs reference (%.0f ms GPU): mean %.4f, p99 %.4f, %.4f of %llu pixels "
@@ -85,7 +86,8 @@ void print_report(const RenderStats& stats, const RenderOptions& options, const 
         stats.device.c_str(), stats.mode.c_str(), request.width, request.height,
         (unsigned long long)stats.lights, (unsigned long long)stats.tree_lights,
         (unsigned long long)stats.classic_lights, (unsigned long long)stats.nodes, stats.timing.render_ms,
-        stats.timing.render_clock.c_str(), (realtime_summary(stats) + reconstruction_summary(stats)).c_str(), stats.timing.wall_ms, command_ms, stats.cuts.avg_cut,
+        stats.timing.render_clock.c_str(), (realtime_summary(stats) + reconstruction_summary(stats)).c_str(),
+        stats.timing.wall_ms, command_ms, stats.cuts.avg_cut,
         stats.cuts.max_cut, (unsigned long long)stats.nonfinite_pixels, loop_limit_summary(stats).c_str(),
         stats.validation_messages, options.output.c_str());
 }

@@ -95,7 +95,8 @@ RenderSettings requested_view(const ViewCommandOptions& options, const Scene& sc
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
     RenderSettings requested;
-    requested.mode = options.mode.value_or(options.tree.empty() ? RenderMode::kReference : RenderMode::kLightcuts);
+    const RenderMode first = options.tree.empty() ? RenderMode::kReference : RenderMode::kLightcuts;
+    requested.mode = options.mode.value_or(first);
     requested.width = width;
     requested.height = height;
     requested.camera = camera;

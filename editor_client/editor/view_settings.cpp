@@ -22,7 +22,8 @@ Status ViewSettings::edit(Edit edit) {
 
 Status ViewSettings::set_mode(std::string_view name) {
     std::optional<RenderMode> mode = parse_render_mode(name);
-    if (!mode) return make_error("unknown mode '" + std::string(name) + "' (" + names_in(kRenderModeNames) + ")");
+    if (!mode)
+        return make_error("unknown mode '" + std::string(name) + "' (" + names_in(kRenderModeNames) + ")");
     view_.mode = *mode;
     return Ok{};
 }
@@ -30,7 +31,8 @@ Status ViewSettings::set_mode(std::string_view name) {
 Status ViewSettings::set_criterion(std::string_view name) {
     std::optional<CutCriterion> criterion = parse_criterion(name);
     if (!criterion)
-        return make_error("unknown criterion '" + std::string(name) + "' (" + names_in(kCriterionNames) + ")");
+        return make_error("unknown criterion '" + std::string(name) + "' (" + names_in(kCriterionNames) +
+                          ")");
     // Validated: the radius criterion cannot take per-pixel representatives.
     return edit([&](ViewState& v) { v.criterion = *criterion; });
 }

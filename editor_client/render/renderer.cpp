@@ -409,7 +409,8 @@ RenderStats Renderer::frame_stats(const RenderSettings& settings, const Submitte
 // What the frame's mode and cut search were asked for.
 void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& stats) const {
     stats.indirect.reference_clamp_passes = reference_clamp_passes(settings);
-    stats.indirect.reference_visibility_kept = stats.indirect.reference_clamp_passes > 0 && vpl_visibility_.stride() > 0;
+    stats.indirect.reference_visibility_kept =
+        stats.indirect.reference_clamp_passes > 0 && vpl_visibility_.stride() > 0;
     if (settings.mode == RenderMode::kReference) {
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(lights_.leaf_count(), 1u) + chunk - 1) / chunk;
@@ -423,7 +424,8 @@ void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& s
         stats.cuts.error_ratio = settings.error_ratio;
         stats.cuts.max_cut_setting = settings.max_cut;
         stats.cuts.bound_search = bound_search_name(settings.bound_search);
-        if (settings.bound_search == BoundSearch::kHeap) stats.cuts.heap_capacity = passes_->bound_heap().capacity();
+        if (settings.bound_search == BoundSearch::kHeap)
+            stats.cuts.heap_capacity = passes_->bound_heap().capacity();
         stats.cuts.representatives = representatives_name(settings.representatives);
         stats.cuts.representative_seed = settings.representative_seed;
         if (settings.reconstruction_block > 0) {
@@ -500,7 +502,8 @@ Status Renderer::read_clamped_energy(RenderStats& stats) const {
         std::memcpy(&state, bytes->data() + i * sizeof(GpuWalkState), sizeof(state));
         stats.indirect.energy += double(state.indirect_energy);
         stats.indirect.clamped_energy += double(state.clamped_energy);
-        stats.indirect.reference_clamp_change = std::max(stats.indirect.reference_clamp_change, double(state.clamp_change));
+        stats.indirect.reference_clamp_change =
+            std::max(stats.indirect.reference_clamp_change, double(state.clamp_change));
     }
     return Ok{};
 }

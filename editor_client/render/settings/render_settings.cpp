@@ -54,7 +54,9 @@ std::string number_text(float value) {
 
 const char* render_mode_name(RenderMode mode) { return name_in(kRenderModeNames, mode); }
 
-std::optional<RenderMode> parse_render_mode(std::string_view text) { return value_in(kRenderModeNames, text); }
+std::optional<RenderMode> parse_render_mode(std::string_view text) {
+    return value_in(kRenderModeNames, text);
+}
 
 const char* criterion_name(CutCriterion criterion) { return name_in(kCriterionNames, criterion); }
 
@@ -62,9 +64,13 @@ std::optional<CutCriterion> parse_criterion(std::string_view text) { return valu
 
 const char* bound_search_name(BoundSearch search) { return name_in(kBoundSearchNames, search); }
 
-std::optional<BoundSearch> parse_bound_search(std::string_view text) { return value_in(kBoundSearchNames, text); }
+std::optional<BoundSearch> parse_bound_search(std::string_view text) {
+    return value_in(kBoundSearchNames, text);
+}
 
-const char* primary_visibility_name(PrimaryVisibility primary) { return name_in(kPrimaryVisibilityNames, primary); }
+const char* primary_visibility_name(PrimaryVisibility primary) {
+    return name_in(kPrimaryVisibilityNames, primary);
+}
 
 std::optional<PrimaryChoice> parse_primary_choice(std::string_view text) {
     return value_in(kPrimaryChoiceNames, text);
