@@ -541,11 +541,11 @@ TEST_F(IndirectClampGpu, AVplOneMillimetreFromAWallAddsAtMostTheRatioInEveryMode
         const Frame b = render(*off, m.mode, m.criterion, m.search);
         ASSERT_EQ(a.hdr.size(), b.hdr.size());
         EXPECT_EQ(a.stats.nonfinite_pixels, 0u) << m.name;
-        EXPECT_EQ(a.stats.indirect, "on");
-        EXPECT_EQ(b.stats.indirect, "off");
-        EXPECT_GT(a.stats.clamped_energy, 0.0) << m.name << ": the spike was not clamped";
-        EXPECT_GT(a.stats.clamped_fraction(), 0.5) << m.name;
-        EXPECT_LE(a.stats.clamped_fraction(), 1.0) << m.name;
+        EXPECT_EQ(a.stats.indirect.mode, "on");
+        EXPECT_EQ(b.stats.indirect.mode, "off");
+        EXPECT_GT(a.stats.indirect.clamped_energy, 0.0) << m.name << ": the spike was not clamped";
+        EXPECT_GT(a.stats.indirect.clamped_fraction(), 0.5) << m.name;
+        EXPECT_LE(a.stats.indirect.clamped_fraction(), 1.0) << m.name;
         size_t geometry = 0;
         for (size_t i = 0; i < a.hdr.size(); i += 4) {
             if (a.gbuffer.position[i + 3] == 0.0f) continue;
@@ -590,14 +590,14 @@ void IndirectClampGpu::expect_gpu_shades_like_the_cpu(const WalkTree& tree) {
         }
         ASSERT_GT(compared, 0u);
         std::printf("  %s: %zu of %zu pixels within 1e-3, clamped energy GPU %.4g CPU %.4g, passes %u (change %.3g)\n",
-                    m.name, within, compared, f.stats.clamped_energy, clamped_cpu, f.stats.reference_clamp_passes,
-                    f.stats.reference_clamp_change);
+                    m.name, within, compared, f.stats.indirect.clamped_energy, clamped_cpu, f.stats.indirect.reference_clamp_passes,
+                    f.stats.indirect.reference_clamp_change);
         // The bound searches may choose another cut where float and double
         // straddle a threshold; the exhaustive cuts may not.
         const bool exhaustive = m.criterion == CutCriterion::kRadius;
         EXPECT_GE(double(within), (exhaustive ? 1.0 : 0.97) * double(compared)) << m.name;
-        EXPECT_NEAR(f.stats.clamped_energy, clamped_cpu, (exhaustive ? 1e-2 : 0.05) * clamped_cpu) << m.name;
-        EXPECT_NEAR(f.stats.indirect_energy, indirect_cpu, (exhaustive ? 1e-2 : 0.05) * indirect_cpu) << m.name;
+        EXPECT_NEAR(f.stats.indirect.clamped_energy, clamped_cpu, (exhaustive ? 1e-2 : 0.05) * clamped_cpu) << m.name;
+        EXPECT_NEAR(f.stats.indirect.energy, indirect_cpu, (exhaustive ? 1e-2 : 0.05) * indirect_cpu) << m.name;
         EXPECT_EQ(f.stats.nonfinite_pixels, 0u) << m.name;
     }
 }
@@ -615,7 +615,7 @@ TEST_F(IndirectClampGpu, TheReferenceClampsIndirectOnlyPixelsExactly) {
     std::unique_ptr<client::Renderer> r = renderer(tree);
     ASSERT_TRUE(r);
     const Frame f = render(*r, client::RenderMode::kReference, CutCriterion::kRadius);
-    EXPECT_EQ(f.stats.reference_clamp_passes, device::kExactClampPasses);
+    EXPECT_EQ(f.stats.indirect.reference_clamp_passes, device::kExactClampPasses);
     CutSettings settings;
     settings.error_ratio = kErrorRatio;
     size_t compared = 0, within = 0, zeroed_by_the_approximation = 0;
@@ -633,7 +633,7 @@ TEST_F(IndirectClampGpu, TheReferenceClampsIndirectOnlyPixelsExactly) {
         within += close;
     }
     std::printf("  %zu of %zu pixels within 1e-3; %zu the approximation zeroed; change %.3g\n", within, compared,
-                zeroed_by_the_approximation, f.stats.reference_clamp_change);
+                zeroed_by_the_approximation, f.stats.indirect.reference_clamp_change);
     EXPECT_GT(zeroed_by_the_approximation, compared / 10) << "the scene does not test the exact clamp";
     EXPECT_EQ(within, compared);
     EXPECT_EQ(f.stats.nonfinite_pixels, 0u);
@@ -658,11 +658,11 @@ TEST_F(IndirectClampGpu, AClampedReferenceOverSeveralSubmissionsIsTheSameFrame) 
     ASSERT_TRUE(whole && split.ok());
     const Frame one = render(*whole, client::RenderMode::kReference, CutCriterion::kRadius);
     const Frame several = render(**split, client::RenderMode::kReference, CutCriterion::kRadius);
-    EXPECT_EQ(one.stats.submissions, 1u);
-    EXPECT_GT(several.stats.submissions, 1u);
+    EXPECT_EQ(one.stats.timing.submissions, 1u);
+    EXPECT_GT(several.stats.timing.submissions, 1u);
     EXPECT_EQ(one.hdr, several.hdr);
-    EXPECT_EQ(one.stats.clamped_energy, several.stats.clamped_energy);
-    EXPECT_GT(several.stats.clamped_energy, 0.0);
+    EXPECT_EQ(one.stats.indirect.clamped_energy, several.stats.indirect.clamped_energy);
+    EXPECT_GT(several.stats.indirect.clamped_energy, 0.0);
 }
 
 // Newton's passes read the visibility the sums' pass kept (one bit per pixel
@@ -677,17 +677,17 @@ TEST_F(IndirectClampGpu, TheReferenceTracesEachVplsShadowRayOnce) {
     ASSERT_TRUE(kept && traced.ok());
     const Frame a = render(*kept, client::RenderMode::kReference, CutCriterion::kRadius);
     const Frame b = render(**traced, client::RenderMode::kReference, CutCriterion::kRadius);
-    ASSERT_GT(a.stats.reference_clamp_passes, 0u);
-    ASSERT_GT(a.stats.shadow_rays, 0u) << "the scene casts no shadows: nothing to keep";
-    EXPECT_TRUE(a.stats.reference_visibility_kept);
-    EXPECT_FALSE(b.stats.reference_visibility_kept);
+    ASSERT_GT(a.stats.indirect.reference_clamp_passes, 0u);
+    ASSERT_GT(a.stats.shadows.rays, 0u) << "the scene casts no shadows: nothing to keep";
+    EXPECT_TRUE(a.stats.indirect.reference_visibility_kept);
+    EXPECT_FALSE(b.stats.indirect.reference_visibility_kept);
     EXPECT_EQ(a.hdr, b.hdr);
-    EXPECT_EQ(a.stats.clamped_energy, b.stats.clamped_energy);
+    EXPECT_EQ(a.stats.indirect.clamped_energy, b.stats.indirect.clamped_energy);
     // Newton's passes traced again every VPL ray the sums' pass traced.
-    std::printf("  shadow rays: %llu kept, %llu traced again\n", (unsigned long long)a.stats.shadow_rays,
-                (unsigned long long)b.stats.shadow_rays);
-    EXPECT_LT(a.stats.shadow_rays, b.stats.shadow_rays);
-    EXPECT_GE(b.stats.shadow_rays - a.stats.shadow_rays, uint64_t(device::kExactClampPasses));
+    std::printf("  shadow rays: %llu kept, %llu traced again\n", (unsigned long long)a.stats.shadows.rays,
+                (unsigned long long)b.stats.shadows.rays);
+    EXPECT_LT(a.stats.shadows.rays, b.stats.shadows.rays);
+    EXPECT_GE(b.stats.shadows.rays - a.stats.shadows.rays, uint64_t(device::kExactClampPasses));
 }
 
 TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
@@ -700,7 +700,7 @@ TEST_F(IndirectClampGpu, IndirectOffEqualsATreeBakedWithoutIndirectLight) {
         const Frame a = render(*off, m.mode, m.criterion, m.search);
         const Frame b = render(*direct, m.mode, m.criterion, m.search);
         ASSERT_EQ(a.hdr.size(), b.hdr.size());
-        EXPECT_TRUE(b.stats.indirect.empty());
+        EXPECT_TRUE(b.stats.indirect.mode.empty());
         for (size_t i = 0; i < a.hdr.size(); ++i)
             EXPECT_NEAR(a.hdr[i], b.hdr[i], 1e-5f * std::abs(b.hdr[i]) + 1e-9f) << m.name << ", value " << i;
     }

@@ -62,10 +62,10 @@ CutAgreement compare_with_cpu(Renderer& renderer, const RenderSettings& settings
     EXPECT_TRUE(stats.ok()) << stats.error();
     if (!stats.ok()) return a;
     EXPECT_EQ(stats->nonfinite_pixels, 0u);
-    if (gpu_hits) *gpu_hits = stats->max_cut_hits;
+    if (gpu_hits) *gpu_hits = stats->cuts.max_cut_hits;
     // Lavapipe gives the heap all of max-cut (a driver that refuses it gets less: bound_heap_pass.h).
     if (settings.bound_search == BoundSearch::kHeap) {
-        EXPECT_EQ(stats->heap_capacity, std::max(settings.max_cut, 2u));
+        EXPECT_EQ(stats->cuts.heap_capacity, std::max(settings.max_cut, 2u));
     }
     Result<GBufferReadback> g = renderer.read_gbuffer();
     Result<std::vector<float>> hdr = renderer.read_hdr();
@@ -236,9 +236,9 @@ TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
         ASSERT_TRUE(errors.ok()) << errors.error();
         std::printf("  E %.3f: avg cut %.1f of %llu lights, rel err mean %.4g p99 %.4g max %.4g, "
                     "%.4f over 0.02, %llu max-cut hits\n",
-                    error, stats->avg_cut, (unsigned long long)stats->tree_lights,
+                    error, stats->cuts.avg_cut, (unsigned long long)stats->tree_lights,
                     errors->rel_err_mean, errors->rel_err_p99, errors->max_err,
-                    errors->frac_over_error, (unsigned long long)stats->max_cut_hits);
+                    errors->frac_over_error, (unsigned long long)stats->cuts.max_cut_hits);
         EXPECT_GT(errors->measured_pixels, 64u * 64u / 2);
         EXPECT_LT(errors->rel_err_mean, 1.5 * error);
         EXPECT_LT(errors->rel_err_mean, previous_mean);
@@ -246,10 +246,10 @@ TEST_F(BoundCriterion, RelativeErrorStaysBelowTheBoundOnARoomWith2000Lights) {
         if (error <= 0.005f) {
             EXPECT_LE(errors->frac_over_error, 0.01);
         }
-        EXPECT_EQ(stats->max_cut_hits, 0u);
+        EXPECT_EQ(stats->cuts.max_cut_hits, 0u);
         // Lightcuts must actually cut: far fewer evaluations than lights.
-        EXPECT_LT(stats->avg_cut, 2000.0 / 4.0);
-        EXPECT_GT(stats->avg_cut, 1.0);
+        EXPECT_LT(stats->cuts.avg_cut, 2000.0 / 4.0);
+        EXPECT_GT(stats->cuts.avg_cut, 1.0);
     }
 }
 
@@ -265,7 +265,7 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     CutAgreement a = compare_with_cpu(**renderer, settings, tree, &gpu_hits);
     Result<RenderStats> stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok());
-    EXPECT_LE(stats->max_cut, 2u);
+    EXPECT_LE(stats->cuts.max_cut, 2u);
     EXPECT_GT(gpu_hits, a.geometry / 2) << "a 2-node cut cannot meet 2% on 200 lights";
     // Float and double may disagree only on a pixel or two.
     EXPECT_NEAR(double(gpu_hits), double(a.cpu_max_cut_hits), 0.01 * double(a.geometry) + 1.0);
@@ -273,8 +273,8 @@ TEST_F(BoundCriterion, TinyMaxCutIsCountedNotHidden) {
     settings.max_cut = kDefaultMaxCut;
     stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok());
-    EXPECT_EQ(stats->max_cut_hits, 0u);
-    EXPECT_GT(stats->max_cut, 2u);
+    EXPECT_EQ(stats->cuts.max_cut_hits, 0u);
+    EXPECT_GT(stats->cuts.max_cut, 2u);
 }
 
 TEST_F(BoundCriterion, RejectsBadCutSettings) {

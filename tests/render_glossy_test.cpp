@@ -230,10 +230,10 @@ TEST_F(Glossy, LightcutsErrorAgainstTheReferenceStaysBounded) {
     ASSERT_TRUE(measured.ok()) << measured.error();
     const ErrorStats& e = *measured;
     std::printf("  mean %.4f p99 %.4f avg cut %.1f of %zu lights\n", e.rel_err_mean, e.rel_err_p99,
-                stats->avg_cut, scene_.lights.size());
+                stats->cuts.avg_cut, scene_.lights.size());
     EXPECT_LT(e.rel_err_mean, 0.02);
     EXPECT_LT(e.rel_err_p99, 0.1);
-    EXPECT_LT(stats->avg_cut, double(scene_.lights.size()));
+    EXPECT_LT(stats->cuts.avg_cut, double(scene_.lights.size()));
 }
 
 }  // namespace

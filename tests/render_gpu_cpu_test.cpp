@@ -250,8 +250,8 @@ TEST_F(GpuVsCpu, LightcutsWithBuilderTreeAndRanges) {
 
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
-    EXPECT_GT(stats->max_cut, 1u);
-    EXPECT_LT(stats->avg_cut, double(lights.size()));
+    EXPECT_GT(stats->cuts.max_cut, 1u);
+    EXPECT_LT(stats->cuts.avg_cut, double(lights.size()));
 }
 
 TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
@@ -308,7 +308,7 @@ TEST_F(GpuVsCpu, ChainTreeOfDepthNIsWalkedWithoutAStack) {
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
     // Deep walks happen: some pixels need hundreds of chain steps.
-    EXPECT_GT(stats->max_cut, 100u);
+    EXPECT_GT(stats->cuts.max_cut, 100u);
 }
 
 TEST_F(GpuVsCpu, ToneMappedDisplayMatchesTheCpuCurve) {
@@ -378,7 +378,7 @@ TEST_F(GpuVsCpu, CutsAndCutSizeVisualisation) {
     ASSERT_TRUE(display.ok() && cuts.ok());
     uint32_t max_cut = 0;
     for (size_t i = 0; i < cuts->size(); i += 2) max_cut = std::max(max_cut, (*cuts)[i]);
-    EXPECT_EQ(stats->max_cut, max_cut);
+    EXPECT_EQ(stats->cuts.max_cut, max_cut);
     EXPECT_GT(max_cut, 1u);
     // The scale bar: the bottom row runs from the low end to the high end of the ramp.
     const size_t bottom = size_t(kSize - 1) * kSize;

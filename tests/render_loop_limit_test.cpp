@@ -54,7 +54,7 @@ TEST(LoopLimit, ReferenceAndRadiusWalkSumEveryOneOf70000Lights) {
     settings.criterion = lc::CutCriterion::kRadius;
     auto stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
-    EXPECT_EQ(stats->max_cut, 70000u);
+    EXPECT_EQ(stats->cuts.max_cut, 70000u);
     auto walked = (*renderer)->read_hdr();
     ASSERT_TRUE(walked.ok());
 
@@ -120,7 +120,7 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     auto stats = (*renderer)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
     EXPECT_GT(stats->geometry_pixels, 0u);
-    EXPECT_EQ(stats->loop_limit_stops, stats->geometry_pixels);
+    EXPECT_EQ(stats->cuts.loop_limit_stops, stats->geometry_pixels);
     EXPECT_EQ(stats->nonfinite_pixels, 0u);
     // A normal tree of the same lights walks to the end.
     LightTree normal = test::make_pairing_tree(scene.lights);
@@ -128,8 +128,8 @@ TEST(LoopLimit, WalkSearchCountsAPassTheLimitCutShort) {
     ASSERT_TRUE(renderer2.ok()) << renderer2.error();
     stats = (*renderer2)->render(settings);
     ASSERT_TRUE(stats.ok()) << stats.error();
-    EXPECT_EQ(stats->loop_limit_stops, 0u);
-    EXPECT_GT(stats->avg_cut, 1.0);
+    EXPECT_EQ(stats->cuts.loop_limit_stops, 0u);
+    EXPECT_GT(stats->cuts.avg_cut, 1.0);
     EXPECT_EQ(context->validation_message_count(), 0u);
 }
 

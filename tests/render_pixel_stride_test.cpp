@@ -112,9 +112,9 @@ TEST_F(StridedReference, TilesAreTheFullFramesPixelsExactly) {
         EXPECT_EQ(differ, 0u) << "the same G-buffer and the same sums";
         EXPECT_GT(lit, gathered.size() / 4 / 2);
         EXPECT_EQ(stats->geometry_pixels, lit) << "the counters see the tiles only";
-        EXPECT_EQ(stats->avg_cut, double(renderer->leaf_count())) << "over the tiles' pixels";
-        EXPECT_GT(stats->shadow_rays, 0u);
-        EXPECT_LT(stats->shadow_rays, full_stats_.shadow_rays);
+        EXPECT_EQ(stats->cuts.avg_cut, double(renderer->leaf_count())) << "over the tiles' pixels";
+        EXPECT_GT(stats->shadows.rays, 0u);
+        EXPECT_LT(stats->shadows.rays, full_stats_.shadows.rays);
     }
 }
 
@@ -154,7 +154,7 @@ TEST_F(StridedReference, ShadesTheFullFramesPixels) {
         EXPECT_GE(agree, geometry * 97 / 100);
         EXPECT_LE(background_mismatch, 1u);
         EXPECT_EQ(stats->geometry_pixels, strided_lit);
-        EXPECT_GT(stats->shadow_rays, 0u);
+        EXPECT_GT(stats->shadows.rays, 0u);
     }
 }
 

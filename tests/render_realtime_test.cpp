@@ -104,17 +104,17 @@ TEST_F(Realtime, TracesAtMostTheCutsNodesInShadowRaysPerPixel) {
         ASSERT_FALSE(render(*renderer_, settings_).empty());
         const RenderStats& s = last_stats_;
         std::printf("  cut %u: %llu shadow rays over %llu lit pixels (%.2f a pixel), avg cut %.2f\n", cut,
-                    (unsigned long long)s.shadow_rays, (unsigned long long)s.geometry_pixels,
-                    double(s.shadow_rays) / double(s.geometry_pixels), s.avg_cut);
+                    (unsigned long long)s.shadows.rays, (unsigned long long)s.geometry_pixels,
+                    double(s.shadows.rays) / double(s.geometry_pixels), s.cuts.avg_cut);
         EXPECT_GT(s.geometry_pixels, kSize * kSize / 2);
-        EXPECT_GT(s.shadow_rays, 0u);
-        EXPECT_LE(s.shadow_rays, uint64_t(cut) * s.geometry_pixels);
-        EXPECT_LE(s.max_cut, cut);
-        EXPECT_EQ(s.realtime_cut, cut);
-        EXPECT_EQ(s.loop_limit_stops, 0u);
+        EXPECT_GT(s.shadows.rays, 0u);
+        EXPECT_LE(s.shadows.rays, uint64_t(cut) * s.geometry_pixels);
+        EXPECT_LE(s.cuts.max_cut, cut);
+        EXPECT_EQ(s.realtime.cut, cut);
+        EXPECT_EQ(s.cuts.loop_limit_stops, 0u);
         // 1,500 lights: a cut of more than one node has room to refine.
         if (cut > 1) {
-            EXPECT_GT(s.avg_cut, 0.9 * cut);
+            EXPECT_GT(s.cuts.avg_cut, 0.9 * cut);
         }
     }
 }
@@ -127,10 +127,10 @@ TEST_F(Realtime, ShadowRayBudgetTracesAtMostItsRaysPerPixel) {
         ASSERT_FALSE(render(*renderer_, settings_).empty());
         const RenderStats& s = last_stats_;
         std::printf("  cut 16, budget %u: %.2f shadow rays a lit pixel\n", rays,
-                    double(s.shadow_rays) / double(s.geometry_pixels));
-        EXPECT_EQ(s.realtime_rays, rays);
-        EXPECT_GT(s.shadow_rays, uint64_t(rays) * s.geometry_pixels / 2);
-        EXPECT_LE(s.shadow_rays, uint64_t(rays) * s.geometry_pixels);
+                    double(s.shadows.rays) / double(s.geometry_pixels));
+        EXPECT_EQ(s.realtime.rays, rays);
+        EXPECT_GT(s.shadows.rays, uint64_t(rays) * s.geometry_pixels / 2);
+        EXPECT_LE(s.shadows.rays, uint64_t(rays) * s.geometry_pixels);
     }
 }
 
@@ -263,7 +263,7 @@ TEST_F(Realtime, ANewSettingStartsANewHistory) {
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     EXPECT_EQ(renderer_->realtime_frames(), 2u);
-    EXPECT_EQ(last_stats_.realtime_frames, 2u);
+    EXPECT_EQ(last_stats_.realtime.frames, 2u);
     settings_.exposure *= 2.0f;  // tone mapping only: the history stays
     ASSERT_FALSE(render(*renderer_, settings_).empty());
     EXPECT_EQ(renderer_->realtime_frames(), 3u);

@@ -89,13 +89,13 @@ TEST_F(ReconstructionCuts, NearTheLightcutsErrorWithFarFewerShadowRays) {
         std::printf("  E %.3f: per pixel mean %.4f, %.4f over 2%%, %llu rays; reconstruction mean %.4f, "
                     "%.4f over 2%%, %llu rays, %llu of %llu pixels fell back\n",
                     error, own_errors->rel_err_mean, own_errors->frac_over_error,
-                    (unsigned long long)own.stats.shadow_rays, errors->rel_err_mean, errors->frac_over_error,
-                    (unsigned long long)rebuilt.stats.shadow_rays,
-                    (unsigned long long)rebuilt.stats.reconstruction_fallbacks,
+                    (unsigned long long)own.stats.shadows.rays, errors->rel_err_mean, errors->frac_over_error,
+                    (unsigned long long)rebuilt.stats.shadows.rays,
+                    (unsigned long long)rebuilt.stats.reconstruction.fallbacks,
                     (unsigned long long)rebuilt.stats.geometry_pixels);
         EXPECT_EQ(rebuilt.stats.nonfinite_pixels, 0u);
         EXPECT_TRUE(all_finite(rebuilt.hdr));
-        EXPECT_EQ(rebuilt.stats.loop_limit_stops, 0u);
+        EXPECT_EQ(rebuilt.stats.cuts.loop_limit_stops, 0u);
         EXPECT_EQ(rebuilt.stats.geometry_pixels, own.stats.geometry_pixels);
         EXPECT_GT(errors->measured_pixels, kSize * kSize / 2);
         // At E = 0.02 the bound's guarantee for a pixel's own cut
@@ -115,9 +115,9 @@ TEST_F(ReconstructionCuts, NearTheLightcutsErrorWithFarFewerShadowRays) {
         }
         // At most half the rays, though a 48x48 frame of a furnished room has
         // many silhouettes (each a fallback to the per-pixel lightcut).
-        EXPECT_LT(2 * rebuilt.stats.shadow_rays, own.stats.shadow_rays);
-        EXPECT_GT(rebuilt.stats.reconstruction_fallbacks, 0u);
-        EXPECT_LT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels / 2);
+        EXPECT_LT(2 * rebuilt.stats.shadows.rays, own.stats.shadows.rays);
+        EXPECT_GT(rebuilt.stats.reconstruction.fallbacks, 0u);
+        EXPECT_LT(rebuilt.stats.reconstruction.fallbacks, rebuilt.stats.geometry_pixels / 2);
     }
 }
 
@@ -129,10 +129,10 @@ TEST_F(ReconstructionCuts, PixelsAcrossASilhouetteFromEveryCornerFallBack) {
     settings_.reconstruction_block = kSize;
     const Frame rebuilt = render(settings_);
     ASSERT_FALSE(rebuilt.hdr.empty());
-    std::printf("  %llu of %llu pixels fell back\n", (unsigned long long)rebuilt.stats.reconstruction_fallbacks,
+    std::printf("  %llu of %llu pixels fell back\n", (unsigned long long)rebuilt.stats.reconstruction.fallbacks,
                 (unsigned long long)rebuilt.stats.geometry_pixels);
-    EXPECT_GT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels / 10);
-    EXPECT_LT(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - 4);
+    EXPECT_GT(rebuilt.stats.reconstruction.fallbacks, rebuilt.stats.geometry_pixels / 10);
+    EXPECT_LT(rebuilt.stats.reconstruction.fallbacks, rebuilt.stats.geometry_pixels - 4);
     EXPECT_EQ(rebuilt.stats.nonfinite_pixels, 0u);
     EXPECT_TRUE(all_finite(rebuilt.hdr));
 }
@@ -148,12 +148,12 @@ TEST_F(ReconstructionCuts, SamplesOverTheirRecordCapFallBack) {
     ASSERT_FALSE(own.hdr.empty());
     ASSERT_FALSE(rebuilt.hdr.empty());
     const uint64_t lattice = uint64_t(reconstruction_lattice_side(kSize, 4)) * reconstruction_lattice_side(kSize, 4);
-    EXPECT_EQ(rebuilt.stats.reconstruction_fallbacks, rebuilt.stats.geometry_pixels - lattice);
-    EXPECT_EQ(rebuilt.stats.shadow_rays, own.stats.shadow_rays);
+    EXPECT_EQ(rebuilt.stats.reconstruction.fallbacks, rebuilt.stats.geometry_pixels - lattice);
+    EXPECT_EQ(rebuilt.stats.shadows.rays, own.stats.shadows.rays);
     EXPECT_EQ(rebuilt.cuts, own.cuts);
     for (size_t i = 0; i < own.hdr.size(); ++i)
         ASSERT_NEAR(rebuilt.hdr[i], own.hdr[i], 1e-5f * std::max(1.0f, std::abs(own.hdr[i]))) << "value " << i;
-    EXPECT_EQ(rebuilt.stats.reconstruction_bytes, lattice * (32 + 16));  // one record rounds up to four
+    EXPECT_EQ(rebuilt.stats.reconstruction.bytes, lattice * (32 + 16));  // one record rounds up to four
     EXPECT_EQ(reconstruction_bytes(1920, 1080, 4, 1024), uint64_t(481 * 271) * (32 + 4 * 1024));
 }
 
@@ -164,8 +164,8 @@ TEST_F(ReconstructionCuts, SameBytesEveryTime) {
     ASSERT_FALSE(first.hdr.empty());
     EXPECT_EQ(first.hdr, second.hdr);
     EXPECT_EQ(first.cuts, second.cuts);
-    EXPECT_EQ(first.stats.shadow_rays, second.stats.shadow_rays);
-    EXPECT_EQ(first.stats.reconstruction_fallbacks, second.stats.reconstruction_fallbacks);
+    EXPECT_EQ(first.stats.shadows.rays, second.stats.shadows.rays);
+    EXPECT_EQ(first.stats.reconstruction.fallbacks, second.stats.reconstruction.fallbacks);
 }
 
 TEST_F(ReconstructionCuts, OnlyWithTheWalkSearchAndBlocksOfTwoOrMore) {

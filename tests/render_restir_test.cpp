@@ -154,9 +154,9 @@ TEST_F(Restir, TracesOneShadowRayPerLitPixel) {
     use_lights(floor_lights(48, 5));
     ASSERT_FALSE(render(settings_).empty());
     EXPECT_GT(last_stats_.geometry_pixels, kSize * kSize / 2);
-    EXPECT_GT(last_stats_.shadow_rays, 0u);
-    EXPECT_LE(last_stats_.shadow_rays, last_stats_.geometry_pixels);
-    EXPECT_EQ(last_stats_.loop_limit_stops, 0u);
+    EXPECT_GT(last_stats_.shadows.rays, 0u);
+    EXPECT_LE(last_stats_.shadows.rays, last_stats_.geometry_pixels);
+    EXPECT_EQ(last_stats_.cuts.loop_limit_stops, 0u);
 }
 
 // Frames are seeded by their number since the renderer was made (as the

@@ -67,8 +67,8 @@ Agreement compare(Renderer& renderer, const RenderSettings& settings, ExpectedFr
     EXPECT_TRUE(stats.ok()) << stats.error();
     if (!stats.ok()) return a;
     EXPECT_EQ(stats->nonfinite_pixels, 0u);
-    EXPECT_EQ(stats->loop_limit_stops, 0u);
-    a.shadow_rays = stats->shadow_rays;
+    EXPECT_EQ(stats->cuts.loop_limit_stops, 0u);
+    a.shadow_rays = stats->shadows.rays;
     Result<GBufferReadback> g = renderer.read_gbuffer();
     Result<std::vector<float>> hdr = renderer.read_hdr();
     Result<std::vector<uint32_t>> gpu_cuts = renderer.read_cuts();
@@ -288,14 +288,14 @@ TEST_F(Shadows, ReferenceOverSeveralSubmissionsIsTheSameFrame) {
     Result<RenderStats> one = (*whole)->render(settings_);
     Result<RenderStats> several = (*split)->render(settings_);
     ASSERT_TRUE(one.ok() && several.ok());
-    EXPECT_EQ(one->submissions, 1u);
-    EXPECT_GT(several->submissions, 1u);
+    EXPECT_EQ(one->timing.submissions, 1u);
+    EXPECT_GT(several->timing.submissions, 1u);
     EXPECT_EQ((*whole)->read_hdr().value(), (*split)->read_hdr().value());
-    EXPECT_EQ(one->shadow_rays, several->shadow_rays);
-    EXPECT_GT(several->shadow_rays, 0u);
+    EXPECT_EQ(one->shadows.rays, several->shadows.rays);
+    EXPECT_GT(several->shadows.rays, 0u);
     EXPECT_EQ(one->geometry_pixels, several->geometry_pixels);
     EXPECT_EQ(several->nonfinite_pixels, 0u);
-    EXPECT_GT(several->render_ms, 0.0);
+    EXPECT_GT(several->timing.render_ms, 0.0);
 }
 
 TEST_F(Shadows, RaysThatVisitEveryNodeStayWithinTheLoopBudget) {
@@ -382,7 +382,7 @@ TEST_F(Shadows, HardCasesStayFiniteAndMatchTheCpu) {
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
     EXPECT_EQ(stats->nonfinite_pixels, 0u);
-    EXPECT_GT(stats->shadow_rays, 0u);
+    EXPECT_GT(stats->shadows.rays, 0u);
 }
 
 TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
@@ -395,8 +395,8 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     settings_.mode = RenderMode::kReference;
     Result<RenderStats> stats = (*renderer)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
-    EXPECT_FALSE(stats->shadows);
-    EXPECT_EQ(stats->shadow_rays, 0u);
+    EXPECT_FALSE(stats->shadows.simulated);
+    EXPECT_EQ(stats->shadows.rays, 0u);
 
     RendererOptions off;
     off.shadows = ShadowMode::kOff;
@@ -405,7 +405,7 @@ TEST_F(Shadows, SkippedInAnEmptyRoomAndWhenTurnedOff) {
     EXPECT_FALSE((*no_shadows)->effects().shadows);
     stats = (*no_shadows)->render(settings_);
     ASSERT_TRUE(stats.ok()) << stats.error();
-    EXPECT_EQ(stats->shadow_rays, 0u);
+    EXPECT_EQ(stats->shadows.rays, 0u);
 }
 
 TEST_F(Shadows, ALightInsideAClosedBoxLightsNothingOutside) {

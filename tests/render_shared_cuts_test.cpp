@@ -93,19 +93,19 @@ TEST_F(SharedCuts, ErrorWithinTheBoundAndBelowThePixelsOwnCuts) {
         ASSERT_TRUE(own_errors.ok() && shared_errors.ok());
         std::printf("  E %.3f: own cut %.1f, %zu distinct, mean %.4f, %.4f over 2%%, %llu rays; "
                     "shared cut %.1f, %zu distinct, mean %.4f, %.4f over 2%%, %llu rays\n",
-                    error, own.stats.avg_cut, distinct_cuts(own.cuts), own_errors->rel_err_mean,
-                    own_errors->frac_over_error, (unsigned long long)own.stats.shadow_rays,
-                    shared.stats.avg_cut, distinct_cuts(shared.cuts), shared_errors->rel_err_mean,
-                    shared_errors->frac_over_error, (unsigned long long)shared.stats.shadow_rays);
+                    error, own.stats.cuts.avg_cut, distinct_cuts(own.cuts), own_errors->rel_err_mean,
+                    own_errors->frac_over_error, (unsigned long long)own.stats.shadows.rays,
+                    shared.stats.cuts.avg_cut, distinct_cuts(shared.cuts), shared_errors->rel_err_mean,
+                    shared_errors->frac_over_error, (unsigned long long)shared.stats.shadows.rays);
         EXPECT_EQ(shared.stats.nonfinite_pixels, 0u);
-        EXPECT_LE(shared.stats.max_cut_hits, kSize * kSize / 100);
-        EXPECT_EQ(shared.stats.loop_limit_stops, 0u);
+        EXPECT_LE(shared.stats.cuts.max_cut_hits, kSize * kSize / 100);
+        EXPECT_EQ(shared.stats.cuts.loop_limit_stops, 0u);
         EXPECT_GT(shared_errors->measured_pixels, kSize * kSize / 2);
         // What the bound gives a pixel's own cut (render_bound_test), and no worse than it.
         EXPECT_LT(shared_errors->rel_err_mean, 1.5 * error);
         EXPECT_LE(shared_errors->rel_err_mean, own_errors->rel_err_mean);
         EXPECT_LE(shared_errors->frac_over_error, own_errors->frac_over_error);
-        EXPECT_GT(shared.stats.avg_cut, own.stats.avg_cut);
+        EXPECT_GT(shared.stats.cuts.avg_cut, own.stats.cuts.avg_cut);
         // Neighbours share their cut.
         EXPECT_LT(2 * distinct_cuts(shared.cuts), distinct_cuts(own.cuts));
     }
@@ -124,10 +124,10 @@ TEST_F(SharedCuts, APixelOverMaxCutOnlyThroughItsNeighboursFinishesAlone) {
     ASSERT_FALSE(own.hdr.empty());
     ASSERT_FALSE(shared.hdr.empty());
     std::printf("  max cut %u: own cuts %llu pixels at the cap, shared %llu\n", settings_.max_cut,
-                (unsigned long long)own.stats.max_cut_hits, (unsigned long long)shared.stats.max_cut_hits);
-    ASSERT_GT(own.stats.max_cut_hits, 0u) << "the cap should stop some pixels";
-    EXPECT_LE(shared.stats.max_cut_hits, own.stats.max_cut_hits);
-    EXPECT_EQ(shared.stats.loop_limit_stops, 0u);
+                (unsigned long long)own.stats.cuts.max_cut_hits, (unsigned long long)shared.stats.cuts.max_cut_hits);
+    ASSERT_GT(own.stats.cuts.max_cut_hits, 0u) << "the cap should stop some pixels";
+    EXPECT_LE(shared.stats.cuts.max_cut_hits, own.stats.cuts.max_cut_hits);
+    EXPECT_EQ(shared.stats.cuts.loop_limit_stops, 0u);
 }
 
 TEST_F(SharedCuts, SameBytesEveryTime) {
@@ -138,7 +138,7 @@ TEST_F(SharedCuts, SameBytesEveryTime) {
     ASSERT_FALSE(first.hdr.empty());
     EXPECT_EQ(first.hdr, second.hdr);
     EXPECT_EQ(first.cuts, second.cuts);
-    EXPECT_EQ(first.stats.shadow_rays, second.stats.shadow_rays);
+    EXPECT_EQ(first.stats.shadows.rays, second.stats.shadows.rays);
 }
 
 TEST_F(SharedCuts, OnlyWithTheWalkSearch) {

@@ -88,7 +88,7 @@ void render_every_mode(const std::filesystem::path& path, bool add_lights,
         }
         if (mode != RenderMode::kReference) {
             EXPECT_GT(lit, 0u);
-            EXPECT_GE(stats->max_cut, 1u);
+            EXPECT_GE(stats->cuts.max_cut, 1u);
         }
     }
     EXPECT_EQ(context->validation_message_count(), 0u);

@@ -28,7 +28,9 @@
 #include "editor_client/commands/bake_options.h"
 #include "editor_client/commands/command_errors.h"
 #include "editor_client/commands/commands.h"
+#include "editor_client/commands/enum_flags.h"
 #include "editor_client/commands/gltf_load_flags.h"
+#include "editor_client/commands/shared_render_flags.h"
 #include "editor_client/editor/editor_session.h"
 #include "editor_client/editor/script_runner.h"
 #include "editor_client/render/render_inputs.h"
@@ -48,13 +50,9 @@ struct ViewCommandOptions {
     std::string tree;
     BakeFlags bake;
     std::string script;
-    std::optional<std::string> mode;  // none: lightcuts with --tree, else reference
-    uint32_t realtime_cut = 16;
-    uint32_t realtime_rays = kDefaultRealtimeRays;
+    std::optional<RenderMode> mode;  // none: lightcuts with --tree, else reference
+    SharedRenderFlags shared;        // the real-time budget, representatives, shadows, primary
     RestirFlags restir;
-    std::string representatives = "tree";
-    std::string shadows = "auto";
-    std::string primary = "auto";
     std::string size = "800x600";
     std::string camera;
     std::optional<int> camera_index;
@@ -95,14 +93,12 @@ RenderSettings requested_view(const ViewCommandOptions& options, const Scene& sc
     const auto [width, height] = or_fail(parse_size(options.size));
     if (!options.screenshot.empty() && options.frames == 0 && options.script.empty())
         fail("--screenshot needs --frames N or --script (the frame to save is the last one)");
-    const std::string mode_name = options.mode.value_or(options.tree.empty() ? "reference" : "lightcuts");
-    std::optional<RenderMode> mode = parse_render_mode(mode_name);
-    if (!mode) fail("unknown --mode '" + mode_name + "' (reference, lightcuts, cuts, cutsize, realtime, restir)");
     const bool can_get_tree = !options.tree.empty() || options.bake.has_server();
     const RenderCamera camera =
         or_fail(choose_camera(scene, options.camera, options.camera_index, float(width) / float(height)));
     RenderSettings requested;
-    requested.mode = *mode;
+    const RenderMode first = options.tree.empty() ? RenderMode::kReference : RenderMode::kLightcuts;
+    requested.mode = options.mode.value_or(first);
     requested.width = width;
     requested.height = height;
     requested.camera = camera;
@@ -125,9 +121,9 @@ std::unique_ptr<EditorSession> open_session(const ViewCommandOptions& options, S
     or_fail(session->view_settings().set_camera(requested.camera));
     or_fail(session->view_settings().set_exposure(requested.exposure));
     session->view_settings().set_mode(requested.mode);
-    or_fail(session->view_settings().set_representatives(options.representatives));
-    or_fail(session->view_settings().set_realtime_cut(options.realtime_cut));
-    or_fail(session->view_settings().set_realtime_rays(options.realtime_rays));
+    or_fail(session->view_settings().set_representatives(options.shared.representatives));
+    or_fail(session->view_settings().set_realtime_cut(options.shared.realtime_cut));
+    or_fail(session->view_settings().set_realtime_rays(options.shared.realtime_rays));
     or_fail(session->view_settings().set_restir(or_fail(restir_settings_from(options.restir))));
     if (!options.tree.empty()) or_fail(session->import_tree_dump(options.tree));
     return session;
@@ -177,10 +173,8 @@ EditorLoopOptions loop_options(const ViewCommandOptions& options, const RenderSe
     loop.orbit_drag_per_frame = options.orbit_drag;
     loop.panels = !options.no_panels;
     loop.window_screenshot = options.window_screenshot;
-    loop.shadows = or_fail(parse_shadow_mode(options.shadows));
-    const std::optional<PrimaryChoice> primary = parse_primary_choice(options.primary);
-    if (!primary) fail("--primary " + options.primary + ": expected auto, raster or rays");
-    loop.primary = *primary;
+    loop.shadows = options.shared.shadows;
+    loop.primary = options.shared.primary;
     loop.progressive = !options.no_progressive;
     if (!(options.frame_budget_ms > 0.0) || !std::isfinite(options.frame_budget_ms))
         fail("--frame-budget-ms must be a positive number of milliseconds");
@@ -243,22 +237,11 @@ void register_view_command(CLI::App& app) {
     tree->excludes(cmd->get_option("--server"))->excludes(cmd->get_option("--spawn-server"));
     cmd->add_option("--mode", options->mode,
                     "First mode: reference, lightcuts, cuts, cutsize, realtime (stochastic lightcuts, "
-                    "accumulated while the view rests) or restir (ReSTIR DI) (default: lightcuts with --tree, reference otherwise)")
-        ->check(CLI::IsMember({"reference", "lightcuts", "cuts", "cutsize", "realtime", "restir"}));
-    cmd->add_option("--realtime-cut", options->realtime_cut,
-                    "Real-time mode: nodes of each 8x8 block's cut, 1 to 32 (shadow rays per pixel and frame)")
-        ->capture_default_str();
-    cmd->add_option("--realtime-rays", options->realtime_rays,
-                    "Real-time mode: shadow rays per pixel and frame, picked among the cut's drawn "
-                    "lights (0: one per cut node)")
-        ->capture_default_str();
+                    "accumulated while the view rests) or restir (ReSTIR DI) (default: lightcuts with --tree, "
+                    "reference otherwise)")
+        ->transform(checked_names(kRenderModeNames));
+    add_shared_render_flags(*cmd, options->shared);
     add_restir_options(cmd, &options->restir);
-    cmd->add_option("--representatives", options->representatives,
-                    "Bound criterion: evaluate clusters through the tree's representatives, ones drawn "
-                    "per pixel (pixel), or drawn per pixel by intensity x a bound of cos / d^2 "
-                    "(importance: more accurate, about twice the time); as render")
-        ->check(CLI::IsMember({"tree", "pixel", "importance"}))
-        ->capture_default_str();
     cmd->add_option("--size", options->size, "Window and render size WxH")->capture_default_str();
     auto* camera =
         cmd->add_option("--camera", options->camera, "Start camera ex,ey,ez,tx,ty,tz,fovy (fovy in degrees)");
@@ -290,15 +273,6 @@ void register_view_command(CLI::App& app) {
                     "Progressive view: GPU time per frame for its tiles, in milliseconds")
         ->capture_default_str()
         ->excludes(no_progressive);
-    cmd->add_option("--shadows", options->shadows,
-                    "Shadow rays: auto (when a surface may hide a light), on or off")
-        ->check(CLI::IsMember({"auto", "on", "off"}))
-        ->capture_default_str();
-    cmd->add_option("--primary", options->primary,
-                    "How the G-buffer is made: raster, rays (compute; untextured scenes) or auto "
-                    "(rays on a GPU, raster on a CPU device or a textured scene)")
-        ->check(CLI::IsMember({"auto", "raster", "rays"}))
-        ->capture_default_str();
     cmd->add_flag("--validation", options->validation,
                   "Enable the Vulkan validation layer (also LC_VALIDATION=1)");
     cmd->callback([options] { run_view(*options); });

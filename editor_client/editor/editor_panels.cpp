@@ -3,11 +3,14 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <glm/geometric.hpp>
 
 #include "editor_client/editor/picking.h"
+#include "editor_client/render/settings/render_settings.h"
 #include "lightcuts/device/limits.h"
 
 namespace lc::client {
@@ -31,19 +34,26 @@ glm::vec3 to_vec3(const std::array<float, 3>& a) {
 const char* const kLightTypes[] = {"point", "spot", "directional"};
 const char* const kLayouts[] = {"random", "grid"};
 
+// A list of an enum's names in its table's order: the entry picked, or none.
+template <typename Enum, size_t N>
+std::optional<Enum> enum_combo(const char* label, const NameTable<Enum, N>& table, Enum current) {
+    const std::array<const char*, N> names = names_of(table);
+    int index = int(index_in(table, current));
+    if (!ImGui::Combo(label, &index, names.data(), int(N))) return std::nullopt;
+    return table[size_t(index)].value;
+}
+
 void draw_view_panel(EditorSession& session, PanelState& state) {
     const ViewState& view = session.view();
-    int mode = int(view.mode);
-    const char* const modes[] = {"reference", "lightcuts", "cuts", "cutsize", "realtime", "restir"};
-    if (ImGui::Combo("mode", &mode, modes, IM_ARRAYSIZE(modes)))
-        report(state, session.view_settings().set_mode(modes[mode]), std::string("mode ") + modes[mode]);
+    if (std::optional<RenderMode> mode = enum_combo("mode", kRenderModeNames, view.mode)) {
+        session.view_settings().set_mode(*mode);
+        report(state, Ok{}, std::string("mode ") + render_mode_name(*mode));
+    }
     if (mode_needs_tree(view.mode) && !session.tree_matches_scene())
         ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "no tree for these lights: showing reference");
-    int criterion = int(view.criterion);
-    const char* const criteria[] = {"radius", "bound"};
-    if (ImGui::Combo("criterion", &criterion, criteria, IM_ARRAYSIZE(criteria)))
-        report(state, session.view_settings().set_criterion(criteria[criterion]),
-               std::string("criterion ") + criteria[criterion]);
+    if (std::optional<CutCriterion> criterion = enum_combo("criterion", kCriterionNames, view.criterion))
+        report(state, session.view_settings().set_criterion(criterion_name(*criterion)),
+               std::string("criterion ") + criterion_name(*criterion));
     float ratio = float(view.error_ratio);
     if (ImGui::SliderFloat("error ratio", &ratio, float(kMinErrorRatio), 0.2f, "%.4f",
                            ImGuiSliderFlags_Logarithmic))
@@ -64,11 +74,10 @@ void draw_view_panel(EditorSession& session, PanelState& state) {
     if (view.criterion == CutCriterion::kBound) {
         // How a cluster is evaluated: importance keeps E = 0.005 within 2% at 99% of pixels
         // (docs/BENCHMARKS.md), at about twice the time of the tree's representatives.
-        int representatives = int(view.representatives);
-        const char* const kinds[] = {"tree", "pixel", "importance"};
-        if (ImGui::Combo("representatives", &representatives, kinds, IM_ARRAYSIZE(kinds)))
-            report(state, session.view_settings().set_representatives(kinds[representatives]),
-                   std::string("representatives ") + kinds[representatives]);
+        if (std::optional<Representatives> representatives =
+                enum_combo("representatives", kRepresentativesNames, view.representatives))
+            report(state, session.view_settings().set_representatives(*representatives),
+                   std::string("representatives ") + representatives_name(*representatives));
     }
     float exposure = view.exposure;
     if (ImGui::SliderFloat("exposure", &exposure, 0.0f, 8.0f, "%.2f"))

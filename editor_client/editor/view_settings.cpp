@@ -22,12 +22,8 @@ Status ViewSettings::edit(Edit edit) {
 
 Status ViewSettings::set_mode(std::string_view name) {
     std::optional<RenderMode> mode = parse_render_mode(name);
-    if (!mode) {
-        std::string known;
-        for (int m = 0; m < kRenderModeCount; ++m)
-            known += std::string(m ? ", " : "") + render_mode_name(RenderMode(m));
-        return make_error("unknown mode '" + std::string(name) + "' (" + known + ")");
-    }
+    if (!mode)
+        return make_error("unknown mode '" + std::string(name) + "' (" + names_in(kRenderModeNames) + ")");
     view_.mode = *mode;
     return Ok{};
 }
@@ -35,7 +31,8 @@ Status ViewSettings::set_mode(std::string_view name) {
 Status ViewSettings::set_criterion(std::string_view name) {
     std::optional<CutCriterion> criterion = parse_criterion(name);
     if (!criterion)
-        return make_error("unknown criterion '" + std::string(name) + "' (radius, bound)");
+        return make_error("unknown criterion '" + std::string(name) + "' (" + names_in(kCriterionNames) +
+                          ")");
     // Validated: the radius criterion cannot take per-pixel representatives.
     return edit([&](ViewState& v) { v.criterion = *criterion; });
 }
@@ -64,8 +61,13 @@ Status ViewSettings::set_restir(const RestirSettings& restir) {
 Status ViewSettings::set_representatives(std::string_view name) {
     std::optional<Representatives> representatives = parse_representatives(name);
     if (!representatives)
-        return make_error("unknown representatives '" + std::string(name) + "' (tree, pixel, importance)");
-    return edit([&](ViewState& v) { v.representatives = *representatives; });
+        return make_error("unknown representatives '" + std::string(name) + "' (" +
+                          names_in(kRepresentativesNames) + ")");
+    return set_representatives(*representatives);
+}
+
+Status ViewSettings::set_representatives(Representatives representatives) {
+    return edit([&](ViewState& v) { v.representatives = representatives; });
 }
 
 Status ViewSettings::set_camera(const RenderCamera& camera) {

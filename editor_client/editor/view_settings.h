@@ -29,6 +29,7 @@ public:
     Status set_restir(const RestirSettings& restir);
     // tree, pixel or importance (render --representatives); per-pixel draws need the bound criterion.
     Status set_representatives(std::string_view name);
+    Status set_representatives(Representatives representatives);
     Status set_camera(const RenderCamera& camera);
     Status set_exposure(float exposure);
 

@@ -16,19 +16,19 @@ Result<RenderStats> render_realtime_frames(Renderer& renderer, const RenderSetti
     for (uint32_t f = 0; f < frames; ++f) {
         Result<RenderStats> frame = renderer.render(settings);
         if (!frame) return make_error(frame.error());
-        sum.render_ms += frame->render_ms;
-        sum.gbuffer_ms += frame->gbuffer_ms;
-        sum.lighting_ms += frame->lighting_ms;
-        sum.output_ms += frame->output_ms;
-        sum.wall_ms += frame->wall_ms;
+        sum.timing.render_ms += frame->timing.render_ms;
+        sum.timing.gbuffer_ms += frame->timing.gbuffer_ms;
+        sum.timing.lighting_ms += frame->timing.lighting_ms;
+        sum.timing.output_ms += frame->timing.output_ms;
+        sum.timing.wall_ms += frame->timing.wall_ms;
         last = std::move(frame).value();
     }
     const double n = double(frames);
-    last.render_ms = sum.render_ms / n;
-    last.gbuffer_ms = sum.gbuffer_ms / n;
-    last.lighting_ms = sum.lighting_ms / n;
-    last.output_ms = sum.output_ms / n;
-    last.wall_ms = sum.wall_ms / n;
+    last.timing.render_ms = sum.timing.render_ms / n;
+    last.timing.gbuffer_ms = sum.timing.gbuffer_ms / n;
+    last.timing.lighting_ms = sum.timing.lighting_ms / n;
+    last.timing.output_ms = sum.timing.output_ms / n;
+    last.timing.wall_ms = sum.timing.wall_ms / n;
     return last;
 }
 

@@ -382,59 +382,61 @@ RenderStats Renderer::frame_stats(const RenderSettings& settings, const Submitte
     stats.classic_lights = lights_.classic_count();
     stats.nodes = lights_.node_count();
     stats.tree_depth = lights_.tree_depth();
-    stats.wall_ms = frame.wall_ms;
-    stats.submissions = frame.submissions;
+    stats.timing.wall_ms = frame.wall_ms;
+    stats.timing.submissions = frame.submissions;
 
-    stats.render_ms = frame.timings.total_ms;
-    stats.gbuffer_ms = frame.timings.gbuffer_ms;
+    stats.timing.render_ms = frame.timings.total_ms;
+    stats.timing.gbuffer_ms = frame.timings.gbuffer_ms;
     stats.primary = primary_visibility_name(passes_->primary());
-    stats.lighting_ms = frame.timings.lighting_ms;
-    stats.output_ms = frame.timings.output_ms;
+    stats.timing.lighting_ms = frame.timings.lighting_ms;
+    stats.timing.output_ms = frame.timings.output_ms;
 
     const GpuFrameCounters& counters = frame.counters;
-    stats.max_cut = counters.max_cut;
+    stats.cuts.max_cut = counters.max_cut;
     stats.geometry_pixels = counters.geometry_pixels;
     stats.nonfinite_pixels = counters.nonfinite_pixels;
-    stats.max_cut_hits = counters.max_cut_hits;
-    stats.loop_limit_stops = counters.loop_limit_stops;
-    stats.reconstruction_fallbacks = counters.reconstruction_fallbacks;
-    stats.shadows = traces_shadows();
-    stats.shadow_rays = (uint64_t(counters.shadow_rays_high) << 32) | counters.shadow_rays;
-    stats.shadow_triangles = occluders_.bvh().stats().triangles;
-    stats.shadow_bvh_nodes = occluders_.bvh().stats().nodes;
+    stats.cuts.max_cut_hits = counters.max_cut_hits;
+    stats.cuts.loop_limit_stops = counters.loop_limit_stops;
+    stats.reconstruction.fallbacks = counters.reconstruction_fallbacks;
+    stats.shadows.simulated = traces_shadows();
+    stats.shadows.rays = (uint64_t(counters.shadow_rays_high) << 32) | counters.shadow_rays;
+    stats.shadows.triangles = occluders_.bvh().stats().triangles;
+    stats.shadows.bvh_nodes = occluders_.bvh().stats().nodes;
     if (effects_.indirect_lights > 0) {
-        stats.indirect = effects_.indirect_off ? "off" : "on";
-        stats.indirect_lights = effects_.indirect_lights;
-        stats.indirect_patches = effects_.indirect_patches;
+        stats.indirect.mode = effects_.indirect_off ? "off" : "on";
+        stats.indirect.lights = effects_.indirect_lights;
+        stats.indirect.patches = effects_.indirect_patches;
     }
     return stats;
 }
 
 // What the frame's mode and cut search were asked for.
 void Renderer::add_settings_stats(const RenderSettings& settings, RenderStats& stats) const {
-    stats.reference_clamp_passes = reference_clamp_passes(settings);
-    stats.reference_visibility_kept = stats.reference_clamp_passes > 0 && vpl_visibility_.stride() > 0;
+    stats.indirect.reference_clamp_passes = reference_clamp_passes(settings);
+    stats.indirect.reference_visibility_kept =
+        stats.indirect.reference_clamp_passes > 0 && vpl_visibility_.stride() > 0;
     if (settings.mode == RenderMode::kReference) {
         const uint32_t chunk = reference_chunk();
         stats.reference_dispatches = (std::max(lights_.leaf_count(), 1u) + chunk - 1) / chunk;
     }
     if (settings.mode == RenderMode::kRealtime) {
-        stats.realtime_cut = settings.realtime_cut;
-        stats.realtime_rays = settings.realtime_rays;
-        stats.realtime_frames = passes_->realtime().frames_accumulated();
+        stats.realtime.cut = settings.realtime_cut;
+        stats.realtime.rays = settings.realtime_rays;
+        stats.realtime.frames = passes_->realtime().frames_accumulated();
     }
-    if (settings.mode == RenderMode::kRestir) stats.realtime_frames = passes_->restir().frames_accumulated();
+    if (settings.mode == RenderMode::kRestir) stats.realtime.frames = passes_->restir().frames_accumulated();
     if (mode_searches_cuts(settings.mode) && settings.criterion == CutCriterion::kBound) {
-        stats.error_ratio = settings.error_ratio;
-        stats.max_cut_setting = settings.max_cut;
-        stats.bound_search = bound_search_name(settings.bound_search);
-        if (settings.bound_search == BoundSearch::kHeap) stats.heap_capacity = passes_->bound_heap().capacity();
-        stats.representatives = representatives_name(settings.representatives);
-        stats.representative_seed = settings.representative_seed;
+        stats.cuts.error_ratio = settings.error_ratio;
+        stats.cuts.max_cut_setting = settings.max_cut;
+        stats.cuts.bound_search = bound_search_name(settings.bound_search);
+        if (settings.bound_search == BoundSearch::kHeap)
+            stats.cuts.heap_capacity = passes_->bound_heap().capacity();
+        stats.cuts.representatives = representatives_name(settings.representatives);
+        stats.cuts.representative_seed = settings.representative_seed;
         if (settings.reconstruction_block > 0) {
-            stats.reconstruction_block = settings.reconstruction_block;
-            stats.reconstruction_cap = settings.reconstruction_cap;
-            stats.reconstruction_bytes = reconstruction_bytes(settings.width, settings.height,
+            stats.reconstruction.block = settings.reconstruction_block;
+            stats.reconstruction.cap = settings.reconstruction_cap;
+            stats.reconstruction.bytes = reconstruction_bytes(settings.width, settings.height,
                                                               settings.reconstruction_block,
                                                               settings.reconstruction_cap);
         }
@@ -462,11 +464,11 @@ Status Renderer::add_cut_stats(const RenderSettings& settings, std::span<const P
         const size_t rank = (geometry_cuts.size() * 99) / 100;
         std::nth_element(geometry_cuts.begin(), geometry_cuts.begin() + ptrdiff_t(rank),
                          geometry_cuts.end());
-        stats.cut_p99 = geometry_cuts[rank];
+        stats.cuts.cut_p99 = geometry_cuts[rank];
     }
-    stats.avg_cut =
+    stats.cuts.avg_cut =
         stats.geometry_pixels > 0 ? double(cut_sum) / double(stats.geometry_pixels) : 0.0;
-    stats.light_evaluations = cut_sum + stats.geometry_pixels * lights_.classic_count();
+    stats.cuts.light_evaluations = cut_sum + stats.geometry_pixels * lights_.classic_count();
     return Ok{};
 }
 
@@ -503,9 +505,10 @@ Status Renderer::read_clamped_energy(RenderStats& stats) const {
     for (size_t i = 0; i < pixels; ++i) {
         GpuWalkState state;
         std::memcpy(&state, bytes->data() + i * sizeof(GpuWalkState), sizeof(state));
-        stats.indirect_energy += double(state.indirect_energy);
-        stats.clamped_energy += double(state.clamped_energy);
-        stats.reference_clamp_change = std::max(stats.reference_clamp_change, double(state.clamp_change));
+        stats.indirect.energy += double(state.indirect_energy);
+        stats.indirect.clamped_energy += double(state.clamped_energy);
+        stats.indirect.reference_clamp_change =
+            std::max(stats.indirect.reference_clamp_change, double(state.clamp_change));
     }
     return Ok{};
 }

@@ -72,8 +72,8 @@ Result<SupersampledImage> render_gpu_frames(Renderer& renderer, const RenderSett
         frame.pixel_offset = glm::vec2(offset);
         Result<RenderStats> stats = renderer.render(frame);
         if (!stats) return make_error(stats.error());
-        image.shading_ms += stats->render_ms;
-        image.shadow_rays += stats->shadow_rays;
+        image.shading_ms += stats->timing.render_ms;
+        image.shadow_rays += stats->shadows.rays;
         image.nonfinite_pixels += stats->nonfinite_pixels;
         Result<std::vector<float>> hdr = renderer.read_hdr();
         if (!hdr) return make_error(hdr.error());
@@ -86,21 +86,9 @@ Result<SupersampledImage> render_gpu_frames(Renderer& renderer, const RenderSett
 
 }  // namespace
 
-const char* spp_method_name(SppMethod method) {
-    switch (method) {
-        case SppMethod::kGpu: return "gpu";
-        case SppMethod::kLightcuts: return "lightcuts";
-        case SppMethod::kReconstruction: return "reconstruction";
-    }
-    return "unknown";
-}
+const char* spp_method_name(SppMethod method) { return name_in(kSppMethodNames, method); }
 
-std::optional<SppMethod> parse_spp_method(std::string_view text) {
-    for (SppMethod m : {SppMethod::kGpu, SppMethod::kLightcuts, SppMethod::kReconstruction}) {
-        if (text == spp_method_name(m)) return m;
-    }
-    return std::nullopt;
-}
+std::optional<SppMethod> parse_spp_method(std::string_view text) { return value_in(kSppMethodNames, text); }
 
 Result<SupersampledImage> render_supersampled(Renderer& renderer, const RenderSettings& settings,
                                               const SupersampleRequest& request, const WalkTree* tree,

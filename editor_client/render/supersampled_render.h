@@ -18,6 +18,7 @@
 
 #include "editor_client/render/settings/render_settings.h"
 #include "editor_client/render/renderer.h"
+#include "lightcuts/name_table.h"
 #include "lightcuts/result.h"
 #include "lightcuts/scene_light.h"
 #include "lightcuts/cuts/supersampled_shading.h"
@@ -26,6 +27,11 @@
 namespace lc::client {
 
 enum class SppMethod : uint8_t { kGpu = 0, kLightcuts = 1, kReconstruction = 2 };
+inline constexpr NameTable<SppMethod, 3> kSppMethodNames{{
+    {"gpu", SppMethod::kGpu},
+    {"lightcuts", SppMethod::kLightcuts},
+    {"reconstruction", SppMethod::kReconstruction},
+}};
 const char* spp_method_name(SppMethod method);
 std::optional<SppMethod> parse_spp_method(std::string_view text);
 

@@ -11,20 +11,12 @@
 namespace lc {
 
 Result<ShadowMode> parse_shadow_mode(std::string_view text) {
-    if (text == "auto") return ShadowMode::kAuto;
-    if (text == "on") return ShadowMode::kOn;
-    if (text == "off") return ShadowMode::kOff;
-    return make_error("unknown shadow mode '" + std::string(text) + "' (expected auto, on or off)");
+    if (std::optional<ShadowMode> mode = value_in(kShadowModeNames, text)) return *mode;
+    return make_error("unknown shadow mode '" + std::string(text) + "' (expected " + names_in(kShadowModeNames) +
+                      ")");
 }
 
-const char* shadow_mode_name(ShadowMode mode) {
-    switch (mode) {
-        case ShadowMode::kOn: return "on";
-        case ShadowMode::kOff: return "off";
-        case ShadowMode::kAuto: break;
-    }
-    return "auto";
-}
+const char* shadow_mode_name(ShadowMode mode) { return name_in(kShadowModeNames, mode); }
 
 float shadow_ray_bias(const Scene& scene) {
     const glm::vec3 lo = scene.bounds_min, hi = scene.bounds_max;

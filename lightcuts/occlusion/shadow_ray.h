@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 
+#include "lightcuts/name_table.h"
 #include "lightcuts/occlusion/shadow_bvh.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/result.h"
@@ -23,6 +24,11 @@ inline constexpr double kShadowRayFar = 1e30;
 
 // What the user asked for: auto lets the scene analysis decide.
 enum class ShadowMode : uint8_t { kAuto = 0, kOn = 1, kOff = 2 };
+inline constexpr NameTable<ShadowMode, 3> kShadowModeNames{{
+    {"auto", ShadowMode::kAuto},
+    {"on", ShadowMode::kOn},
+    {"off", ShadowMode::kOff},
+}};
 Result<ShadowMode> parse_shadow_mode(std::string_view text);
 const char* shadow_mode_name(ShadowMode mode);
 

@@ -111,11 +111,11 @@ void BM_ReferenceLightingPass(benchmark::State& state) {
             state.SkipWithError(stats.error().c_str());
             return;
         }
-        state.SetIterationTime(stats->wall_ms * 1e-3);
-        lighting_ms += stats->lighting_ms;
-        render_ms += stats->render_ms;
-        wall_ms += stats->wall_ms;
-        evaluations += stats->light_evaluations;
+        state.SetIterationTime(stats->timing.wall_ms * 1e-3);
+        lighting_ms += stats->timing.lighting_ms;
+        render_ms += stats->timing.render_ms;
+        wall_ms += stats->timing.wall_ms;
+        evaluations += stats->cuts.light_evaluations;
         geometry_pixels = stats->geometry_pixels;
     }
     const double n = double(state.iterations());

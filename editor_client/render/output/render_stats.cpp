@@ -8,7 +8,7 @@ namespace lc::client {
 
 namespace {
 
-// The frame: its scene, lights, mode and size, the pass times.
+// The frame: its scene, lights, mode, size, pixels and exposure.
 void add_frame(const RenderStats& s, nlohmann::json& j) {
     j["scene"] = s.scene;
     j["device"] = s.device;
@@ -19,16 +19,14 @@ void add_frame(const RenderStats& s, nlohmann::json& j) {
     j["tree_depth"] = s.tree_depth;
     j["mode"] = s.mode;
     j["criterion"] = s.criterion;
+    j["primary"] = s.primary;
     j["width"] = s.width;
     j["height"] = s.height;
-    j["render_ms"] = s.render_ms;
-    j["render_clock"] = s.render_clock;
-    j["gbuffer_ms"] = s.gbuffer_ms;
-    j["primary"] = s.primary;
-    j["lighting_ms"] = s.lighting_ms;
-    j["output_ms"] = s.output_ms;
-    j["wall_ms"] = s.wall_ms;
-    j["submissions"] = s.submissions;
+    j["geometry_pixels"] = s.geometry_pixels;
+    j["nonfinite_pixels"] = s.nonfinite_pixels;
+    j["effects_simulated"] = effects_json(s.effects_simulated);
+    j["effects_skipped"] = effects_json(s.effects_skipped);
+    if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
     if (s.pixel_stride > 1) j["pixel_stride"] = s.pixel_stride;
     if (s.stride_tile > 1) j["stride_tile"] = s.stride_tile;
     j["exposure"] = s.exposure;
@@ -37,99 +35,104 @@ void add_frame(const RenderStats& s, nlohmann::json& j) {
     j["validation_enabled"] = s.validation_enabled;
 }
 
-double shadow_rays_per_pixel(const RenderStats& s) {
-    return s.geometry_pixels > 0 ? double(s.shadow_rays) / double(s.geometry_pixels) : 0.0;
-}
-
-// What the GPU counted: cuts, pixels, evaluations, shadow rays.
-void add_counts(const RenderStats& s, nlohmann::json& j) {
-    j["avg_cut"] = s.avg_cut;
-    j["max_cut"] = s.max_cut;
-    j["cut_p99"] = s.cut_p99;
-    j["geometry_pixels"] = s.geometry_pixels;
-    j["nonfinite_pixels"] = s.nonfinite_pixels;
-    j["light_evaluations"] = s.light_evaluations;
-    j["effects_simulated"] = effects_json(s.effects_simulated);
-    j["effects_skipped"] = effects_json(s.effects_skipped);
-    j["max_cut_hits"] = s.max_cut_hits;
-    j["loop_limit_stops"] = s.loop_limit_stops;
-    j["shadows"] = s.shadows;
-    j["shadow_rays"] = s.shadow_rays;
-    j["shadow_rays_per_pixel"] = shadow_rays_per_pixel(s);
-    j["shadow_triangles"] = s.shadow_triangles;
-    j["shadow_bvh_nodes"] = s.shadow_bvh_nodes;
-    if (s.reference_dispatches > 0) j["reference_dispatches"] = s.reference_dispatches;
-}
-
-void add_indirect(const RenderStats& s, nlohmann::json& j) {
-    if (s.indirect.empty()) return;
-    j["indirect"] = s.indirect;
-    j["indirect_lights"] = s.indirect_lights;
-    j["indirect_vpls"] = s.indirect_lights - s.indirect_patches;
-    j["indirect_patches"] = s.indirect_patches;
-    j["indirect_energy"] = s.indirect_energy;
-    j["clamped_energy"] = s.clamped_energy;
-    j["clamped_energy_fraction"] = s.clamped_fraction();
-    if (s.reference_clamp_passes > 0) {
-        j["reference_clamp_passes"] = s.reference_clamp_passes;
-        j["reference_visibility_kept"] = s.reference_visibility_kept;
-        j["reference_clamp_change"] = s.reference_clamp_change;
-    }
-}
-
-// The cut search's and the real-time mode's settings, where they apply.
-void add_cut_settings(const RenderStats& s, nlohmann::json& j) {
-    if (s.max_cut_setting > 0) {
-        j["error_ratio"] = s.error_ratio;
-        j["max_cut_setting"] = s.max_cut_setting;
-        j["bound_search"] = s.bound_search;
-        if (s.heap_capacity > 0) j["heap_capacity"] = s.heap_capacity;
-        j["representatives"] = s.representatives;
-        if (s.representatives == "pixel") j["representative_seed"] = s.representative_seed;
-    }
-    if (s.realtime_cut > 0) {
-        j["realtime_cut"] = s.realtime_cut;
-        j["realtime_rays"] = s.realtime_rays;
-        j["realtime_frames"] = s.realtime_frames;
-    }
-    if (s.reconstruction_block > 0) {
-        j["reconstruction_block"] = s.reconstruction_block;
-        j["reconstruction_cap"] = s.reconstruction_cap;
-        j["reconstruction_bytes"] = s.reconstruction_bytes;
-        j["reconstruction_fallbacks"] = s.reconstruction_fallbacks;
-    }
-}
-
-// Against the reference, and the supersampled frame's shading.
-void add_error_and_supersampling(const RenderStats& s, nlohmann::json& j) {
-    if (s.has_error_stats) {
-        j["rel_err_mean"] = s.rel_err_mean;
-        j["rel_err_p99"] = s.rel_err_p99;
-        j["frac_over_error"] = s.frac_over_error;
-        j["max_err"] = s.max_err;
-        j["error_pixels"] = s.error_pixels;
-        j["reference_ms"] = s.reference_ms;
-        j["frac_over_2pct"] = s.frac_over_2pct;
-    }
-    if (s.spp > 1 || s.spp_method != "gpu") {
-        j["spp"] = s.spp;
-        j["spp_method"] = s.spp_method;
-        j["lightcuts_computed"] = s.lightcuts_computed;
-        j["reconstruction_cuts"] = s.reconstruction_cuts;
-        if (s.spp_method != "gpu") j["shading_cpu_ms"] = s.shading_cpu_ms;
-        if (s.has_error_stats) j["reference_shadow_rays"] = s.reference_shadow_rays;
-    }
-}
-
 }  // namespace
+
+void FrameTiming::write_json(nlohmann::json& j) const {
+    j["render_ms"] = render_ms;
+    j["render_clock"] = render_clock;
+    j["gbuffer_ms"] = gbuffer_ms;
+    j["lighting_ms"] = lighting_ms;
+    j["output_ms"] = output_ms;
+    j["wall_ms"] = wall_ms;
+    j["submissions"] = submissions;
+}
+
+void CutStats::write_json(nlohmann::json& j) const {
+    j["avg_cut"] = avg_cut;
+    j["max_cut"] = max_cut;
+    j["cut_p99"] = cut_p99;
+    j["light_evaluations"] = light_evaluations;
+    j["max_cut_hits"] = max_cut_hits;
+    j["loop_limit_stops"] = loop_limit_stops;
+    if (max_cut_setting == 0) return;
+    j["error_ratio"] = error_ratio;
+    j["max_cut_setting"] = max_cut_setting;
+    j["bound_search"] = bound_search;
+    if (heap_capacity > 0) j["heap_capacity"] = heap_capacity;
+    j["representatives"] = representatives;
+    if (representatives == "pixel") j["representative_seed"] = representative_seed;
+}
+
+void RealtimeStats::write_json(nlohmann::json& j) const {
+    if (cut == 0) return;
+    j["realtime_cut"] = cut;
+    j["realtime_rays"] = rays;
+    j["realtime_frames"] = frames;
+}
+
+void ReconstructionStats::write_json(nlohmann::json& j) const {
+    if (block == 0) return;
+    j["reconstruction_block"] = block;
+    j["reconstruction_cap"] = cap;
+    j["reconstruction_bytes"] = bytes;
+    j["reconstruction_fallbacks"] = fallbacks;
+}
+
+void ShadowStats::write_json(nlohmann::json& j, uint64_t geometry_pixels) const {
+    j["shadows"] = simulated;
+    j["shadow_rays"] = rays;
+    j["shadow_rays_per_pixel"] = geometry_pixels > 0 ? double(rays) / double(geometry_pixels) : 0.0;
+    j["shadow_triangles"] = triangles;
+    j["shadow_bvh_nodes"] = bvh_nodes;
+}
+
+void IndirectStats::write_json(nlohmann::json& j) const {
+    if (mode.empty()) return;
+    j["indirect"] = mode;
+    j["indirect_lights"] = lights;
+    j["indirect_vpls"] = lights - patches;
+    j["indirect_patches"] = patches;
+    j["indirect_energy"] = energy;
+    j["clamped_energy"] = clamped_energy;
+    j["clamped_energy_fraction"] = clamped_fraction();
+    if (reference_clamp_passes == 0) return;
+    j["reference_clamp_passes"] = reference_clamp_passes;
+    j["reference_visibility_kept"] = reference_visibility_kept;
+    j["reference_clamp_change"] = reference_clamp_change;
+}
+
+void ErrorSummary::write_json(nlohmann::json& j, bool supersampled) const {
+    if (!measured) return;
+    j["rel_err_mean"] = rel_err_mean;
+    j["rel_err_p99"] = rel_err_p99;
+    j["frac_over_error"] = frac_over_error;
+    j["max_err"] = max_err;
+    j["error_pixels"] = pixels;
+    j["reference_ms"] = reference_ms;
+    j["frac_over_2pct"] = frac_over_2pct;
+    if (supersampled) j["reference_shadow_rays"] = reference_shadow_rays;
+}
+
+void SupersamplingStats::write_json(nlohmann::json& j) const {
+    if (!supersampled()) return;
+    j["spp"] = spp;
+    j["spp_method"] = method;
+    j["lightcuts_computed"] = lightcuts_computed;
+    j["reconstruction_cuts"] = reconstruction_cuts;
+    if (method != "gpu") j["shading_cpu_ms"] = shading_cpu_ms;
+}
 
 nlohmann::json stats_json(const RenderStats& s) {
     nlohmann::json j;
     add_frame(s, j);
-    add_counts(s, j);
-    add_indirect(s, j);
-    add_cut_settings(s, j);
-    add_error_and_supersampling(s, j);
+    s.timing.write_json(j);
+    s.cuts.write_json(j);
+    s.realtime.write_json(j);
+    s.reconstruction.write_json(j);
+    s.shadows.write_json(j, s.geometry_pixels);
+    s.indirect.write_json(j);
+    s.error.write_json(j, s.supersampling.supersampled());
+    s.supersampling.write_json(j);
     return j;
 }
 

@@ -53,92 +53,36 @@ std::string number_text(float value) {
 
 }  // namespace
 
-const char* render_mode_name(RenderMode mode) {
-    switch (mode) {
-        case RenderMode::kReference:
-            return "reference";
-        case RenderMode::kLightcuts:
-            return "lightcuts";
-        case RenderMode::kCuts:
-            return "cuts";
-        case RenderMode::kCutSize:
-            return "cutsize";
-        case RenderMode::kRealtime:
-            return "realtime";
-        case RenderMode::kRestir:
-            return "restir";
-    }
-    return "unknown";
-}
+const char* render_mode_name(RenderMode mode) { return name_in(kRenderModeNames, mode); }
 
 std::optional<RenderMode> parse_render_mode(std::string_view text) {
-    for (int i = 0; i < kRenderModeCount; ++i) {
-        auto mode = static_cast<RenderMode>(i);
-        if (text == render_mode_name(mode)) return mode;
-    }
-    return std::nullopt;
+    return value_in(kRenderModeNames, text);
 }
 
-const char* criterion_name(CutCriterion criterion) {
-    switch (criterion) {
-        case CutCriterion::kRadius:
-            return "radius";
-        case CutCriterion::kBound:
-            return "bound";
-    }
-    return "unknown";
-}
+const char* criterion_name(CutCriterion criterion) { return name_in(kCriterionNames, criterion); }
 
-std::optional<CutCriterion> parse_criterion(std::string_view text) {
-    if (text == "radius") return CutCriterion::kRadius;
-    if (text == "bound") return CutCriterion::kBound;
-    return std::nullopt;
-}
+std::optional<CutCriterion> parse_criterion(std::string_view text) { return value_in(kCriterionNames, text); }
 
-const char* bound_search_name(BoundSearch search) {
-    switch (search) {
-        case BoundSearch::kWalk:
-            return "walk";
-        case BoundSearch::kHeap:
-            return "heap";
-    }
-    return "unknown";
-}
+const char* bound_search_name(BoundSearch search) { return name_in(kBoundSearchNames, search); }
 
 std::optional<BoundSearch> parse_bound_search(std::string_view text) {
-    if (text == "walk") return BoundSearch::kWalk;
-    if (text == "heap") return BoundSearch::kHeap;
-    return std::nullopt;
+    return value_in(kBoundSearchNames, text);
 }
 
 const char* primary_visibility_name(PrimaryVisibility primary) {
-    return primary == PrimaryVisibility::kRays ? "rays" : "raster";
+    return name_in(kPrimaryVisibilityNames, primary);
 }
 
 std::optional<PrimaryChoice> parse_primary_choice(std::string_view text) {
-    if (text == "auto") return PrimaryChoice::kAuto;
-    if (text == "raster") return PrimaryChoice::kRaster;
-    if (text == "rays") return PrimaryChoice::kRays;
-    return std::nullopt;
+    return value_in(kPrimaryChoiceNames, text);
 }
 
 const char* representatives_name(Representatives representatives) {
-    switch (representatives) {
-        case Representatives::kTree:
-            return "tree";
-        case Representatives::kPixel:
-            return "pixel";
-        case Representatives::kImportance:
-            return "importance";
-    }
-    return "unknown";
+    return name_in(kRepresentativesNames, representatives);
 }
 
 std::optional<Representatives> parse_representatives(std::string_view text) {
-    if (text == "tree") return Representatives::kTree;
-    if (text == "pixel") return Representatives::kPixel;
-    if (text == "importance") return Representatives::kImportance;
-    return std::nullopt;
+    return value_in(kRepresentativesNames, text);
 }
 
 Result<RenderCamera> parse_camera(std::string_view text) {

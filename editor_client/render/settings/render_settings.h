@@ -11,6 +11,7 @@
 
 #include "editor_client/render/settings/restir_settings.h"
 #include "lightcuts/cuts/cpu_evaluator.h"
+#include "lightcuts/name_table.h"
 #include "lightcuts/scene.h"
 #include "lightcuts/result.h"
 
@@ -19,11 +20,20 @@ namespace lc::client {
 // How the G-buffer is made: rasterised (GBufferPass) or cast as rays in
 // compute (PrimaryRaysPass: faster where the GPU rasterises on few units).
 enum class PrimaryVisibility : uint8_t { kRaster = 0, kRays = 1 };
+inline constexpr NameTable<PrimaryVisibility, 2> kPrimaryVisibilityNames{{
+    {"raster", PrimaryVisibility::kRaster},
+    {"rays", PrimaryVisibility::kRays},
+}};
 const char* primary_visibility_name(PrimaryVisibility primary);
 // The renderer's choice (RendererOptions::primary): auto casts rays on a GPU
 // (not on a CPU device such as lavapipe, which rasterises fast) when no
 // material needs the raster pass's textures.
 enum class PrimaryChoice : uint8_t { kAuto = 0, kRaster = 1, kRays = 2 };
+inline constexpr NameTable<PrimaryChoice, 3> kPrimaryChoiceNames{{
+    {"auto", PrimaryChoice::kAuto},
+    {"raster", PrimaryChoice::kRaster},
+    {"rays", PrimaryChoice::kRays},
+}};
 std::optional<PrimaryChoice> parse_primary_choice(std::string_view text);
 
 enum class RenderMode : uint8_t {
@@ -38,7 +48,16 @@ enum class RenderMode : uint8_t {
     // across neighbours and frames, one shadow ray per pixel.
     kRestir = 5,
 };
-inline constexpr int kRenderModeCount = 6;
+// In the order of the view's number keys and the editor's mode list.
+inline constexpr NameTable<RenderMode, 6> kRenderModeNames{{
+    {"reference", RenderMode::kReference},
+    {"lightcuts", RenderMode::kLightcuts},
+    {"cuts", RenderMode::kCuts},
+    {"cutsize", RenderMode::kCutSize},
+    {"realtime", RenderMode::kRealtime},
+    {"restir", RenderMode::kRestir},
+}};
+inline constexpr int kRenderModeCount = int(kRenderModeNames.size());
 // Modes that render a frame's light from draws and accumulate still frames
 // (a history advanced per frame, dropped on a new tree or new lights).
 inline bool mode_accumulates(RenderMode mode) {
@@ -60,12 +79,25 @@ inline bool mode_is_shaded(RenderMode mode) {
            mode_accumulates(mode);
 }
 
+inline constexpr NameTable<CutCriterion, 2> kCriterionNames{{
+    {"radius", CutCriterion::kRadius},
+    {"bound", CutCriterion::kBound},
+}};
 const char* criterion_name(CutCriterion criterion);
 std::optional<CutCriterion> parse_criterion(std::string_view text);
 
+inline constexpr NameTable<BoundSearch, 2> kBoundSearchNames{{
+    {"walk", BoundSearch::kWalk},
+    {"heap", BoundSearch::kHeap},
+}};
 const char* bound_search_name(BoundSearch search);
 std::optional<BoundSearch> parse_bound_search(std::string_view text);
 
+inline constexpr NameTable<Representatives, 3> kRepresentativesNames{{
+    {"tree", Representatives::kTree},
+    {"pixel", Representatives::kPixel},
+    {"importance", Representatives::kImportance},
+}};
 const char* representatives_name(Representatives representatives);
 std::optional<Representatives> parse_representatives(std::string_view text);
 

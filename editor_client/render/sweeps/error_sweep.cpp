@@ -63,22 +63,22 @@ Result<ErrorSweepRow> measure_lightcuts(Renderer& renderer, const RenderSettings
     if (!errors) return make_error(errors.error());
     ErrorSweepRow row;
     row.error_ratio = ratio;
-    row.render_ms = stats->render_ms;
-    row.wall_ms = stats->wall_ms;
-    row.avg_cut = stats->avg_cut;
-    row.cut_p99 = stats->cut_p99;
-    row.max_cut_hits = stats->max_cut_hits;
+    row.render_ms = stats->timing.render_ms;
+    row.wall_ms = stats->timing.wall_ms;
+    row.avg_cut = stats->cuts.avg_cut;
+    row.cut_p99 = stats->cuts.cut_p99;
+    row.max_cut_hits = stats->cuts.max_cut_hits;
     row.rel_err_mean = errors->rel_err_mean;
     row.rel_err_p99 = errors->rel_err_p99;
     row.frac_over_error = errors->frac_over_error;
     row.frac_over_2pct = fraction_over(*errors, 0.02);
     row.max_err = errors->max_err;
-    row.shadow_rays = stats->shadow_rays;
-    row.loop_limit_stops = stats->loop_limit_stops;
+    row.shadow_rays = stats->shadows.rays;
+    row.loop_limit_stops = stats->cuts.loop_limit_stops;
     row.reconstruction_block = settings.reconstruction_block;
     row.shadow_rays_per_pixel =
-        stats->geometry_pixels > 0 ? double(stats->shadow_rays) / double(stats->geometry_pixels) : 0.0;
-    row.reconstruction_fallbacks = stats->reconstruction_fallbacks;
+        stats->geometry_pixels > 0 ? double(stats->shadows.rays) / double(stats->geometry_pixels) : 0.0;
+    row.reconstruction_fallbacks = stats->reconstruction.fallbacks;
     return row;
 }
 
@@ -91,11 +91,11 @@ Result<ErrorSweep> run_error_sweep(Renderer& renderer, const RenderSettings& set
     Result<ReferenceFrame> frame = render_reference_frame(renderer, settings);
     if (!frame) return make_error(frame.error());
     const std::vector<float>* reference = &frame->image;
-    sweep.reference_ms = frame->stats.render_ms;
-    sweep.reference_wall_ms = frame->stats.wall_ms;
+    sweep.reference_ms = frame->stats.timing.render_ms;
+    sweep.reference_wall_ms = frame->stats.timing.wall_ms;
     sweep.lights = frame->stats.lights;
-    sweep.reference_shadow_rays = frame->stats.shadow_rays;
-    sweep.shadows = frame->stats.shadows;
+    sweep.reference_shadow_rays = frame->stats.shadows.rays;
+    sweep.shadows = frame->stats.shadows.simulated;
 
     RenderSettings lightcuts = settings;
     lightcuts.mode = RenderMode::kLightcuts;

@@ -38,7 +38,7 @@ Result<RealtimeSweepRow> measure(Renderer& renderer, const RenderSettings& setti
     row.mode = settings.mode;
     row.cut = settings.realtime_cut;
     row.rays = settings.realtime_rays;
-    row.shadow_rays_per_pixel = double(last.shadow_rays) / double(std::max<uint64_t>(last.geometry_pixels, 1));
+    row.shadow_rays_per_pixel = double(last.shadows.rays) / double(std::max<uint64_t>(last.geometry_pixels, 1));
     row.rel_mse = relative_mse(*image, reference);
     row.rel_err_mean = errors->rel_err_mean;
     row.rel_err_p99 = errors->rel_err_p99;
@@ -76,7 +76,7 @@ Status sweep_still(Renderer& renderer, const RenderSettings& settings, const Rea
         for (; frames < rendered; ++frames) {
             Result<RenderStats> stats = render_frame(renderer, settings, variant.label);
             if (!stats) return make_error(stats.error());
-            total_ms += stats->render_ms;
+            total_ms += stats->timing.render_ms;
             last = *stats;
         }
         Result<RealtimeSweepRow> row = measure(renderer, settings, variant.label, reference, last);
@@ -99,12 +99,12 @@ Status sweep_path(Renderer& renderer, RenderSettings settings, const RealtimeVar
         settings.camera = path[i];
         Result<RenderStats> stats = render_frame(renderer, settings, variant.label);
         if (!stats) return make_error(stats.error());
-        total_ms += stats->render_ms;
+        total_ms += stats->timing.render_ms;
         Result<RealtimeSweepRow> row = measure(renderer, settings, variant.label, references[i], *stats);
         if (!row) return make_error(row.error());
         row->moving = true;
         row->frames = uint32_t(i + 1);
-        row->frame_ms = stats->render_ms;
+        row->frame_ms = stats->timing.render_ms;
         row->total_ms = total_ms;
         sweep.rows.push_back(*row);
     }
@@ -148,9 +148,9 @@ Result<RealtimeSweep> run_realtime_sweep(Renderer& renderer, const RenderSetting
     RealtimeSweep sweep;
     Result<ReferenceFrame> reference = render_reference_frame(renderer, settings);
     if (!reference) return make_error(reference.error());
-    sweep.reference_ms = reference->stats.render_ms;
+    sweep.reference_ms = reference->stats.timing.render_ms;
     sweep.lights = reference->stats.lights;
-    sweep.shadows = reference->stats.shadows;
+    sweep.shadows = reference->stats.shadows.simulated;
     const std::vector<RenderCamera> path = orbit_path(settings.camera, plan.path_frames);
     Result<std::vector<std::vector<float>>> path_references = render_path_references(renderer, settings, path);
     if (!path_references) return make_error(path_references.error());
