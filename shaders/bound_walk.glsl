@@ -224,10 +224,10 @@ void bound_walk_dispatch(ivec2 pixel) {
     if ((s.flags & kWalkRuleMet) == 0u && !loop_limit_stop) atomicAdd(counters.max_cut_hits, 1u);
     vec3 radiance = clamp_indirect(pixel, s.radiance, indirect_sums_of(s));
 #ifdef LC_WALK_RECORDS
-    // Its records hold the kept cut: not cut short, not stale, under the cap,
-    // and a cut the rule accepted (one stopped by max-cut is too coarse to share).
-    finish_sample(radiance, s.size,
-                  (s.flags & (kWalkRuleMet | kWalkRecordsStale)) == kWalkRuleMet && !loop_limit_stop);
+    // Its records hold the kept cut: not cut short, not stale, under the cap.
+    // A cut stopped by max-cut is shared too: the pixels refine it by their
+    // own bounds.
+    finish_sample(radiance, s.size, (s.flags & kWalkRecordsStale) == 0u && !loop_limit_stop);
 #endif
     store_pixel(pixel, radiance + classic_and_emitted_radiance(p), s.size, s.hash,
                 loop_limit_stop);

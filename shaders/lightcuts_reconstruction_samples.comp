@@ -7,8 +7,11 @@
 // node's shadow ray said (kSeen*); the cut the search keeps is the last one
 // written unless a later shaded pass went over max-cut (kWalkRecordsStale).
 // A sample whose records do not hold its whole kept cut (over kRecordCap,
-// stale, cut short by the loop limit, stopped by max-cut, or no geometry)
-// is not usable: the pixels of its blocks run lightcuts of their own.
+// stale, cut short by the loop limit, or no geometry) is not usable: the
+// pixels of its blocks run lightcuts of their own. A cut stopped by max-cut
+// before the rule was met is usable: with many lights of mixed types most
+// samples stop there, and their pixels would otherwise all fall back to
+// lightcuts that stop there too.
 #extension GL_GOOGLE_include_directive : require
 
 #define LC_WALK_RECORDS
