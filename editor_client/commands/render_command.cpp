@@ -1,7 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
-//   [--reconstruction BLOCK [--reconstruction-cap N]]
+//   [--reconstruction auto|off|BLOCK [--reconstruction-cap N]]
 //   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]
@@ -26,6 +26,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -105,7 +106,7 @@ struct RenderOptions {
     uint32_t tile_stride = 1;
     uint32_t realtime_cut = 16;
     uint32_t realtime_rays = kDefaultRealtimeRays;
-    uint32_t reconstruction_block = 0;
+    std::string reconstruction = "auto";  // a block side, off, or auto (reconstruction_block_of)
     uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;
@@ -244,6 +245,30 @@ struct RenderRequest {
     std::vector<PixelRegion> tiles;  // --tile-stride: the tiles rendered
 };
 
+// --reconstruction: a block side, off, or auto: 4x4 blocks wherever they
+// were measured faster at equal error (docs/bench/recon2.md: the furnished
+// rooms with point or mixed lights at E = 0.02; not at E = 0.005, where the
+// interpolation's error exceeds the per-pixel cut's), i.e. one lightcuts
+// frame of the bound criterion's walk search at E >= 0.01, every pixel.
+uint32_t reconstruction_block_of(const RenderOptions& options, const RenderSettings& settings) {
+    constexpr uint32_t kAutoBlock = 4;
+    constexpr float kAutoMinError = 0.01f;
+    if (options.reconstruction == "off") return 0;
+    if (options.reconstruction == "auto") {
+        const bool wins = settings.mode == RenderMode::kLightcuts && settings.criterion == CutCriterion::kBound &&
+                          settings.bound_search == BoundSearch::kWalk && !settings.share_cuts &&
+                          settings.error_ratio >= kAutoMinError && options.spp <= 1 &&
+                          options.spp_method == "gpu" && options.pixel_stride <= 1 && options.tile_stride <= 1;
+        return wins ? kAutoBlock : 0;
+    }
+    uint32_t block = 0;
+    const std::string& text = options.reconstruction;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), block);
+    if (ec != std::errc() || end != text.data() + text.size())
+        fail("--reconstruction '" + text + "' is not a block side, off or auto");
+    return block;
+}
+
 // The renderer's settings from the flags, in the order the flags are checked.
 RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source,
                               bool& error_mode) {
@@ -271,7 +296,7 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.realtime_cut;
     settings.realtime_rays = options.realtime_rays;
-    settings.reconstruction_block = options.reconstruction_block;
+    settings.reconstruction_block = reconstruction_block_of(options, settings);
     settings.reconstruction_cap = options.reconstruction_cap;
     if (options.frames != 1 && settings.mode != RenderMode::kRealtime)
         fail("--frames accumulates the real-time mode (--mode realtime)");
@@ -773,11 +798,11 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "drawn lights by their unshadowed light (unbiased); 0 traces one per cut node")
         ->check(CLI::Range(0u, kMaxStochasticRays))
         ->capture_default_str();
-    cmd->add_option("--reconstruction", options->reconstruction_block,
+    cmd->add_option("--reconstruction", options->reconstruction,
                     "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
                     "BLOCKxBLOCK pixel blocks, the pixels between shaded from them with shadow rays "
-                    "only where their visibility disagrees (0: a lightcut per pixel)")
-        ->check(CLI::Range(0u, kMaxReconstructionBlock))
+                    "only where their visibility disagrees; off (or 0): a lightcut per pixel; auto: "
+                    "4 for one lightcuts frame of the bound walk search at --error >= 0.01, else off")
         ->capture_default_str();
     cmd->add_option("--reconstruction-cap", options->reconstruction_cap,
                     "Reconstruction cuts: cut nodes a sample records at most (4 bytes each); a "
