@@ -55,6 +55,7 @@ echo "demo: bake server at $server"
 "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --size 128x128 \
     --sweep-error 0.02 --sweep-blocks 4 --sweep-csv "$out/furnished_reconstruction.csv" \
     -o "$out/furnished_reconstruction.png" > "$out/furnished_reconstruction.txt"
+# The default lightcuts frame at 256x256: reconstruction cuts in 4x4 blocks (--reconstruction auto).
 "$bin/editor_client" render "$out/furnished.gltf" --tree "$out/furnished.lcut" --mode lightcuts \
     --size 256x256 -o "$out/furnished_lightcuts.png" --stats "$out/furnished_lightcuts.json"
 # The speed-up and the error side by side.

@@ -193,7 +193,7 @@ void bound_walk_dispatch(ivec2 pixel) {
         store_background(pixel);
         walk_states[index].flags = kWalkDone;
 #ifdef LC_WALK_RECORDS
-        finish_sample(vec3(0.0), 0u, false);
+        finish_sample(vec3(0.0), 0u, false, kErrorRatio);
 #endif
         return;
     }
@@ -224,10 +224,13 @@ void bound_walk_dispatch(ivec2 pixel) {
     if ((s.flags & kWalkRuleMet) == 0u && !loop_limit_stop) atomicAdd(counters.max_cut_hits, 1u);
     vec3 radiance = clamp_indirect(pixel, s.radiance, indirect_sums_of(s));
 #ifdef LC_WALK_RECORDS
-    // Its records hold the kept cut: not cut short, not stale, under the cap,
-    // and a cut the rule accepted (one stopped by max-cut is too coarse to share).
-    finish_sample(radiance, s.size,
-                  (s.flags & (kWalkRuleMet | kWalkRecordsStale)) == kWalkRuleMet && !loop_limit_stop);
+    // Its records hold the kept cut: not cut short, not stale, under the cap.
+    // A cut stopped by max-cut is shared too, with the ratio its largest
+    // bound reached (the pixels between refine no finer than that).
+    float total = max_channel(s.radiance);
+    bool rule_met = (s.flags & kWalkRuleMet) != 0u;
+    float reached_ratio = rule_met || !(total > 0.0) ? kErrorRatio : max(kErrorRatio, s.fit_hi / total);
+    finish_sample(radiance, s.size, (s.flags & kWalkRecordsStale) == 0u && !loop_limit_stop, reached_ratio);
 #endif
     store_pixel(pixel, radiance + classic_and_emitted_radiance(p), s.size, s.hash,
                 loop_limit_stop);

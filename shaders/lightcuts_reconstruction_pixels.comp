@@ -88,7 +88,11 @@ bool reconstruct_pixel(ivec2 pixel) {
         return false;
     }
     vec3 total = vec3(0.0);
+    // Corners stopped by max-cut reached a looser ratio; refining finer than
+    // the coarsest of them would outgrow the pixel's cut.
+    float ratio = kErrorRatio;
     for (uint k = 0u; k < 4u; ++k) {
+        if (agrees[k]) ratio = max(ratio, samples[c.sample_index[k]].reached_ratio);
         uint sample_index = agrees[k] ? c.sample_index[k] : c.sample_index[first_agreeing];
         // All agreeing corners of weight 0 (the pixel on a lattice line): equal shares.
         float weight = weight_sum > 0.0 ? (agrees[k] ? c.weight[k] / weight_sum : 0.0) : (agrees[k] ? 1.0 : 0.0);
@@ -97,7 +101,7 @@ bool reconstruct_pixel(ivec2 pixel) {
     }
     if (!(weight_sum > 0.0)) total /= float(count);
     ReconstructionCut cut;
-    if (!reconstruction_walk(kErrorRatio * max(max_channel(total), 0.0), p, cut)) {
+    if (!reconstruction_walk(ratio * max(max_channel(total), 0.0), p, cut)) {
         // The lightcut starts in the next dispatch, with a fresh loop budget.
         atomicAdd(counters.reconstruction_fallbacks, 1u);
         walk_states[index] = walk_start();

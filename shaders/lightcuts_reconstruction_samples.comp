@@ -7,8 +7,11 @@
 // node's shadow ray said (kSeen*); the cut the search keeps is the last one
 // written unless a later shaded pass went over max-cut (kWalkRecordsStale).
 // A sample whose records do not hold its whole kept cut (over kRecordCap,
-// stale, cut short by the loop limit, stopped by max-cut, or no geometry)
-// is not usable: the pixels of its blocks run lightcuts of their own.
+// stale, cut short by the loop limit, or no geometry) is not usable: the
+// pixels of its blocks run lightcuts of their own. A cut stopped by max-cut
+// before the rule was met is usable, with the error ratio it reached: with
+// many lights of mixed types most samples stop there, and their pixels would
+// otherwise all fall back to lightcuts that stop there too.
 #extension GL_GOOGLE_include_directive : require
 
 #define LC_WALK_RECORDS
@@ -22,9 +25,10 @@ void record_cut_node(uint position, uint node, uint seen) {
     if (position < kRecordCap) records[slot >> 2u].words[slot & 3u] = (node << kSeenBits) | seen;
 }
 
-void finish_sample(vec3 radiance, uint record_count, bool complete) {
+void finish_sample(vec3 radiance, uint record_count, bool complete, float reached_ratio) {
     bool usable = complete && record_count <= kRecordCap;
-    samples[g_sample] = GpuReconstructionSample(radiance, record_count, usable ? kSampleUsable : 0u, 0u, 0u, 0u);
+    samples[g_sample] =
+        GpuReconstructionSample(radiance, record_count, usable ? kSampleUsable : 0u, reached_ratio, 0u, 0u);
 }
 
 #include "bound_walk.glsl"

@@ -33,11 +33,17 @@ uint g_end_record[4];
 int g_inside_until[4];
 uint g_inside_seen[4];
 
+// A pixel's cut holds at least the union of its corners' cuts, each up to
+// max-cut: with the same limit the union of cuts that stopped there would
+// send the pixel to a lightcut of its own, which stops there again. Its
+// nodes mostly cost no ray, so it may grow to four corners' worth.
+const uint kReconstructionMaxCut = 4u * kWalkMaxCut;
+
 struct ReconstructionCut {
     vec3 radiance;
     uint size;
     uint hash;
-    bool over;  // more than max-cut nodes: the pixel runs a lightcut instead
+    bool over;  // more than kReconstructionMaxCut nodes: the pixel runs a lightcut instead
     IndirectSums indirect;
 };
 
@@ -66,15 +72,20 @@ uint sample_view(uint k, int i, int escape, inout bool below) {
     return kSeenDark;
 }
 
-// The cluster shaded here; its ray traced only when `trace` (the samples
-// disagree). Call it where bound_walk_step shades (subgroup-shared rays).
-vec3 reconstructed_radiance(int i, GpuTreeNode node, SurfacePoint p, bool trace) {
+// The cluster shaded here; its ray traced when the samples disagree
+// (`disagree`) or when, unshadowed, it alone would exceed tau here: taking
+// the samples' visibility of such a cluster risks more than the pixel's
+// error bound (a thin shadow between samples that all see the light). Call
+// it where bound_walk_step shades (subgroup-shared rays).
+vec3 reconstructed_radiance(int i, GpuTreeNode node, SurfacePoint p, bool disagree, float tau) {
     GpuLight light = cluster_light(i, node, p);
     vec3 l;
     vec3 e = light_irradiance(light, p.position, p.normal, l);
+    vec3 unshadowed = brdf_toward(p, l) * e;
     bool lit = max(e.x, max(e.y, e.z)) > 0.0;
+    bool trace = disagree || max_channel(unshadowed) > tau;
     float v = kShadows ? light_visibility(light, p.position, p.normal, lit && trace) : 1.0;
-    return brdf_toward(p, l) * (e * v);
+    return unshadowed * v;
 }
 
 // One step of the walk, shared by the subgroup like bound_walk_step: a lane
@@ -114,12 +125,12 @@ void reconstruction_step(inout int i, inout bool waiting, inout int resume, inou
         if (!refine) {
             waiting = true;
             resume = node.escape;
-            if (cut.size >= kWalkMaxCut) {
+            if (cut.size >= kReconstructionMaxCut) {
                 cut.over = true;
                 resume = kEndOfWalk;
             } else {
                 if (!discard_node) {
-                    vec3 contribution = reconstructed_radiance(i, node, p, !all_visible || below);
+                    vec3 contribution = reconstructed_radiance(i, node, p, !all_visible || below, tau);
                     cut.radiance += contribution;
                     tally_indirect(cut.indirect, node.flags, leaf, contribution);
                 }

@@ -157,6 +157,28 @@ TEST_F(ReconstructionCuts, SamplesOverTheirRecordCapFallBack) {
     EXPECT_EQ(reconstruction_bytes(1920, 1080, 4, 1024), uint64_t(481 * 271) * (32 + 4 * 1024));
 }
 
+// Samples whose search stopped at max-cut (as most do with many lights of
+// mixed types) share their cuts: the pixels between them refine those cuts by
+// their own bounds instead of all running lightcuts that stop there again.
+TEST_F(ReconstructionCuts, SamplesStoppedByMaxCutAreShared) {
+    settings_.max_cut = 24;
+    settings_.reconstruction_block = 0;
+    const Frame own = render(settings_);
+    settings_.reconstruction_block = 4;
+    const Frame rebuilt = render(settings_);
+    ASSERT_FALSE(own.hdr.empty());
+    ASSERT_FALSE(rebuilt.hdr.empty());
+    std::printf("  %llu of %llu pixels at max-cut; %llu fell back; %llu rays against %llu\n",
+                (unsigned long long)own.stats.cuts.max_cut_hits, (unsigned long long)own.stats.geometry_pixels,
+                (unsigned long long)rebuilt.stats.reconstruction.fallbacks,
+                (unsigned long long)rebuilt.stats.shadows.rays, (unsigned long long)own.stats.shadows.rays);
+    EXPECT_GT(own.stats.cuts.max_cut_hits, own.stats.geometry_pixels / 2);
+    EXPECT_LT(rebuilt.stats.reconstruction.fallbacks, rebuilt.stats.geometry_pixels / 4);
+    EXPECT_LT(2 * rebuilt.stats.shadows.rays, own.stats.shadows.rays);
+    EXPECT_EQ(rebuilt.stats.nonfinite_pixels, 0u);
+    EXPECT_TRUE(all_finite(rebuilt.hdr));
+}
+
 TEST_F(ReconstructionCuts, SameBytesEveryTime) {
     settings_.reconstruction_block = 4;
     const Frame first = render(settings_);

@@ -105,7 +105,7 @@ const std::map<std::string, CppStruct>& cpp_structs() {
         {"GpuReconstructionSample",
          {sizeof(GpuReconstructionSample),
           {LC_FIELD(GpuReconstructionSample, radiance), LC_FIELD(GpuReconstructionSample, record_count),
-           LC_FIELD(GpuReconstructionSample, flags), LC_FIELD(GpuReconstructionSample, pad0),
+           LC_FIELD(GpuReconstructionSample, flags), LC_FIELD(GpuReconstructionSample, reached_ratio),
            LC_FIELD(GpuReconstructionSample, pad1), LC_FIELD(GpuReconstructionSample, pad2)}}},
         {"GpuCutRecords", {sizeof(GpuCutRecords), {LC_FIELD(GpuCutRecords, words)}}},
         {"GpuDrawPair",

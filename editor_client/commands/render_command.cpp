@@ -1,7 +1,7 @@
 // editor_client render SCENE [--tree TREE.lcut | --server HOST:PORT | --spawn-server] [--builder B]
 //   [--seed N] [--mode reference|lightcuts|cuts|cutsize|error] [--criterion bound|radius]
 //   [--error E] [--max-cut K] [--bound-search walk|heap] [--share-cuts]
-//   [--reconstruction BLOCK [--reconstruction-cap N]]
+//   [--reconstruction auto|off|BLOCK [--reconstruction-cap N]]
 //   [--representatives tree|pixel|importance [--representative-seed S]] [--shadows auto|on|off]
 //   [--indirect on|off|vpl|radiosity]
 //   [--compare-reference] [--size WxH] [--camera ex,ey,ez,tx,ty,tz,fovy | --camera-index I]

@@ -138,11 +138,11 @@ void add_sampling_flags(CLI::App* cmd, RenderOptions* options) {
                     "a K^2-th of the time")
         ->check(CLI::Range(1u, 64u))
         ->capture_default_str();
-    cmd->add_option("--reconstruction", options->reconstruction_block,
+    cmd->add_option("--reconstruction", options->reconstruction,
                     "Lightcuts by reconstruction cuts on the GPU: full lightcuts at the corners of "
                     "BLOCKxBLOCK pixel blocks, the pixels between shaded from them with shadow rays "
-                    "only where their visibility disagrees (0: a lightcut per pixel)")
-        ->check(CLI::Range(0u, kMaxReconstructionBlock))
+                    "only where their visibility disagrees; off (or 0): a lightcut per pixel; auto: "
+                    "4 for one lightcuts frame of the bound walk search at --error >= 0.01, else off")
         ->capture_default_str();
     cmd->add_option("--reconstruction-cap", options->reconstruction_cap,
                     "Reconstruction cuts: cut nodes a sample records at most (4 bytes each); a "

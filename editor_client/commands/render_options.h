@@ -51,7 +51,7 @@ struct RenderOptions {
     uint32_t threads = 2;
     uint32_t pixel_stride = 1;
     uint32_t tile_stride = 1;
-    uint32_t reconstruction_block = 0;
+    std::string reconstruction = "auto";  // a block side, off, or auto (render_request.cpp)
     uint32_t reconstruction_cap = kDefaultReconstructionCap;
     uint32_t frames = 1;
     bool realtime_filter = true;

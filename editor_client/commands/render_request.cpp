@@ -1,5 +1,6 @@
 #include "editor_client/commands/render_request.h"
 
+#include <charconv>
 #include <string>
 
 #include "editor_client/commands/command_errors.h"
@@ -10,6 +11,31 @@
 
 namespace lc::client {
 namespace {
+
+// --reconstruction: a block side, off, or auto: 4x4 blocks wherever they
+// were measured faster at equal error (docs/bench/recon2.md: the furnished
+// rooms with point or mixed lights at E = 0.02; not at E = 0.005, where the
+// interpolation's error exceeds the per-pixel cut's), i.e. one lightcuts
+// frame of the bound criterion's walk search at E >= 0.01, every pixel.
+uint32_t reconstruction_block_of(const RenderOptions& options, const RenderSettings& settings) {
+    constexpr uint32_t kAutoBlock = 4;
+    constexpr float kAutoMinError = 0.01f;
+    if (options.reconstruction == "off") return 0;
+    if (options.reconstruction == "auto") {
+        const bool wins = settings.mode == RenderMode::kLightcuts && settings.criterion == CutCriterion::kBound &&
+                          settings.bound_search == BoundSearch::kWalk && !settings.share_cuts &&
+                          settings.error_ratio >= kAutoMinError && options.spp <= 1 &&
+                          options.spp_method == SppMethod::kGpu && options.pixel_stride <= 1 &&
+                          options.tile_stride <= 1;
+        return wins ? kAutoBlock : 0;
+    }
+    uint32_t block = 0;
+    const std::string& text = options.reconstruction;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), block);
+    if (ec != std::errc() || end != text.data() + text.size())
+        fail("--reconstruction '" + text + "' is not a block side, off or auto");
+    return block;
+}
 
 // The renderer's settings from the flags, in the order the flags are checked.
 RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, bool has_tree_source) {
@@ -24,7 +50,7 @@ RenderSettings parse_settings(const RenderOptions& options, const Scene& scene, 
     settings.representative_seed = options.representative_seed;
     settings.realtime_cut = options.shared.realtime_cut;
     settings.realtime_rays = options.shared.realtime_rays;
-    settings.reconstruction_block = options.reconstruction_block;
+    settings.reconstruction_block = reconstruction_block_of(options, settings);
     settings.reconstruction_cap = options.reconstruction_cap;
     settings.restir = or_fail(restir_settings_from(options.restir));
     if (options.frames != 1 && !mode_accumulates(settings.mode))

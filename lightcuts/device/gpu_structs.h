@@ -191,7 +191,8 @@ struct LC_ALIGN16 GpuReconstructionSample {
     vec3 radiance LC_DEFAULT(vec3(0.0f));  // tree lights, f_r and clamp applied
     uint record_count LC_DEFAULT(0u);
     uint flags LC_DEFAULT(0u);             // kSample*
-    uint pad0 LC_DEFAULT(0u);
+    // The error ratio its cut reached: the criterion's, or more where max-cut stopped it.
+    float reached_ratio LC_DEFAULT(0.0f);
     uint pad1 LC_DEFAULT(0u);
     uint pad2 LC_DEFAULT(0u);
 };

@@ -59,7 +59,7 @@ run_case() {  # scene layout lights size
   "$client" bake "$base.gltf" --spawn-server --builder agglomerative -o "$base.lcut" >/dev/null
   # Validation would slow the GPU work down; the benchmark measures the renderer alone.
   LC_VALIDATION=0 "$client" render "$base.gltf" --tree "$base.lcut" --criterion bound \
-    --sweep-error 0.02,0.01,0.005 --sweep-csv "$base.csv" --size "$size" -o "$base.png" \
+    --reconstruction off --sweep-error 0.02,0.01,0.005 --sweep-csv "$base.csv" --size "$size" -o "$base.png" \
     >"$base.log" 2>&1 || { cat "$base.log"; exit 1; }
   grep -A4 '^reference' "$base.log"
   tail -n +2 "$base.csv" | sed "s/^/$scene_name,$layout,$size,/" >>"$work/rows.csv"
