@@ -1,4 +1,4 @@
-// The real-time mode's fixed shadow-ray budget (stochastic_cuts.comp,
+// The real-time mode's fixed shadow-ray budget (realtime_lighting.comp,
 // render --realtime-rays S): every drawn light of the block's cut is shaded
 // without its visibility, S of them are picked, each in proportion to that
 // unshadowed radiance (one weighted reservoir per pick, filled as the cut is

@@ -1,4 +1,4 @@
-// The real-time mode's light draw (stochastic_cuts.comp): from a cut node
+// The real-time mode's light draw (realtime_lighting.comp): from a cut node
 // down to one leaf light, each child taken with probability in proportion to
 // its intensity x an estimate of cos / d^2 at the point
 // (stochastic_sphere_geometry, pixel_representative.glsl.h), one uniform

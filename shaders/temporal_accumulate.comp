@@ -1,6 +1,6 @@
 #version 460
 // The real-time mode's temporal pass: this frame's noisy estimate (hdr_image,
-// stochastic_cuts.comp) joins the pixel's history. While the view rests the
+// realtime_lighting.comp) joins the pixel's history. While the view rests the
 // history is the pixel's own and the result is the running mean of every
 // frame since the view last changed: it converges to the unbiased answer.
 // While the camera moves, the history is found where the pixel's surface was

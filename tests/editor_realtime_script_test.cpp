@@ -29,11 +29,20 @@ namespace {
 struct RealtimeModeCase {
     const char* mode;
     const char* setup;
+    // The mean of still frames converges to the exact answer; else the bound its bias stays under.
+    bool unbiased_mean;
+    double biased_bound;
 };
 const RealtimeModeCase kRealtimeModes[] = {
-    {"realtime", "realtime-cut 8\n"},
-    {"realtime", "realtime-cut 16\nrealtime-rays 1\n"},
+    {"realtime", "realtime-cut 8\n", true, 0.0},
+    {"realtime", "realtime-cut 16\nrealtime-rays 1\n", true, 0.0},
+    // ReSTIR at its defaults combines reservoirs with 1/M weights (biased): its
+    // still mean settles near, not at, the reference (relative MSE 0.025 after
+    // 2 frames, 0.062 after 32: temporal reuse brings its bias in).
+    {"restir", "", false, 0.1},
 };
+// Named in test output by its mode, not by its pointers' bytes.
+void PrintTo(const RealtimeModeCase& c, std::ostream* out) { *out << c.mode; }
 
 class RealtimeScript : public ::testing::TestWithParam<RealtimeModeCase> {
 protected:
@@ -119,7 +128,10 @@ TEST_P(RealtimeScript, StillCameraAccumulatesTowardsTheReference) {
     EXPECT_GT(early_error, 0.0);
     // At least 16x the frames of a plain mean (the filter aside): far less
     // than the early image's error, whatever the draws.
-    EXPECT_LT(late_error, early_error / 2.0) << "the accumulated view converges";
+    if (mode.unbiased_mean)
+        EXPECT_LT(late_error, early_error / 2.0) << "the accumulated view converges";
+    else
+        EXPECT_LT(late_error, mode.biased_bound) << "the accumulated view stays near the reference";
 }
 
 TEST_P(RealtimeScript, MovingCameraKeepsFramesComingAndFinite) {

@@ -50,9 +50,10 @@ TEST(NameTables, EveryTableReadsBothWays) {
 
 TEST(NameTables, ModesAreListedInKeyOrder) {
     // The view's number keys and the editor's list both follow the table.
-    ASSERT_EQ(kRenderModeCount, 5);
+    ASSERT_EQ(kRenderModeCount, 6);
     EXPECT_EQ(index_in(kRenderModeNames, RenderMode::kReference), 0u);
     EXPECT_EQ(index_in(kRenderModeNames, RenderMode::kRealtime), 4u);
+    EXPECT_EQ(index_in(kRenderModeNames, RenderMode::kRestir), 5u);
     EXPECT_STREQ(names_of(kRenderModeNames)[3], "cutsize");
     EXPECT_EQ(names_in(kCriterionNames), "radius, bound");
     EXPECT_STREQ(name_in(kCriterionNames, static_cast<CutCriterion>(9)), "unknown");

@@ -250,7 +250,9 @@ Status EditorLoop::account(FramePlan& plan, Clock::time_point frame_start) {
     else
         frame.gpu_ms = 0.0;
     frame.realtime_frames.reset();
-    if (plan.realtime) frame.realtime_frames = renderer_->realtime_frames();
+    if (plan.realtime)
+        frame.realtime_frames = plan.settings.mode == RenderMode::kRestir ? renderer_->restir_frames()
+                                                                          : renderer_->realtime_frames();
     summary_.last_mode = plan.settings.mode;
     if (steady_since_) ++summary_.steady_frames;
     const std::vector<std::string> lines = overlay_lines(session_, frame);

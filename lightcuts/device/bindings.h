@@ -45,7 +45,7 @@ LC_CONST uint kBindTemporalParams = 4u;      // GpuTemporalParams
 LC_CONST uint kTemporalBindingCount = 5u;
 
 // The real-time mode's light-draw records (set 2, owned by RealtimePass,
-// shaders/stochastic_cuts.comp): GpuDrawPair per tree node, made when the tree is.
+// shaders/realtime_lighting.comp): GpuDrawPair per tree node, made when the tree is.
 LC_CONST uint kDrawPairSet = 2u;
 LC_CONST uint kBindDrawPairs = 0u;
 

@@ -162,7 +162,7 @@ struct LC_ALIGN16 GpuFrameConstants {
     uint lattice_step LC_DEFAULT(0u);
     uint lattice_origin_x LC_DEFAULT(0u);
     uint lattice_origin_y LC_DEFAULT(0u);
-    // The real-time mode's frame key (stochastic_cuts.comp): what its frames
+    // The real-time mode's frame key (realtime_lighting.comp): what its frames
     // draw independently of each other (the uniforms of worn chains) hashes it.
     uint frame_seed LC_DEFAULT(0u);
     // Reference mode's exact clamp: the sums' pass keeps each VPL's visibility
@@ -226,7 +226,7 @@ struct LC_ALIGN16 GpuTemporalParams {
     uint pad1 LC_DEFAULT(0u);
 };
 
-// The real-time mode's light draw (stochastic_cuts.comp) reads one record per
+// The real-time mode's light draw (realtime_lighting.comp) reads one record per
 // level of its descent instead of three dependent node loads (the node, its
 // first child for the sibling's index, the sibling): record i holds what the
 // draw weighs node i's two children by, and where each leads. 48 bytes,

@@ -52,7 +52,7 @@ LC_CONST uint kSpecWalkShareCuts = 24u;
 // draws' seed.
 LC_CONST uint kSpecRepresentatives = 25u;
 LC_CONST uint kSpecRepresentativeSeed = 26u;
-// The real-time mode (stochastic_cuts.comp): nodes in a block's cut, at most
+// The real-time mode (realtime_lighting.comp): nodes in a block's cut, at most
 // kMaxStochasticCut (limits.h).
 LC_CONST uint kSpecStochasticCut = 28u;
 // Its shadow rays per pixel, picked among the cut's drawn lights (0: one per

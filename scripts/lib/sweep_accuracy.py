@@ -388,7 +388,8 @@ class Sweep:
         args = (["render", scene.path, "--size", "%dx%d" % (size, size), "-o", png] + scene.camera +
                 scene.load)
         if tree:
-            args += ["--tree", tree]
+            # The sweep measures the paper's cut per pixel, not the default's reconstruction cuts.
+            args += ["--tree", tree, "--reconstruction", "off"]
         pfm = self.runner.path(tag + ".pfm") if float_out else None
         if pfm:
             args += ["--float", pfm]

@@ -11,7 +11,7 @@
 #include "lightcuts/device/spec_constants.h"
 #include "lightcuts/status_macros.h"
 #include "spatial_filter_comp.spv.h"
-#include "stochastic_cuts_comp.spv.h"
+#include "realtime_lighting_comp.spv.h"
 #include "temporal_accumulate_comp.spv.h"
 
 namespace lc::client {
@@ -38,7 +38,7 @@ Status RealtimePass::prepare(PipelineCache& pipelines, const Frame& frame) {
                           std::to_string(kMaxWorkgroupInvocations) + " pixels");
     LC_RETURN_IF_ERROR(history_.prepare(*frame.settings));
     const std::array<std::span<const uint32_t>, kStageCount> modules{
-        spirv_words(stochastic_cuts_comp_spv), spirv_words(temporal_accumulate_comp_spv),
+        spirv_words(realtime_lighting_comp_spv), spirv_words(temporal_accumulate_comp_spv),
         spirv_words(spatial_filter_comp_spv)};
     for (int stage = 0; stage < kStageCount; ++stage) {
         vk::Specialization spec;

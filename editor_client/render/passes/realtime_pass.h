@@ -1,7 +1,7 @@
 #pragma once
 // The real-time mode's lighting (RenderMode::kRealtime), three dispatches
 // that own their pipelines, history and descriptor set: stochastic lightcuts
-// (stochastic_cuts.comp: one cut per block refined at a pivot drawn each
+// (realtime_lighting.comp: one cut per block refined at a pivot drawn each
 // frame, one light drawn in each cut node per pixel, one shadow ray each),
 // temporal accumulation (temporal_accumulate.comp: a running mean while the
 // view rests, a reprojected and clamped short history while it moves) and an
