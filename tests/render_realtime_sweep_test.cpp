@@ -58,9 +58,26 @@ TEST(RealtimeVariants, ParsesEachKindAndTheOlderCutList) {
     EXPECT_EQ(variant_settings((*ok)[2], base).realtime_rays, 0u) << "a bare cut size keeps --realtime-rays";
 }
 
+TEST(RealtimeVariants, ReadsReSTIRWithItsCandidates) {
+    RenderSettings base;
+    base.restir.candidates = 8;
+    Result<std::vector<RealtimeVariant>> ok = parse_realtime_variants("restir,restir32,K8r1", base);
+    ASSERT_TRUE(ok.ok()) << ok.error();
+    ASSERT_EQ(ok->size(), 3u);
+    EXPECT_EQ((*ok)[0].label, "restir");
+    EXPECT_EQ((*ok)[1].label, "restir32");
+    const RenderSettings m32 = variant_settings((*ok)[1], base);
+    EXPECT_EQ(m32.mode, RenderMode::kRestir);
+    EXPECT_EQ(m32.restir.candidates, 32u);
+    EXPECT_EQ(variant_settings((*ok)[0], base).restir.candidates, 8u);
+    EXPECT_TRUE((*ok)[0].accumulates);
+    EXPECT_FALSE(parse_realtime_variants("restir0", base).ok());
+    EXPECT_FALSE(parse_realtime_variants("restir65", base).ok());
+}
+
 TEST(RealtimeVariants, NamesTheBadItem) {
     const RenderSettings base;
-    for (const char* bad : {"", "K", "K0", "K33", "K8r0", "K8r", "x", "lc-1", "lcx", "16,K16", "8,,16", "restir"}) {
+    for (const char* bad : {"", "K", "K0", "K33", "K8r0", "K8r", "x", "lc-1", "lcx", "16,K16", "8,,16", "restirx", "restir,restir"}) {
         Result<std::vector<RealtimeVariant>> r = parse_realtime_variants(bad, base);
         EXPECT_FALSE(r.ok()) << bad;
         if (!r.ok()) {

@@ -75,7 +75,8 @@ void add_measurement_flags(CLI::App* cmd, RenderOptions* options) {
     cmd->add_option("--sweep-realtime", options->sweep_realtime,
                     "With --mode realtime: the real-time modes side by side on this scene: for each "
                     "variant of the list (lc or lc0.05: deterministic lightcuts at --error or that "
-                    "ratio; K16, K8r1 or 16: stochastic lightcuts at that cut and ray budget) the "
+                    "ratio; K16, K8r1 or 16: stochastic lightcuts at that cut and ray budget; restir or restir16: "
+                    "ReSTIR DI with --restir-* or that many candidates) the "
                     "still view's frames accumulated, against one reference, after each count of "
                     "--sweep-frames, then each frame of --sweep-path's orbit against its own, then "
                     "the error at the cheapest variant's time and rays");

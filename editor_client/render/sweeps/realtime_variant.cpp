@@ -50,6 +50,16 @@ std::optional<RealtimeVariant> stochastic_variant(std::string_view args, const R
                            }};
 }
 
+// "", "16": ReSTIR DI with the base's --restir-* settings, or with this many candidates a pixel.
+std::optional<RealtimeVariant> restir_variant(std::string_view args, const RenderSettings& base) {
+    std::optional<uint32_t> candidates = base.restir.candidates;
+    if (!args.empty()) candidates = parse_whole_count(args, 1, kMaxRestirCandidates);
+    if (!candidates) return std::nullopt;
+    const std::string label = args.empty() ? "restir" : "restir" + std::to_string(*candidates);
+    return RealtimeVariant{label, RenderMode::kRestir, true,
+                           [m = *candidates](RenderSettings& s) { s.restir.candidates = m; }};
+}
+
 // The kinds of entry, by prefix: a new real-time mode is one more row.
 struct VariantKind {
     std::string_view prefix;
@@ -58,6 +68,7 @@ struct VariantKind {
 constexpr VariantKind kVariantKinds[] = {
     {"lc", lightcuts_variant},
     {"K", stochastic_variant},
+    {"restir", restir_variant},
 };
 
 std::optional<RealtimeVariant> parse_variant(std::string_view item, const RenderSettings& base) {

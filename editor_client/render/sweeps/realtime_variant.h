@@ -27,6 +27,7 @@ RenderSettings variant_settings(const RealtimeVariant& variant, const RenderSett
 // "lc,K8r1,16,32": comma-separated items, at least one, labels distinct.
 //   lc, lc0.05   deterministic lightcuts at E = `base.error_ratio` or the ratio given;
 //   K16, K8r1    stochastic lightcuts (realtime) at K = 16, with `base.realtime_rays` or 1 ray a pixel;
+//   restir, restir16  ReSTIR DI with `base.restir`, or with 16 candidates a pixel;
 //   16           the same as K16 (the flag's older form, a list of cut sizes).
 Result<std::vector<RealtimeVariant>> parse_realtime_variants(std::string_view text, const RenderSettings& base);
 
