@@ -86,7 +86,7 @@ PY
       -o "$work/again.lcut" >/dev/null
     row bake_end_to_end "$build" "$rnd" wall_ms "$(python3 -c "import time; print(round((time.time() - $start) * 1e3, 1))")"
     render_case reference "$build" "$rnd" "$bin" --mode reference
-    render_case bound_walk "$build" "$rnd" "$bin" --mode lightcuts --criterion bound --bound-search walk
+    render_case bound_walk "$build" "$rnd" "$bin" --mode lightcuts --criterion bound --bound-search walk --reconstruction 0  # the cut per pixel, as builds before s18 made it
     render_case bound_heap "$build" "$rnd" "$bin" --mode lightcuts --criterion bound --bound-search heap
     render_case radius "$build" "$rnd" "$bin" --mode lightcuts --criterion radius
   done
